@@ -1,0 +1,24 @@
+#pragma once
+// One subcommand per file (render.cpp, compare.cpp, devices.cpp, speckle.cpp). Each add*Command
+// registers its CLI11 subcommand and, when that subcommand is parsed, stores in `run` the function
+// that does the work and returns the process exit code.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace dicsynth::cli {
+
+// Exit codes, documented in README.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitCompareFailed = 1;  // compare: a difference exceeds its tolerance
+inline constexpr int kExitBadInput = 2;       // scene/parameter/file errors (InputError, CLI errors)
+inline constexpr int kExitFailure = 3;        // Vulkan, I/O or internal failure (Error)
+
+using RunFn = std::function<int()>;
+
+void addRenderCommand(CLI::App& root, RunFn& run);
+void addCompareCommand(CLI::App& root, RunFn& run);
+void addDevicesCommand(CLI::App& root, RunFn& run);
+void addSpeckleCommand(CLI::App& root, RunFn& run);
+
+}  // namespace dicsynth::cli

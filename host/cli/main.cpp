@@ -1,0 +1,40 @@
+// dicsynth: synthetic images with exact ground truth for experimental mechanics.
+// Maps every failure to a one-line message on stderr and a documented exit code (commands.h).
+#include <cstdio>
+#include <exception>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+  using namespace dicsynth;
+  CLI::App app{"dicsynth: ray-traced synthetic images and ground truth for stereo DIC", "dicsynth"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "dicsynth 0.1.0");
+  cli::RunFn run;
+  cli::addRenderCommand(app, run);
+  cli::addCompareCommand(app, run);
+  cli::addDevicesCommand(app, run);
+  cli::addSpeckleCommand(app, run);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "dicsynth: %s\n", e.what());
+    return cli::kExitBadInput;
+  }
+  try {
+    return run ? run() : cli::kExitBadInput;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return cli::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dicsynth: error: %s\n", e.what());
+    return cli::kExitFailure;
+  }
+}

@@ -1,0 +1,42 @@
+#pragma once
+// A storage buffer with its memory, owned (RAII). Memory is host-visible when the device offers a
+// device-local host-visible type (lavapipe, resizable BAR) or when `readback` asks for it; otherwise
+// device-local with a staging copy for upload/download.
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+namespace dicsynth::gpu {
+
+class Context;
+
+enum class BufferUse {
+  Input,     // written by the host once, read by shaders (prefer device-local)
+  Readback,  // written by shaders, read by the host (prefer host-visible, cached)
+};
+
+class Buffer {
+ public:
+  Buffer(Context& context, std::size_t bytes, BufferUse use);
+  ~Buffer();
+  Buffer(Buffer&&) noexcept;
+  Buffer& operator=(Buffer&&) noexcept;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+
+  VkBuffer handle() const;
+  std::size_t size() const;  // bytes requested (the allocation may be larger)
+
+  // Copy host bytes into [offset, offset+bytes) / out of it. Blocking; uses a staging buffer when the
+  // memory is not host-visible. Throws Error on out-of-range access.
+  void upload(const void* data, std::size_t bytes, std::size_t offset = 0);
+  void download(void* data, std::size_t bytes, std::size_t offset = 0) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dicsynth::gpu

@@ -1,0 +1,36 @@
+#pragma once
+// Writers of one camera's outputs: the sensor image (TIFF, digital numbers) and the ground truth
+// (OpenEXR: float radiance before the sensor + geometric layers). Each file is written to a temporary
+// name in the target folder and renamed when complete, so a failure never leaves a partial file.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/result.h"
+#include "scene/scene.h"
+
+namespace dicsynth {
+
+// Facts about the run recorded in each file's metadata (EXR header attributes / TIFF description).
+struct OutputInfo {
+  std::string sceneFile;
+  int frame = 0;
+  std::uint32_t seed = 0;
+  int samplesPerPixel = 0;
+  std::string backend, precision, device;
+  std::vector<std::string> objectNames;  // objectNames[id - 1] is the object with objectId == id
+};
+
+struct OutputFiles {
+  std::string image;        // DIR/<stem>.tif
+  std::string groundTruth;  // DIR/<stem>.exr
+};
+
+// `digital` holds one digital number per pixel (host/sensor), < 2^camera.bitsPerPixel.
+// TIFF: 8-bit when bitsPerPixel <= 8, else 16-bit holding the raw digital number (not rescaled).
+// EXR channels: Y (radiance), Z, P.X/Y/Z, N.X/Y/Z, uv.U/V (float32), objectId (uint32), mask (float32).
+OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, const Camera& camera,
+                               const CameraImage& image, const std::vector<std::uint16_t>& digital,
+                               const OutputInfo& info);
+
+}  // namespace dicsynth

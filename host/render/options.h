@@ -1,0 +1,18 @@
+#pragma once
+// Options of one render, shared by both backends.
+#include <cstdint>
+#include <string>
+
+namespace dicsynth {
+
+enum class Precision { Fp32, Fp64 };
+inline const char* toString(Precision p) { return p == Precision::Fp32 ? "fp32" : "fp64"; }
+
+struct RenderOptions {
+  int samplesPerPixel = 4;  // stratified over the pixel's sensitive square (host/camera/sampling.h)
+  std::uint32_t seed = 1;
+  int frame = 0;
+  Precision precision = Precision::Fp32;  // GPU only; the CPU reference is always double
+};
+
+}  // namespace dicsynth

@@ -1,0 +1,36 @@
+#pragma once
+// RenderResult: what either backend produces, per camera. Nothing downstream (sensor, writers,
+// compare) knows which backend ran. All values are widened to double on readback.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace dicsynth {
+
+struct CameraImage {
+  std::string cameraName;
+  int width_px = 0, height_px = 0;
+  // Row-major, top row first; index = y * width + x, pixel (x, y) centred at (x, y) (OpenCV).
+  std::vector<double> radiance;  // mean over the pixel's samples, before the sensor (full scale = 1/exposure)
+  // Ground truth of the single ray through the exact pixel centre. NaN where objectId == 0.
+  std::vector<double> depth_m;   // Z: depth along the camera's optical axis
+  std::vector<dvec3> position_m; // P: world position of the surface point
+  std::vector<dvec3> normal;     // N: unit world normal, oriented towards the camera
+  std::vector<dvec2> uv;         // surface parameters (u, v) in [0, 1]²
+  std::vector<std::uint32_t> objectId;  // 0 = background, else index of the object + 1
+
+  std::size_t pixelCount() const { return std::size_t(width_px) * std::size_t(height_px); }
+  void resize(int width, int height);
+};
+
+struct RenderResult {
+  std::vector<CameraImage> cameras;  // same order as PreparedScene::cameras
+  std::string backend;               // "cpu" | "gpu"
+  std::string precision;             // "fp64" for the CPU; "fp32" | "fp64" on the GPU
+  std::string device;                // device name ("CPU reference (N threads)" for the CPU)
+  double renderSeconds = 0;          // wall time of the render itself (no set-up, no I/O)
+};
+
+}  // namespace dicsynth

@@ -1,0 +1,104 @@
+#pragma once
+// Scene: what a scene file describes, as plain validated C++ structs in double precision.
+// Produced by loadScene() (host/scene/lua_scene.cpp), consumed by prepareScene() (host/geometry).
+// Units: metres, radians, pixels where the name says _px. Frames: the camera frame is OpenCV's
+// (x right, y down, z forward); world and object frames are right-handed.
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+#include "core/math.h"
+#include "shared/kinds.h"
+
+namespace dicsynth {
+
+// OpenCV's Brown–Conrady model on normalized coordinates (DESIGN.md §3); maps ideal → distorted.
+struct Distortion {
+  DistortionKind kind = DistortionKind::None;
+  double k1 = 0, k2 = 0, k3 = 0;  // radial
+  double p1 = 0, p2 = 0;          // tangential (OpenCV order; photogrammetry tools swap them)
+};
+
+struct Camera {
+  std::string name;  // the scene's global variable name, e.g. "camera1"
+  SourceLoc where;
+  CameraKind kind = CameraKind::Pinhole;
+  int width_px = 0, height_px = 0;
+  dvec2 principalPoint_px{0, 0};  // OpenCV pixel frame: centre of the top-left pixel is (0, 0)
+  double focalLength_m = 0;
+  dvec2 pixelSize_m{0, 0};
+  double fillFactor = 1;   // area fraction of the pixel that is sensitive, (0, 1]
+  int bitsPerPixel = 8;    // 1..16
+  double exposure = 1;     // digital number = round(clamp(exposure * radiance, 0, 1) * (2^bits - 1))
+  Distortion distortion;
+  dmat4 worldFromCamera{1.0};  // rigid; identity = at the origin looking down +z, y down
+};
+
+// A shape in its own frame; `location` places that frame's origin in the object's frame.
+// Per-kind parameters (others unused):
+//   Sphere:    radius_m
+//   Box:       size_m (full edge lengths x, y, z)
+//   Rectangle: size_m.x, size_m.y (in the local xy-plane)
+//   Plane:     size_m.x, size_m.y = texture tile size (u, v repeat every tile)
+//   Triangle:  vertices_m[3] (relative to location), vertexUV[3]
+struct Shape {
+  ShapeKind kind = ShapeKind::Sphere;
+  SourceLoc where;
+  dvec3 location_m{0, 0, 0};
+  double radius_m = 0;
+  dvec3 size_m{0, 0, 0};
+  std::array<dvec3, 3> vertices_m{};
+  std::array<dvec2, 3> vertexUV{dvec2{0, 0}, dvec2{1, 0}, dvec2{0, 1}};
+};
+
+struct Shader {
+  ShaderKind kind = ShaderKind::Constant;
+  SourceLoc where;
+  dvec3 color{1, 1, 1};  // linear RGB; the renderer uses its luminance (grayscale sensor)
+};
+
+struct Texture {
+  TextureKind kind = TextureKind::Constant;
+  SourceLoc where;
+  double value = 1;      // Constant
+  std::string path;      // File: resolved path (relative paths resolve against the scene's folder)
+};
+
+struct Object {
+  std::string name;  // global variable name
+  SourceLoc where;
+  Shape shape;
+  Shader shader;
+  Texture texture;
+  // Applied to the shape before `location`: worldFromShape = translate(location) * transform.
+  // So a rotation turns the shape about its own location. Any invertible 4x4 homography.
+  dmat4 transform{1.0};
+};
+
+struct Light {
+  std::string name;
+  SourceLoc where;
+  LightKind kind = LightKind::Point;
+  dvec3 position_m{0, 0, 0};
+  double intensity = 1;  // radiant intensity (radiance units · m²); luminance if given as RGB
+};
+
+struct Scene {
+  std::string file;               // the scene file as given
+  std::vector<Camera> cameras;    // sorted by name
+  std::vector<Object> objects;    // sorted by name; objectId = index + 1 (0 = background)
+  std::vector<Light> lights;      // sorted by name
+};
+
+// Values set as Lua globals before the scene runs.
+struct SceneParams {
+  std::vector<std::pair<std::string, std::string>> defines;  // -D name=value (number/bool/string)
+  int frame = 0;                                              // global `frame`
+};
+
+// Loads and validates a scene. Throws InputError("file:line: message") on any error.
+Scene loadScene(const std::string& path, const SceneParams& params);
+
+}  // namespace dicsynth

@@ -1,0 +1,43 @@
+// Closed lists of kinds, shared by C++ (host) and GLSL (shaders). Adding a kind touches this file,
+// one C++ case, one GLSL case and one test. Values are stored in GPU buffers: never renumber.
+#ifndef DS_SHARED_KINDS_H
+#define DS_SHARED_KINDS_H
+
+#define DS_SHAPE_SPHERE 0
+#define DS_SHAPE_BOX 1
+#define DS_SHAPE_TRIANGLE 2
+#define DS_SHAPE_PLANE 3
+#define DS_SHAPE_RECTANGLE 4
+#define DS_SHAPE_COUNT 5
+
+#define DS_SHADER_CONSTANT 0
+#define DS_SHADER_LAMBERT 1
+
+#define DS_TEXTURE_CONSTANT 0
+#define DS_TEXTURE_FILE 1
+
+#define DS_LIGHT_POINT 0
+
+#define DS_CAMERA_PINHOLE 0
+
+#define DS_DISTORTION_NONE 0
+#define DS_DISTORTION_BROWN 1
+
+#ifdef __cplusplus
+namespace dicsynth {
+enum class ShapeKind : int {
+  Sphere = DS_SHAPE_SPHERE,
+  Box = DS_SHAPE_BOX,
+  Triangle = DS_SHAPE_TRIANGLE,
+  Plane = DS_SHAPE_PLANE,
+  Rectangle = DS_SHAPE_RECTANGLE,
+};
+enum class ShaderKind : int { Constant = DS_SHADER_CONSTANT, Lambert = DS_SHADER_LAMBERT };
+enum class TextureKind : int { Constant = DS_TEXTURE_CONSTANT, File = DS_TEXTURE_FILE };
+enum class LightKind : int { Point = DS_LIGHT_POINT };
+enum class CameraKind : int { Pinhole = DS_CAMERA_PINHOLE };
+enum class DistortionKind : int { None = DS_DISTORTION_NONE, Brown = DS_DISTORTION_BROWN };
+}  // namespace dicsynth
+#endif
+
+#endif

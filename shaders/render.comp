@@ -1,4 +1,64 @@
 #version 460
-// PLACEHOLDER during development.
+// Entry point of the renderer: one invocation per pixel of one tile of one camera.
+// Writes the mean radiance over the pixel's stratified samples and the ground truth of the ray
+// through the pixel centre (host/render/result.h). Compiled once per precision (DS_FP32, DS_FP64);
+// scene features are specialization constants (lib/features.glsl).
+#extension GL_EXT_scalar_block_layout : disable
+
+#include "lib/real.glsl"
+#include "lib/features.glsl"
+#include "shared/bindings.h"
+#include "shared/kinds.h"
+#include "shared/gpu_types.h"
+
 layout(local_size_x = 8, local_size_y = 8) in;
-void main() {}
+
+layout(std430, set = 0, binding = DS_BINDING_CAMERAS) readonly buffer Cameras { GpuCamera cameras[]; };
+layout(std430, set = 0, binding = DS_BINDING_OBJECTS) readonly buffer Objects { GpuObject objects[]; };
+layout(std430, set = 0, binding = DS_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
+layout(std430, set = 0, binding = DS_BINDING_TEXTURES) readonly buffer Textures { GpuTexture textures[]; };
+layout(std430, set = 0, binding = DS_BINDING_TEXELS) readonly buffer Texels { real texels[]; };
+layout(std430, set = 0, binding = DS_BINDING_PIXELS) writeonly buffer Pixels { GpuPixel pixels[]; };
+layout(push_constant) uniform Push { GpuTileParams params; };
+
+#include "lib/camera.glsl"
+#include "lib/trace.glsl"
+
+void main() {
+  const ivec2 local = ivec2(gl_GlobalInvocationID.xy);
+  if (local.x >= params.tile.z || local.y >= params.tile.w) return;
+  const int cameraIndex = params.counts.x;
+  const GpuCamera cam = cameras[cameraIndex];
+  const ivec2 pixel = params.tile.xy + local;
+  const real2 centre = real2(pixel);
+  const real3 origin = ds_camera_centre(cam);
+  const bool distorted = HAS_DISTORTION && cam.flags.x != 0;
+
+  GpuPixel outPixel;
+  outPixel.radianceDepthUV = real4(0.0);
+  outPixel.positionId = real4(0.0);
+  outPixel.normal = real4(0.0);
+
+  // Ground truth: the ray through the exact pixel centre.
+  real3 d;
+  SurfaceHit hit;
+  if (ds_camera_ray(cam, centre, distorted, d) && ds_trace_nearest(origin, d, hit)) {
+    outPixel.radianceDepthUV.yzw = real3(hit.t, hit.uv);
+    outPixel.positionId = real4(hit.position, real(objects[hit.object].kinds.w));
+    outPixel.normal.xyz = hit.normal;
+  }
+
+  // Radiance: mean over stratified samples of the pixel's sensitive square.
+  const int spp = params.counts.y;
+  const ivec2 strata = cam.size.zw;
+  const real side = cam.brown1.y;
+  real sum = 0.0;
+  for (int s = 0; s < spp; ++s) {
+    const real2 offset = ds_sample_offset(strata, side, params.random.x, params.random.y,
+                                          uint(cameraIndex), uint(pixel.x), uint(pixel.y), uint(s));
+    if (ds_camera_ray(cam, centre + offset, distorted, d) && ds_trace_nearest(origin, d, hit))
+      sum += ds_shade(hit);
+  }
+  outPixel.radianceDepthUV.x = sum / real(spp);
+  pixels[local.y * params.tile.z + local.x] = outPixel;
+}

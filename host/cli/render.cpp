@@ -1,9 +1,110 @@
-// PLACEHOLDER during development: replaced by the real subcommand.
+// `dicsynth render SCENE.lua`: renders every camera of every frame and writes, per camera and frame,
+// the sensor image (TIFF) and the ground truth (EXR) into the output folder.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
 #include "cli/commands.h"
+#include "cli/render_args.h"
 #include "core/error.h"
+#include "cpu/reference_renderer.h"
+#include "geometry/prepared_scene.h"
+#include "gpu/context.h"
+#include "gpu/renderer.h"
+#include "io/outputs.h"
+#include "sensor/sensor.h"
+
 namespace dicsynth::cli {
-void addRenderCommand(CLI::App& root, RunFn& run) {
-  auto* sub = root.add_subcommand("render", "(in development)");
-  sub->callback([&run] { run = [] () -> int { throw Error("render: not implemented yet"); }; });
+namespace {
+
+struct RenderCommand {
+  RenderArgs args;
+  std::string outputDir = "out";
+  std::string backend = "gpu";
+  std::string frames;
+};
+
+void createOutputDir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw InputError("-o " + dir + ": cannot create the output folder" + (ec ? ": " + ec.message() : ""));
 }
+
+std::string outputStem(const std::string& camera, bool numbered, int frame) {
+  if (!numbered) return camera;
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "_%04d", frame);
+  return camera + buf;
+}
+
+int runRender(const RenderCommand& cmd) {
+  const bool numbered = !cmd.frames.empty();
+  const std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
+  const auto defines = parseDefines(cmd.args.defines);
+  renderOptions(cmd.args, 0);  // validate the sampling options before any work
+
+  // Every frame's scene is evaluated first, so a scene error stops the run before any image exists.
+  std::vector<Scene> scenes;
+  for (int f : frames) scenes.push_back(loadScene(cmd.args.scenePath, {defines, f}));
+  createOutputDir(cmd.outputDir);
+
+  const bool useGpu = cmd.backend == "gpu";
+  std::unique_ptr<gpu::Context> context;
+  std::unique_ptr<gpu::Renderer> renderer;
+  if (useGpu) {
+    gpu::ContextOptions co;
+    co.device = cmd.args.device;
+    context = std::make_unique<gpu::Context>(co);
+    renderer = std::make_unique<gpu::Renderer>(*context);
+  }
+  const Precision precision =
+      resolvePrecision(cmd.args.precision, useGpu ? context->info().shaderFloat64 : true);
+
+  for (std::size_t fi = 0; fi < frames.size(); ++fi) {
+    const PreparedScene prepared = prepareScene(scenes[fi], {cmd.args.downscale});
+    RenderOptions options = renderOptions(cmd.args, frames[fi]);
+    options.precision = precision;
+    options.progress = progressPrinter("rendering" + (numbered ? " frame " + std::to_string(frames[fi]) : ""));
+    const RenderResult result = useGpu ? renderer->render(prepared, options) : cpu::render(prepared, options);
+
+    OutputInfo info;
+    info.sceneFile = cmd.args.scenePath;
+    info.frame = frames[fi];
+    info.seed = options.seed;
+    info.samplesPerPixel = options.samplesPerPixel;
+    info.backend = result.backend;
+    info.precision = result.precision;
+    info.device = result.device;
+    for (const auto& o : prepared.objects) info.objectNames.push_back(o.name);
+    for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
+      const Camera& cam = prepared.cameras[c].camera;
+      const CameraImage& image = result.cameras[c];
+      const OutputFiles files = writeCameraOutputs(cmd.outputDir, outputStem(cam.name, numbered, frames[fi]),
+                                                   cam, image, digitize(image.radiance, cam), info);
+      std::printf("%s, %s: %dx%d, %d spp, %s %s on %s, %.2f s\n", files.image.c_str(),
+                  files.groundTruth.c_str(), cam.width_px, cam.height_px, options.samplesPerPixel,
+                  result.backend.c_str(), result.precision.c_str(), result.device.c_str(),
+                  result.renderSeconds);
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& root, RunFn& run) {
+  auto cmd = std::make_shared<RenderCommand>();
+  CLI::App* sub = root.add_subcommand(
+      "render", "Render every camera of a scene: DIR/<camera>[_<frame>].tif (sensor) and .exr (ground truth)");
+  addRenderArgs(*sub, cmd->args);
+  sub->add_option("-o,--output", cmd->outputDir, "Output folder (created if missing)")->capture_default_str();
+  sub->add_option("--backend", cmd->backend, "gpu (Vulkan) or cpu (double-precision reference)")
+      ->check(CLI::IsMember({"gpu", "cpu"}))
+      ->capture_default_str();
+  sub->add_option("--frames", cmd->frames,
+                  "Frames A:B (both included) or N; sets the scene global `frame` and numbers the files");
+  sub->callback([cmd, &run] { run = [cmd] { return runRender(*cmd); }; });
+}
+
 }  // namespace dicsynth::cli

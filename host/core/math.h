@@ -17,6 +17,10 @@ using ivec2 = glm::ivec2;
 
 inline constexpr double kPi = std::numbers::pi;
 
+// "No hit yet" ray length (m or ray parameter): finite, so that the very same arithmetic runs in
+// GLSL, where infinities are not guaranteed (DS_FAR_AWAY in shaders/lib/real.glsl).
+inline constexpr double kFarAway = 1e30;
+
 // Rec. 709 / sRGB-linear luminance weights: grayscale output = luminance of linear RGB.
 inline constexpr dvec3 kLuminanceWeights{0.2126, 0.7152, 0.0722};
 inline double luminance(const dvec3& rgb) { return glm::dot(rgb, kLuminanceWeights); }

@@ -1,6 +1,7 @@
 #pragma once
 // Options of one render, shared by both backends.
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace dicsynth {
@@ -13,6 +14,8 @@ struct RenderOptions {
   std::uint32_t seed = 1;
   int frame = 0;
   Precision precision = Precision::Fp32;  // GPU only; the CPU reference is always double
+  // Called from the rendering thread with the fraction of all cameras' pixels done, in [0, 1].
+  std::function<void(double)> progress;
 };
 
 }  // namespace dicsynth

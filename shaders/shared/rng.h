@@ -30,13 +30,13 @@ DS_FN uint ds_hash_combine(uint h, uint value) { return ds_hash(h ^ value); }
 #define DS_DIM_PIXEL_X 0u
 #define DS_DIM_PIXEL_Y 1u
 
-DS_FN uint ds_sample_bits(uint seed, uint frame, uint camera, uint px, uint py, uint sample, uint dim) {
+DS_FN uint ds_sample_bits(uint seed, uint frame, uint camera, uint px, uint py, uint sampleIndex, uint dim) {
   uint h = ds_hash(seed ^ 0x9e3779b9u);
   h = ds_hash_combine(h, frame);
   h = ds_hash_combine(h, camera);
   h = ds_hash_combine(h, px);
   h = ds_hash_combine(h, py);
-  h = ds_hash_combine(h, sample);
+  h = ds_hash_combine(h, sampleIndex);
   return ds_hash_combine(h, dim);
 }
 

@@ -1,0 +1,91 @@
+#include "cli/render_args.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <memory>
+
+#include "core/error.h"
+
+namespace dicsynth::cli {
+
+void addRenderArgs(CLI::App& app, RenderArgs& args) {
+  app.add_option("scene", args.scenePath, "Scene file (Lua)")->required();
+  app.add_option("-D,--define", args.defines,
+                 "Set a scene global before the scene runs: name=value (number, true/false, or string)");
+  app.add_option("--spp", args.spp, "Samples per pixel, stratified over the sensitive area")
+      ->capture_default_str();
+  app.add_option("--seed", args.seed, "Seed of the sample positions")->capture_default_str();
+  app.add_option("--precision", args.precision,
+                 "GPU arithmetic: fp32 or fp64 (default: fp64 when the device supports it)")
+      ->check(CLI::IsMember({"fp32", "fp64"}));
+  app.add_option("--device", args.device, "Vulkan device: index or name substring (see `dicsynth devices`)");
+  app.add_option("--downscale", args.downscale,
+                 "Divide every camera's resolution by this integer, keeping the field of view")
+      ->capture_default_str();
+}
+
+std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<std::string>& defines) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& d : defines) {
+    const auto eq = d.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("-D " + d + ": expected name=value");
+    out.emplace_back(d.substr(0, eq), d.substr(eq + 1));
+  }
+  return out;
+}
+
+std::vector<int> parseFrames(const std::string& text) {
+  auto parseInt = [&](const std::string& s) {
+    std::size_t used = 0;
+    int v = 0;
+    try {
+      v = std::stoi(s, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != s.size() || s.empty() || v < 0)
+      throw InputError("--frames " + text + ": expected A:B or N with non-negative integers");
+    return v;
+  };
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) return {parseInt(text)};
+  const int a = parseInt(text.substr(0, colon)), b = parseInt(text.substr(colon + 1));
+  if (b < a) throw InputError("--frames " + text + ": empty range (the range A:B includes both ends)");
+  std::vector<int> frames;
+  for (int f = a; f <= b; ++f) frames.push_back(f);
+  return frames;
+}
+
+RenderOptions renderOptions(const RenderArgs& args, int frame) {
+  if (args.spp < 1 || args.spp > 65536) throw InputError("--spp " + std::to_string(args.spp) + ": must be in 1..65536");
+  if (args.downscale < 1) throw InputError("--downscale must be >= 1");
+  RenderOptions o;
+  o.samplesPerPixel = args.spp;
+  o.seed = args.seed;
+  o.frame = frame;
+  return o;
+}
+
+Precision resolvePrecision(const std::string& requested, bool deviceHasFloat64) {
+  if (requested == "fp32") return Precision::Fp32;
+  if (requested == "fp64") return Precision::Fp64;
+  return deviceHasFloat64 ? Precision::Fp64 : Precision::Fp32;
+}
+
+bool stderrIsTerminal() { return isatty(fileno(stderr)) != 0; }
+
+std::function<void(double)> progressPrinter(const std::string& label) {
+  if (!stderrIsTerminal()) return nullptr;
+  auto last = std::make_shared<int>(-1);
+  return [label, last](double fraction) {
+    const int percent = int(fraction * 100.0);
+    if (percent == *last) return;
+    *last = percent;
+    std::fprintf(stderr, "\r%s %3d%%%s", label.c_str(), percent, percent >= 100 ? "\n" : "");
+    std::fflush(stderr);
+  };
+}
+
+}  // namespace dicsynth::cli

@@ -1,0 +1,45 @@
+#pragma once
+// Options shared by the subcommands that render a scene (render, compare): the scene, its
+// parameters, frames, sampling, device. Parsing of their values into the library's types.
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/options.h"
+#include "scene/scene.h"
+
+namespace dicsynth::cli {
+
+struct RenderArgs {
+  std::string scenePath;
+  std::vector<std::string> defines;  // "name=value"
+  int spp = 4;
+  std::uint32_t seed = 1;
+  std::string precision;             // "" = fp64 when the device has it, else fp32
+  std::string device;
+  int downscale = 1;
+};
+
+void addRenderArgs(CLI::App& app, RenderArgs& args);
+
+// -D name=value list → SceneParams::defines. Throws InputError for a malformed entry.
+std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<std::string>& defines);
+
+// "A:B" (inclusive) or "N" → the list of frames. Throws InputError.
+std::vector<int> parseFrames(const std::string& text);
+
+// Validates spp and seed, returns RenderOptions (precision resolved by resolvePrecision).
+RenderOptions renderOptions(const RenderArgs& args, int frame);
+
+// The GPU precision: the user's choice, or fp64 when the device supports it, else fp32.
+Precision resolvePrecision(const std::string& requested, bool deviceHasFloat64);
+
+// True when stderr is a terminal (progress lines are printed only then).
+bool stderrIsTerminal();
+
+// A progress callback printing "\r<label> NN%" to stderr when it is a terminal, else null.
+std::function<void(double)> progressPrinter(const std::string& label);
+
+}  // namespace dicsynth::cli

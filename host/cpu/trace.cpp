@@ -1,0 +1,86 @@
+#include "cpu/trace.h"
+
+#include <algorithm>
+
+#include "geometry/homography.h"
+#include "texture/bspline.h"
+
+namespace dicsynth::cpu {
+
+bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit) {
+  double tBest = kFarAway;
+  LocalHit<double> best;
+  int bestObject = -1;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const PreparedObject& obj = scene.objects[i];
+    ObjectRay<double> ray;
+    if (!toObjectRay(obj.objectFromWorld, o, d, ray)) continue;
+    LocalHit<double> local;
+    if (!intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(tBest, ray.w), false, local))
+      continue;
+    const double t = worldParam(local.s, ray.w);
+    if (t > 0 && t < tBest) {
+      tBest = t;
+      best = local;
+      bestObject = int(i);
+    }
+  }
+  if (bestObject < 0) return false;
+  const PreparedObject& obj = scene.objects[std::size_t(bestObject)];
+  hit.t = tBest;
+  hit.position = o + tBest * d;
+  hit.normal = glm::normalize(worldNormal(obj.objectFromWorld, best.normal, best.point));
+  if (glm::dot(hit.normal, d) > 0) hit.normal = -hit.normal;
+  hit.uv = best.uv;
+  hit.object = bestObject;
+  return true;
+}
+
+bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosition) {
+  const dvec3 d = lightPosition - hit.position;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const PreparedObject& obj = scene.objects[i];
+    ObjectRay<double> ray;
+    if (!toObjectRay(obj.objectFromWorld, hit.position, d, ray)) continue;
+    LocalHit<double> local;
+    if (intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(1.0, ray.w),
+                       int(i) == hit.object, local))
+      return true;
+  }
+  return false;
+}
+
+namespace {
+
+double textureValue(const PreparedScene& scene, const PreparedObject& obj, dvec2 uv) {
+  if (obj.textureIndex < 0) return obj.textureValue;
+  const PreparedTexture& tex = scene.textures[std::size_t(obj.textureIndex)];
+  return bsplineLookup(tex.coefficients.data(), tex.width, tex.height, std::clamp(uv.x, 0.0, 1.0),
+                       std::clamp(uv.y, 0.0, 1.0));
+}
+
+}  // namespace
+
+double shade(const PreparedScene& scene, const SurfaceHit& hit) {
+  const PreparedObject& obj = scene.objects[std::size_t(hit.object)];
+  const double reflectance = obj.albedo * textureValue(scene, obj, hit.uv);
+  switch (obj.shader) {
+    case ShaderKind::Constant: return reflectance;
+    case ShaderKind::Lambert: {
+      // Lambertian BRDF ρ/π lit by point lights of intensity I at distance r:
+      // L = Σ (ρ/π) I cosθ / r², for lights on the viewer's side of the surface and not occluded.
+      double sum = 0;
+      for (const PreparedLight& light : scene.lights) {
+        const dvec3 toLight = light.position_m - hit.position;
+        const double r2 = glm::dot(toLight, toLight);
+        const double cosTheta = glm::dot(hit.normal, toLight) / std::sqrt(r2);
+        if (!(cosTheta > 0) || occluded(scene, hit, light.position_m)) continue;
+        sum += light.intensity * cosTheta / r2;
+      }
+      return reflectance * sum / kPi;
+    }
+  }
+  return 0;
+}
+
+}  // namespace dicsynth::cpu

@@ -1,0 +1,25 @@
+#pragma once
+// Ray casting against a PreparedScene in double precision: the reference every GPU result is
+// judged by. Written for clarity; shaders/lib/trace.glsl follows it step by step.
+#include "geometry/prepared_scene.h"
+
+namespace dicsynth::cpu {
+
+struct SurfaceHit {
+  double t = 0;         // world ray parameter (for primary rays: depth along the optical axis)
+  dvec3 position{0};    // world
+  dvec3 normal{0};      // world, unit, facing the ray's origin
+  dvec2 uv{0};
+  int object = -1;      // index into PreparedScene::objects
+};
+
+// Nearest hit along o + t d, t > 0, over all objects, compared by world t.
+bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit);
+
+// Whether any object blocks the segment from `hit.position` to `lightPosition` (t in (0, 1)).
+bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosition);
+
+// Radiance leaving the hit towards the viewer (grayscale, before the sensor).
+double shade(const PreparedScene& scene, const SurfaceHit& hit);
+
+}  // namespace dicsynth::cpu

@@ -1,0 +1,161 @@
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "geometry/homography.h"
+#include "geometry/prepared_scene.h"
+#include "io/image_io.h"
+#include "texture/bspline.h"
+
+namespace dicsynth {
+namespace {
+
+bool isAffine(const dmat4& m) { return m[0][3] == 0 && m[1][3] == 0 && m[2][3] == 0 && m[3][3] == 1; }
+
+Camera downscaled(Camera c, int k) {
+  if (k == 1) return c;
+  if (c.width_px / k < 1 || c.height_px / k < 1)
+    throw InputError(c.where, "--downscale " + std::to_string(k) + " leaves camera '" + c.name +
+                                  "' without pixels (" + std::to_string(c.width_px) + "x" +
+                                  std::to_string(c.height_px) + ")");
+  c.width_px /= k;
+  c.height_px /= k;
+  c.pixelSize_m *= double(k);
+  // A new pixel covers k×k old ones; its centre (i + 1/2)k − 1/2 in old pixel coordinates.
+  c.principalPoint_px = (c.principalPoint_px + 0.5) / double(k) - 0.5;
+  return c;
+}
+
+// The sensitive area of the image reaches half a pixel beyond the outermost pixel centres; every
+// sample position there must invert (Newton converges) and round-trip to far below 1e-9 px.
+void checkDistortionInvertible(const PreparedCamera& pc) {
+  const auto& m = pc.model;
+  if (!m.distorted) return;
+  const double w = pc.camera.width_px, h = pc.camera.height_px;
+  auto check = [&](double x, double y) {
+    const dvec2 target{(x - m.cx) / m.fx, (y - m.cy) / m.fy};
+    const dvec2 ideal = undistort(m.brown, target);
+    const dvec2 back = distort(m.brown, ideal);
+    const double err_px = std::max(std::abs(back.x - target.x) * m.fx, std::abs(back.y - target.y) * m.fy);
+    if (!(err_px < 1e-9)) {
+      std::ostringstream msg;
+      msg << "Distortion.Brown of camera '" << pc.camera.name
+          << "' cannot be inverted at image position (" << x << ", " << y
+          << ") px: the distortion folds over inside the image (check the coefficients)";
+      throw InputError(pc.camera.where, msg.str());
+    }
+  };
+  for (double x = -0.5; x <= w - 0.5; x += 1) { check(x, -0.5); check(x, h - 0.5); }
+  for (double y = -0.5; y <= h - 0.5; y += 1) { check(-0.5, y); check(w - 0.5, y); }
+  for (double y = 0; y < h; y += 8)
+    for (double x = 0; x < w; x += 8) check(x, y);
+}
+
+PreparedCamera prepareCamera(const Camera& sceneCamera, int downscale) {
+  PreparedCamera pc;
+  pc.camera = downscaled(sceneCamera, downscale);
+  const Camera& c = pc.camera;
+  auto& m = pc.model;
+  m.fx = c.focalLength_m / c.pixelSize_m.x;
+  m.fy = c.focalLength_m / c.pixelSize_m.y;
+  m.cx = c.principalPoint_px.x;
+  m.cy = c.principalPoint_px.y;
+  m.distorted = c.distortion.kind == DistortionKind::Brown;
+  m.brown = {c.distortion.k1, c.distortion.k2, c.distortion.k3, c.distortion.p1, c.distortion.p2};
+  m.worldFromCamera = dmat3(c.worldFromCamera);
+  m.centre = dvec3(c.worldFromCamera[3]);
+  pc.rotationCameraFromWorld = glm::transpose(m.worldFromCamera);
+  pc.translationCameraFromWorld = -(pc.rotationCameraFromWorld * m.centre);
+  checkDistortionInvertible(pc);
+  return pc;
+}
+
+ShapeGeometry<double> shapeGeometry(const Shape& s) {
+  ShapeGeometry<double> g;
+  g.kind = int(s.kind);
+  switch (s.kind) {
+    case ShapeKind::Sphere: g.radius = s.radius_m; break;
+    case ShapeKind::Box: g.halfSize = s.size_m * 0.5; break;
+    case ShapeKind::Rectangle:
+    case ShapeKind::Plane: g.extent = dvec2(s.size_m); break;
+    case ShapeKind::Triangle:
+      g.p0 = s.vertices_m[0];
+      g.p1 = s.vertices_m[1];
+      g.p2 = s.vertices_m[2];
+      g.uv0 = s.vertexUV[0];
+      g.uv1 = s.vertexUV[1];
+      g.uv2 = s.vertexUV[2];
+      break;
+  }
+  return g;
+}
+
+// A point that the homography sends to infinity cannot see (or light) the object.
+void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, const std::string& what) {
+  const dvec4 a = o.objectFromWorld * dvec4(p, 1);
+  if (!(std::abs(a.w) > 1e-12 * (std::abs(a.x) + std::abs(a.y) + std::abs(a.z))))
+    throw InputError(so.where, "the transform of object '" + so.name + "' sends " + what +
+                                   " to infinity (it lies on the homography's singular plane)");
+}
+
+int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::map<std::string, int>& byPath) {
+  if (auto it = byPath.find(t.path); it != byPath.end()) return it->second;
+  GrayImage image;
+  try {
+    image = readGrayImage(t.path);
+  } catch (const InputError& e) {
+    throw InputError(t.where, std::string("Texture.File: ") + e.what());
+  }
+  PreparedTexture pt;
+  pt.path = t.path;
+  pt.width = image.width;
+  pt.height = image.height;
+  pt.coefficients = std::move(image.pixels);
+  bsplinePrefilter(pt.coefficients, pt.width, pt.height);
+  textures.push_back(std::move(pt));
+  return byPath[t.path] = int(textures.size()) - 1;
+}
+
+}  // namespace
+
+PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
+  if (options.downscale < 1) throw InputError("--downscale must be >= 1");
+  PreparedScene ps;
+  ps.file = scene.file;
+  for (const Camera& c : scene.cameras) ps.cameras.push_back(prepareCamera(c, options.downscale));
+  for (const Light& l : scene.lights) ps.lights.push_back({l.position_m, l.intensity});
+
+  std::map<std::string, int> texturesByPath;
+  bool anyLambert = false;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& so = scene.objects[i];
+    PreparedObject o;
+    o.name = so.name;
+    o.id = std::uint32_t(i + 1);
+    o.geometry = shapeGeometry(so.shape);
+    o.shader = so.shader.kind;
+    o.albedo = luminance(so.shader.color);
+    anyLambert |= o.shader == ShaderKind::Lambert;
+    if (so.texture.kind == TextureKind::File) {
+      o.textureIndex = loadTexture(so.texture, ps.textures, texturesByPath);
+    } else {
+      o.textureValue = so.texture.value;
+    }
+    o.worldFromObject = glm::translate(dmat4(1.0), so.shape.location_m) * so.transform;
+    o.objectFromWorld = isAffine(o.worldFromObject) ? glm::affineInverse(o.worldFromObject)
+                                                    : glm::inverse(o.worldFromObject);
+    for (const PreparedCamera& c : ps.cameras)
+      checkFinite(o, so, c.model.centre, "camera '" + c.camera.name + "'");
+    for (const Light& l : scene.lights) checkFinite(o, so, l.position_m, "light '" + l.name + "'");
+    ps.objects.push_back(std::move(o));
+  }
+
+  ps.features.lights = anyLambert && !ps.lights.empty();
+  for (const PreparedCamera& c : ps.cameras) ps.features.distortion |= c.model.distorted;
+  ps.features.fileTextures = !ps.textures.empty();
+  return ps;
+}
+
+}  // namespace dicsynth

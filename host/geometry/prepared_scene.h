@@ -1,0 +1,71 @@
+#pragma once
+// PreparedScene: a Scene made ready for rendering, consumed identically by the CPU reference
+// (host/cpu) and the GPU backend (host/gpu/pack.cpp). Everything is double; the GPU packs it down
+// to its precision variant.
+#include <string>
+#include <vector>
+
+#include "camera/pinhole.h"
+#include "geometry/shapes.h"
+#include "scene/scene.h"
+
+namespace dicsynth {
+
+struct PreparedCamera {
+  Camera camera;               // the scene's camera (after --downscale)
+  PinholeModel<double> model;  // intrinsics in px, distortion, pose
+  dmat3 rotationCameraFromWorld;     // OpenCV R:  x_cam = R x_world + t
+  dvec3 translationCameraFromWorld;  // OpenCV t
+};
+
+struct PreparedObject {
+  std::string name;
+  std::uint32_t id = 0;  // objectId in the outputs (index + 1)
+  ShapeGeometry<double> geometry;
+  ShaderKind shader = ShaderKind::Constant;
+  double albedo = 1;          // luminance of the shader colour
+  int textureIndex = -1;      // into PreparedScene::textures, or -1 for a constant texture
+  double textureValue = 1;    // constant texture value (when textureIndex < 0)
+  dmat4 worldFromObject{1.0}; // translate(location) * transform
+  dmat4 objectFromWorld{1.0};
+};
+
+struct PreparedLight {
+  dvec3 position_m{0};
+  double intensity = 1;
+};
+
+struct PreparedTexture {
+  std::string path;
+  int width = 0, height = 0;
+  std::vector<double> coefficients;  // cubic B-spline coefficients (texture/bspline.h), row-major
+};
+
+// Features the scene uses; the GPU switches the others off with specialization constants.
+struct SceneFeatures {
+  bool lights = false;        // some Lambert object and at least one light: shading loop + shadow rays
+  bool distortion = false;    // some camera has lens distortion: Newton inversion per ray
+  bool fileTextures = false;  // some object has a Texture.File: B-spline lookups
+};
+
+struct PreparedScene {
+  std::string file;
+  std::vector<PreparedCamera> cameras;
+  std::vector<PreparedObject> objects;
+  std::vector<PreparedLight> lights;
+  std::vector<PreparedTexture> textures;
+  SceneFeatures features;
+};
+
+struct PrepareOptions {
+  // Integer factor dividing the resolution while keeping the field of view: pixel size × k,
+  // principal point c' = (c + 1/2)/k − 1/2 (OpenCV pixel centres). For previews and fast tests.
+  int downscale = 1;
+};
+
+// Throws InputError (with the scene's file:line) for what only shows up now: unreadable textures,
+// distortion that cannot be inverted over the image, a camera or light on an object's plane at
+// infinity.
+PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options = {});
+
+}  // namespace dicsynth

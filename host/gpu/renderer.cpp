@@ -1,0 +1,127 @@
+#include "gpu/renderer.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "gpu/buffer.h"
+#include "gpu/pack.h"
+#include "shared/bindings.h"
+#include "spirv/render_fp32.h"
+#include "spirv/render_fp64.h"
+
+namespace dicsynth::gpu {
+namespace {
+
+template <class T>
+Buffer inputBuffer(Context& context, const std::vector<T>& values) {
+  Buffer buffer(context, values.size() * sizeof(T), BufferUse::Input);
+  if (!values.empty()) buffer.upload(values.data(), values.size() * sizeof(T));
+  return buffer;
+}
+
+template <class Layout>
+void renderAll(Context& context, const ComputePipeline& pipeline, const PreparedScene& scene,
+               const RenderOptions& options, int tileSize, RenderResult& result) {
+  const PackedScene<Layout> packed = packScene<Layout>(scene, options.samplesPerPixel);
+  Buffer cameras = inputBuffer(context, packed.cameras);
+  Buffer objects = inputBuffer(context, packed.objects);
+  Buffer lights = inputBuffer(context, packed.lights);
+  Buffer textures = inputBuffer(context, packed.textures);
+  Buffer texels = inputBuffer(context, packed.texels);
+  const std::size_t tilePixels = std::size_t(tileSize) * std::size_t(tileSize);
+  Buffer pixels(context, tilePixels * sizeof(typename Layout::GpuPixel), BufferUse::Readback);
+  Buffer* bindings[DS_BINDING_COUNT];
+  bindings[DS_BINDING_CAMERAS] = &cameras;
+  bindings[DS_BINDING_OBJECTS] = &objects;
+  bindings[DS_BINDING_LIGHTS] = &lights;
+  bindings[DS_BINDING_TEXTURES] = &textures;
+  bindings[DS_BINDING_TEXELS] = &texels;
+  bindings[DS_BINDING_PIXELS] = &pixels;
+  std::vector<typename Layout::GpuPixel> tile(tilePixels);
+
+  double totalPixels = 0, donePixels = 0;
+  for (const auto& c : scene.cameras) totalPixels += double(c.camera.width_px) * c.camera.height_px;
+  result.cameras.resize(scene.cameras.size());
+  for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
+    const Camera& cam = scene.cameras[ci].camera;
+    CameraImage& image = result.cameras[ci];
+    image.cameraName = cam.name;
+    image.resize(cam.width_px, cam.height_px);
+    for (int y0 = 0; y0 < cam.height_px; y0 += tileSize) {
+      for (int x0 = 0; x0 < cam.width_px; x0 += tileSize) {
+        const int tw = std::min(tileSize, cam.width_px - x0), th = std::min(tileSize, cam.height_px - y0);
+        typename Layout::GpuTileParams params{};
+        params.tile = {x0, y0, tw, th};
+        params.counts = {int(ci), options.samplesPerPixel, int(packed.objects.size()),
+                         int(packed.lights.size())};
+        params.random = {options.seed, std::uint32_t(options.frame), 0, 0};
+        dispatchAndWait(context, pipeline, bindings, &params, std::uint32_t((tw + 7) / 8),
+                        std::uint32_t((th + 7) / 8));
+        pixels.download(tile.data(), std::size_t(tw) * std::size_t(th) * sizeof(tile[0]));
+        for (int ty = 0; ty < th; ++ty) {
+          for (int tx = 0; tx < tw; ++tx) {
+            const auto& p = tile[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)];
+            const std::size_t i = std::size_t(y0 + ty) * std::size_t(cam.width_px) + std::size_t(x0 + tx);
+            image.radiance[i] = double(p.radianceDepthUV.x);
+            const auto id = std::uint32_t(std::lround(double(p.positionId.w)));
+            if (id == 0) continue;  // background keeps NaN ground truth (CameraImage::resize)
+            image.objectId[i] = id;
+            image.depth_m[i] = double(p.radianceDepthUV.y);
+            image.uv[i] = {double(p.radianceDepthUV.z), double(p.radianceDepthUV.w)};
+            image.position_m[i] = {double(p.positionId.x), double(p.positionId.y), double(p.positionId.z)};
+            image.normal[i] = {double(p.normal.x), double(p.normal.y), double(p.normal.z)};
+          }
+        }
+        donePixels += double(tw) * th;
+        if (options.progress) options.progress(donePixels / totalPixels);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Renderer::Renderer(Context& context) : context_(context) {}
+Renderer::~Renderer() = default;
+
+const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatures& f, bool specialize) {
+  const SceneFeatures used = specialize ? f : SceneFeatures{true, true, true};
+  const auto key = std::make_tuple(int(precision), used.lights, used.distortion, used.fileTextures);
+  auto& slot = pipelines_[key];
+  if (!slot) {
+    const std::vector<SpecConstant> spec = {{DS_SPEC_HAS_LIGHTS, used.lights ? 1u : 0u},
+                                            {DS_SPEC_HAS_DISTORTION, used.distortion ? 1u : 0u},
+                                            {DS_SPEC_HAS_FILE_TEXTURES, used.fileTextures ? 1u : 0u}};
+    const std::span<const std::uint32_t> spirv =
+        precision == Precision::Fp64 ? std::span<const std::uint32_t>(spirv::render_fp64)
+                                     : std::span<const std::uint32_t>(spirv::render_fp32);
+    const std::uint32_t pushBytes = precision == Precision::Fp64 ? sizeof(fp64::GpuTileParams)
+                                                                 : sizeof(fp32::GpuTileParams);
+    slot = std::make_unique<ComputePipeline>(context_, spirv, DS_BINDING_COUNT, pushBytes, spec);
+  }
+  return *slot;
+}
+
+RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& options,
+                              const RendererOptions& rendererOptions) {
+  if (options.precision == Precision::Fp64 && !context_.info().shaderFloat64)
+    throw InputError("--precision fp64: device '" + context_.info().name +
+                     "' has no shaderFloat64; use --precision fp32 or another --device");
+  if (options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
+  if (rendererOptions.tileSize < 8 || rendererOptions.tileSize % 8 != 0)
+    throw InputError("tile size must be a positive multiple of 8");
+  const ComputePipeline& pipe = pipeline(options.precision, scene.features, rendererOptions.specialize);
+  RenderResult result;
+  result.backend = "gpu";
+  result.precision = toString(options.precision);
+  result.device = context_.info().name;
+  const auto start = std::chrono::steady_clock::now();
+  if (options.precision == Precision::Fp64)
+    renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result);
+  else
+    renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result);
+  result.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace dicsynth::gpu

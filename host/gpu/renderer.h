@@ -1,0 +1,42 @@
+#pragma once
+// The GPU backend: packs a PreparedScene into buffers, specializes render.comp to the scene's
+// features, dispatches it tile by tile and reads the results back into a RenderResult.
+#include <map>
+#include <memory>
+#include <tuple>
+
+#include "geometry/prepared_scene.h"
+#include "gpu/compute.h"
+#include "gpu/context.h"
+#include "render/options.h"
+#include "render/result.h"
+
+namespace dicsynth::gpu {
+
+struct RendererOptions {
+  // false: run every feature's code whatever the scene uses (the benchmark's baseline for what
+  // specialization saves; results are identical).
+  bool specialize = true;
+  // Tile edge (px): bounds the time of one submission (GPU watchdogs) and the readback buffer.
+  int tileSize = 256;
+};
+
+class Renderer {
+ public:
+  explicit Renderer(Context& context);
+  ~Renderer();
+
+  // Throws InputError when the precision needs what the device lacks (fp64 without shaderFloat64).
+  RenderResult render(const PreparedScene& scene, const RenderOptions& options,
+                      const RendererOptions& rendererOptions = {});
+
+  // Creates (or finds) the pipeline for a precision and feature set; render() calls it, start-up
+  // benchmarks call it alone.
+  const ComputePipeline& pipeline(Precision precision, const SceneFeatures& features, bool specialize);
+
+ private:
+  Context& context_;
+  std::map<std::tuple<int, bool, bool, bool>, std::unique_ptr<ComputePipeline>> pipelines_;
+};
+
+}  // namespace dicsynth::gpu

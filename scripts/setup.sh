@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Quick start, step 1: install what is missing, build, and render the paper's Figure 1 scene to out/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+scripts/build.sh
+build/dicsynth render scenes/figure1.lua -o out

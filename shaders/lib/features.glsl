@@ -1,0 +1,10 @@
+// Specialization constants: the host switches off what a scene does not use, and the driver's
+// compiler removes that code (DESIGN.md §5). Defaults are "on", so an unspecialized pipeline is
+// always correct.
+#ifndef DS_FEATURES_GLSL
+#define DS_FEATURES_GLSL
+#include "shared/bindings.h"
+layout(constant_id = DS_SPEC_HAS_LIGHTS) const bool HAS_LIGHTS = true;
+layout(constant_id = DS_SPEC_HAS_DISTORTION) const bool HAS_DISTORTION = true;
+layout(constant_id = DS_SPEC_HAS_FILE_TEXTURES) const bool HAS_FILE_TEXTURES = true;
+#endif

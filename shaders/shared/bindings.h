@@ -1,0 +1,19 @@
+// Binding numbers and specialization-constant ids of render.comp, shared by C++ and GLSL.
+#ifndef DS_SHARED_BINDINGS_H
+#define DS_SHARED_BINDINGS_H
+
+// Binding numbers of render.comp's storage buffers (set 0).
+#define DS_BINDING_CAMERAS 0
+#define DS_BINDING_OBJECTS 1
+#define DS_BINDING_LIGHTS 2
+#define DS_BINDING_TEXTURES 3
+#define DS_BINDING_TEXELS 4
+#define DS_BINDING_PIXELS 5
+#define DS_BINDING_COUNT 6
+
+// Specialization constant ids: features a scene lacks are compiled out.
+#define DS_SPEC_HAS_LIGHTS 0
+#define DS_SPEC_HAS_DISTORTION 1
+#define DS_SPEC_HAS_FILE_TEXTURES 2
+
+#endif

@@ -1,0 +1,102 @@
+// Objects under a 4×4 homography: the world hit lies on the transformed surface, is the nearest one
+// along the ray, and its normal is orthogonal to the surface — for an affine and a non-affine H.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cpu/trace.h"
+#include "geometry/homography.h"
+
+using namespace dicsynth;
+
+namespace {
+
+PreparedScene sphereUnder(const dmat4& worldFromObject) {
+  PreparedScene s;
+  PreparedObject o;
+  o.name = "sphere";
+  o.id = 1;
+  o.geometry.kind = DS_SHAPE_SPHERE;
+  o.geometry.radius = 1;
+  o.worldFromObject = worldFromObject;
+  o.objectFromWorld = glm::inverse(worldFromObject);
+  s.objects.push_back(o);
+  return s;
+}
+
+// Implicit function of the transformed unit sphere at a world point: |π(H⁻¹ [x; 1])|² − 1.
+long double implicit(const dmat4& objectFromWorld, const dvec3& x) {
+  const dvec4 a = objectFromWorld * dvec4(x, 1);
+  const long double X = (long double)a.x / a.w, Y = (long double)a.y / a.w, Z = (long double)a.z / a.w;
+  return X * X + Y * Y + Z * Z - 1;
+}
+
+void checkScene(const dmat4& H, dvec3 origin) {
+  const PreparedScene scene = sphereUnder(H);
+  const dmat4 Hinv = scene.objects[0].objectFromWorld;
+  // Aim rays at points of the transformed sphere's visible side so most of them hit.
+  const dvec4 c4 = H * dvec4(0, 0, 0, 1);
+  const dvec3 centre = dvec3(c4) / c4.w;
+  int hitsSeen = 0;
+  for (double a = -1.2; a <= 1.2; a += 0.1) {
+    for (double b = -1.2; b <= 1.2; b += 0.1) {
+      const dvec3 d = centre + dvec3(a, b, 0) - origin;
+      cpu::SurfaceHit hit;
+      if (!cpu::traceNearest(scene, origin, d, hit)) {
+        // A miss must really be a miss: the implicit function keeps its sign along the ray.
+        const long double f0 = implicit(Hinv, origin);
+        for (double t = 0.01; t < 3; t += 0.01) CHECK((implicit(Hinv, origin + t * d) > 0) == (f0 > 0));
+        continue;
+      }
+      ++hitsSeen;
+      // On the surface: |f| ≈ 2 (δx/r) with δx a few ulps of the coordinates.
+      CHECK(std::abs(double(implicit(Hinv, hit.position))) < 1e-12);
+      CHECK(glm::length(hit.position - (origin + hit.t * d)) < 1e-15);
+      // Nearest: no sign change of f before the hit.
+      const long double f0 = implicit(Hinv, origin);
+      for (double t = 0.002; t < hit.t * (1 - 1e-9); t += 0.002 * hit.t)
+        CHECK((implicit(Hinv, origin + t * d) > 0) == (f0 > 0));
+      // Normal ⟂ surface: the gradient of f at the hit, estimated by central differences.
+      const double h = 1e-6;
+      dvec3 grad;
+      for (int k = 0; k < 3; ++k) {
+        dvec3 e(0);
+        e[k] = h;
+        grad[k] = double(implicit(Hinv, hit.position + e) - implicit(Hinv, hit.position - e)) / (2 * h);
+      }
+      CHECK(std::abs(std::abs(glm::dot(glm::normalize(grad), hit.normal)) - 1) < 1e-8);
+      CHECK(glm::dot(hit.normal, d) < 0);  // faces the viewer
+    }
+  }
+  CHECK(hitsSeen > 100);
+}
+
+}  // namespace
+
+TEST_CASE("homography: affine transform (rotation, translation, anisotropic scale)") {
+  const dmat4 H = glm::translate(dmat4(1), dvec3(0.3, -0.2, 5)) *
+                  glm::rotate(dmat4(1), 0.6, glm::normalize(dvec3(1, 2, 0.5))) *
+                  glm::scale(dmat4(1), dvec3(1.5, 0.7, 1.0));
+  ObjectRay<double> r;
+  REQUIRE(toObjectRay(glm::inverse(H), dvec3(0), dvec3(0, 0, 1), r));
+  CHECK(r.w == 0.0);  // affine: s = t
+  checkScene(H, dvec3(0));
+}
+
+TEST_CASE("homography: non-affine (projective) transform") {
+  // Bottom row (0.05, −0.03, 0.1, 1): lines stay lines, but the sphere becomes another quadric and
+  // the world and object ray parameters are related by s = t / (1 + t w).
+  dmat4 H = glm::translate(dmat4(1), dvec3(0.1, 0.2, 4)) * glm::rotate(dmat4(1), 0.3, dvec3(0, 1, 0));
+  H[0][3] = 0.05;
+  H[1][3] = -0.03;
+  H[2][3] = 0.1;
+  ObjectRay<double> r;
+  REQUIRE(toObjectRay(glm::inverse(H), dvec3(0), dvec3(0.1, 0, 1), r));
+  CHECK(r.w != 0.0);
+  // s(t) and t(s) are inverse functions.
+  for (double t : {0.0, 0.5, 3.0, 7.0}) CHECK(worldParam(objectParam(t, r.w), r.w) == doctest::Approx(t).epsilon(1e-14));
+  checkScene(H, dvec3(0));
+  checkScene(H, dvec3(0.5, -0.4, 0.2));
+}

@@ -6,6 +6,8 @@
 
 namespace dicsynth {
 
+class AtomicFile;
+
 // A single-channel image, row-major, top row first.
 struct GrayImage {
   int width = 0, height = 0;
@@ -13,14 +15,24 @@ struct GrayImage {
   double at(int x, int y) const { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
 };
 
-// Reads any format OIIO reads. Integer formats map to [0, 1] (value / max); float formats as stored.
-// RGB(A) → Rec. 709 luminance of the linear values as stored (alpha ignored); 2 channels → first.
+// Reads any format OIIO reads (first subimage, full resolution). Integer formats map to [0, 1]
+// (value / max; uint8 and uint16 exactly in double, others through OIIO's conversion); float formats
+// as stored. 1 channel → itself; 2 channels (gray + alpha) → the first; 3 or more → Rec. 709
+// luminance of the first three, taken as linear RGB as stored (alpha and further channels ignored).
 // Throws InputError("PATH: reason") when the file is missing, unreadable or empty.
 GrayImage readGrayImage(const std::string& path);
 
 // Writes a single-channel TIFF (8-bit when bits <= 8, else 16-bit) of raw values, atomically.
 // `description` goes to the TIFF ImageDescription tag. Throws Error on I/O failure.
+// Zip-compressed (lossless). Every value must be < 2^bits (bits in 1..16); values are never rescaled:
+// a 10-bit image is a 16-bit TIFF whose values are < 1024. No DateTime tag is written, so the same
+// pixels give the same file (byte for byte with the same libtiff/zlib).
 void writeGrayTiff(const std::string& path, int width, int height,
                    const std::vector<std::uint16_t>& values, int bits, const std::string& description);
+
+// The same, written to `file.tempPath()` and NOT committed: for writers that commit several files
+// together (host/io/outputs.cpp).
+void writeGrayTiff(AtomicFile& file, int width, int height, const std::vector<std::uint16_t>& values,
+                   int bits, const std::string& description);
 
 }  // namespace dicsynth

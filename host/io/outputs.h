@@ -28,7 +28,11 @@ struct OutputFiles {
 
 // `digital` holds one digital number per pixel (host/sensor), < 2^camera.bitsPerPixel.
 // TIFF: 8-bit when bitsPerPixel <= 8, else 16-bit holding the raw digital number (not rescaled).
-// EXR channels: Y (radiance), Z, P.X/Y/Z, N.X/Y/Z, uv.U/V (float32), objectId (uint32), mask (float32).
+// EXR channels: Y (radiance), Z, P.X/Y/Z, N.X/Y/Z, uv.U/V (float32), objectId (uint32), mask (float32);
+// header attributes dicsynth:* (run facts, camera in OpenCV terms): the list is in outputs.cpp.
+// `dir` must exist (the caller creates it); otherwise, or if it is not writable, throws Error naming
+// it. Both files are written to temporary names first and renamed only when both are complete; if
+// the second rename fails the TIFF is removed again, so no image exists without its ground truth.
 OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, const Camera& camera,
                                const CameraImage& image, const std::vector<std::uint16_t>& digital,
                                const OutputInfo& info);

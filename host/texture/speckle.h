@@ -16,8 +16,12 @@ struct SpeckleParams {
   int supersampling = 4;     // samples per pixel along each axis (4 → 16 samples per pixel)
 };
 
-// Pixel values in [0, 1]: the fraction of the pixel's samples not covered by any disk.
-// Throws InputError for impossible parameters.
+// Pixel values in [0, 1]: the fraction of the pixel's samples not covered by any disk. In the
+// generator's continuous frame pixel (x, y) covers [x, x+1) x [y, y+1); its samples lie on the
+// regular grid (x + (i + 0.5)/S, y + (j + 0.5)/S). Disk centres are uniform over the image extended
+// by the radius on every side, so coverage is uniform up to the edges (model: texture/speckle.cpp).
+// Throws InputError for impossible parameters (size outside 1..65536 per side, radius <= 0,
+// density outside (0, 1), supersampling outside 1..8, more than 2^32 - 1 disks).
 GrayImage generateSpeckle(const SpeckleParams& params);
 
 }  // namespace dicsynth

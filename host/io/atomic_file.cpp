@@ -1,0 +1,72 @@
+// AtomicFile: write to a hidden temporary file next to the target, rename it over the target when
+// complete. rename(2) within one filesystem is atomic, so readers (and a crash at any moment) see the
+// old file or the new one, never a partial one. Not a durability guarantee: the data are not
+// fsync'ed, so after a power loss the renamed file may be empty or truncated (the usual trade-off of
+// tools that write many large images).
+#include "io/atomic_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.h"
+
+namespace dicsynth {
+namespace {
+
+// Distinguishes the temporary files of one process (threads may write into the same folder). The
+// only process-wide mutable state of host/io, and it holds no meaning beyond uniqueness.
+std::atomic<unsigned long long> gTempCounter{0};
+
+std::string errnoText(int err) { return std::strerror(err); }
+
+// ".<name>.tmp<pid>_<counter><.ext>": hidden, unique per process and call, and it keeps the
+// extension of <name>, so tools that pick a format by extension still work on the temporary name.
+std::string tempName(const std::filesystem::path& finalPath, unsigned long long counter) {
+  const std::string name = finalPath.filename().string();
+  const std::string ext = finalPath.extension().string();  // "" when there is none
+  return "." + name + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter) + ext;
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(std::string finalPath) : final_(std::move(finalPath)) {
+  const std::filesystem::path target(final_);
+  if (target.filename().empty()) throw Error("cannot write '" + final_ + "': not a file name");
+  // Create the temporary file now (O_EXCL: never adopt someone else's file), so that a missing or
+  // read-only folder is reported before any work goes into the contents.
+  for (int attempt = 0;; ++attempt) {
+    temp_ = (target.parent_path() / tempName(target, gTempCounter.fetch_add(1))).string();
+    const int fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      ::close(fd);
+      return;
+    }
+    const int err = errno;
+    if (err != EEXIST || attempt >= 100) {
+      const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
+      throw Error("cannot write '" + final_ + "': cannot create a file in folder '" + folder +
+                  "': " + errnoText(err));
+    }
+  }
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) ::unlink(temp_.c_str());  // nothing to report from a destructor
+}
+
+void AtomicFile::commit() {
+  DS_CHECK(!committed_, "AtomicFile::commit called twice for " + final_);
+  if (std::rename(temp_.c_str(), final_.c_str()) != 0) {
+    const int err = errno;
+    throw Error("cannot write '" + final_ + "': rename from '" + temp_ + "' failed: " + errnoText(err));
+  }
+  committed_ = true;
+}
+
+}  // namespace dicsynth

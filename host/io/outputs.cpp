@@ -1,0 +1,212 @@
+// One camera's output pair: the sensor image (TIFF) and its ground truth (OpenEXR).
+//
+// Ground-truth EXR, one part, scanline, zip-compressed (lossless):
+//   channel   type    content
+//   Y         float   radiance before the sensor (full scale = 1/exposure)
+//   Z         float   depth along the optical axis (m)
+//   P.X/Y/Z   float   world position of the surface point (m)
+//   N.X/Y/Z   float   unit world normal, towards the camera
+//   uv.U/V    float   surface parameters in [0, 1]²
+//   objectId  uint    0 = background, else index in dicsynth:objects + 1
+//   mask      float   1 where objectId > 0, else 0
+// Background pixels hold NaN in Z, P, N and uv. OpenEXR stores channels sorted by name, so a reader
+// sees them in the file's order (OIIO: Y, Z, mask, objectId, N.*, P.*, uv.*): find them by name.
+//
+// Header attributes, all strings; numbers are written with 17 significant digits, so every double
+// parses back exactly; lists are separated by single spaces:
+//   dicsynth:version, :scene, :frame, :seed, :spp, :backend, :precision, :device, :camera,
+//   dicsynth:objects                  comma-separated object names, objectId order
+//   dicsynth:camera_matrix            fx 0 cx 0 fy cy 0 0 1 (row-major, pixels, OpenCV)
+//   dicsynth:distortion_coefficients  k1 k2 p1 p2 k3 (OpenCV order)
+//   dicsynth:R, dicsynth:t            x_cam = R·x_world + t (R row-major, t in metres)
+//   dicsynth:image_size               w h
+//   dicsynth:bits_per_pixel, :exposure, :fill_factor
+// Plus OpenEXR's standard worldToCamera (float 4x4, Imath row-vector convention, camera frame
+// x right, y UP, z forward as the OpenEXR standard defines it, i.e. OpenCV's frame with y negated)
+// and PixelAspectRatio = pixelSize.x / pixelSize.y. No DateTime: the same render gives the same file.
+#include "io/outputs.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+#include <system_error>
+
+#include "core/error.h"
+#include "core/version.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/opencv_camera.h"
+
+namespace dicsynth {
+namespace {
+
+// "%.17g" without the C locale's say: std::to_chars is locale-independent.
+std::string formatNumber(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
+  return std::string(buffer, result.ptr);
+}
+
+template <typename Container>
+std::string formatNumbers(const Container& values) {
+  std::string text;
+  for (double v : values) {
+    if (!text.empty()) text += ' ';
+    text += formatNumber(v);
+  }
+  return text;
+}
+
+std::string tiffDescription(const Camera& camera, const OutputInfo& info) {
+  const int bits = camera.bitsPerPixel;
+  const std::string container = bits <= 8 ? "an 8-bit container" : "a 16-bit container";
+  return "dicsynth: raw " + std::to_string(bits) + "-bit digital numbers in " + container +
+         "; camera " + camera.name + "; frame " + std::to_string(info.frame) + "; scene " +
+         info.sceneFile + "; seed " + std::to_string(info.seed) + "; dicsynth " + kVersion;
+}
+
+// The native pixel layout of the EXR (per-channel formats), in the channel order of the spec.
+struct ExrPixel {
+  float y, z, px, py, pz, nx, ny, nz, u, v;
+  std::uint32_t objectId;
+  float mask;
+};
+static_assert(sizeof(ExrPixel) == 12 * 4, "EXR pixel must be packed: OIIO reads it contiguously");
+
+const char* const kExrChannels[12] = {"Y",   "Z",   "P.X",  "P.Y",  "P.Z",      "N.X",
+                                      "N.Y", "N.Z", "uv.U", "uv.V", "objectId", "mask"};
+
+ExrPixel exrPixel(const CameraImage& image, std::size_t i) {
+  ExrPixel p;
+  p.y = float(image.radiance[i]);
+  p.z = float(image.depth_m[i]);
+  p.px = float(image.position_m[i].x);
+  p.py = float(image.position_m[i].y);
+  p.pz = float(image.position_m[i].z);
+  p.nx = float(image.normal[i].x);
+  p.ny = float(image.normal[i].y);
+  p.nz = float(image.normal[i].z);
+  p.u = float(image.uv[i].x);
+  p.v = float(image.uv[i].y);
+  p.objectId = image.objectId[i];
+  p.mask = image.objectId[i] > 0 ? 1.0f : 0.0f;
+  return p;
+}
+
+void addMetadata(OIIO::ImageSpec& spec, const Camera& camera, const OutputInfo& info) {
+  const OpenCvCamera cv = toOpenCv(camera);
+  std::string objects;
+  for (const std::string& name : info.objectNames) objects += (objects.empty() ? "" : ",") + name;
+
+  spec.attribute("dicsynth:version", kVersion);
+  spec.attribute("dicsynth:scene", info.sceneFile);
+  spec.attribute("dicsynth:frame", std::to_string(info.frame));
+  spec.attribute("dicsynth:seed", std::to_string(info.seed));
+  spec.attribute("dicsynth:spp", std::to_string(info.samplesPerPixel));
+  spec.attribute("dicsynth:backend", info.backend);
+  spec.attribute("dicsynth:precision", info.precision);
+  spec.attribute("dicsynth:device", info.device);
+  spec.attribute("dicsynth:camera", camera.name);
+  spec.attribute("dicsynth:objects", objects);
+  spec.attribute("dicsynth:camera_matrix", formatNumbers(cv.cameraMatrix));
+  spec.attribute("dicsynth:distortion_coefficients", formatNumbers(cv.distortion));
+  spec.attribute("dicsynth:R", formatNumbers(cv.R));
+  spec.attribute("dicsynth:t", formatNumbers(cv.t));
+  spec.attribute("dicsynth:image_size",
+                 std::to_string(camera.width_px) + " " + std::to_string(camera.height_px));
+  spec.attribute("dicsynth:bits_per_pixel", std::to_string(camera.bitsPerPixel));
+  spec.attribute("dicsynth:exposure", formatNumber(camera.exposure));
+  spec.attribute("dicsynth:fill_factor", formatNumber(camera.fillFactor));
+  spec.attribute("Software", std::string("dicsynth ") + kVersion);
+  spec.attribute("DateTime", "");  // empty: OIIO omits it (reproducible files)
+
+  // OpenEXR's worldToCamera: camera frame with y up. A column-major GLM matrix for column vectors
+  // has the same memory layout as Imath's row-major matrix for row vectors, so copy in GLM order.
+  dmat4 exrCameraFromWorld = cameraFromWorld(camera);
+  for (int col = 0; col < 4; ++col) exrCameraFromWorld[col][1] = -exrCameraFromWorld[col][1];
+  float worldToCamera[16];
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row) worldToCamera[4 * col + row] = float(exrCameraFromWorld[col][row]);
+  spec.attribute("worldtocamera", OIIO::TypeMatrix, worldToCamera);
+  spec.attribute("PixelAspectRatio", float(camera.pixelSize_m.x / camera.pixelSize_m.y));
+}
+
+void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraImage& image,
+                         const OutputInfo& info) {
+  const std::string& path = file.finalPath();
+  auto out = OIIO::ImageOutput::create("openexr");  // by format name, not by the temporary name
+  if (!out) throw Error(path + ": OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
+  if (!out->supports("channelformats"))
+    throw Error(path + ": this OpenImageIO's OpenEXR writer lacks per-channel formats");
+
+  OIIO::ImageSpec spec(image.width_px, image.height_px, 12, OIIO::TypeDesc::FLOAT);
+  spec.channelnames.assign(std::begin(kExrChannels), std::end(kExrChannels));
+  spec.channelformats.assign(12, OIIO::TypeDesc::FLOAT);
+  spec.channelformats[10] = OIIO::TypeDesc::UINT;  // objectId: exact 32-bit integers
+  spec.attribute("compression", "zip");
+  addMetadata(spec, camera, info);
+  if (!out->open(file.tempPath(), spec)) throw Error(path + ": cannot create EXR: " + out->geterror());
+
+  // Convert and write in bands of rows: bounded memory for any image size.
+  const int width = image.width_px;
+  const int bandRows = 64;
+  std::vector<ExrPixel> band(std::size_t(width) * bandRows);
+  for (int y0 = 0; y0 < image.height_px; y0 += bandRows) {
+    const int y1 = std::min(image.height_px, y0 + bandRows);
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+        band[std::size_t(y - y0) * std::size_t(width) + std::size_t(x)] = exrPixel(image, i);
+      }
+    // TypeUnknown: the buffer is in the file's native per-channel layout (ExrPixel).
+    if (!out->write_scanlines(y0, y1, 0, OIIO::TypeUnknown, band.data()))
+      throw Error(path + ": cannot write EXR pixels: " + out->geterror());
+  }
+  if (!out->close()) throw Error(path + ": cannot finish EXR: " + out->geterror());
+}
+
+}  // namespace
+
+OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, const Camera& camera,
+                               const CameraImage& image, const std::vector<std::uint16_t>& digital,
+                               const OutputInfo& info) {
+  // Consistency of the caller's data: a mismatch is a bug upstream, not a user error.
+  const std::size_t n = image.pixelCount();
+  DS_CHECK(image.width_px == camera.width_px && image.height_px == camera.height_px && n > 0,
+           "camera " + camera.name + ": image size differs from the camera's");
+  DS_CHECK(image.radiance.size() == n && image.depth_m.size() == n && image.position_m.size() == n &&
+               image.normal.size() == n && image.uv.size() == n && image.objectId.size() == n &&
+               digital.size() == n,
+           "camera " + camera.name + ": a layer has the wrong pixel count");
+  DS_CHECK(!stem.empty() && stem.find('/') == std::string::npos, "output stem '" + stem + "'");
+
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw Error("output folder '" + dir + "' does not exist or is not a folder");
+
+  OutputFiles files;
+  files.image = (std::filesystem::path(dir) / (stem + ".tif")).string();
+  files.groundTruth = (std::filesystem::path(dir) / (stem + ".exr")).string();
+
+  // Write both to temporary files first, then rename both: a failure while writing leaves neither.
+  AtomicFile tiff(files.image);
+  AtomicFile exr(files.groundTruth);
+  writeGrayTiff(tiff, camera.width_px, camera.height_px, digital, camera.bitsPerPixel,
+                tiffDescription(camera, info));
+  writeGroundTruthExr(exr, camera, image, info);
+  tiff.commit();
+  try {
+    exr.commit();
+  } catch (...) {
+    // Only the second rename failed (rare: both live in one folder). Remove the TIFF so that no
+    // image exists without its ground truth; an older EXR of the same name, if any, stays.
+    std::error_code ignored;
+    std::filesystem::remove(files.image, ignored);
+    throw;
+  }
+  return files;
+}
+
+}  // namespace dicsynth

@@ -1,0 +1,302 @@
+// host/io: AtomicFile, readGrayImage, writeGrayTiff. Files are checked through OpenImageIO directly,
+// not only through our own reader, so a symmetric mistake in both cannot pass.
+#include <OpenImageIO/imageio.h>
+#include <doctest/doctest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "core/error.h"
+#include "core/math.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "temp_folder.h"
+
+using namespace dicsynth;
+using dicsynth::test::TempFolder;
+
+namespace {
+
+doctest::Contains containsText(const std::string& text) { return doctest::Contains(text.c_str()); }
+
+struct RawImage {
+  OIIO::ImageSpec spec;
+  std::vector<std::uint16_t> values;  // read as UINT16 when 16-bit, as UINT8 widened when 8-bit
+};
+
+RawImage readRaw(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  REQUIRE_MESSAGE(in, OIIO::geterror());
+  RawImage raw{in->spec(), {}};
+  const std::size_t n = std::size_t(raw.spec.width) * std::size_t(raw.spec.height);
+  if (raw.spec.format == OIIO::TypeDesc::UINT8) {
+    std::vector<std::uint8_t> bytes(n);
+    REQUIRE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT8, bytes.data()));
+    raw.values.assign(bytes.begin(), bytes.end());
+  } else {
+    raw.values.resize(n);
+    REQUIRE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, raw.values.data()));
+  }
+  return raw;
+}
+
+// Writes an image of any channel count and format through OIIO (the test's own writer).
+template <typename T>
+void writeWithOiio(const std::string& path, int width, int height, int channels, OIIO::TypeDesc type,
+                   const std::vector<T>& data) {
+  auto out = OIIO::ImageOutput::create(path);
+  REQUIRE(out);
+  OIIO::ImageSpec spec(width, height, channels, type);
+  REQUIRE_MESSAGE(out->open(path, spec), out->geterror());
+  REQUIRE(out->write_image(type, data.data()));
+  REQUIRE(out->close());
+}
+
+std::vector<std::uint16_t> pattern(int width, int height, std::uint32_t maxValue) {
+  std::vector<std::uint16_t> values(std::size_t(width) * std::size_t(height));
+  for (std::size_t i = 0; i < values.size(); ++i)
+    values[i] = std::uint16_t((i * 2654435761u) % (maxValue + 1u));
+  if (values.size() >= 2) {  // both extremes present
+    values[0] = 0;
+    values[1] = std::uint16_t(maxValue);
+  }
+  return values;
+}
+
+}  // namespace
+
+TEST_CASE("io: AtomicFile commit renames the temporary file and leaves nothing else") {
+  TempFolder folder;
+  const std::string target = folder.file("image.tif");
+  {
+    AtomicFile file(target);
+    const std::filesystem::path temp(file.tempPath());
+    CHECK(temp.parent_path() == folder.path());
+    CHECK(temp.extension() == ".tif");  // format detection by extension still works
+    CHECK(temp.filename().string().front() == '.');
+    CHECK(std::filesystem::exists(temp));
+    CHECK_FALSE(std::filesystem::exists(target));
+    test::writeBytes(file.tempPath(), "complete");
+    file.commit();
+    CHECK_FALSE(std::filesystem::exists(temp));
+  }
+  CHECK(test::readBytes(target) == "complete");
+  CHECK(folder.entries() == std::vector<std::string>{"image.tif"});
+}
+
+TEST_CASE("io: AtomicFile not committed leaves no file") {
+  TempFolder folder;
+  const std::string target = folder.file("out.exr");
+  {
+    AtomicFile file(target);
+    test::writeBytes(file.tempPath(), "half written");
+  }
+  CHECK(folder.entries().empty());
+
+  // An existing file is kept untouched when the replacement is abandoned.
+  test::writeBytes(target, "old");
+  { AtomicFile file(target); }
+  CHECK(test::readBytes(target) == "old");
+  CHECK(folder.entries() == std::vector<std::string>{"out.exr"});
+}
+
+TEST_CASE("io: AtomicFile temporary names are distinct, also without an extension") {
+  TempFolder folder;
+  AtomicFile a(folder.file("same.tif")), b(folder.file("same.tif")), c(folder.file("noext"));
+  CHECK(a.tempPath() != b.tempPath());
+  const std::string noExtension = std::filesystem::path(c.tempPath()).filename().string();
+  CHECK(noExtension.rfind(".noext.tmp", 0) == 0);
+  CHECK(noExtension.back() != '.');
+  CHECK(folder.entries().size() == 3);
+}
+
+TEST_CASE("io: AtomicFile in a missing folder throws Error naming the path and creates nothing") {
+  TempFolder folder;
+  const std::string target = folder.file("missing/image.tif");
+  try {
+    AtomicFile file(target);
+    FAIL("no exception");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()).find(target) != std::string::npos);
+  }
+  CHECK(folder.entries().empty());
+}
+
+TEST_CASE("io: writeGrayTiff into a missing or read-only folder throws and leaves nothing") {
+  TempFolder folder;
+  const std::vector<std::uint16_t> values(6, 1);
+  const std::string missing = folder.file("nope/a.tif");
+  CHECK_THROWS_WITH_AS(writeGrayTiff(missing, 3, 2, values, 8, "x"),
+                       containsText(missing), Error);
+  CHECK(folder.entries().empty());
+
+  if (::geteuid() != 0) {  // root writes anywhere: the permission case is only testable as a user
+    const std::filesystem::path locked = folder.path() / "locked";
+    std::filesystem::create_directory(locked);
+    ::chmod(locked.c_str(), 0555);
+    const std::string target = (locked / "a.tif").string();
+    CHECK_THROWS_WITH_AS(writeGrayTiff(target, 3, 2, values, 8, "x"), containsText(target), Error);
+    ::chmod(locked.c_str(), 0755);
+    CHECK(std::filesystem::is_empty(locked));
+  }
+}
+
+TEST_CASE("io: TIFF 8-bit round trip is exact and keeps the description") {
+  TempFolder folder;
+  const std::string path = folder.file("eight.tif");
+  const int width = 37, height = 11;  // odd sizes: no row padding hides an error
+  const auto values = pattern(width, height, 255);
+  const std::string description = "dicsynth: raw 8-bit digital numbers in an 8-bit container; ü";
+  writeGrayTiff(path, width, height, values, 8, description);
+  CHECK(folder.entries() == std::vector<std::string>{"eight.tif"});  // no temporary file remains
+
+  const RawImage raw = readRaw(path);
+  CHECK(raw.spec.width == width);
+  CHECK(raw.spec.height == height);
+  CHECK(raw.spec.nchannels == 1);
+  CHECK(raw.spec.format == OIIO::TypeDesc::UINT8);
+  CHECK(raw.values == values);
+  CHECK(raw.spec.get_string_attribute("ImageDescription") == description);
+  CHECK(raw.spec.get_string_attribute("compression") == "zip");
+  CHECK(raw.spec.find_attribute("DateTime") == nullptr);
+
+  // Our reader maps v → v/255 exactly.
+  const GrayImage gray = readGrayImage(path);
+  REQUIRE(gray.pixels.size() == values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) CHECK(gray.pixels[i] == double(values[i]) / 255.0);
+
+  // Fewer bits still use an 8-bit container, values as given (not rescaled).
+  const std::string path4 = folder.file("four.tif");
+  const auto small = pattern(width, height, 15);
+  writeGrayTiff(path4, width, height, small, 4, "4-bit");
+  const RawImage raw4 = readRaw(path4);
+  CHECK(raw4.spec.format == OIIO::TypeDesc::UINT8);
+  CHECK(raw4.values == small);
+}
+
+TEST_CASE("io: TIFF 16-bit round trip is exact and 10-bit values are stored unscaled") {
+  TempFolder folder;
+  const int width = 29, height = 13;
+  for (int bits : {16, 10, 9}) {
+    CAPTURE(bits);
+    const std::string path = folder.file("sixteen_" + std::to_string(bits) + ".tif");
+    const auto values = pattern(width, height, (1u << bits) - 1u);
+    writeGrayTiff(path, width, height, values, bits, "bits " + std::to_string(bits));
+    const RawImage raw = readRaw(path);
+    CHECK(raw.spec.format == OIIO::TypeDesc::UINT16);
+    CHECK(raw.spec.get_int_attribute("oiio:BitsPerSample") == 16);  // never a packed 10-bit TIFF
+    CHECK(raw.values == values);
+    CHECK(raw.spec.get_string_attribute("ImageDescription") == "bits " + std::to_string(bits));
+
+    const GrayImage gray = readGrayImage(path);
+    for (std::size_t i = 0; i < values.size(); ++i)
+      CHECK(gray.pixels[i] == double(values[i]) / 65535.0);  // exact, not through float
+  }
+}
+
+TEST_CASE("io: writeGrayTiff is reproducible byte for byte and replaces an existing file") {
+  TempFolder folder;
+  const auto values = pattern(64, 16, 65535);
+  writeGrayTiff(folder.file("a.tif"), 64, 16, values, 16, "same");
+  writeGrayTiff(folder.file("b.tif"), 64, 16, values, 16, "same");
+  CHECK(test::readBytes(folder.file("a.tif")) == test::readBytes(folder.file("b.tif")));
+
+  const auto other = pattern(64, 16, 255);
+  writeGrayTiff(folder.file("a.tif"), 64, 16, other, 8, "replaced");
+  CHECK(readRaw(folder.file("a.tif")).values == other);
+  CHECK(folder.entries() == std::vector<std::string>{"a.tif", "b.tif"});
+}
+
+TEST_CASE("io: writeGrayTiff rejects values above 2^bits - 1") {
+  TempFolder folder;
+  const std::vector<std::uint16_t> values{0, 1024};
+  CHECK_THROWS_AS(writeGrayTiff(folder.file("x.tif"), 2, 1, values, 10, ""), Error);
+  CHECK_THROWS_AS(writeGrayTiff(folder.file("x.tif"), 3, 1, values, 16, ""), Error);  // wrong count
+  CHECK(folder.entries().empty());
+}
+
+TEST_CASE("io: readGrayImage of RGB(A) is the Rec. 709 luminance and 2 channels give the first") {
+  TempFolder folder;
+  const int width = 5, height = 3, n = width * height;
+
+  // 16-bit RGB: luminance of v/65535 per channel.
+  std::vector<std::uint16_t> rgb(std::size_t(n) * 3);
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = std::uint16_t(i * 4099u % 65536u);
+  writeWithOiio(folder.file("rgb.tif"), width, height, 3, OIIO::TypeDesc::UINT16, rgb);
+  const GrayImage fromRgb = readGrayImage(folder.file("rgb.tif"));
+  REQUIRE(fromRgb.width == width);
+  REQUIRE(fromRgb.height == height);
+  for (int i = 0; i < n; ++i) {
+    const double r = rgb[3 * i] / 65535.0, g = rgb[3 * i + 1] / 65535.0, b = rgb[3 * i + 2] / 65535.0;
+    CHECK(fromRgb.pixels[i] == doctest::Approx(0.2126 * r + 0.7152 * g + 0.0722 * b).epsilon(1e-15));
+  }
+
+  // Float RGBA: values as stored (outside [0, 1] too), alpha ignored.
+  std::vector<float> rgba(std::size_t(n) * 4);
+  for (int i = 0; i < n; ++i) {
+    rgba[4 * i] = 0.25f * float(i);
+    rgba[4 * i + 1] = -0.5f;
+    rgba[4 * i + 2] = 2.0f;
+    rgba[4 * i + 3] = float(i % 2);  // alpha: must not matter
+  }
+  writeWithOiio(folder.file("rgba.exr"), width, height, 4, OIIO::TypeDesc::FLOAT, rgba);
+  const GrayImage fromRgba = readGrayImage(folder.file("rgba.exr"));
+  for (int i = 0; i < n; ++i)
+    CHECK(fromRgba.pixels[i] == doctest::Approx(luminance(dvec3(0.25 * i, -0.5, 2.0))).epsilon(1e-15));
+
+  // Gray + alpha: the gray channel.
+  std::vector<std::uint8_t> ga(std::size_t(n) * 2);
+  for (int i = 0; i < n; ++i) {
+    ga[2 * i] = std::uint8_t(17 * i);
+    ga[2 * i + 1] = 255;
+  }
+  writeWithOiio(folder.file("ga.tif"), width, height, 2, OIIO::TypeDesc::UINT8, ga);
+  const GrayImage fromGa = readGrayImage(folder.file("ga.tif"));
+  for (int i = 0; i < n; ++i) CHECK(fromGa.pixels[i] == (17.0 * i) / 255.0);
+}
+
+TEST_CASE("io: readGrayImage reads the first of several subimages") {
+  TempFolder folder;
+  const std::string path = folder.file("two.tif");
+  auto out = OIIO::ImageOutput::create(path);
+  REQUIRE(out->supports("multiimage"));
+  OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(2, 2, 1, OIIO::TypeDesc::UINT8),
+                              OIIO::ImageSpec(3, 3, 1, OIIO::TypeDesc::UINT8)};
+  REQUIRE(out->open(path, 2, specs));
+  const std::vector<std::uint8_t> first{0, 51, 102, 255}, second(9, 7);
+  REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, first.data()));
+  REQUIRE(out->open(path, specs[1], OIIO::ImageOutput::AppendSubimage));
+  REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, second.data()));
+  REQUIRE(out->close());
+  const GrayImage image = readGrayImage(path);
+  CHECK(image.width == 2);
+  CHECK(image.pixels == std::vector<double>{0.0, 0.2, 0.4, 1.0});
+}
+
+TEST_CASE("io: readGrayImage of a missing, corrupt or empty file throws InputError with the path") {
+  TempFolder folder;
+  const std::string missing = folder.file("missing.png");
+  CHECK_THROWS_WITH_AS(readGrayImage(missing), containsText(missing + ": "), InputError);
+
+  const std::string corrupt = folder.file("corrupt.tif");
+  const char garbage[] = "II*\0 this is not a TIFF at all";  // TIFF magic, then nonsense
+  test::writeBytes(corrupt, std::string(garbage, sizeof garbage - 1));
+  CHECK_THROWS_WITH_AS(readGrayImage(corrupt), containsText(corrupt + ": "), InputError);
+
+  const std::string truncated = folder.file("truncated.tif");
+  writeGrayTiff(truncated, 64, 64, pattern(64, 64, 65535), 16, "");
+  const std::string bytes = test::readBytes(truncated);
+  test::writeBytes(truncated, bytes.substr(0, bytes.size() / 2));
+  CHECK_THROWS_WITH_AS(readGrayImage(truncated), containsText(truncated + ": "), InputError);
+
+  const std::string empty = folder.file("empty.tif");
+  test::writeBytes(empty, "");
+  CHECK_THROWS_WITH_AS(readGrayImage(empty), containsText(empty + ": "), InputError);
+
+  CHECK_THROWS_WITH_AS(readGrayImage(folder.path().string()),
+                       containsText(folder.path().string() + ": "), InputError);
+}

@@ -5,12 +5,13 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/version.h"
 
 int main(int argc, char** argv) {
   using namespace dicsynth;
   CLI::App app{"dicsynth: ray-traced synthetic images and ground truth for stereo DIC", "dicsynth"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "dicsynth 0.1.0");
+  app.set_version_flag("--version", std::string("dicsynth ") + kVersion);
   cli::RunFn run;
   cli::addRenderCommand(app, run);
   cli::addCompareCommand(app, run);

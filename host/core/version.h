@@ -1,6 +1,6 @@
 #pragma once
-// The version of dicsynth, recorded in every output file's metadata. Keep in step with
-// project(VERSION) in CMakeLists.txt and the --version flag in host/cli/main.cpp.
+// The version of dicsynth, recorded in every output file's metadata and printed by --version.
+// Single source: project(VERSION) in CMakeLists.txt, passed in as DS_VERSION.
 namespace dicsynth {
-inline constexpr const char* kVersion = "0.1.0";
+inline constexpr const char* kVersion = DS_VERSION;
 }  // namespace dicsynth

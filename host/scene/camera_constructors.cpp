@@ -49,8 +49,8 @@ dmat4 checkRigid(const Params& p, const dmat4& m) {
   for (int col = 0; col < 4; ++col)
     for (int row = 0; row < 4; ++row)
       if (!std::isfinite(m[col][row])) p.fail(std::string(what) + ", but it is not finite");
-  const double bottom = std::max({std::fabs(m[0][3]), std::fabs(m[1][3]), std::fabs(m[2][3]),
-                                  std::fabs(m[3][3] - 1.0)});
+  const double bottom = std::max(
+      {std::fabs(m[0][3]), std::fabs(m[1][3]), std::fabs(m[2][3]), std::fabs(m[3][3] - 1.0)});
   if (bottom > 1e-9) p.fail(std::string(what) + ", but its bottom row is not 0 0 0 1");
   const dmat3 rotation(m);
   const dmat3 gram = glm::transpose(rotation) * rotation;
@@ -132,8 +132,8 @@ int cameraPinhole(lua_State* L) {
   auto resolution = p.vec2("resolution", "{width, height}");
   if (!resolution) p.fail("missing required 'resolution' = {width, height}");
   for (double n : {resolution->x, resolution->y})
-    p.require(n == std::floor(n) && n >= 1 && n <= 65535, "resolution",
-              "two integers in 1..65535", n);
+    p.require(n == std::floor(n) && n >= 1 && n <= 65535, "resolution", "two integers in 1..65535",
+              n);
   camera.width_px = static_cast<int>(resolution->x);
   camera.height_px = static_cast<int>(resolution->y);
   camera.principalPoint_px = p.vec2("principalPoint", "{cx, cy}")
@@ -159,8 +159,8 @@ int cameraPinhole(lua_State* L) {
     camera.distortion = *distortion;
 
   // Pose
-  const TransformValue* transform = p.userdata<TransformValue>(
-      "transform", "a Transform (translate, rotate_x, ..., homography)");
+  const TransformValue* transform =
+      p.userdata<TransformValue>("transform", "a Transform (translate, rotate_x, ..., homography)");
   const bool byPosition = p.has("position") || p.has("lookAt") || p.has("up");
   if (transform && byPosition)
     p.fail("give either 'transform' or 'position'/'lookAt'/'up', not both");

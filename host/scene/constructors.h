@@ -9,10 +9,10 @@ namespace dicsynth::scene {
 // Registers every userdata type and sets all globals of the scene language.
 void registerSceneLanguage(lua_State* L);
 
-void registerCameraConstructors(lua_State* L);     // camera_constructors.cpp: Camera, Distortion
-void registerShapeConstructors(lua_State* L);      // shape_constructors.cpp: Shape
-void registerObjectConstructors(lua_State* L);     // object_constructors.cpp: Shader, Texture,
-                                                   //   Object, Light
-void registerTransformFunctions(lua_State* L);     // transform_functions.cpp: translate, ...
+void registerCameraConstructors(lua_State* L);  // camera_constructors.cpp: Camera, Distortion
+void registerShapeConstructors(lua_State* L);   // shape_constructors.cpp: Shape
+void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Shader, Texture,
+                                                //   Object, Light
+void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...
 
 }  // namespace dicsynth::scene

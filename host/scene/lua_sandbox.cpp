@@ -2,12 +2,11 @@
 // restricted library set and the one-line error format. See lua_sandbox.h for the rules.
 #include "scene/lua_sandbox.h"
 
-#include <lua.hpp>
-
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <lua.hpp>
 
 namespace dicsynth::scene {
 
@@ -28,9 +27,12 @@ std::string oneLine(const std::string& text) {
   std::string out;
   out.reserve(text.size());
   for (char c : text) {
-    if (c == '\n') out += "\\n";
-    else if (c == '\r') out += "\\r";
-    else out += c;
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\r')
+      out += "\\r";
+    else
+      out += c;
   }
   return out;
 }
@@ -184,9 +186,9 @@ void LuaSandbox::openLibraries() {
   lua_State* L = L_;
   // Only these; io, os, package and debug are never opened.
   static const luaL_Reg kLibraries[] = {
-      {LUA_GNAME, luaopen_base},         {LUA_TABLIBNAME, luaopen_table},
-      {LUA_STRLIBNAME, luaopen_string},  {LUA_MATHLIBNAME, luaopen_math},
-      {LUA_UTF8LIBNAME, luaopen_utf8},   {LUA_COLIBNAME, luaopen_coroutine},
+      {LUA_GNAME, luaopen_base},        {LUA_TABLIBNAME, luaopen_table},
+      {LUA_STRLIBNAME, luaopen_string}, {LUA_MATHLIBNAME, luaopen_math},
+      {LUA_UTF8LIBNAME, luaopen_utf8},  {LUA_COLIBNAME, luaopen_coroutine},
   };
   for (const luaL_Reg& library : kLibraries) {
     luaL_requiref(L, library.name, library.func, 1);
@@ -217,9 +219,20 @@ void LuaSandbox::openLibraries() {
 }
 
 std::string LuaSandbox::formatMessage(const std::string& luaMessage, int fallbackLine) const {
-  if (hasPosition(luaMessage.c_str()))
-    return oneLine(scenePath_ + luaMessage.substr(std::strlen(kChunkToken)));
-  return oneLine(scenePath_ + ":" + std::to_string(fallbackLine) + ": " + luaMessage);
+  // Every "<scene>:N:" names the scene (a message re-raised with error(msg) holds two).
+  std::string message;
+  const std::size_t tokenLength = std::strlen(kChunkToken);
+  for (std::size_t i = 0; i < luaMessage.size();) {
+    if (hasPosition(luaMessage.c_str() + i)) {
+      message += scenePath_;
+      i += tokenLength;
+    } else {
+      message += luaMessage[i++];
+    }
+  }
+  if (!hasPosition(luaMessage.c_str()))
+    message = scenePath_ + ":" + std::to_string(fallbackLine) + ": " + message;
+  return oneLine(message);
 }
 
 void LuaSandbox::run(const std::string& sourceText) {
@@ -259,7 +272,8 @@ void LuaSandbox::run(const std::string& sourceText) {
     throw InputError(at + "scene exceeded the memory limit (" +
                      formatNumber(static_cast<double>(limits_.maxMemoryBytes) / (1 << 20)) +
                      " MiB)");
-  if (status == LUA_ERRMEM) throw InputError(scenePath_ + ": out of memory while running the scene");
+  if (status == LUA_ERRMEM)
+    throw InputError(scenePath_ + ": out of memory while running the scene");
   if (status != LUA_OK) throw InputError(formatMessage(message, currentLine(L)));
 }
 

@@ -59,7 +59,7 @@ class LuaSandbox {
   LuaSandbox& operator=(const LuaSandbox&) = delete;
 
   lua_State* state() const { return L_; }
-  const std::string& scenePath() const { return scenePath_; }      // as given by the user
+  const std::string& scenePath() const { return scenePath_; }          // as given by the user
   const std::filesystem::path& sceneDir() const { return sceneDir_; }  // folder of the scene file
 
   // Loads `source` (text only) as the scene's main chunk and runs it under the limits.

@@ -62,9 +62,9 @@ bool isLuaIdentifier(const std::string& name) {
 
 bool isLuaKeyword(const std::string& name) {
   static const std::set<std::string> kKeywords = {
-      "and",   "break", "do",  "else", "elseif", "end",    "false", "for",  "function", "goto", "if",
-      "in",    "local", "nil", "not",  "or",     "repeat", "return", "then", "true",    "until",
-      "while"};
+      "and",      "break",  "do",   "else", "elseif", "end",  "false", "for",
+      "function", "goto",   "if",   "in",   "local",  "nil",  "not",   "or",
+      "repeat",   "return", "then", "true", "until",  "while"};
   return kKeywords.count(name) > 0;
 }
 
@@ -93,16 +93,19 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
   for (const auto& [name, value] : defines) {
     const std::string option = "-D " + name + ": ";
     if (!isLuaIdentifier(name))
-      throw InputError(option + "'" + name +
-                       "' is not a Lua identifier (letters, digits and _, not starting with a digit)");
+      throw InputError(
+          option + "'" + name +
+          "' is not a Lua identifier (letters, digits and _, not starting with a digit)");
     if (isLuaKeyword(name)) throw InputError(option + "'" + name + "' is a Lua keyword");
     if (name == "frame")
-      throw InputError(option + "'frame' is reserved: the frame number is set by the frame "
-                                "parameter, not by -D");
+      throw InputError(option +
+                       "'frame' is reserved: the frame number is set by the frame "
+                       "parameter, not by -D");
     lua_pushglobaltable(L);
     const bool builtIn = lua_getfield(L, -1, name.c_str()) != LUA_TNIL;
     lua_pop(L, 2);
-    if (builtIn) throw InputError(option + "'" + name + "' is a built-in name of the scene language");
+    if (builtIn)
+      throw InputError(option + "'" + name + "' is a built-in name of the scene language");
     lua_getfield(L, values, name.c_str());
     const bool twice = !lua_isnil(L, -1);
     lua_pop(L, 1);
@@ -138,7 +141,8 @@ void checkDefinesRead(lua_State* L,
   lua_pop(L, 1);
 }
 
-template <class T> void sortByName(std::vector<T>& items) {
+template <class T>
+void sortByName(std::vector<T>& items) {
   std::sort(items.begin(), items.end(), [](const T& a, const T& b) { return a.name < b.name; });
 }
 

@@ -98,8 +98,8 @@ Params::Params(lua_State* L, std::string constructor, std::initializer_list<cons
   // One table argument; none (Shape.Sphere()) reads as an empty table.
   const int arguments = lua_gettop(L);
   if (arguments > 1)
-    fail("expected one table of parameters { key = value; ... }, got " +
-         std::to_string(arguments) + " arguments");
+    fail("expected one table of parameters { key = value; ... }, got " + std::to_string(arguments) +
+         " arguments");
   if (arguments == 0 || lua_isnil(L, 1)) {
     lua_settop(L, 0);
     lua_newtable(L);
@@ -127,8 +127,7 @@ Params::Params(lua_State* L, std::string constructor, std::initializer_list<cons
 
   std::sort(unknown.begin(), unknown.end());
   std::string message = unknown.size() == 1 ? "unknown key " : "unknown keys ";
-  for (std::size_t i = 0; i < unknown.size(); ++i)
-    message += (i ? ", '" : "'") + unknown[i] + "'";
+  for (std::size_t i = 0; i < unknown.size(); ++i) message += (i ? ", '" : "'") + unknown[i] + "'";
   // Suggest the closest valid key for a single typo.
   if (unknown.size() == 1) {
     const char* best = nullptr;
@@ -171,9 +170,8 @@ double Params::checkNumber(int index, const std::string& what) const {
   return x;
 }
 
-std::vector<double> Params::checkNumbers(int index, const std::string& what,
-                                         std::size_t minCount, std::size_t maxCount,
-                                         const char* shape) const {
+std::vector<double> Params::checkNumbers(int index, const std::string& what, std::size_t minCount,
+                                         std::size_t maxCount, const char* shape) const {
   const std::string count = minCount == maxCount
                                 ? std::to_string(minCount)
                                 : std::to_string(minCount) + " to " + std::to_string(maxCount);
@@ -224,8 +222,7 @@ std::optional<std::string> Params::string(const char* key) const {
 }
 
 std::optional<std::vector<double>> Params::numbers(const char* key, std::size_t minCount,
-                                                   std::size_t maxCount,
-                                                   const char* shape) const {
+                                                   std::size_t maxCount, const char* shape) const {
   Pushed value(L_, key);
   if (value.isNil()) return std::nullopt;
   return checkNumbers(lua_gettop(L_), quote(key), minCount, maxCount, shape);
@@ -243,8 +240,7 @@ std::optional<dvec3> Params::vec3(const char* key, const char* shape) const {
   return dvec3((*values)[0], (*values)[1], (*values)[2]);
 }
 
-std::optional<std::vector<std::vector<double>>> Params::tables(const char* key,
-                                                               std::size_t count,
+std::optional<std::vector<std::vector<double>>> Params::tables(const char* key, std::size_t count,
                                                                std::size_t size,
                                                                const char* shape) const {
   Pushed value(L_, key);

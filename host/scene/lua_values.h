@@ -10,6 +10,7 @@
 // throwing ScriptError, which becomes a Lua error "<scene>:LINE: message" at the calling line once
 // every C++ object is destroyed (see the error-safety note in lua_sandbox.h).
 #include <initializer_list>
+#include <lua.hpp>
 #include <new>
 #include <optional>
 #include <stdexcept>
@@ -17,8 +18,6 @@
 #include <string_view>
 #include <utility>
 #include <vector>
-
-#include <lua.hpp>
 
 #include "core/math.h"
 #include "scene/lua_sandbox.h"
@@ -37,19 +36,30 @@ struct TransformValue {
   dmat4 matrix{1.0};
 };
 
-template <class T> struct UserdataName;
-template <> struct UserdataName<Camera> { static constexpr const char* value = "Camera"; };
-template <> struct UserdataName<Distortion> { static constexpr const char* value = "Distortion"; };
-template <> struct UserdataName<Shape> { static constexpr const char* value = "Shape"; };
-template <> struct UserdataName<Shader> { static constexpr const char* value = "Shader"; };
-template <> struct UserdataName<Texture> { static constexpr const char* value = "Texture"; };
-template <> struct UserdataName<Object> { static constexpr const char* value = "Object"; };
-template <> struct UserdataName<Light> { static constexpr const char* value = "Light"; };
-template <> struct UserdataName<TransformValue> { static constexpr const char* value = "Transform"; };
+// The type name of each userdata kind, as error messages and tostring() show it.
+template <class T>
+inline constexpr const char* kUserdataName = nullptr;
+template <>
+inline constexpr const char* kUserdataName<Camera> = "Camera";
+template <>
+inline constexpr const char* kUserdataName<Distortion> = "Distortion";
+template <>
+inline constexpr const char* kUserdataName<Shape> = "Shape";
+template <>
+inline constexpr const char* kUserdataName<Shader> = "Shader";
+template <>
+inline constexpr const char* kUserdataName<Texture> = "Texture";
+template <>
+inline constexpr const char* kUserdataName<Object> = "Object";
+template <>
+inline constexpr const char* kUserdataName<Light> = "Light";
+template <>
+inline constexpr const char* kUserdataName<TransformValue> = "Transform";
 
 // Registry key of the metatable of T ("dicsynth.Shape").
-template <class T> std::string registryKey() {
-  return std::string("dicsynth.") + UserdataName<T>::value;
+template <class T>
+std::string registryKey() {
+  return std::string("dicsynth.") + kUserdataName<T>;
 }
 
 // Runs body(L) as the body of a Lua C function: returns its result count, or -1 after pushing the
@@ -62,7 +72,8 @@ int protectedCall(lua_State* L) {
   return results >= 0 ? results : lua_error(L);
 }
 
-template <class T> int destroyUserdata(lua_State* L) {
+template <class T>
+int destroyUserdata(lua_State* L) {
   static_cast<T*>(lua_touserdata(L, 1))->~T();
   return 0;
 }
@@ -73,9 +84,9 @@ void registerUserdataType(lua_State* L, std::initializer_list<luaL_Reg> methods)
   static_assert(alignof(T) <= alignof(lua_Number) && alignof(T) <= alignof(void*),
                 "Lua aligns userdata memory for a double or a pointer, not more");
   luaL_newmetatable(L, registryKey<T>().c_str());
-  lua_pushstring(L, UserdataName<T>::value);
+  lua_pushstring(L, kUserdataName<T>);
   lua_setfield(L, -2, "__name");
-  lua_pushstring(L, UserdataName<T>::value);
+  lua_pushstring(L, kUserdataName<T>);
   lua_setfield(L, -2, "__metatable");
   lua_pushcfunction(L, &destroyUserdata<T>);
   lua_setfield(L, -2, "__gc");
@@ -87,14 +98,16 @@ void registerUserdataType(lua_State* L, std::initializer_list<luaL_Reg> methods)
 }
 
 // Pushes a new userdata holding `value`. The metatable (hence __gc) is set once it is constructed.
-template <class T> void pushUserdata(lua_State* L, T value) {
+template <class T>
+void pushUserdata(lua_State* L, T value) {
   void* memory = lua_newuserdatauv(L, sizeof(T), 0);
   new (memory) T(std::move(value));
   luaL_setmetatable(L, registryKey<T>().c_str());
 }
 
 // The T held by the value at `index`, or nullptr when it is something else.
-template <class T> T* toUserdata(lua_State* L, int index) {
+template <class T>
+T* toUserdata(lua_State* L, int index) {
   return static_cast<T*>(luaL_testudata(L, index, registryKey<T>().c_str()));
 }
 
@@ -128,12 +141,12 @@ class Params {
   std::optional<dvec3> vec3(const char* key, const char* shape = "{x, y, z}") const;
   // A table of `count` tables of `size` numbers each, e.g. vertices = {{x,y,z}, ...}.
   std::optional<std::vector<std::vector<double>>> tables(const char* key, std::size_t count,
-                                                         std::size_t size,
-                                                         const char* shape) const;
+                                                         std::size_t size, const char* shape) const;
   // A colour: one gray number or {r, g, b}.
   std::optional<dvec3> color(const char* key) const;
   // Userdata of type T; `expected` names it for messages, e.g. "a Shader (Shader.Constant, ...)".
-  template <class T> const T* userdata(const char* key, const char* expected) const {
+  template <class T>
+  const T* userdata(const char* key, const char* expected) const {
     Pushed value(L_, key);
     if (value.isNil()) return nullptr;
     const T* held = toUserdata<T>(L_, -1);

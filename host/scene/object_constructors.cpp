@@ -91,7 +91,8 @@ int textureFile(lua_State* L) {
   std::string name = "'" + *fileName + "'";
   if (texture.path != *fileName) name += " (resolved to '" + texture.path + "')";
   std::error_code ec;
-  if (std::filesystem::is_directory(resolved, ec)) p.fail("cannot read " + name + ": it is a folder");
+  if (std::filesystem::is_directory(resolved, ec))
+    p.fail("cannot read " + name + ": it is a folder");
   std::FILE* file = std::fopen(texture.path.c_str(), "rb");
   if (file == nullptr) p.fail("cannot read " + name + ": " + std::strerror(errno));
   std::fclose(file);
@@ -111,7 +112,8 @@ names).
   texture   | Texture    | Texture.Constant {}     | value 1
   transform | Transform  | identity()              | any invertible homography, applied to the shape
             |            |                         | about its location:
-            |            |                         | worldFromShape = translate(location) * transform
+            |            |                         | worldFromShape = translate(location) *
+transform
 
 Example:
   plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.1}; location = {0, 0, 0.5} };
@@ -192,15 +194,15 @@ int lightPoint(lua_State* L) {
 
 int shaderToString(lua_State* L) {
   const Shader* shader = toUserdata<Shader>(L, 1);
-  lua_pushstring(L, shader && shader->kind == ShaderKind::Lambert ? "Shader.Lambert"
-                                                                   : "Shader.Constant");
+  lua_pushstring(
+      L, shader && shader->kind == ShaderKind::Lambert ? "Shader.Lambert" : "Shader.Constant");
   return 1;
 }
 
 int textureToString(lua_State* L) {
   const Texture* texture = toUserdata<Texture>(L, 1);
-  lua_pushstring(L, texture && texture->kind == TextureKind::File ? "Texture.File"
-                                                                   : "Texture.Constant");
+  lua_pushstring(
+      L, texture && texture->kind == TextureKind::File ? "Texture.File" : "Texture.Constant");
   return 1;
 }
 
@@ -224,9 +226,9 @@ void registerObjectConstructors(lua_State* L) {
   setConstructorTable(L, "Shader",
                       {{"Constant", &protectedCall<shader<ShaderKind::Constant>>},
                        {"Lambert", &protectedCall<shader<ShaderKind::Lambert>>}});
-  setConstructorTable(L, "Texture",
-                      {{"Constant", &protectedCall<textureConstant>},
-                       {"File", &protectedCall<textureFile>}});
+  setConstructorTable(
+      L, "Texture",
+      {{"Constant", &protectedCall<textureConstant>}, {"File", &protectedCall<textureFile>}});
   setConstructorTable(L, "Object", {{"Simple", &protectedCall<objectSimple>}});
   setConstructorTable(L, "Light", {{"Point", &protectedCall<lightPoint>}});
 }

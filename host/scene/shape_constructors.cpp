@@ -53,7 +53,8 @@ int shapeBox(lua_State* L) {
   Shape shape = newShape(L, p, ShapeKind::Box);
   auto size = p.vec3("size", "{sx, sy, sz}");
   if (!size) p.fail("missing required 'size' = {sx, sy, sz} (metres)");
-  for (double s : {size->x, size->y, size->z}) p.require(s > 0, "size", "> 0 (metres) in x, y and z", s);
+  for (double s : {size->x, size->y, size->z})
+    p.require(s > 0, "size", "> 0 (metres) in x, y and z", s);
   shape.size_m = *size;
   pushUserdata(L, std::move(shape));
   return 1;
@@ -103,12 +104,13 @@ int shapePlane(lua_State* L) {
 /* ------------------------------------------------------------------------------------------------
 Shape.Triangle: one triangle; its vertices are relative to `location`.
 
-  Parameter | Value                        | Default                | Meaning
-  ----------+------------------------------+------------------------+---------------------------
-  vertices  | {{x,y,z}, {x,y,z}, {x,y,z}}, m | required             | must span a real triangle
-  uv        | {{u,v}, {u,v}, {u,v}}        | {{0,0}, {1,0}, {0,1}}  | texture coordinates of the
-            |                              |                        | vertices, interpolated
-  location  | {x, y, z}, m                 | {0, 0, 0}              | offset of all vertices
+  Parameter | Value                            | Default               | Meaning
+  ----------+----------------------------------+-----------------------+------------------------
+  vertices  | {{x, y, z}, {x, y, z}, {x, y, z}}| required              | corners, metres; must
+            |                                  |                       | span a real triangle
+  uv        | {{u, v}, {u, v}, {u, v}}         | {{0, 0}, {1, 0},      | texture coordinates of
+            |                                  |  {0, 1}}              | the corners
+  location  | {x, y, z}, m                     | {0, 0, 0}             | offset of all corners
 
 Degenerate triangles are refused: |cross(v1 - v0, v2 - v0)| must exceed 1e-12 * (longest edge)².
 
@@ -126,8 +128,8 @@ int shapeTriangle(lua_State* L) {
 
   // Refuse degenerate triangles, relative to the triangle's own size.
   const auto& v = shape.vertices_m;
-  const double longest = std::max({glm::length(v[1] - v[0]), glm::length(v[2] - v[1]),
-                                   glm::length(v[0] - v[2])});
+  const double longest =
+      std::max({glm::length(v[1] - v[0]), glm::length(v[2] - v[1]), glm::length(v[0] - v[2])});
   const double twiceArea = glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
   if (!(twiceArea > 1e-12 * longest * longest))
     p.fail("'vertices' must span a triangle, but they are coincident or collinear");

@@ -95,14 +95,14 @@ int scale(lua_State* L) {
                          : numberArguments(L, "scale", 3, false, "scale(s) or scale(sx, sy, sz)");
   for (double f : factors)
     if (f == 0) fail("scale", "factors must be non-zero, got 0");
-  const dvec3 s = factors.size() == 1 ? dvec3(factors[0]) : dvec3(factors[0], factors[1], factors[2]);
+  const dvec3 s =
+      factors.size() == 1 ? dvec3(factors[0]) : dvec3(factors[0], factors[1], factors[2]);
   pushTransform(L, glm::scale(dmat4(1.0), s));
   return 1;
 }
 
 int homography(lua_State* L) {
-  auto v = numberArguments(L, "homography", 16, true,
-                           "homography{16 numbers}, written row by row");
+  auto v = numberArguments(L, "homography", 16, true, "homography{16 numbers}, written row by row");
   dmat4 m(1.0);
   for (int row = 0; row < 4; ++row)
     for (int col = 0; col < 4; ++col) m[col][row] = v[4 * row + col];  // GLM: m[col][row]
@@ -158,10 +158,10 @@ void registerTransformFunctions(lua_State* L) {
   registerUserdataType<TransformValue>(
       L, {{"__mul", &protectedCall<multiply>}, {"__tostring", &protectedCall<transformToString>}});
   const luaL_Reg functions[] = {
-      {"translate", &protectedCall<translate>},  {"rotate_x", &protectedCall<rotate<0>>},
-      {"rotate_y", &protectedCall<rotate<1>>},   {"rotate_z", &protectedCall<rotate<2>>},
-      {"scale", &protectedCall<scale>},          {"homography", &protectedCall<homography>},
-      {"identity", &protectedCall<identity>},    {"degrees", &protectedCall<degrees>},
+      {"translate", &protectedCall<translate>}, {"rotate_x", &protectedCall<rotate<0>>},
+      {"rotate_y", &protectedCall<rotate<1>>},  {"rotate_z", &protectedCall<rotate<2>>},
+      {"scale", &protectedCall<scale>},         {"homography", &protectedCall<homography>},
+      {"identity", &protectedCall<identity>},   {"degrees", &protectedCall<degrees>},
   };
   for (const luaL_Reg& function : functions) {
     lua_pushcfunction(L, function.func);

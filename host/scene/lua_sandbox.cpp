@@ -37,6 +37,12 @@ std::string oneLine(const std::string& text) {
   return out;
 }
 
+#if LUA_VERSION_RELEASE_NUM <= 50404
+constexpr bool kCanReadLineWhileAllocating = true;
+#else
+constexpr bool kCanReadLineWhileAllocating = false;
+#endif
+
 }  // namespace
 
 std::string formatNumber(double value) {
@@ -90,7 +96,10 @@ void LuaSandbox::recordLimit(Limit which, int line) {
 
 // lua_Alloc. Lua never lets a shrink fail, so only growth is checked. When refusing, record the
 // line now: Lua raises LUA_ERRMEM without calling the message handler. L_ is the main thread; in a
-// coroutine the line found is that of the coroutine.resume call.
+// coroutine the line found is that of the coroutine.resume call. Reading the stack from inside
+// the allocator is safe up to Lua 5.4.4, which allocates a new stack before touching the old one;
+// from 5.4.5 on, stack pointers are offsets while the stack is reallocated, so there the line of
+// the last count hook (at most kHookInterval instructions old) is used instead.
 void* LuaSandbox::allocate(void* ud, void* ptr, std::size_t oldSize, std::size_t newSize) {
   auto& sandbox = *static_cast<LuaSandbox*>(ud);
   if (ptr == nullptr) oldSize = 0;  // then oldSize tells the kind of object, not a size
@@ -103,7 +112,9 @@ void* LuaSandbox::allocate(void* ud, void* ptr, std::size_t oldSize, std::size_t
   const std::size_t others = sandbox.bytesInUse_ - oldSize;
   if (newSize > oldSize && sandbox.enforceMemory_ && !sandbox.unlimited_ &&
       (newSize > limit || others > limit - newSize)) {
-    sandbox.recordLimit(Limit::Memory, sandbox.L_ ? currentLine(sandbox.L_) : 0);
+    sandbox.recordLimit(Limit::Memory, kCanReadLineWhileAllocating && sandbox.L_
+                                           ? currentLine(sandbox.L_)
+                                           : sandbox.lastHookLine_);
     return nullptr;
   }
   void* grown = std::realloc(ptr, newSize);
@@ -116,6 +127,7 @@ void* LuaSandbox::allocate(void* ud, void* ptr, std::size_t oldSize, std::size_t
 void LuaSandbox::countHook(lua_State* L, lua_Debug*) {
   LuaSandbox& sandbox = of(L);
   sandbox.instructions_ += kHookInterval;
+  if constexpr (!kCanReadLineWhileAllocating) sandbox.lastHookLine_ = currentLine(L);
   if (sandbox.instructions_ > sandbox.limits_.maxInstructions)
     sandbox.recordLimit(Limit::Instructions, currentLine(L));
   if (sandbox.exceeded_ == Limit::None) return;

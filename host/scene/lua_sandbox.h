@@ -14,7 +14,8 @@
 //  - instructions: a count hook fires every kHookInterval VM instructions and raises
 //    "scene exceeded the instruction limit (N instructions)" once the total passes the limit;
 //  - memory: the allocator refuses growth beyond the limit; Lua then raises a memory error (its
-//    message handler is not called for those, so the allocator records the line itself).
+//    message handler is not called for those, so the allocator records the line itself; exact up
+//    to Lua 5.4.4, approximate on later versions, see allocate()).
 // Both are sticky: once exceeded, the hook raises at every instruction, so a scene's pcall cannot
 // swallow the error and carry on, and the load fails even if the scene caught the error.
 // Known gap: C library functions that run long without allocating (a pathological string.find
@@ -112,6 +113,7 @@ class LuaSandbox {
   std::uint64_t instructions_ = 0;
   Limit exceeded_ = Limit::None;  // first limit the scene ran into
   int exceededLine_ = 0;
+  int lastHookLine_ = 0;  // for Lua versions where the allocator cannot read the line
 };
 
 }  // namespace dicsynth::scene

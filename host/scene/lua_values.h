@@ -56,11 +56,10 @@ inline constexpr const char* kUserdataName<Light> = "Light";
 template <>
 inline constexpr const char* kUserdataName<TransformValue> = "Transform";
 
-// Registry key of the metatable of T ("dicsynth.Shape").
+// The metatable of T lives in the registry under the address of this variable: lookups by a light
+// userdata key allocate nothing, so they cannot raise a Lua error.
 template <class T>
-std::string registryKey() {
-  return std::string("dicsynth.") + kUserdataName<T>;
-}
+inline const char kMetatableKey = 0;
 
 // Runs body(L) as the body of a Lua C function: returns its result count, or -1 after pushing the
 // error message "<scene>:LINE: what()" when it threw. Allocation is never refused meanwhile.
@@ -83,7 +82,7 @@ template <class T>
 void registerUserdataType(lua_State* L, std::initializer_list<luaL_Reg> methods) {
   static_assert(alignof(T) <= alignof(lua_Number) && alignof(T) <= alignof(void*),
                 "Lua aligns userdata memory for a double or a pointer, not more");
-  luaL_newmetatable(L, registryKey<T>().c_str());
+  lua_newtable(L);
   lua_pushstring(L, kUserdataName<T>);
   lua_setfield(L, -2, "__name");
   lua_pushstring(L, kUserdataName<T>);
@@ -94,7 +93,7 @@ void registerUserdataType(lua_State* L, std::initializer_list<luaL_Reg> methods)
     lua_pushcfunction(L, method.func);
     lua_setfield(L, -2, method.name);
   }
-  lua_pop(L, 1);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &kMetatableKey<T>);
 }
 
 // Pushes a new userdata holding `value`. The metatable (hence __gc) is set once it is constructed.
@@ -102,13 +101,19 @@ template <class T>
 void pushUserdata(lua_State* L, T value) {
   void* memory = lua_newuserdatauv(L, sizeof(T), 0);
   new (memory) T(std::move(value));
-  luaL_setmetatable(L, registryKey<T>().c_str());
+  lua_rawgetp(L, LUA_REGISTRYINDEX, &kMetatableKey<T>);
+  lua_setmetatable(L, -2);
 }
 
 // The T held by the value at `index`, or nullptr when it is something else.
 template <class T>
 T* toUserdata(lua_State* L, int index) {
-  return static_cast<T*>(luaL_testudata(L, index, registryKey<T>().c_str()));
+  void* memory = lua_touserdata(L, index);
+  if (memory == nullptr || !lua_getmetatable(L, index)) return nullptr;
+  lua_rawgetp(L, LUA_REGISTRYINDEX, &kMetatableKey<T>);
+  const bool isT = lua_rawequal(L, -1, -2);
+  lua_pop(L, 2);
+  return isT ? static_cast<T*>(memory) : nullptr;
 }
 
 // Sets global `name` to a table of constructors, e.g. Shape = { Sphere = ..., Box = ... }.

@@ -4,6 +4,8 @@
 // Units: metres, radians, pixels where the name says _px. Frames: the camera frame is OpenCV's
 // (x right, y down, z forward); world and object frames are right-handed.
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -96,6 +98,16 @@ struct Scene {
 struct SceneParams {
   std::vector<std::pair<std::string, std::string>> defines;  // -D name=value (number/bool/string)
   int frame = 0;                                              // global `frame`
+  // Limits of the scene's Lua code. A real scene runs in milliseconds and needs a few MiB; the
+  // limits only turn a runaway scene (endless loop, table growing without end) into a clear
+  // "FILE:LINE: scene exceeded the ... limit" error instead of a hang or an exhausted machine.
+  // Instructions: Lua VM instructions; this machine runs ~200 M/s, so the default stops a
+  // runaway loop within about half a second, yet leaves ~20x the headroom that a scene building
+  // 100 000 triangles in a loop (~5 M instructions) needs.
+  std::uint64_t maxInstructions = 100'000'000;
+  // Memory: bytes of the Lua heap. A scene value is under 1 KiB, so 256 MiB holds well over
+  // 100 000 objects; far beyond what the renderers take, far below the machine's memory.
+  std::size_t maxMemoryBytes = std::size_t{256} << 20;
 };
 
 // Loads and validates a scene. Throws InputError("file:line: message") on any error.

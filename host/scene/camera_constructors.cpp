@@ -1,0 +1,202 @@
+// Camera.Pinhole and Distortion.Brown.
+#include <algorithm>
+#include <cmath>
+
+#include "scene/constructors.h"
+#include "scene/lua_values.h"
+
+namespace dicsynth::scene {
+
+namespace {
+
+/* ------------------------------------------------------------------------------------------------
+Distortion.Brown: OpenCV's Brown–Conrady lens distortion on normalized coordinates
+(x' = X/Z, y' = Y/Z, r² = x'² + y'²), mapping ideal → distorted:
+  x'' = x'(1 + k1 r² + k2 r⁴ + k3 r⁶) + 2 p1 x'y' + p2 (r² + 2x'²)
+  y'' = y'(1 + k1 r² + k2 r⁴ + k3 r⁶) + p1 (r² + 2y'²) + 2 p2 x'y'
+Photogrammetry tools (Brown 1971, PhotoModeler, Metashape) swap p1 and p2 and work in mm:
+convert before copying their values.
+
+  Parameter   | Value                        | Default   | Meaning
+  ------------+------------------------------+-----------+------------------------------------
+  radial      | {k1[, k2[, k3]]} (unitless)  | {0, 0, 0} | radial coefficients; missing ones 0
+  tangential  | {p1, p2} (unitless)          | {0, 0}    | tangential coefficients, exactly 2
+
+Example:
+  distortion = Distortion.Brown { radial = {-0.13, -0.39, 1.20}; tangential = {1.1e-6, -1.2e-6} }
+------------------------------------------------------------------------------------------------ */
+int distortionBrown(lua_State* L) {
+  Params p(L, "Distortion.Brown", {"radial", "tangential"});
+  Distortion distortion;
+  distortion.kind = DistortionKind::Brown;
+  if (auto radial = p.numbers("radial", 1, 3, "{k1[, k2[, k3]]}")) {
+    radial->resize(3, 0.0);
+    distortion.k1 = (*radial)[0];
+    distortion.k2 = (*radial)[1];
+    distortion.k3 = (*radial)[2];
+  }
+  if (auto tangential = p.vec2("tangential", "{p1, p2}")) {
+    distortion.p1 = tangential->x;
+    distortion.p2 = tangential->y;
+  }
+  pushUserdata(L, distortion);
+  return 1;
+}
+
+// Checks that worldFromCamera is rigid: orthonormal rotation (to 1e-9), det +1, last row 0 0 0 1.
+dmat4 checkRigid(const Params& p, const dmat4& m) {
+  const char* what = "'transform' (worldFromCamera) must be rigid, a rotation and a translation";
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row)
+      if (!std::isfinite(m[col][row])) p.fail(std::string(what) + ", but it is not finite");
+  const double bottom = std::max(
+      {std::fabs(m[0][3]), std::fabs(m[1][3]), std::fabs(m[2][3]), std::fabs(m[3][3] - 1.0)});
+  if (bottom > 1e-9) p.fail(std::string(what) + ", but its bottom row is not 0 0 0 1");
+  const dmat3 rotation(m);
+  const dmat3 gram = glm::transpose(rotation) * rotation;
+  double deviation = 0;
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 3; ++row)
+      deviation = std::max(deviation, std::fabs(gram[col][row] - (col == row ? 1.0 : 0.0)));
+  if (deviation > 1e-9)
+    p.fail(std::string(what) + ", but its 3x3 part is not orthonormal (max |R^T R - I| = " +
+           formatNumber(deviation) + ")");
+  if (glm::determinant(rotation) < 0)
+    p.fail(std::string(what) + ", but it mirrors (determinant -1)");
+  dmat4 rigid = m;
+  rigid[0][3] = rigid[1][3] = rigid[2][3] = 0;
+  rigid[3][3] = 1;
+  return rigid;
+}
+
+// worldFromCamera from position, lookAt and up (OpenCV camera frame: x right, y down, z forward).
+dmat4 lookAtPose(const Params& p, const dvec3& position, const dvec3& lookAt, const dvec3& up) {
+  const dvec3 forward = lookAt - position;
+  const double distance = glm::length(forward);
+  if (distance <= 1e-12 * std::max({1.0, glm::length(position), glm::length(lookAt)}))
+    p.fail("'lookAt' must differ from 'position'");
+  const dvec3 z = forward / distance;
+  // The image's y axis points down, i.e. against the part of `up` across the viewing direction.
+  const dvec3 upAcross = up - glm::dot(up, z) * z;
+  if (!(glm::length(upAcross) > 1e-9 * glm::length(up)))
+    p.fail("'up' must not be zero or parallel to the viewing direction (lookAt - position)");
+  const dvec3 y = glm::normalize(-upAcross);
+  const dvec3 x = glm::cross(y, z);
+  return dmat4(dvec4(x, 0), dvec4(y, 0), dvec4(z, 0), dvec4(position, 1));
+}
+
+/* ------------------------------------------------------------------------------------------------
+Camera.Pinhole: an ideal pinhole camera with a rectangular sensor of square-grid pixels.
+Pixel coordinates are OpenCV's: the centre of the top-left pixel is (0, 0), x right, y down.
+The camera frame is OpenCV's: x right, y down, z forward (along the optical axis).
+
+  Parameter      | Value                  | Default            | Meaning
+  ---------------+------------------------+--------------------+----------------------------------
+  resolution     | {w, h} integers, px    | required           | image size, each 1..65535
+  principalPoint | {cx, cy}, px           | {(w-1)/2, (h-1)/2} | where the optical axis meets the
+                 |                        |                    | image (default: geometric centre)
+  focalLength    | number, m              | required           | > 0
+  pixelSize      | {sx, sy}, m            | required           | pixel pitch, each > 0
+  fillFactor     | number                 | 1                  | sensitive fraction of a pixel's
+                 |                        |                    | area, in (0, 1]
+  bitsPerPixel   | integer                | 8                  | 1..16
+  exposure       | number                 | 1                  | > 0; DN = round(clamp(exposure *
+                 |                        |                    | radiance, 0, 1) * (2^bits - 1))
+  distortion     | Distortion             | none               | Distortion.Brown { ... }
+  transform      | Transform              | identity           | pose as worldFromCamera; must be
+                 |                        |                    | rigid (rotation + translation)
+  position       | {x, y, z}, m           | {0, 0, 0}          | camera centre (optical centre)
+  lookAt         | {x, y, z}, m           | -                  | a point on the optical axis
+  up             | {x, y, z}              | {0, -1, 0}         | world direction shown up in the
+                 |                        |                    | image; only with lookAt
+
+Pose: give `transform`, or `position` with optional `lookAt`/`up`, not both. Without any, the
+camera sits at the origin looking down +z and its frame is the world frame. With lookAt:
+  z = normalize(lookAt - position), y = normalize(-(up - (up.z) z)), x = cross(y, z).
+Without lookAt the camera at `position` keeps the world's orientation.
+
+Example:
+  left = Camera.Pinhole { resolution = {1600, 1200}; focalLength = 0.012;
+                          pixelSize = {4.4e-6, 4.4e-6}; bitsPerPixel = 10;
+                          position = {-0.1, 0, 0}; lookAt = {0, 0, 0.5} }
+------------------------------------------------------------------------------------------------ */
+int cameraPinhole(lua_State* L) {
+  Params p(L, "Camera.Pinhole",
+           {"resolution", "principalPoint", "focalLength", "pixelSize", "fillFactor",
+            "bitsPerPixel", "exposure", "distortion", "transform", "position", "lookAt", "up"});
+  Camera camera;
+  camera.kind = CameraKind::Pinhole;
+  camera.where = LuaSandbox::of(L).here(L);
+
+  // Sensor
+  auto resolution = p.vec2("resolution", "{width, height}");
+  if (!resolution) p.fail("missing required 'resolution' = {width, height}");
+  for (double n : {resolution->x, resolution->y})
+    p.require(n == std::floor(n) && n >= 1 && n <= 65535, "resolution", "two integers in 1..65535",
+              n);
+  camera.width_px = static_cast<int>(resolution->x);
+  camera.height_px = static_cast<int>(resolution->y);
+  camera.principalPoint_px = p.vec2("principalPoint", "{cx, cy}")
+                                 .value_or(dvec2(camera.width_px - 1, camera.height_px - 1) / 2.0);
+  camera.focalLength_m = p.requiredNumber("focalLength");
+  p.require(camera.focalLength_m > 0, "focalLength", "> 0 (metres)", camera.focalLength_m);
+  auto pixelSize = p.vec2("pixelSize", "{sx, sy}");
+  if (!pixelSize) p.fail("missing required 'pixelSize' = {sx, sy} (metres)");
+  for (double s : {pixelSize->x, pixelSize->y})
+    p.require(s > 0, "pixelSize", "> 0 (metres) in x and y", s);
+  camera.pixelSize_m = *pixelSize;
+  camera.fillFactor = p.number("fillFactor", 1.0);
+  p.require(camera.fillFactor > 0 && camera.fillFactor <= 1, "fillFactor", "in (0, 1]",
+            camera.fillFactor);
+  const long long bits = p.integer("bitsPerPixel").value_or(8);
+  p.require(bits >= 1 && bits <= 16, "bitsPerPixel", "an integer in 1..16",
+            static_cast<double>(bits));
+  camera.bitsPerPixel = static_cast<int>(bits);
+  camera.exposure = p.number("exposure", 1.0);
+  p.require(camera.exposure > 0, "exposure", "> 0", camera.exposure);
+  if (const Distortion* distortion =
+          p.userdata<Distortion>("distortion", "a Distortion (Distortion.Brown)"))
+    camera.distortion = *distortion;
+
+  // Pose
+  const TransformValue* transform =
+      p.userdata<TransformValue>("transform", "a Transform (translate, rotate_x, ..., homography)");
+  const bool byPosition = p.has("position") || p.has("lookAt") || p.has("up");
+  if (transform && byPosition)
+    p.fail("give either 'transform' or 'position'/'lookAt'/'up', not both");
+  if (transform) {
+    camera.worldFromCamera = checkRigid(p, transform->matrix);
+  } else if (byPosition) {
+    const dvec3 position = p.vec3("position").value_or(dvec3(0));
+    const std::optional<dvec3> lookAt = p.vec3("lookAt");
+    const std::optional<dvec3> up = p.vec3("up");
+    if (up && !lookAt) p.fail("'up' needs 'lookAt' (it orients the viewing direction)");
+    camera.worldFromCamera = lookAt ? lookAtPose(p, position, *lookAt, up.value_or(dvec3(0, -1, 0)))
+                                    : glm::translate(dmat4(1.0), position);
+  }
+  pushUserdata(L, std::move(camera));
+  return 1;
+}
+
+int cameraToString(lua_State* L) {
+  const Camera* camera = toUserdata<Camera>(L, 1);
+  lua_pushfstring(L, "Camera.Pinhole(%dx%d)", camera ? camera->width_px : 0,
+                  camera ? camera->height_px : 0);
+  return 1;
+}
+
+int distortionToString(lua_State* L) {
+  lua_pushliteral(L, "Distortion.Brown");
+  return 1;
+}
+
+}  // namespace
+
+void registerCameraConstructors(lua_State* L) {
+  registerUserdataType<Camera>(L, {{"__tostring", &cameraToString}});
+  registerUserdataType<Distortion>(L, {{"__tostring", &distortionToString}});
+  setConstructorTable(L, "Camera", {{"Pinhole", &protectedCall<cameraPinhole>}});
+  setConstructorTable(L, "Distortion", {{"Brown", &protectedCall<distortionBrown>}});
+}
+
+}  // namespace dicsynth::scene

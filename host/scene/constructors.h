@@ -1,0 +1,18 @@
+#pragma once
+// The scene language: constructors (Camera.Pinhole { ... }, Shape.Sphere { ... }, ...) and
+// transform functions (translate, rotate_y, ...) as Lua globals. One file per category; each
+// constructor's user documentation sits at the top of the code that reads its parameters.
+struct lua_State;
+
+namespace dicsynth::scene {
+
+// Registers every userdata type and sets all globals of the scene language.
+void registerSceneLanguage(lua_State* L);
+
+void registerCameraConstructors(lua_State* L);  // camera_constructors.cpp: Camera, Distortion
+void registerShapeConstructors(lua_State* L);   // shape_constructors.cpp: Shape
+void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Shader, Texture,
+                                                //   Object, Light
+void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...
+
+}  // namespace dicsynth::scene

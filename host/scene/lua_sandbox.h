@@ -1,0 +1,119 @@
+#pragma once
+// LuaSandbox: one Lua 5.4 state that runs one scene file, with only the harmless libraries, an
+// instruction limit and a memory limit, and errors turned into ONE line "FILE:LINE: message".
+//
+// What a scene can use: the base library without dofile/loadfile/load/require/collectgarbage,
+// and table, string (without string.dump), math, utf8, coroutine. io, os, package and debug are
+// never opened. Chunks load in text mode only. `print` writes "FILE:LINE: ..." to stderr.
+// math.random is seeded with a fixed value (kRandomSeed), so the same scene draws the same
+// numbers on every run; a scene may reseed it, e.g. math.randomseed(frame).
+// setmetatable refuses metatables with a __gc field: Lua runs finalizers with hooks off, so a
+// finalizer would escape the instruction limit.
+//
+// Limits (see SceneParams in scene.h for the defaults and why):
+//  - instructions: a count hook fires every kHookInterval VM instructions and raises
+//    "scene exceeded the instruction limit (N instructions)" once the total passes the limit;
+//  - memory: the allocator refuses growth beyond the limit; Lua then raises a memory error (its
+//    message handler is not called for those, so the allocator records the line itself; exact up
+//    to Lua 5.4.4, approximate on later versions, see allocate()).
+// Both are sticky: once exceeded, the hook raises at every instruction, so a scene's pcall cannot
+// swallow the error and carry on, and the load fails even if the scene caught the error.
+// Known gap: C library functions that run long without allocating (a pathological string.find
+// pattern) are not interrupted: hooks only run between VM instructions.
+//
+// Error safety: Lua errors are longjmps, which must not cross C++ frames holding objects with
+// destructors. C functions written in C++ therefore go through protectedCall() (lua_values.h):
+// their C++ body runs inside an UnlimitedScope (no allocation is refused, so the Lua API calls
+// they make cannot raise), uses raw table access only (no metamethods, so no scene code runs),
+// reports problems by throwing, and the Lua error is raised after every C++ object is gone.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "core/error.h"
+
+struct lua_State;
+struct lua_Debug;
+
+namespace dicsynth::scene {
+
+struct SandboxLimits {
+  std::uint64_t maxInstructions = 0;
+  std::size_t maxMemoryBytes = 0;
+};
+
+// The chunk name under which the scene runs. Lua's own messages then read "<scene>:12: ...";
+// the sandbox replaces the token by the scene path as given (Lua would shorten long paths).
+inline constexpr const char* kChunkToken = "<scene>";
+inline constexpr int kHookInterval = 1000;  // VM instructions between two count-hook calls
+inline constexpr std::int64_t kRandomSeed = 20240101;
+
+// Shortest text that reads back as the same double ("0.1", "-3", "inf", "nan"), for messages.
+std::string formatNumber(double value);
+
+class LuaSandbox {
+ public:
+  LuaSandbox(std::string scenePath, SandboxLimits limits);
+  ~LuaSandbox();
+  LuaSandbox(const LuaSandbox&) = delete;
+  LuaSandbox& operator=(const LuaSandbox&) = delete;
+
+  lua_State* state() const { return L_; }
+  const std::string& scenePath() const { return scenePath_; }          // as given by the user
+  const std::filesystem::path& sceneDir() const { return sceneDir_; }  // folder of the scene file
+
+  // Loads `source` (text only) as the scene's main chunk and runs it under the limits.
+  // Throws InputError("PATH:LINE: message") on a syntax error, a runtime error or a limit.
+  void run(const std::string& source);
+
+  // The sandbox owning L (L may be any thread of the state).
+  static LuaSandbox& of(lua_State* L);
+  // Line of the innermost active Lua function of L (0 if there is none).
+  static int currentLine(lua_State* L);
+  // SourceLoc of the Lua code that is running on L: the scene path and currentLine(L).
+  SourceLoc here(lua_State* L) const { return SourceLoc{scenePath_, currentLine(L)}; }
+
+  // While alive, the allocator refuses nothing (see the header comment). Nests.
+  class UnlimitedScope {
+   public:
+    explicit UnlimitedScope(lua_State* L);
+    ~UnlimitedScope();
+    UnlimitedScope(const UnlimitedScope&) = delete;
+    UnlimitedScope& operator=(const UnlimitedScope&) = delete;
+
+   private:
+    LuaSandbox& sandbox_;
+    bool previous_;
+  };
+
+ private:
+  enum class Limit { None, Instructions, Memory };
+
+  static void* allocate(void* ud, void* ptr, std::size_t oldSize, std::size_t newSize);
+  static void countHook(lua_State* L, lua_Debug* ar);
+  static int messageHandler(lua_State* L);
+  static int print(lua_State* L);
+  static int setmetatableNoGc(lua_State* L);
+
+  void openLibraries();
+  void recordLimit(Limit which, int line);
+  // "<scene>:12: msg" → "PATH:12: msg", on one line; adds PATH:fallbackLine when no position.
+  std::string formatMessage(const std::string& luaMessage, int fallbackLine) const;
+
+  std::string scenePath_;
+  std::filesystem::path sceneDir_;
+  SandboxLimits limits_;
+  lua_State* L_ = nullptr;
+
+  // Allocator and hook state.
+  std::size_t bytesInUse_ = 0;
+  bool enforceMemory_ = false;  // only while the scene runs
+  bool unlimited_ = false;      // UnlimitedScope
+  std::uint64_t instructions_ = 0;
+  Limit exceeded_ = Limit::None;  // first limit the scene ran into
+  int exceededLine_ = 0;
+  int lastHookLine_ = 0;  // for Lua versions where the allocator cannot read the line
+};
+
+}  // namespace dicsynth::scene

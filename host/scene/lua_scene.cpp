@@ -1,0 +1,199 @@
+// loadScene: runs a scene file in a LuaSandbox with the scene language, the global `frame` and the
+// -D defines, then collects the cameras, objects and lights the scene assigned to globals.
+//
+// Collection rule: after the chunk has run, every global variable whose value is a Camera, an
+// Object or a Light is part of the scene, named by the variable. Values reachable only through
+// tables or locals (lights = { Light.Point{...} }) are NOT collected: assign them to globals, e.g.
+// _G["light" .. i] = Light.Point { ... }. Each list is sorted by name (Lua's table order is not
+// deterministic); objectId = index + 1 follows that order.
+//
+// Defines (-D name=value) are not globals: _G's metatable serves them through __index and records
+// each read, so that a define the scene never reads (a typo) is an error. A value is a number when
+// Lua reads the whole text as one, true/false as booleans, otherwise a string.
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <set>
+
+#include "scene/constructors.h"
+#include "scene/lua_sandbox.h"
+#include "scene/lua_values.h"
+#include "scene/scene.h"
+
+namespace dicsynth {
+
+namespace scene {
+
+void registerSceneLanguage(lua_State* L) {
+  registerCameraConstructors(L);
+  registerShapeConstructors(L);
+  registerObjectConstructors(L);
+  registerTransformFunctions(L);
+}
+
+namespace {
+
+constexpr const char* kDefinesReadKey = "dicsynth.definesRead";  // registry: set of names read
+
+std::string readSceneFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path + ": cannot read the scene file: it is a folder");
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr)
+    throw InputError(path + ": cannot read the scene file: " + std::strerror(errno));
+  std::string text;
+  char buffer[1 << 16];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, n);
+  const bool failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (failed) throw InputError(path + ": cannot read the scene file: read error");
+  return text;
+}
+
+bool isLuaIdentifier(const std::string& name) {
+  auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+  auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  if (name.empty() || !letter(name[0])) return false;
+  return std::all_of(name.begin(), name.end(), [&](char c) { return letter(c) || digit(c); });
+}
+
+bool isLuaKeyword(const std::string& name) {
+  static const std::set<std::string> kKeywords = {
+      "and",      "break",  "do",   "else", "elseif", "end",  "false", "for",
+      "function", "goto",   "if",   "in",   "local",  "nil",  "not",   "or",
+      "repeat",   "return", "then", "true", "until",  "while"};
+  return kKeywords.count(name) > 0;
+}
+
+// _G.__index: serves a define (upvalue 1: name → value) and records the read (upvalue 2).
+int readDefine(lua_State* L) {
+  lua_pushvalue(L, 2);
+  if (lua_rawget(L, lua_upvalueindex(1)) == LUA_TNIL) return 1;
+  lua_pushvalue(L, 2);
+  lua_pushboolean(L, 1);
+  lua_rawset(L, lua_upvalueindex(2));
+  return 1;
+}
+
+void pushDefineValue(lua_State* L, const std::string& value) {
+  if (lua_stringtonumber(L, value.c_str()) == value.size() + 1) return;  // whole text a number
+  if (value == "true" || value == "false")
+    lua_pushboolean(L, value == "true");
+  else
+    lua_pushlstring(L, value.data(), value.size());
+}
+
+// Checks the defines and installs _G's metatable. Runs before the scene (limits not enforced).
+void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::string>>& defines) {
+  lua_newtable(L);  // name → value
+  const int values = lua_gettop(L);
+  for (const auto& [name, value] : defines) {
+    const std::string option = "-D " + name + ": ";
+    if (!isLuaIdentifier(name))
+      throw InputError(
+          option + "'" + name +
+          "' is not a Lua identifier (letters, digits and _, not starting with a digit)");
+    if (isLuaKeyword(name)) throw InputError(option + "'" + name + "' is a Lua keyword");
+    if (name == "frame")
+      throw InputError(option +
+                       "'frame' is reserved: the frame number is set by the frame "
+                       "parameter, not by -D");
+    lua_pushglobaltable(L);
+    const bool builtIn = lua_getfield(L, -1, name.c_str()) != LUA_TNIL;
+    lua_pop(L, 2);
+    if (builtIn)
+      throw InputError(option + "'" + name + "' is a built-in name of the scene language");
+    lua_getfield(L, values, name.c_str());
+    const bool twice = !lua_isnil(L, -1);
+    lua_pop(L, 1);
+    if (twice) throw InputError(option + "defined twice");
+    pushDefineValue(L, value);
+    lua_setfield(L, values, name.c_str());
+  }
+  lua_newtable(L);  // names read
+  lua_pushvalue(L, -1);
+  lua_setfield(L, LUA_REGISTRYINDEX, kDefinesReadKey);
+
+  lua_pushglobaltable(L);
+  lua_createtable(L, 0, 2);  // _G's metatable
+  lua_pushvalue(L, values);
+  lua_pushvalue(L, values + 1);
+  lua_pushcclosure(L, &readDefine, 2);
+  lua_setfield(L, -2, "__index");
+  lua_pushboolean(L, 0);
+  lua_setfield(L, -2, "__metatable");  // the scene cannot replace or inspect it
+  lua_setmetatable(L, -2);
+  lua_settop(L, values - 1);
+}
+
+void checkDefinesRead(lua_State* L,
+                      const std::vector<std::pair<std::string, std::string>>& defines) {
+  lua_getfield(L, LUA_REGISTRYINDEX, kDefinesReadKey);
+  for (const auto& define : defines) {
+    const std::string& name = define.first;
+    const bool read = lua_getfield(L, -1, name.c_str()) != LUA_TNIL;
+    lua_pop(L, 1);
+    if (!read) throw InputError("-D " + name + ": the scene never reads '" + name + "'");
+  }
+  lua_pop(L, 1);
+}
+
+template <class T>
+void sortByName(std::vector<T>& items) {
+  std::sort(items.begin(), items.end(), [](const T& a, const T& b) { return a.name < b.name; });
+}
+
+// Copies every Camera, Object and Light held by a global (string key) into the scene.
+Scene collectGlobals(lua_State* L, const std::string& path) {
+  Scene scene;
+  scene.file = path;
+  lua_pushglobaltable(L);
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {
+    if (lua_type(L, -2) == LUA_TSTRING && lua_type(L, -1) == LUA_TUSERDATA) {
+      const std::string name = lua_tostring(L, -2);
+      if (const Camera* camera = toUserdata<Camera>(L, -1)) {
+        scene.cameras.push_back(*camera);
+        scene.cameras.back().name = name;
+      } else if (const Object* object = toUserdata<Object>(L, -1)) {
+        scene.objects.push_back(*object);
+        scene.objects.back().name = name;
+      } else if (const Light* light = toUserdata<Light>(L, -1)) {
+        scene.lights.push_back(*light);
+        scene.lights.back().name = name;
+      }
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  sortByName(scene.cameras);
+  sortByName(scene.objects);
+  sortByName(scene.lights);
+  return scene;
+}
+
+}  // namespace
+}  // namespace scene
+
+Scene loadScene(const std::string& path, const SceneParams& params) {
+  const std::string source = scene::readSceneFile(path);
+  scene::LuaSandbox sandbox(path, {params.maxInstructions, params.maxMemoryBytes});
+  lua_State* L = sandbox.state();
+  scene::registerSceneLanguage(L);
+  lua_pushinteger(L, params.frame);
+  lua_setglobal(L, "frame");
+  scene::installDefines(L, params.defines);
+
+  sandbox.run(source);
+
+  scene::checkDefinesRead(L, params.defines);
+  Scene scene = scene::collectGlobals(L, path);
+  if (scene.cameras.empty())
+    throw InputError(path + ": the scene defines no camera (assign Camera.Pinhole{…} to a global)");
+  return scene;
+}
+
+}  // namespace dicsynth

@@ -1,0 +1,276 @@
+// Userdata helpers and the constructor parameter reader (see lua_values.h).
+#include "scene/lua_values.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dicsynth::scene {
+
+namespace {
+
+// Optimal string alignment distance (Levenshtein plus adjacent swaps: "raduis" → "radius" is 1).
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  }
+  return d[a.size()][b.size()];
+}
+
+// Number of entries of the table at `index`, and whether they are exactly [1..n].
+struct TableShape {
+  std::size_t entries = 0;
+  bool isSequence = true;
+};
+
+TableShape shapeOf(lua_State* L, int index) {
+  TableShape shape;
+  lua_pushnil(L);
+  while (lua_next(L, index) != 0) {
+    lua_pop(L, 1);
+    ++shape.entries;
+  }
+  for (std::size_t i = 1; i <= shape.entries; ++i) {
+    if (lua_rawgeti(L, index, static_cast<lua_Integer>(i)) == LUA_TNIL) shape.isSequence = false;
+    lua_pop(L, 1);
+  }
+  return shape;
+}
+
+}  // namespace
+
+int runProtected(lua_State* L, int (*body)(lua_State*)) {
+  LuaSandbox::UnlimitedScope unlimited(L);
+  std::string message;
+  try {
+    return body(L);
+  } catch (const ScriptError& e) {
+    message = e.what();
+  } catch (const std::bad_alloc&) {
+    message = "out of memory";
+  } catch (const std::exception& e) {
+    message = std::string("internal error: ") + e.what();
+  }
+  lua_pushfstring(L, "%s:%d: ", kChunkToken, LuaSandbox::currentLine(L));
+  lua_pushlstring(L, message.data(), message.size());
+  lua_concat(L, 2);
+  return -1;
+}
+
+void setConstructorTable(lua_State* L, const char* name,
+                         std::initializer_list<luaL_Reg> functions) {
+  lua_createtable(L, 0, static_cast<int>(functions.size()));
+  for (const luaL_Reg& function : functions) {
+    lua_pushcfunction(L, function.func);
+    lua_setfield(L, -2, function.name);
+  }
+  lua_setglobal(L, name);
+}
+
+std::string typeName(lua_State* L, int index) {
+  if (lua_type(L, index) == LUA_TUSERDATA && lua_getmetatable(L, index)) {
+    lua_pushliteral(L, "__name");
+    lua_rawget(L, -2);
+    std::string name = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "userdata";
+    lua_pop(L, 2);
+    return name;
+  }
+  return lua_typename(L, lua_type(L, index));
+}
+
+Params::Pushed::Pushed(lua_State* L, const char* key) : L_(L) {
+  lua_pushstring(L, key);
+  lua_rawget(L, 1);
+}
+
+Params::Params(lua_State* L, std::string constructor, std::initializer_list<const char*> keys)
+    : L_(L), constructor_(std::move(constructor)) {
+  std::string validKeys;
+  for (const char* key : keys) validKeys += (validKeys.empty() ? "" : ", ") + std::string(key);
+
+  // One table argument; none (Shape.Sphere()) reads as an empty table.
+  const int arguments = lua_gettop(L);
+  if (arguments > 1)
+    fail("expected one table of parameters { key = value; ... }, got " + std::to_string(arguments) +
+         " arguments");
+  if (arguments == 0 || lua_isnil(L, 1)) {
+    lua_settop(L, 0);
+    lua_newtable(L);
+  } else if (!lua_istable(L, 1)) {
+    fail("expected a table of parameters { key = value; ... }, got " + typeName(L, 1));
+  }
+
+  // Every key must be one of `keys`: a typo is an error, not a silently ignored parameter.
+  std::vector<std::string> unknown;
+  lua_pushnil(L);
+  while (lua_next(L, 1) != 0) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) != LUA_TSTRING) {
+      const std::string where = lua_type(L, -1) == LUA_TNUMBER
+                                    ? "[" + formatNumber(lua_tonumber(L, -1)) + "]"
+                                    : "a " + typeName(L, -1) + " key";
+      fail("parameters must be named (key = value), got a value at " + where +
+           "; valid keys: " + validKeys);
+    }
+    std::string key = lua_tostring(L, -1);
+    if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return key == k; }))
+      unknown.push_back(std::move(key));
+  }
+  if (unknown.empty()) return;
+
+  std::sort(unknown.begin(), unknown.end());
+  std::string message = unknown.size() == 1 ? "unknown key " : "unknown keys ";
+  for (std::size_t i = 0; i < unknown.size(); ++i) message += (i ? ", '" : "'") + unknown[i] + "'";
+  // Suggest the closest valid key for a single typo.
+  if (unknown.size() == 1) {
+    const char* best = nullptr;
+    std::size_t bestDistance = 3;
+    for (const char* key : keys) {
+      const std::size_t distance = editDistance(unknown[0], key);
+      if (distance < bestDistance && distance < unknown[0].size()) {
+        best = key;
+        bestDistance = distance;
+      }
+    }
+    if (best) message += std::string(" (did you mean '") + best + "'?)";
+  }
+  fail(message + "; valid keys: " + validKeys);
+}
+
+void Params::fail(const std::string& message) const {
+  throw ScriptError(constructor_ + ": " + message);
+}
+
+void Params::require(bool ok, const char* key, const char* condition, double value) const {
+  if (!ok) fail(quote(key) + " must be " + condition + ", got " + formatNumber(value));
+}
+
+bool Params::has(const char* key) const {
+  Pushed value(L_, key);
+  return !value.isNil();
+}
+
+int Params::luaType(const char* key) const {
+  Pushed value(L_, key);
+  return lua_type(L_, -1);
+}
+
+double Params::checkNumber(int index, const std::string& what) const {
+  if (lua_type(L_, index) != LUA_TNUMBER)
+    fail(what + " must be a number, got " + typeName(L_, index));
+  const double x = lua_tonumber(L_, index);
+  if (!std::isfinite(x)) fail(what + " must be finite, got " + formatNumber(x));
+  return x;
+}
+
+std::vector<double> Params::checkNumbers(int index, const std::string& what, std::size_t minCount,
+                                         std::size_t maxCount, const char* shape) const {
+  const std::string count = minCount == maxCount
+                                ? std::to_string(minCount)
+                                : std::to_string(minCount) + " to " + std::to_string(maxCount);
+  const std::string expected =
+      what + " must be " + shape + " (" + count + (maxCount == 1 ? " number)" : " numbers)");
+  if (!lua_istable(L_, index)) fail(expected + ", got " + typeName(L_, index));
+  const TableShape table = shapeOf(L_, index);
+  if (!table.isSequence) fail(expected + ", got a table with named or missing entries");
+  if (table.entries < minCount || table.entries > maxCount)
+    fail(expected + ", got " + std::to_string(table.entries) + " values");
+  std::vector<double> values;
+  for (std::size_t i = 1; i <= table.entries; ++i) {
+    lua_rawgeti(L_, index, static_cast<lua_Integer>(i));
+    values.push_back(checkNumber(lua_gettop(L_), what + "[" + std::to_string(i) + "]"));
+    lua_pop(L_, 1);
+  }
+  return values;
+}
+
+std::optional<double> Params::number(const char* key) const {
+  Pushed value(L_, key);
+  if (value.isNil()) return std::nullopt;
+  return checkNumber(-1, quote(key));
+}
+
+double Params::requiredNumber(const char* key) const {
+  std::optional<double> value = number(key);
+  if (!value) fail("missing required " + quote(key));
+  return *value;
+}
+
+std::optional<long long> Params::integer(const char* key) const {
+  std::optional<double> value = number(key);
+  if (!value) return std::nullopt;
+  if (*value != std::floor(*value) || std::fabs(*value) > 9.0e15)
+    fail(quote(key) + " must be an integer, got " + formatNumber(*value));
+  return static_cast<long long>(*value);
+}
+
+std::optional<std::string> Params::string(const char* key) const {
+  Pushed value(L_, key);
+  if (value.isNil()) return std::nullopt;
+  if (lua_type(L_, -1) != LUA_TSTRING)
+    fail(quote(key) + " must be a string, got " + typeName(L_, -1));
+  std::size_t length = 0;
+  const char* text = lua_tolstring(L_, -1, &length);
+  return std::string(text, length);
+}
+
+std::optional<std::vector<double>> Params::numbers(const char* key, std::size_t minCount,
+                                                   std::size_t maxCount, const char* shape) const {
+  Pushed value(L_, key);
+  if (value.isNil()) return std::nullopt;
+  return checkNumbers(lua_gettop(L_), quote(key), minCount, maxCount, shape);
+}
+
+std::optional<dvec2> Params::vec2(const char* key, const char* shape) const {
+  auto values = numbers(key, 2, 2, shape);
+  if (!values) return std::nullopt;
+  return dvec2((*values)[0], (*values)[1]);
+}
+
+std::optional<dvec3> Params::vec3(const char* key, const char* shape) const {
+  auto values = numbers(key, 3, 3, shape);
+  if (!values) return std::nullopt;
+  return dvec3((*values)[0], (*values)[1], (*values)[2]);
+}
+
+std::optional<std::vector<std::vector<double>>> Params::tables(const char* key, std::size_t count,
+                                                               std::size_t size,
+                                                               const char* shape) const {
+  Pushed value(L_, key);
+  if (value.isNil()) return std::nullopt;
+  const int index = lua_gettop(L_);
+  const std::string expected =
+      quote(key) + " must be " + shape + " (" + std::to_string(count) + " tables)";
+  if (!lua_istable(L_, index)) fail(expected + ", got " + typeName(L_, index));
+  const TableShape table = shapeOf(L_, index);
+  if (!table.isSequence) fail(expected + ", got a table with named or missing entries");
+  if (table.entries != count) fail(expected + ", got " + std::to_string(table.entries) + " values");
+  std::vector<std::vector<double>> rows;
+  for (std::size_t i = 1; i <= count; ++i) {
+    lua_rawgeti(L_, index, static_cast<lua_Integer>(i));
+    const std::string what = quote(key) + "[" + std::to_string(i) + "]";
+    const std::string rowShape = size == 2 ? "{u, v}" : "{x, y, z}";
+    rows.push_back(checkNumbers(lua_gettop(L_), what, size, size, rowShape.c_str()));
+    lua_pop(L_, 1);
+  }
+  return rows;
+}
+
+std::optional<dvec3> Params::color(const char* key) const {
+  Pushed value(L_, key);
+  if (value.isNil()) return std::nullopt;
+  if (lua_type(L_, -1) == LUA_TNUMBER) return dvec3(checkNumber(-1, quote(key)));
+  if (!lua_istable(L_, -1))
+    fail(quote(key) + " must be a gray number or {r, g, b}, got " + typeName(L_, -1));
+  std::vector<double> rgb = checkNumbers(lua_gettop(L_), quote(key), 3, 3, "{r, g, b}");
+  return dvec3(rgb[0], rgb[1], rgb[2]);
+}
+
+}  // namespace dicsynth::scene

@@ -1,0 +1,236 @@
+// Shader.Constant, Shader.Lambert, Texture.Constant, Texture.File, Object.Simple, Light.Point.
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "scene/constructors.h"
+#include "scene/lua_values.h"
+
+namespace dicsynth::scene {
+
+namespace {
+
+// A colour parameter: gray number or {r, g, b}, each >= 0; white by default.
+dvec3 readColor(const Params& p, const char* key) {
+  const dvec3 color = p.color(key).value_or(dvec3(1));
+  for (double c : {color.x, color.y, color.z}) p.require(c >= 0, key, ">= 0", c);
+  return color;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Shader.Constant: the surface shows its colour times the texture, lit or not (no lights needed).
+Shader.Lambert:  an ideal diffuse surface lit by the scene's lights; color is the albedo.
+
+  Parameter | Value                     | Default    | Meaning
+  ----------+---------------------------+------------+---------------------------------------
+  color     | {r, g, b} or gray number  | {1, 1, 1}  | linear RGB, each >= 0; the grayscale
+            |                           |            | sensor sees its Rec. 709 luminance
+
+Example:  Shader.Constant { color = {.2, .8, 1} }      Shader.Lambert { color = 0.7 }
+------------------------------------------------------------------------------------------------ */
+template <ShaderKind Kind>
+int shader(lua_State* L) {
+  Params p(L, Kind == ShaderKind::Constant ? "Shader.Constant" : "Shader.Lambert", {"color"});
+  Shader shader;
+  shader.kind = Kind;
+  shader.where = LuaSandbox::of(L).here(L);
+  shader.color = readColor(p, "color");
+  pushUserdata(L, std::move(shader));
+  return 1;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Texture.Constant: the same value everywhere.
+
+  Parameter | Value   | Default | Meaning
+  ----------+---------+---------+--------------------------------------
+  value     | number  | 1       | >= 0, multiplies the shader's colour
+
+Example:  Texture.Constant { value = 0.5 }
+------------------------------------------------------------------------------------------------ */
+int textureConstant(lua_State* L) {
+  Params p(L, "Texture.Constant", {"value"});
+  Texture texture;
+  texture.kind = TextureKind::Constant;
+  texture.where = LuaSandbox::of(L).here(L);
+  texture.value = p.number("value", 1.0);
+  p.require(texture.value >= 0, "value", ">= 0", texture.value);
+  pushUserdata(L, std::move(texture));
+  return 1;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Texture.File: an image (e.g. a speckle pattern) glued on the surface's (u, v) parameters.
+
+  Parameter | Value   | Default  | Meaning
+  ----------+---------+----------+-------------------------------------------------------------
+  fileName  | string  | required | image file; a relative path is relative to the scene file's
+            |         |          | folder, not to the working directory
+
+The file must exist and be readable when the constructor runs (the error names the line); it is
+decoded later, when the scene is prepared.
+
+Example:  Texture.File { fileName = "speckle.tif" }
+------------------------------------------------------------------------------------------------ */
+int textureFile(lua_State* L) {
+  Params p(L, "Texture.File", {"fileName"});
+  const LuaSandbox& sandbox = LuaSandbox::of(L);
+  Texture texture;
+  texture.kind = TextureKind::File;
+  texture.where = sandbox.here(L);
+  const std::optional<std::string> fileName = p.string("fileName");
+  if (!fileName) p.fail("missing required 'fileName'");
+  if (fileName->empty()) p.fail("'fileName' must not be empty");
+
+  // Resolve against the scene's folder, then check the file can be read.
+  const std::filesystem::path given(*fileName);
+  const std::filesystem::path resolved = given.is_absolute() ? given : sandbox.sceneDir() / given;
+  texture.path = resolved.string();
+  std::string name = "'" + *fileName + "'";
+  if (texture.path != *fileName) name += " (resolved to '" + texture.path + "')";
+  std::error_code ec;
+  if (std::filesystem::is_directory(resolved, ec))
+    p.fail("cannot read " + name + ": it is a folder");
+  std::FILE* file = std::fopen(texture.path.c_str(), "rb");
+  if (file == nullptr) p.fail("cannot read " + name + ": " + std::strerror(errno));
+  std::fclose(file);
+  pushUserdata(L, std::move(texture));
+  return 1;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Object.Simple: a shape with a shader and a texture, placed by a transform. Only objects assigned
+to global variables are rendered (the variable name names the object; objectId follows the sorted
+names).
+
+  Parameter | Value      | Default                 | Meaning
+  ----------+------------+-------------------------+-----------------------------------------------
+  shape     | Shape      | required                | Shape.Sphere { ... }, Shape.Box { ... }, ...
+  shader    | Shader     | Shader.Constant {}      | white
+  texture   | Texture    | Texture.Constant {}     | value 1
+  transform | Transform  | identity()              | any invertible homography, applied to the shape
+            |            |                         | about its location:
+            |            |                         | worldFromShape = translate(location) *
+transform
+
+Example:
+  plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.1}; location = {0, 0, 0.5} };
+                          shader = Shader.Lambert {}; texture = Texture.File { fileName = "s.tif" };
+                          transform = rotate_y(degrees(35)) }
+------------------------------------------------------------------------------------------------ */
+int objectSimple(lua_State* L) {
+  Params p(L, "Object.Simple", {"shape", "shader", "texture", "transform"});
+  Object object;
+  object.where = LuaSandbox::of(L).here(L);
+  const Shape* shape = p.userdata<Shape>(
+      "shape", "a Shape (Shape.Sphere, Shape.Box, Shape.Rectangle, Shape.Plane, Shape.Triangle)");
+  if (!shape) p.fail("missing required 'shape'");
+  object.shape = *shape;
+  if (const Shader* shader =
+          p.userdata<Shader>("shader", "a Shader (Shader.Constant, Shader.Lambert)")) {
+    object.shader = *shader;
+  } else {
+    object.shader.where = object.where;
+  }
+  if (const Texture* texture =
+          p.userdata<Texture>("texture", "a Texture (Texture.Constant, Texture.File)")) {
+    object.texture = *texture;
+  } else {
+    object.texture.where = object.where;
+  }
+  if (const TransformValue* transform = p.userdata<TransformValue>(
+          "transform", "a Transform (translate, rotate_x, ..., homography)"))
+    object.transform = transform->matrix;
+
+  // The transform must be invertible, relative to its own scale (Frobenius norm⁴).
+  double normSquared = 0;
+  bool finite = true;
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row) {
+      finite = finite && std::isfinite(object.transform[col][row]);
+      normSquared += object.transform[col][row] * object.transform[col][row];
+    }
+  if (!finite) p.fail("'transform' must be finite");
+  const double det = glm::determinant(object.transform);
+  if (!(std::fabs(det) > 1e-12 * normSquared * normSquared))
+    p.fail("'transform' must be invertible, but its determinant is " + formatNumber(det));
+  pushUserdata(L, std::move(object));
+  return 1;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Light.Point: an isotropic point light. Only lights assigned to global variables are used.
+
+  Parameter | Value                    | Default  | Meaning
+  ----------+--------------------------+----------+-----------------------------------------------
+  position  | {x, y, z}, m             | required | where the light is
+  intensity | number or {r, g, b}      | 1        | radiant intensity (radiance units * m²), > 0;
+            |                          |          | RGB is reduced to its Rec. 709 luminance
+
+Example:  lamp = Light.Point { position = {0.2, -0.3, 0}; intensity = 0.05 }
+------------------------------------------------------------------------------------------------ */
+int lightPoint(lua_State* L) {
+  Params p(L, "Light.Point", {"position", "intensity"});
+  Light light;
+  light.kind = LightKind::Point;
+  light.where = LuaSandbox::of(L).here(L);
+  const std::optional<dvec3> position = p.vec3("position");
+  if (!position) p.fail("missing required 'position' = {x, y, z} (metres)");
+  light.position_m = *position;
+  if (p.luaType("intensity") == LUA_TTABLE) {
+    const dvec3 rgb = *p.color("intensity");
+    for (double c : {rgb.x, rgb.y, rgb.z}) p.require(c >= 0, "intensity", ">= 0 in r, g and b", c);
+    light.intensity = luminance(rgb);
+    p.require(light.intensity > 0, "intensity", "> 0 (its luminance)", light.intensity);
+  } else {
+    light.intensity = p.number("intensity", 1.0);
+    p.require(light.intensity > 0, "intensity", "> 0", light.intensity);
+  }
+  pushUserdata(L, std::move(light));
+  return 1;
+}
+
+int shaderToString(lua_State* L) {
+  const Shader* shader = toUserdata<Shader>(L, 1);
+  lua_pushstring(
+      L, shader && shader->kind == ShaderKind::Lambert ? "Shader.Lambert" : "Shader.Constant");
+  return 1;
+}
+
+int textureToString(lua_State* L) {
+  const Texture* texture = toUserdata<Texture>(L, 1);
+  lua_pushstring(
+      L, texture && texture->kind == TextureKind::File ? "Texture.File" : "Texture.Constant");
+  return 1;
+}
+
+int objectToString(lua_State* L) {
+  lua_pushliteral(L, "Object.Simple");
+  return 1;
+}
+
+int lightToString(lua_State* L) {
+  lua_pushliteral(L, "Light.Point");
+  return 1;
+}
+
+}  // namespace
+
+void registerObjectConstructors(lua_State* L) {
+  registerUserdataType<Shader>(L, {{"__tostring", &shaderToString}});
+  registerUserdataType<Texture>(L, {{"__tostring", &textureToString}});
+  registerUserdataType<Object>(L, {{"__tostring", &objectToString}});
+  registerUserdataType<Light>(L, {{"__tostring", &lightToString}});
+  setConstructorTable(L, "Shader",
+                      {{"Constant", &protectedCall<shader<ShaderKind::Constant>>},
+                       {"Lambert", &protectedCall<shader<ShaderKind::Lambert>>}});
+  setConstructorTable(
+      L, "Texture",
+      {{"Constant", &protectedCall<textureConstant>}, {"File", &protectedCall<textureFile>}});
+  setConstructorTable(L, "Object", {{"Simple", &protectedCall<objectSimple>}});
+  setConstructorTable(L, "Light", {{"Point", &protectedCall<lightPoint>}});
+}
+
+}  // namespace dicsynth::scene

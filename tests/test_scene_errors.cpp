@@ -275,7 +275,7 @@ TEST_CASE("scene: -D errors") {
   CHECK(defineError({{"radius", "1"}, {"necking", "0.1"}}) ==
         "-D necking: the scene never reads 'necking'");
   CHECK(defineError({{"frame", "3"}}) ==
-        "-D frame: 'frame' is reserved: the frame number is set by the frame parameter, not by -D");
+        "-D frame: 'frame' is reserved: the frame number is set by --frames (render) or --frame (compare), not by -D");
   CHECK(defineError({{"Camera", "3"}}) ==
         "-D Camera: 'Camera' is a built-in name of the scene language");
   CHECK(defineError({{"math", "3"}}) == "-D math: 'math' is a built-in name of the scene language");

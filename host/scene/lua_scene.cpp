@@ -99,8 +99,8 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
     if (isLuaKeyword(name)) throw InputError(option + "'" + name + "' is a Lua keyword");
     if (name == "frame")
       throw InputError(option +
-                       "'frame' is reserved: the frame number is set by the frame "
-                       "parameter, not by -D");
+                       "'frame' is reserved: the frame number is set by --frames "
+                       "(render) or --frame (compare), not by -D");
     lua_pushglobaltable(L);
     const bool builtIn = lua_getfield(L, -1, name.c_str()) != LUA_TNIL;
     lua_pop(L, 2);

@@ -133,7 +133,7 @@ Buffer::Buffer(Context& context, std::size_t bytes, BufferUse use) : impl_(std::
   DS_VK(vkBindBufferMemory(device, buffer, deviceMemory, 0));
 
   const VkMemoryPropertyFlags flags = memory.memoryTypes[chosen].propertyFlags;
-  if (flags & HV) {
+  if ((flags & HV) && (use != BufferUse::Input || context.options().mapInputBuffers)) {
     DS_VK(vkMapMemory(device, deviceMemory, 0, VK_WHOLE_SIZE, 0, &m.mapped));  // unmapped by vkFreeMemory
     m.coherent = (flags & HC) != 0;
   }
@@ -143,10 +143,12 @@ Buffer::~Buffer() = default;
 Buffer::Buffer(Buffer&&) noexcept = default;
 Buffer& Buffer::operator=(Buffer&&) noexcept = default;
 
-VkBuffer Buffer::handle() const { return impl_->buffer.get(); }
-std::size_t Buffer::size() const { return impl_->bytes; }
+// A moved-from Buffer has no Impl: no handle, no bytes.
+VkBuffer Buffer::handle() const { return impl_ ? impl_->buffer.get() : VK_NULL_HANDLE; }
+std::size_t Buffer::size() const { return impl_ ? impl_->bytes : 0; }
 
 void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
+  DS_CHECK(impl_, "upload to a moved-from Buffer");
   Impl& m = *impl_;
   m.checkRange("upload", offset, bytes);
   if (bytes == 0) return;
@@ -164,6 +166,7 @@ void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
 }
 
 void Buffer::download(void* data, std::size_t bytes, std::size_t offset) const {
+  DS_CHECK(impl_, "download from a moved-from Buffer");
   const Impl& m = *impl_;
   m.checkRange("download", offset, bytes);
   if (bytes == 0) return;

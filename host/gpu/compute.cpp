@@ -121,7 +121,8 @@ void dispatchAndWait(Context& context, const ComputePipeline& pipeline,
     throw Error("dispatchAndWait: " + std::to_string(buffers.size()) + " buffers for a pipeline with " +
                 std::to_string(n) + " storage-buffer bindings");
   for (size_t i = 0; i < buffers.size(); ++i)
-    if (!buffers[i]) throw Error("dispatchAndWait: buffer " + std::to_string(i) + " is null");
+    if (!buffers[i] || buffers[i]->handle() == VK_NULL_HANDLE)
+      throw Error("dispatchAndWait: buffer " + std::to_string(i) + " is null or moved from");
   if (pipeline.pushConstantBytes() > 0 && !pushConstants)
     throw Error("dispatchAndWait: the pipeline takes " + std::to_string(pipeline.pushConstantBytes()) +
                 " bytes of push constants but none were given");

@@ -43,6 +43,7 @@ bool deviceHasExtension(VkPhysicalDevice physical, const char* name) {
 
 struct Context::Impl {
   std::unique_ptr<Instance> instance;  // first member: destroyed last
+  ContextOptions options;
   DeviceInfo info;
   VkPhysicalDevice physical = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
@@ -63,6 +64,7 @@ struct Context::Impl {
 
 Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
+  m.options = options;
   m.instance = std::make_unique<Instance>(options.validation || validationRequestedByEnvironment());
 
   // Select the physical device (context.h: discrete > integrated > virtual > CPU, or --device).
@@ -122,6 +124,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 Context::~Context() = default;
 
 const DeviceInfo& Context::info() const { return impl_->info; }
+const ContextOptions& Context::options() const { return impl_->options; }
 VkInstance Context::instance() const { return impl_->instance->get(); }
 VkPhysicalDevice Context::physicalDevice() const { return impl_->physical; }
 VkDevice Context::device() const { return impl_->device.get(); }

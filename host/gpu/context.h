@@ -38,6 +38,9 @@ struct ContextOptions {
   // Longest wait for one submission (a tile dispatch, a staging copy) before it is reported as an
   // Error; <= 0 waits forever.
   double submitTimeout_s = 600.0;
+  // false: Input buffers are never mapped, every upload goes through a staging copy — what a
+  // discrete GPU without host-visible device memory does. For tests of that path on any device.
+  bool mapInputBuffers = true;
 };
 
 // Every physical device the loader reports, in enumeration order (no validation layers).
@@ -59,6 +62,7 @@ class Context {
   Context& operator=(const Context&) = delete;
 
   const DeviceInfo& info() const;
+  const ContextOptions& options() const;  // as given (validation: as given, see validationEnabled)
   VkInstance instance() const;
   VkPhysicalDevice physicalDevice() const;
   VkDevice device() const;

@@ -25,7 +25,7 @@ void globalBarrier(VkCommandBuffer commands, VkPipelineStageFlags srcStages, VkA
 }  // namespace
 
 Submitter::Submitter(VkDevice device, VkQueue queue, uint32_t queueFamily, double timeout_s)
-    : device_(device), queue_(queue) {
+    : device_(device), queue_(queue), timeout_s_(timeout_s) {
   timeout_ns_ = timeout_s > 0 && timeout_s < 1e9 ? static_cast<uint64_t>(std::ceil(timeout_s * 1e9))
                                                  : UINT64_MAX;
 
@@ -84,8 +84,7 @@ void Submitter::waitForPending(const char* what) {
   VkResult result = DS_VK(vkWaitForFences(device_, 1, &fence, VK_TRUE, timeout_ns_));
   if (result == VK_TIMEOUT)
     throw Error(std::string("vkWaitForFences: ") + what + " did not finish within " +
-                std::to_string(timeout_ns_ / 1000000000ull) +
-                " s (timeout; smaller tiles may help, or the device hung)");
+                std::to_string(timeout_s_) + " s (timeout; smaller tiles may help, or the device hung)");
   pending_ = false;
 }
 

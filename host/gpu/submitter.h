@@ -45,6 +45,7 @@ class Submitter {
 
   VkDevice device_;
   VkQueue queue_;
+  double timeout_s_;
   uint64_t timeout_ns_;
   std::mutex mutex_;
   UniqueCommandPool pool_;

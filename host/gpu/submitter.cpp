@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/error.h"
@@ -82,9 +83,12 @@ void Submitter::waitForPending(const char* what) {
   if (!pending_) return;
   VkFence fence = fence_.get();
   VkResult result = DS_VK(vkWaitForFences(device_, 1, &fence, VK_TRUE, timeout_ns_));
-  if (result == VK_TIMEOUT)
+  if (result == VK_TIMEOUT) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g", timeout_s_);
     throw Error(std::string("vkWaitForFences: ") + what + " did not finish within " +
-                std::to_string(timeout_s_) + " s (timeout; smaller tiles may help, or the device hung)");
+                seconds + " s (timeout; smaller tiles may help, or the device hung)");
+  }
   pending_ = false;
 }
 

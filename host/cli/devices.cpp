@@ -1,9 +1,121 @@
-// PLACEHOLDER during development: replaced by the real subcommand.
+// `dicsynth devices`: the Vulkan devices this machine offers, and which one a render would use.
+//
+//   dicsynth devices                    one block per device; '*' marks the automatic choice
+//   dicsynth devices --device NVIDIA    marks the device that selector picks (errors as render does)
+//   dicsynth devices --json             the same as a JSON array of objects
+//
+// Per device: index, name, type, driver, Vulkan version, fp64 (shaderFloat64), int64 (shaderInt64),
+// largest storage buffer, subgroup size. fp64 decides whether the native double-precision shader
+// variant can run on the device.
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "cli/commands.h"
 #include "core/error.h"
+#include "gpu/context.h"
+#include "gpu/device_query.h"
+
 namespace dicsynth::cli {
-void addDevicesCommand(CLI::App& root, RunFn& run) {
-  auto* sub = root.add_subcommand("devices", "(in development)");
-  sub->callback([&run] { run = [] () -> int { throw Error("devices: not implemented yet"); }; });
+
+namespace {
+
+struct DevicesOptions {
+  std::string device;
+  bool json = false;
+};
+
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+          out += buf;
+        } else {
+          out += c;  // UTF-8 bytes pass through
+        }
+    }
+  }
+  return out + "\"";
 }
+
+std::string mebibytes(uint64_t bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", static_cast<double>(bytes) / (1024.0 * 1024.0));
+  return buf;
+}
+
+const char* yesNo(bool b) { return b ? "yes" : "no"; }
+
+void printText(const std::vector<gpu::DeviceInfo>& devices, uint32_t selected, const std::string& selector) {
+  for (const auto& d : devices) {
+    std::string version = gpu::apiVersionString(d.apiVersion);
+    if (d.apiVersion < VK_API_VERSION_1_2) version += " (dicsynth needs 1.2)";
+    std::printf("%s %u: %s\n", d.index == selected ? "*" : " ", d.index, d.name.c_str());
+    std::printf("    type:                 %s\n", d.type.c_str());
+    std::printf("    driver:               %s\n", d.driver.c_str());
+    std::printf("    Vulkan:               %s\n", version.c_str());
+    std::printf("    fp64 (shaderFloat64): %s\n", yesNo(d.shaderFloat64));
+    std::printf("    int64 (shaderInt64):  %s\n", yesNo(d.shaderInt64));
+    std::printf("    max storage buffer:   %s MiB\n", mebibytes(d.maxStorageBufferRange).c_str());
+    std::printf("    subgroup size:        %u\n", d.subgroupSize);
+  }
+  if (selector.empty())
+    std::printf("* = automatic choice (discrete GPU > integrated > virtual > CPU); --device overrides\n");
+  else
+    std::printf("* = selected by --device '%s'\n", selector.c_str());
+}
+
+void printJson(const std::vector<gpu::DeviceInfo>& devices, uint32_t selected) {
+  std::printf("[");
+  for (size_t i = 0; i < devices.size(); ++i) {
+    const auto& d = devices[i];
+    std::printf("%s\n  {", i ? "," : "");
+    std::printf("\"index\": %u, ", d.index);
+    std::printf("\"name\": %s, ", jsonString(d.name).c_str());
+    std::printf("\"type\": %s, ", jsonString(d.type).c_str());
+    std::printf("\"driver\": %s, ", jsonString(d.driver).c_str());
+    std::printf("\"vulkan\": %s, ", jsonString(gpu::apiVersionString(d.apiVersion)).c_str());
+    std::printf("\"vendorID\": %u, \"deviceID\": %u, ", d.vendorID, d.deviceID);
+    std::printf("\"shaderFloat64\": %s, ", d.shaderFloat64 ? "true" : "false");
+    std::printf("\"shaderInt64\": %s, ", d.shaderInt64 ? "true" : "false");
+    std::printf("\"maxStorageBufferRange\": %llu, ", static_cast<unsigned long long>(d.maxStorageBufferRange));
+    std::printf("\"maxStorageBuffer_MiB\": %s, ", mebibytes(d.maxStorageBufferRange).c_str());
+    std::printf("\"subgroupSize\": %u, ", d.subgroupSize);
+    std::printf("\"pipelineCacheUUID\": %s, ", jsonString(d.pipelineCacheUUID).c_str());
+    std::printf("\"selected\": %s}", d.index == selected ? "true" : "false");
+  }
+  std::printf("%s]\n", devices.empty() ? "" : "\n");
+}
+
+int runDevices(const DevicesOptions& options) {
+  std::vector<gpu::DeviceInfo> devices = gpu::listDevices();
+  uint32_t selected = gpu::selectDevice(devices, options.device);  // throws as render would
+  if (options.json)
+    printJson(devices, selected);
+  else
+    printText(devices, selected, options.device);
+  return kExitOk;
+}
+
+}  // namespace
+
+void addDevicesCommand(CLI::App& root, RunFn& run) {
+  auto options = std::make_shared<DevicesOptions>();
+  auto* sub = root.add_subcommand("devices", "List Vulkan devices and mark the one a render would use");
+  sub->add_option("--device", options->device,
+                  "Show which device this selector picks: an index or a case-insensitive name part");
+  sub->add_flag("--json", options->json, "Print a JSON array instead of text");
+  sub->callback([&run, options] { run = [options] { return runDevices(*options); }; });
+}
+
 }  // namespace dicsynth::cli

@@ -35,6 +35,12 @@ struct ContextOptions {
   // Folder for the pipeline cache file. "" = $DICSYNTH_CACHE_DIR, else $XDG_CACHE_HOME/dicsynth,
   // else $HOME/.cache/dicsynth. An unwritable folder only disables the cache (with a warning).
   std::string cacheDir;
+  // Longest wait for one submission (a tile dispatch, a staging copy) before it is reported as an
+  // Error; <= 0 waits forever.
+  double submitTimeout_s = 600.0;
+  // false: Input buffers are never mapped, every upload goes through a staging copy — what a
+  // discrete GPU without host-visible device memory does. For tests of that path on any device.
+  bool mapInputBuffers = true;
 };
 
 // Every physical device the loader reports, in enumeration order (no validation layers).
@@ -44,6 +50,10 @@ std::vector<DeviceInfo> listDevices();
 // selector matches nothing, Error when there is no Vulkan device at all.
 uint32_t selectDevice(const std::vector<DeviceInfo>& devices, const std::string& selector);
 
+class Submitter;
+
+// Owns the instance, the logical device and everything shared by Buffers and ComputePipelines.
+// Buffers and pipelines keep a reference to their Context: destroy them before it.
 class Context {
  public:
   explicit Context(const ContextOptions& options = {});
@@ -52,6 +62,7 @@ class Context {
   Context& operator=(const Context&) = delete;
 
   const DeviceInfo& info() const;
+  const ContextOptions& options() const;  // as given (validation: as given, see validationEnabled)
   VkInstance instance() const;
   VkPhysicalDevice physicalDevice() const;
   VkDevice device() const;
@@ -66,7 +77,21 @@ class Context {
   bool validationEnabled() const;
 
   // Writes the pipeline cache to disk now (also done by the destructor). Atomic (temp + rename).
+  // Never throws: a failure prints one warning line on stderr.
   void savePipelineCache();
+
+  // The pipeline cache file ("" when there is no cache folder) and how many bytes of it were
+  // accepted at creation (0: absent, damaged, or written by another driver/device).
+  std::string pipelineCachePath() const;
+  size_t pipelineCacheLoadedBytes() const;
+
+  // The selected device's core properties (limits) and memory types.
+  const VkPhysicalDeviceProperties& properties() const;
+  const VkPhysicalDeviceMemoryProperties& memoryProperties() const;
+
+  // Serialised record-submit-wait with reused command buffer, fence and descriptor pool
+  // (gpu/submitter.h); used by Buffer staging copies and dispatchAndWait.
+  Submitter& submitter();
 
  private:
   struct Impl;

@@ -1,0 +1,149 @@
+// Device enumeration and the --device selection rule (context.h).
+#include "gpu/device_query.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstring>
+
+#include "core/error.h"
+#include "gpu/instance.h"
+#include "gpu/vk_check.h"
+
+namespace dicsynth::gpu {
+
+namespace {
+
+const char* typeName(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+  }
+}
+
+// Automatic choice: a device that can run our Vulkan 1.2 SPIR-V first, then by kind.
+int preference(const DeviceInfo& d) {
+  int kind = d.type == "discrete GPU" ? 4 : d.type == "integrated GPU" ? 3
+           : d.type == "virtual GPU"  ? 2 : d.type == "CPU"            ? 1 : 0;
+  return (d.apiVersion >= VK_API_VERSION_1_2 ? 10 : 0) + kind;
+}
+
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+  uint32_t count = 0;
+  DS_VK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr));
+  std::vector<VkExtensionProperties> extensions(count);
+  DS_VK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()));
+  extensions.resize(count);
+  return std::any_of(extensions.begin(), extensions.end(),
+                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+std::string uuidHex(const uint8_t (&uuid)[VK_UUID_SIZE]) {
+  char hex[2 * VK_UUID_SIZE + 1];
+  for (unsigned i = 0; i < VK_UUID_SIZE; ++i) std::snprintf(hex + 2 * i, 3, "%02x", unsigned(uuid[i]));
+  return hex;
+}
+
+std::string apiVersionString(uint32_t v) {
+  return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
+         "." + std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+DeviceInfo queryDeviceInfo(VkPhysicalDevice device, uint32_t index) {
+  VkPhysicalDeviceProperties base{};
+  vkGetPhysicalDeviceProperties(device, &base);
+
+  // Driver properties are core in 1.2 (VK_KHR_driver_properties before); subgroup properties in 1.1.
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  bool haveDriver = base.apiVersion >= VK_API_VERSION_1_2 ||
+                    hasDeviceExtension(device, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME);
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  props.pNext = &subgroup;
+  if (haveDriver) subgroup.pNext = &driver;
+  vkGetPhysicalDeviceProperties2(device, &props);
+
+  VkPhysicalDeviceFeatures features{};
+  vkGetPhysicalDeviceFeatures(device, &features);
+
+  DeviceInfo info;
+  info.index = index;
+  info.name = base.deviceName;
+  info.type = typeName(base.deviceType);
+  if (haveDriver) {
+    info.driver = driver.driverName;
+    if (driver.driverInfo[0] != '\0') info.driver += std::string(" ") + driver.driverInfo;
+  } else {
+    info.driver = "unknown (no VK_KHR_driver_properties)";
+  }
+  info.apiVersion = base.apiVersion;
+  info.vendorID = base.vendorID;
+  info.deviceID = base.deviceID;
+  info.shaderFloat64 = features.shaderFloat64 == VK_TRUE;
+  info.shaderInt64 = features.shaderInt64 == VK_TRUE;
+  info.maxStorageBufferRange = base.limits.maxStorageBufferRange;
+  info.subgroupSize = subgroup.subgroupSize;
+  info.pipelineCacheUUID = uuidHex(base.pipelineCacheUUID);
+  return info;
+}
+
+std::string describeDevices(const std::vector<DeviceInfo>& devices) {
+  std::string text;
+  for (const auto& d : devices) {
+    if (!text.empty()) text += ", ";
+    text += std::to_string(d.index) + ": " + d.name + " [" + d.type + "]";
+  }
+  return text;
+}
+
+std::vector<DeviceInfo> listDevices() {
+  Instance instance(false);
+  std::vector<DeviceInfo> infos;
+  uint32_t index = 0;
+  for (VkPhysicalDevice device : instance.physicalDevices()) infos.push_back(queryDeviceInfo(device, index++));
+  return infos;
+}
+
+uint32_t selectDevice(const std::vector<DeviceInfo>& devices, const std::string& selector) {
+  if (devices.empty())
+    throw Error(
+        "no Vulkan device found; for the CPU implementation (lavapipe) install mesa-vulkan-drivers, "
+        "and check VK_ICD_FILENAMES/VK_DRIVER_FILES if they are set");
+
+  if (selector.empty()) {
+    // Highest preference wins; ties go to the lower index (enumeration order).
+    size_t best = 0;
+    for (size_t i = 1; i < devices.size(); ++i)
+      if (preference(devices[i]) > preference(devices[best])) best = i;
+    return static_cast<uint32_t>(best);
+  }
+
+  auto noMatch = [&] {
+    return InputError("--device '" + selector + "': no such Vulkan device; available: " +
+                      describeDevices(devices));
+  };
+  if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
+    // A decimal index; anything too long to be an index cannot match either.
+    if (selector.size() > 9) throw noMatch();
+    unsigned long index = std::stoul(selector);
+    if (index >= devices.size()) throw noMatch();
+    return static_cast<uint32_t>(index);
+  }
+  // Case-insensitive substring of the name; the first match in enumeration order.
+  const std::string wanted = lower(selector);
+  for (size_t i = 0; i < devices.size(); ++i)
+    if (lower(devices[i].name).find(wanted) != std::string::npos) return static_cast<uint32_t>(i);
+  throw noMatch();
+}
+
+}  // namespace dicsynth::gpu

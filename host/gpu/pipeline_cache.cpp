@@ -1,0 +1,121 @@
+// Pipeline cache file: folder resolution, header check, atomic save.
+#include "gpu/pipeline_cache.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+#include <utility>
+
+#include "core/error.h"
+#include "gpu/device_query.h"
+#include "gpu/vk_check.h"
+
+namespace dicsynth::gpu {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string envOrEmpty(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? value : "";
+}
+
+std::vector<uint8_t> readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Writes `data` to `path` through a temporary file in the same folder; throws Error on failure.
+void writeAtomically(const std::string& path, const std::vector<uint8_t>& data) {
+  fs::path target(path);
+  std::error_code ec;
+  fs::create_directories(target.parent_path(), ec);
+  if (ec) throw Error("cannot create folder '" + target.parent_path().string() + "': " + ec.message());
+  std::string temp = path + ".tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error("cannot write '" + temp + "': " + std::strerror(errno));
+    out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
+    out.close();
+    if (!out) {
+      fs::remove(temp, ec);
+      throw Error("cannot write '" + temp + "'");
+    }
+  }
+  fs::rename(temp, target, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    throw Error("cannot rename '" + temp + "' to '" + path + "': " + ec.message());
+  }
+}
+
+}  // namespace
+
+std::string resolveCacheDir(const std::string& option) {
+  if (!option.empty()) return option;
+  if (auto dir = envOrEmpty("DICSYNTH_CACHE_DIR"); !dir.empty()) return dir;
+  if (auto xdg = envOrEmpty("XDG_CACHE_HOME"); !xdg.empty()) return xdg + "/dicsynth";
+  if (auto home = envOrEmpty("HOME"); !home.empty()) return home + "/.cache/dicsynth";
+  return "";
+}
+
+bool pipelineCacheHeaderMatches(std::span<const uint8_t> data,
+                                const VkPhysicalDeviceProperties& properties) {
+  // VkPipelineCacheHeaderVersionOne, little-endian words as the device writes them (host order).
+  constexpr size_t kHeaderBytes = 16 + VK_UUID_SIZE;
+  if (data.size() < kHeaderBytes) return false;
+  uint32_t words[4];
+  std::memcpy(words, data.data(), sizeof(words));
+  const uint32_t headerSize = words[0], headerVersion = words[1];
+  return headerSize >= kHeaderBytes && headerSize <= data.size() &&
+         headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE &&
+         words[2] == properties.vendorID && words[3] == properties.deviceID &&
+         std::memcmp(data.data() + 16, properties.pipelineCacheUUID, VK_UUID_SIZE) == 0;
+}
+
+PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& properties,
+                             std::string folder)
+    : device_(device) {
+  if (!folder.empty())
+    path_ = (fs::path(folder) / ("pipelines-" + uuidHex(properties.pipelineCacheUUID) + ".bin")).string();
+
+  std::vector<uint8_t> data = path_.empty() ? std::vector<uint8_t>{} : readFile(path_);
+  if (!pipelineCacheHeaderMatches(data, properties)) data.clear();  // absent, damaged or foreign
+
+  VkPipelineCacheCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+  info.initialDataSize = data.size();
+  info.pInitialData = data.empty() ? nullptr : data.data();
+  VkPipelineCache cache = VK_NULL_HANDLE;
+  DS_VK(vkCreatePipelineCache(device, &info, nullptr, &cache));
+  cache_ = UniquePipelineCache(device, cache);
+  loadedBytes_ = data.size();
+  lastWritten_ = std::move(data);
+}
+
+void PipelineCache::save() noexcept {
+  if (path_.empty() || !cache_) return;
+  try {
+    size_t size = 0;
+    DS_VK(vkGetPipelineCacheData(device_, cache_.get(), &size, nullptr));
+    std::vector<uint8_t> data(size);
+    DS_VK(vkGetPipelineCacheData(device_, cache_.get(), &size, data.data()));
+    data.resize(size);
+    if (data == lastWritten_ && fs::exists(path_)) return;  // nothing new to write
+    writeAtomically(path_, data);
+    lastWritten_ = std::move(data);
+  } catch (const std::exception& e) {
+    if (std::exchange(warned_, true)) return;
+    std::fprintf(stderr, "dicsynth: warning: pipeline cache not saved: %s\n", e.what());
+  }
+}
+
+}  // namespace dicsynth::gpu

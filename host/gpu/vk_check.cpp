@@ -1,0 +1,64 @@
+// VkResult names and the checker behind DS_VK.
+#include "gpu/vk_check.h"
+
+#include <string>
+
+#include "core/error.h"
+
+namespace dicsynth::gpu {
+
+std::string vkResultName(VkResult result) {
+  switch (result) {
+#define DS_CASE(r) \
+  case r:          \
+    return #r;
+    DS_CASE(VK_SUCCESS)
+    DS_CASE(VK_NOT_READY)
+    DS_CASE(VK_TIMEOUT)
+    DS_CASE(VK_EVENT_SET)
+    DS_CASE(VK_EVENT_RESET)
+    DS_CASE(VK_INCOMPLETE)
+    DS_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+    DS_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+    DS_CASE(VK_ERROR_INITIALIZATION_FAILED)
+    DS_CASE(VK_ERROR_DEVICE_LOST)
+    DS_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+    DS_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+    DS_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+    DS_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+    DS_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+    DS_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+    DS_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+    DS_CASE(VK_ERROR_FRAGMENTED_POOL)
+    DS_CASE(VK_ERROR_UNKNOWN)
+    DS_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+    DS_CASE(VK_ERROR_INVALID_EXTERNAL_HANDLE)
+    DS_CASE(VK_ERROR_FRAGMENTATION)
+    DS_CASE(VK_ERROR_INVALID_OPAQUE_CAPTURE_ADDRESS)
+    DS_CASE(VK_PIPELINE_COMPILE_REQUIRED)
+    DS_CASE(VK_ERROR_SURFACE_LOST_KHR)
+    DS_CASE(VK_ERROR_NATIVE_WINDOW_IN_USE_KHR)
+    DS_CASE(VK_SUBOPTIMAL_KHR)
+    DS_CASE(VK_ERROR_OUT_OF_DATE_KHR)
+    DS_CASE(VK_ERROR_INCOMPATIBLE_DISPLAY_KHR)
+    DS_CASE(VK_ERROR_VALIDATION_FAILED_EXT)
+    DS_CASE(VK_ERROR_INVALID_SHADER_NV)
+    DS_CASE(VK_ERROR_INVALID_DRM_FORMAT_MODIFIER_PLANE_LAYOUT_EXT)
+    DS_CASE(VK_ERROR_NOT_PERMITTED_KHR)
+    DS_CASE(VK_THREAD_IDLE_KHR)
+    DS_CASE(VK_THREAD_DONE_KHR)
+    DS_CASE(VK_OPERATION_DEFERRED_KHR)
+    DS_CASE(VK_OPERATION_NOT_DEFERRED_KHR)
+    DS_CASE(VK_ERROR_COMPRESSION_EXHAUSTED_EXT)
+#undef DS_CASE
+    default:
+      return "VkResult(" + std::to_string(static_cast<int>(result)) + ")";
+  }
+}
+
+VkResult checkVk(VkResult result, const char* callText, std::source_location here) {
+  if (result >= 0) return result;
+  throw Error(std::string(callText) + " failed: " + vkResultName(result), here);
+}
+
+}  // namespace dicsynth::gpu

@@ -30,7 +30,7 @@ std::string toJson(const std::string& scene, const RenderResult& cpu, const Rend
     << ", \"device\": " << quote(gpu.device) << ", \"spp\": " << spp
     << ", \"cpu_seconds\": " << number(cpu.renderSeconds) << ", \"gpu_seconds\": " << number(gpu.renderSeconds)
     << ", \"tolerances\": {\"radiance\": " << number(t.radiance) << ", \"position_m\": " << number(t.position_m)
-    << ", \"position_relative\": " << number(t.positionRelative) << ", \"uv\": " << number(t.uv)
+    << ", \"uv\": " << number(t.uv) << ", \"epsilon\": " << number(t.epsilon) << ", \"k\": " << number(t.k)
     << ", \"outlier_fraction\": " << number(t.outlierFraction) << "}, \"cameras\": {";
   for (std::size_t i = 0; i < diffs.size(); ++i) {
     const CameraDifference& d = diffs[i];
@@ -39,7 +39,8 @@ std::string toJson(const std::string& scene, const RenderResult& cpu, const Rend
       << ", \"rms_radiance_diff\": " << number(d.rmsRadianceDiff) << ", \"pixels_differing\": " << d.pixelsDiffering
       << ", \"radiance_outliers\": " << d.radianceOutliers << ", \"object_id_mismatches\": " << d.objectIdMismatches
       << ", \"max_uv_diff\": " << number(d.maxUvDiff) << ", \"max_P_diff_m\": " << number(d.maxPositionDiff_m)
-      << ", \"max_Z_diff_m\": " << number(d.maxDepthDiff_m) << ", \"geometry_outliers\": " << d.geometryOutliers
+      << ", \"max_Z_diff_m\": " << number(d.maxDepthDiff_m) << ", \"max_geometry_ratio\": " << number(d.maxGeometryRatio)
+      << ", \"geometry_outliers\": " << d.geometryOutliers
       << ", \"pass\": " << boolean(withinTolerance(d, t)) << "}";
   }
   o << "}, \"pass\": " << boolean(pass) << "}";
@@ -74,14 +75,18 @@ int runCompare(const CompareCommand& cmd) {
       std::printf(
           "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, over tolerance %.3g: %zu px;"
           " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px; max |duv| %.3g,"
-          " max |dP| %.3g m, max |dZ| %.3g m; over tolerance: %zu px\n",
+          " max |dP| %.3g m, max |dZ| %.3g m; worst error/bound %.3g, over bound: %zu px\n",
           d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff,
           tol.radiance, d.radianceOutliers, d.pixelsDiffering, d.objectIdMismatches, d.maxUvDiff,
-          d.maxPositionDiff_m, d.maxDepthDiff_m, d.geometryOutliers);
+          d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxGeometryRatio, d.geometryOutliers);
     }
-    std::printf("tolerances (%s): radiance %.3g, P %.3g m + %.3g Z, uv %.3g, outliers <= %.3g of the pixels\n",
-                gpu.precision.c_str(), tol.radiance, tol.position_m, tol.positionRelative, tol.uv,
-                tol.outlierFraction);
+    if (tol.epsilon > 0)
+      std::printf("tolerances (%s): radiance %.3g; P and uv per pixel, %g eps D / max(cos, sqrt eps) (README);"
+                  " outliers <= %.3g of the pixels\n",
+                  gpu.precision.c_str(), tol.radiance, tol.k, tol.outlierFraction);
+    else
+      std::printf("tolerances (%s): radiance %.3g, P %.3g m, uv %.3g, no outliers\n", gpu.precision.c_str(),
+                  tol.radiance, tol.position_m, tol.uv);
   }
   return pass ? kExitOk : kExitCompareFailed;
 }

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "cpu/trace.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth {
@@ -14,58 +15,151 @@ Tolerances tolerancesFor(Precision p) {
     // Both sides compute in double with the same formulas; differences come from operation order
     // and fused multiply-adds on the device, a few ulps (1e-16 relative) per operation, amplified
     // by no more than ~1e3 through Newton inversion, the intersection and the texture gradient.
-    // The requirement, 1e-9 of full scale and 1e-9 m, leaves a margin of ~1e4 on that.
-    return {1e-9, 1e-9, 0.0, 1e-9, 0.0};
+    // The requirement, 1e-9 of full scale and 1e-9 m (and 1e-9 in uv), leaves a margin of
+    // ~1e4 on that; absolute bounds, no outliers.
+    return {1e-9, 1e-9, 1e-9, 0.0, 0.0, 0.0};
   }
-  // fp32 (ε = 2^-24 ≈ 6e-8), derived for scenes at 0.1–10 m seen by cameras of a few thousand px:
-  // - a sample position x ≤ 4096 px is rounded to ulp(4096)/2 = 2.4e-4 px; the direction, Newton
-  //   inversion and intersection add a few ε relative: depth and position errors ~10 ε Z = 6e-7 Z.
-  //   Near a silhouette the tangent intersection is ill-conditioned: the error of a root grows to
-  //   ~r √ε, hence the relative bound 1e-5 Z (r ≤ Z) plus a 1e-6 m floor.
-  // - uv: a few ε from atan2 and the division, up to ~1e-6 with the grazing amplification.
-  // - radiance: uv error × texture gradient (≤ 1 per texel × 4096 texels per unit uv) ≈ 4e-3 at the
-  //   worst; a typical speckle gradient gives < 1e-3. Tolerance 5e-3 of full scale.
-  // - outliers: samples within ~2.4e-4 px of a discontinuity (silhouette, shadow edge, box edge)
-  //   may change side. Their expected count is 2 · 2.4e-4 · spp · (edge length in px); for edge
-  //   lengths up to 10 image widths it stays below 1e-4 of the pixels.
-  return {5e-3, 1e-6, 1e-5, 1e-6, 1e-4};
+  // fp32, unit roundoff ε = 2^-24 ≈ 6e-8.
+  // Geometry. A ray hit is computed from the camera centre and direction, mapped into the object
+  // frame (|o'| ≈ |C − O|), intersected, mapped back. Each step rounds to a few ε of the lengths
+  // involved, so the object-frame ray carries an error ~ε D, D = |P − C| + |C − O|. Moving a ray
+  // sideways by δ moves its hit along the surface by δ / cos θ. On a curved surface the error
+  // saturates near a tangent: the root of the quadratic is a square root of its discriminant, so
+  // it errs by ~√ε of the radius, hence the floor √ε of cos θ there; a flat surface has no such
+  // saturation (floor ε). Counting the rounding steps (camera direction: 3 + undistortion: ~4 +
+  // homography: 4 + intersection: ~4 + the point: 2) gives ~16; k = 32 doubles it.
+  // uv. Its own rounding is a few ε of the unwrapped coordinate: ≤ 1 except on planes, where
+  // u = fract(x / w + 1/2) rounds x / w ≈ g |P − O| before taking the fraction; plus g times the
+  // position error.
+  // Radiance. Sample positions (px < 4096) are rounded to 2.4e-4 px; a speckle rendered at about
+  // one texel per pixel changes by at most ~1 full scale per px at a dot's edge: r0 = 2.4e-4 gives
+  // the sample-position part; doubled and rounded up, r0 = 1e-3. The uv error adds T · Δuv.
+  // Outliers: a sample within ~2.4e-4 px of a discontinuity may change side. Expected count
+  // 2 · 2.4e-4 · spp · (length of discontinuities in px); for lengths up to 10 image widths and
+  // 16 spp this is below 1e-4 of the pixels.
+  return {1e-3, 0.0, 0.0, 0x1p-24, 32.0, 1e-4};
 }
+
+namespace {
+
+double wrappedDiff(double a, double b) {
+  const double d = std::abs(a - b);
+  return std::min(d, std::abs(1.0 - d));  // u and v are periodic on spheres and planes
+}
+
+double uvDiff(dvec2 a, dvec2 b) { return std::max(wrappedDiff(a.x, b.x), wrappedDiff(a.y, b.y)); }
+
+// Radiance per unit uv of an object's texture: the B-spline's slope is bounded by the largest
+// difference of neighbouring coefficients per texel (its derivative is a quadratic B-spline, a
+// convex combination, of those differences), times texels per unit uv, times the albedo.
+double textureSlope(const PreparedScene& scene, const PreparedObject& o) {
+  if (o.textureIndex < 0) return 0;
+  const PreparedTexture& t = scene.textures[std::size_t(o.textureIndex)];
+  double sx = 0, sy = 0;
+  const auto w = std::size_t(t.width), h = std::size_t(t.height);
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const double c = t.coefficients[y * w + x];
+      if (x + 1 < w) sx = std::max(sx, std::abs(t.coefficients[y * w + x + 1] - c));
+      if (y + 1 < h) sy = std::max(sy, std::abs(t.coefficients[(y + 1) * w + x] - c));
+    }
+  return o.albedo * std::max(sx * double(t.width), sy * double(t.height));
+}
+
+// Upper bound of the shading factor multiplying albedo × texture at a point (1 for Constant;
+// Σ I / (π r²) for Lambert, cos θ and shadows dropped).
+double shadingFactor(const PreparedScene& scene, const PreparedObject& o, dvec3 p) {
+  if (o.shader == ShaderKind::Constant) return 1;
+  double sum = 0;
+  for (const auto& l : scene.lights) {
+    const dvec3 d = l.position_m - p;
+    sum += l.intensity / (kPi * glm::dot(d, d));
+  }
+  return sum;
+}
+
+// |∂uv/∂P| at a pixel centre: two reference rays offset by 1e-3 px (tiny, so no seam or aliasing
+// in between, large enough for a relative precision of 1e-10 in double).
+double uvSlope(const PreparedScene& scene, const PinholeModel<double>& m, dvec2 pixel, const cpu::SurfaceHit& at) {
+  double g = 0;
+  for (const dvec2 offset : {dvec2(1e-3, 0), dvec2(0, 1e-3)}) {
+    cpu::SurfaceHit h;
+    if (!cpu::traceNearest(scene, m.centre, worldRayDirection(m, pixel + offset), h) || h.object != at.object)
+      continue;
+    const double dp = glm::length(h.position - at.position);
+    if (dp > 0) g = std::max(g, uvDiff(h.uv, at.uv) / dp);
+  }
+  return g;
+}
+
+}  // namespace
 
 std::vector<CameraDifference> compareResults(const PreparedScene& scene, const RenderResult& reference,
                                              const RenderResult& test, const Tolerances& tol) {
   DS_CHECK(reference.cameras.size() == test.cameras.size() &&
                reference.cameras.size() == scene.cameras.size(),
            "results of different scenes");
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto worst = [&](double m, double v) { return std::isnan(v) ? inf : std::max(m, v); };
+  std::vector<dvec3> objectOrigins;
+  std::vector<double> slopes;
+  for (const auto& o : scene.objects) {
+    const dvec4 h = o.worldFromObject * dvec4(0, 0, 0, 1);
+    objectOrigins.push_back(dvec3(h) / h.w);
+    slopes.push_back(tol.epsilon > 0 ? textureSlope(scene, o) : 0.0);
+  }
   std::vector<CameraDifference> out;
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
     const Camera& cam = scene.cameras[c].camera;
+    const PinholeModel<double>& model = scene.cameras[c].model;
     const CameraImage& a = reference.cameras[c];
     const CameraImage& b = test.cameras[c];
     DS_CHECK(a.pixelCount() == b.pixelCount(), "image sizes differ");
     CameraDifference d;
     d.camera = cam.name;
     d.pixels = a.pixelCount();
+    const std::size_t width = std::size_t(a.width_px);
     double sumSquares = 0;
     for (std::size_t i = 0; i < d.pixels; ++i) {
       double dr = std::abs(a.radiance[i] - b.radiance[i]) * cam.exposure;
-      if (std::isnan(dr)) dr = std::numeric_limits<double>::infinity();  // a NaN is never "equal"
+      if (std::isnan(dr)) dr = inf;  // a NaN is never "equal"
       d.maxRadianceDiff = std::max(d.maxRadianceDiff, dr);
       sumSquares += dr * dr;
-      if (!(dr <= tol.radiance)) ++d.radianceOutliers;
       if (digitize(a.radiance[i], cam) != digitize(b.radiance[i], cam)) ++d.pixelsDiffering;
-      if (a.objectId[i] != b.objectId[i]) {
-        ++d.objectIdMismatches;
-        continue;
+      double boundRadiance = tol.radiance;
+      const bool sameObject = a.objectId[i] == b.objectId[i];
+      if (!sameObject) ++d.objectIdMismatches;
+      if (sameObject && a.objectId[i] != 0) {
+        const std::size_t obj = a.objectId[i] - 1;
+        const double dp = glm::length(a.position_m[i] - b.position_m[i]);
+        const double duv = uvDiff(a.uv[i], b.uv[i]);
+        d.maxPositionDiff_m = worst(d.maxPositionDiff_m, dp);
+        d.maxUvDiff = worst(d.maxUvDiff, duv);
+        d.maxDepthDiff_m = worst(d.maxDepthDiff_m, std::abs(a.depth_m[i] - b.depth_m[i]));
+        double boundP = tol.position_m, boundUv = tol.uv;
+        if (tol.epsilon > 0) {
+          const dvec3 toHit = a.position_m[i] - model.centre;
+          const double distance = glm::length(toHit);
+          const bool curved = scene.objects[obj].geometry.kind == DS_SHAPE_SPHERE;
+          const double cosTheta = std::max(std::abs(glm::dot(a.normal[i], toHit)) / distance,
+                                           curved ? std::sqrt(tol.epsilon) : tol.epsilon);
+          const double D = distance + glm::length(model.centre - objectOrigins[obj]);
+          cpu::SurfaceHit hit;
+          hit.position = a.position_m[i];
+          hit.uv = a.uv[i];
+          hit.object = int(obj);
+          const double g = uvSlope(scene, model, dvec2(double(i % width), double(i / width)), hit);
+          boundP = tol.k * tol.epsilon * D / cosTheta;
+          boundUv = tol.k * tol.epsilon *
+                    (std::max(1.0, g * glm::length(a.position_m[i] - objectOrigins[obj])) + g * D / cosTheta);
+          boundRadiance += slopes[obj] * shadingFactor(scene, scene.objects[obj], a.position_m[i]) * boundUv *
+                           cam.exposure;
+        }
+        const double ratio = std::max(dp / boundP, duv / boundUv);
+        d.maxGeometryRatio = worst(d.maxGeometryRatio, ratio);
+        if (!(ratio <= 1)) ++d.geometryOutliers;
       }
-      if (a.objectId[i] == 0) continue;
-      const double dp = glm::length(a.position_m[i] - b.position_m[i]);
-      const double duv = std::max(std::abs(a.uv[i].x - b.uv[i].x), std::abs(a.uv[i].y - b.uv[i].y));
-      const double dz = std::abs(a.depth_m[i] - b.depth_m[i]);
-      const auto worst = [](double m, double v) { return std::isnan(v) ? std::numeric_limits<double>::infinity() : std::max(m, v); };
-      d.maxPositionDiff_m = worst(d.maxPositionDiff_m, dp);
-      d.maxUvDiff = worst(d.maxUvDiff, duv);
-      d.maxDepthDiff_m = worst(d.maxDepthDiff_m, dz);
-      if (!(dp <= tol.position_m + tol.positionRelative * a.depth_m[i]) || !(duv <= tol.uv)) ++d.geometryOutliers;
+      if (!(dr <= boundRadiance)) ++d.radianceOutliers;
     }
     d.rmsRadianceDiff = d.pixels ? std::sqrt(sumSquares / double(d.pixels)) : 0;
     out.push_back(d);

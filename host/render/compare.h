@@ -21,21 +21,30 @@ struct CameraDifference {
   std::size_t radianceOutliers = 0;     // pixels whose radiance difference exceeds the tolerance
   std::size_t objectIdMismatches = 0;   // pixel-centre rays hit different objects (or one misses)
   // Ground truth of the pixel-centre ray, over pixels where both hit the same object.
-  double maxUvDiff = 0;
+  double maxUvDiff = 0;                 // max(|Δu|, |Δv|), u and v taken modulo 1 (periodic seams)
   double maxPositionDiff_m = 0;
   double maxDepthDiff_m = 0;
-  std::size_t geometryOutliers = 0;     // pixels whose P or uv difference exceeds the tolerance
+  double maxGeometryRatio = 0;          // worst |ΔP| or |Δuv| over its per-pixel bound (≤ 1: fine)
+  std::size_t geometryOutliers = 0;     // pixels whose P or uv difference exceeds its bound
 };
 
-// Tolerances of one precision (values and their derivation in compare.cpp and README).
+// Tolerances of one precision (values and derivations in compare.cpp, summarized in README).
+// fp64 has absolute bounds. fp32 bounds each pixel by the conditioning of its pixel-centre hit:
+//   P:        k ε D / c
+//   uv:       k ε (max(1, g |P − O|) + g D / c)
+//   radiance: r0 + T · (uv bound)
+// with D = |P − C| + |C − O| (camera C, object origin O), c = max(cos θ, floor) (θ: incidence;
+// floor √ε on curved shapes, ε on flat ones), g = |∂uv/∂P| measured with two extra reference rays,
+// T = the largest slope of the object's texture times its shading (radiance per unit uv).
 struct Tolerances {
-  double radiance;          // |Δ radiance| as a fraction of full scale
-  double position_m;        // |ΔP| absolute part (m)
-  double positionRelative;  // |ΔP| part proportional to the depth Z
-  double uv;                // |Δu|, |Δv|
-  // Pixels allowed over the radiance/geometry tolerance or with a different object, as a fraction
-  // of all pixels: fp32 sample positions move by ~1e-4 px, so a sample that close to a silhouette or
-  // a shadow edge can land on the other side.
+  double radiance;     // |Δ radiance| as a fraction of full scale (r0 above)
+  double position_m;   // absolute part of the P bound (m)
+  double uv;           // absolute part of the uv bound
+  double epsilon;      // unit roundoff of the GPU arithmetic (0: absolute bounds only)
+  double k;            // number of roundoff steps allowed in the conditioned bound
+  // Pixels allowed over a bound or with a different object, as a fraction of all pixels: fp32
+  // sample positions move by ~1e-4 px, so a sample that close to a silhouette, shadow edge or box
+  // edge can land on the other side of it.
   double outlierFraction;
 };
 

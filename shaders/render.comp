@@ -11,7 +11,7 @@
 #include "shared/kinds.h"
 #include "shared/gpu_types.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = DS_LOCAL_SIZE_X, local_size_y = DS_LOCAL_SIZE_Y) in;
 
 layout(std430, set = 0, binding = DS_BINDING_CAMERAS) readonly buffer Cameras { GpuCamera cameras[]; };
 layout(std430, set = 0, binding = DS_BINDING_OBJECTS) readonly buffer Objects { GpuObject objects[]; };
@@ -49,15 +49,19 @@ void main() {
   }
 
   // Radiance: mean over stratified samples of the pixel's sensitive square.
-  const int spp = params.counts.y;
+  const int spp = params.counts.y;  // = strata.x · strata.y
   const ivec2 strata = cam.size.zw;
   const real side = cam.brown1.y;
   real sum = 0.0;
-  for (int s = 0; s < spp; ++s) {
-    const real2 offset = ds_sample_offset(strata, side, params.random.x, params.random.y,
-                                          uint(cameraIndex), uint(pixel.x), uint(pixel.y), uint(s));
-    if (ds_camera_ray(cam, centre + offset, distorted, d) && ds_trace_nearest(origin, d, hit))
-      sum += ds_shade(hit);
+  // Sample s = cellY · strataX + cellX, as in host/camera/sampling.h, without integer division.
+  int s = 0;
+  for (int cellY = 0; cellY < strata.y; ++cellY) {
+    for (int cellX = 0; cellX < strata.x; ++cellX, ++s) {
+      const real2 offset = ds_sample_offset(strata, ivec2(cellX, cellY), side, params.random.x, params.random.y,
+                                            uint(cameraIndex), uint(pixel.x), uint(pixel.y), uint(s));
+      if (ds_camera_ray(cam, centre + offset, distorted, d) && ds_trace_nearest(origin, d, hit))
+        sum += ds_shade(hit);
+    }
   }
   outPixel.radianceDepthUV.x = sum / real(spp);
   pixels[local.y * params.tile.z + local.x] = outPixel;

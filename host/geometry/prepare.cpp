@@ -155,6 +155,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   ps.features.lights = anyLambert && !ps.lights.empty();
   for (const PreparedCamera& c : ps.cameras) ps.features.distortion |= c.model.distorted;
   ps.features.fileTextures = !ps.textures.empty();
+  for (const PreparedObject& o : ps.objects) ps.features.shapeKinds |= 1u << o.geometry.kind;
   return ps;
 }
 

@@ -2,6 +2,8 @@
 // PreparedScene: a Scene made ready for rendering, consumed identically by the CPU reference
 // (host/cpu) and the GPU backend (host/gpu/pack.cpp). Everything is double; the GPU packs it down
 // to its precision variant.
+#include <compare>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -46,6 +48,10 @@ struct SceneFeatures {
   bool lights = false;        // some Lambert object and at least one light: shading loop + shadow rays
   bool distortion = false;    // some camera has lens distortion: Newton inversion per ray
   bool fileTextures = false;  // some object has a Texture.File: B-spline lookups
+  std::uint32_t shapeKinds = 0;  // bit k set: some object has shape kind k (DS_SHAPE_*)
+
+  static SceneFeatures all() { return {true, true, true, ~0u}; }
+  auto operator<=>(const SceneFeatures&) const = default;
 };
 
 struct PreparedScene {

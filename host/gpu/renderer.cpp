@@ -55,8 +55,8 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
         params.counts = {int(ci), options.samplesPerPixel, int(packed.objects.size()),
                          int(packed.lights.size())};
         params.random = {options.seed, std::uint32_t(options.frame), 0, 0};
-        dispatchAndWait(context, pipeline, bindings, &params, std::uint32_t((tw + 7) / 8),
-                        std::uint32_t((th + 7) / 8));
+        dispatchAndWait(context, pipeline, bindings, &params, std::uint32_t((tw + DS_LOCAL_SIZE_X - 1) / DS_LOCAL_SIZE_X),
+                        std::uint32_t((th + DS_LOCAL_SIZE_Y - 1) / DS_LOCAL_SIZE_Y));
         pixels.download(tile.data(), std::size_t(tw) * std::size_t(th) * sizeof(tile[0]));
         for (int ty = 0; ty < th; ++ty) {
           for (int tx = 0; tx < tw; ++tx) {
@@ -85,13 +85,13 @@ Renderer::Renderer(Context& context) : context_(context) {}
 Renderer::~Renderer() = default;
 
 const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatures& f, bool specialize) {
-  const SceneFeatures used = specialize ? f : SceneFeatures{true, true, true};
-  const auto key = std::make_tuple(int(precision), used.lights, used.distortion, used.fileTextures);
-  auto& slot = pipelines_[key];
+  const SceneFeatures used = specialize ? f : SceneFeatures::all();
+  auto& slot = pipelines_[{precision, used}];
   if (!slot) {
     const std::vector<SpecConstant> spec = {{DS_SPEC_HAS_LIGHTS, used.lights ? 1u : 0u},
                                             {DS_SPEC_HAS_DISTORTION, used.distortion ? 1u : 0u},
-                                            {DS_SPEC_HAS_FILE_TEXTURES, used.fileTextures ? 1u : 0u}};
+                                            {DS_SPEC_HAS_FILE_TEXTURES, used.fileTextures ? 1u : 0u},
+                                            {DS_SPEC_SHAPE_KINDS, used.shapeKinds}};
     const std::span<const std::uint32_t> spirv =
         precision == Precision::Fp64 ? std::span<const std::uint32_t>(spirv::render_fp64)
                                      : std::span<const std::uint32_t>(spirv::render_fp32);

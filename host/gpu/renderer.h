@@ -3,7 +3,7 @@
 // features, dispatches it tile by tile and reads the results back into a RenderResult.
 #include <map>
 #include <memory>
-#include <tuple>
+#include <utility>
 
 #include "geometry/prepared_scene.h"
 #include "gpu/compute.h"
@@ -36,7 +36,7 @@ class Renderer {
 
  private:
   Context& context_;
-  std::map<std::tuple<int, bool, bool, bool>, std::unique_ptr<ComputePipeline>> pipelines_;
+  std::map<std::pair<Precision, SceneFeatures>, std::unique_ptr<ComputePipeline>> pipelines_;
 };
 
 }  // namespace dicsynth::gpu

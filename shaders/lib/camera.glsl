@@ -68,11 +68,11 @@ real3 ds_camera_centre(GpuCamera cam) {
 }
 
 // Offset (px) of sample s from the pixel centre: stratified jitter over the sensitive square.
-real2 ds_sample_offset(ivec2 strata, real side, uint seed, uint frame, uint camera, uint px, uint py,
-                       uint s) {
+real2 ds_sample_offset(ivec2 strata, ivec2 cell, real side, uint seed, uint frame, uint camera, uint px,
+                       uint py, uint s) {
   const real jx = ds_unit(ds_sample_bits(seed, frame, camera, px, py, s, DS_DIM_PIXEL_X));
   const real jy = ds_unit(ds_sample_bits(seed, frame, camera, px, py, s, DS_DIM_PIXEL_Y));
-  const real cellX = real(int(s) % strata.x), cellY = real(int(s) / strata.x);
+  const real cellX = real(cell.x), cellY = real(cell.y);
   return real2(((cellX + jx) / real(strata.x) - 0.5) * side,
                ((cellY + jy) / real(strata.y) - 0.5) * side);
 }

@@ -29,12 +29,16 @@ real ds_atan_unit(real x) {
   return 4.0 * x * p;
 }
 
-// atan2(y, x) in (−π, π], with atan2(0, 0) = 0, like std::atan2 for finite arguments.
+// atan2(y, x) in (−π, π], with atan2(0, 0) = 0, like std::atan2 for finite arguments (except
+// the sign of zero: atan2(−0, x < 0) is +π). One ds_atan_unit call on min/max of |x|, |y| instead
+// of two branches: SIMD devices (lavapipe) run both sides of a divergent branch.
 real ds_atan2(real y, real x) {
   const real ax = abs(x), ay = abs(y);
-  if (ax == 0.0 && ay == 0.0) return 0.0;
-  real r = ay <= ax ? ds_atan_unit(ay / ax) : DS_HALF_PI - ds_atan_unit(ax / ay);
-  if (x < 0.0) r = DS_PI - r;
+  const real hi = max(ax, ay);
+  if (hi == 0.0) return 0.0;
+  const real unit = ds_atan_unit(min(ax, ay) / hi);
+  real r = ay > ax ? DS_HALF_PI - unit : unit;
+  r = x < 0.0 ? DS_PI - r : r;
   return y < 0.0 ? -r : r;
 }
 

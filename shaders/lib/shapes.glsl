@@ -104,10 +104,11 @@ bool ds_intersect_xy_plane(real2 extent, real3 o, real3 d, real sMin, real sMax,
   return true;
 }
 
-bool ds_intersect_triangle(GpuObject obj, real3 o, real3 d, real sMin, real sMax, bool originOnSurface,
+bool ds_intersect_triangle(int index, real3 o, real3 d, real sMin, real sMax, bool originOnSurface,
                            inout LocalHit hit) {
   if (originOnSurface) return false;
-  const real3 p0 = obj.shape0.xyz, e1 = obj.shape1.xyz - p0, e2 = obj.shape2.xyz - p0;
+  const real3 p0 = objects[index].shape0.xyz, e1 = objects[index].shape1.xyz - p0,
+              e2 = objects[index].shape2.xyz - p0;
   const real3 pv = cross(d, e2);
   const real det = dot(e1, pv);
   if (det == 0.0) return false;
@@ -122,24 +123,27 @@ bool ds_intersect_triangle(GpuObject obj, real3 o, real3 d, real sMin, real sMax
   hit.s = s;
   hit.point = p0 + b1 * e1 + b2 * e2;
   hit.normal = cross(e1, e2);
-  hit.uv = (1.0 - b1 - b2) * obj.shape3.xy + b1 * obj.shape3.zw + b2 * obj.shape4.xy;
+  hit.uv = (1.0 - b1 - b2) * objects[index].shape3.xy + b1 * objects[index].shape3.zw +
+           b2 * objects[index].shape4.xy;
   return true;
 }
 
-bool ds_intersect_shape(GpuObject obj, real3 o, real3 d, real sMin, real sMax, bool originOnSurface,
+// Needs lib/features.glsl (SHAPE_KINDS) and objects[] in the including shader. Reads only the
+// fields it needs: on SIMD devices every load of a per-lane index is a gather.
+bool ds_intersect_shape(int index, real3 o, real3 d, real sMin, real sMax, bool originOnSurface,
                         inout LocalHit hit) {
-  switch (obj.kinds.x) {
-    case DS_SHAPE_SPHERE:
-      return ds_intersect_sphere(obj.shape0.x, o, d, sMin, sMax, originOnSurface, hit);
-    case DS_SHAPE_BOX:
-      return ds_intersect_box(obj.shape0.xyz, o, d, sMin, sMax, originOnSurface, hit);
-    case DS_SHAPE_TRIANGLE:
-      return ds_intersect_triangle(obj, o, d, sMin, sMax, originOnSurface, hit);
-    case DS_SHAPE_PLANE:
-      return ds_intersect_xy_plane(obj.shape0.xy, o, d, sMin, sMax, originOnSurface, false, hit);
-    case DS_SHAPE_RECTANGLE:
-      return ds_intersect_xy_plane(obj.shape0.xy, o, d, sMin, sMax, originOnSurface, true, hit);
-  }
+  const int kind = objects[index].kinds.x;
+  const real4 shape0 = objects[index].shape0;
+  if (DS_HAS_SHAPE(DS_SHAPE_SPHERE) && kind == DS_SHAPE_SPHERE)
+    return ds_intersect_sphere(shape0.x, o, d, sMin, sMax, originOnSurface, hit);
+  if (DS_HAS_SHAPE(DS_SHAPE_BOX) && kind == DS_SHAPE_BOX)
+    return ds_intersect_box(shape0.xyz, o, d, sMin, sMax, originOnSurface, hit);
+  if (DS_HAS_SHAPE(DS_SHAPE_TRIANGLE) && kind == DS_SHAPE_TRIANGLE)
+    return ds_intersect_triangle(index, o, d, sMin, sMax, originOnSurface, hit);
+  if (DS_HAS_SHAPE(DS_SHAPE_PLANE) && kind == DS_SHAPE_PLANE)
+    return ds_intersect_xy_plane(shape0.xy, o, d, sMin, sMax, originOnSurface, false, hit);
+  if (DS_HAS_SHAPE(DS_SHAPE_RECTANGLE) && kind == DS_SHAPE_RECTANGLE)
+    return ds_intersect_xy_plane(shape0.xy, o, d, sMin, sMax, originOnSurface, true, hit);
   return false;
 }
 

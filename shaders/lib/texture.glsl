@@ -5,11 +5,14 @@
 #define DS_TEXTURE_GLSL
 #include "lib/real.glsl"
 
-// Half-sample symmetric index into [0, n) for k >= -4n (lookups need k in [-2, n+1]).
+// Half-sample symmetric index into [0, n) for k in [-n, 2n − 1] (lookups need k in [-2, n + 1]),
+// equal to mirrorIndex() of host/texture/bspline.h there. Two reflections instead of a modulo:
+// integer division has no SIMD instruction and costs dozens of cycles per lane on a CPU device.
+// The final clamp only matters for n = 1, where every index is texel 0 anyway.
 int ds_mirror_index(int k, int n) {
-  const int period = 2 * n;
-  const int m = (k + 2 * period) % period;
-  return m < n ? m : period - 1 - m;
+  k = k < 0 ? -1 - k : k;
+  k = k >= n ? 2 * n - 1 - k : k;
+  return clamp(k, 0, n - 1);
 }
 
 void ds_bspline_weights(real f, out real w[4]) {

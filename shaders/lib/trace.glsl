@@ -16,12 +16,12 @@ struct SurfaceHit {
 };
 
 // World ray o + t d in the object frame: o' + s d', s = t / (1 + t w). False at infinity.
-bool ds_object_ray(GpuObject obj, real3 o, real3 d, out real3 oo, out real3 od, out real w) {
+bool ds_object_ray(int index, real3 o, real3 d, out real3 oo, out real3 od, out real w) {
   const real4 p = real4(o, 1.0), v = real4(d, 0.0);
-  const real4 A = real4(dot(obj.objectFromWorld[0], p), dot(obj.objectFromWorld[1], p),
-                        dot(obj.objectFromWorld[2], p), dot(obj.objectFromWorld[3], p));
-  const real4 B = real4(dot(obj.objectFromWorld[0], v), dot(obj.objectFromWorld[1], v),
-                        dot(obj.objectFromWorld[2], v), dot(obj.objectFromWorld[3], v));
+  const real4 r0 = objects[index].objectFromWorld[0], r1 = objects[index].objectFromWorld[1],
+              r2 = objects[index].objectFromWorld[2], r3 = objects[index].objectFromWorld[3];
+  const real4 A = real4(dot(r0, p), dot(r1, p), dot(r2, p), dot(r3, p));
+  const real4 B = real4(dot(r0, v), dot(r1, v), dot(r2, v), dot(r3, v));
   if (A.w == 0.0) return false;
   oo = A.xyz / A.w;
   w = B.w / A.w;
@@ -37,10 +37,10 @@ real ds_object_param(real t, real w) {
 real ds_world_param(real s, real w) { return s / (1.0 - s * w); }
 
 // (H⁻¹)ᵀ [n; −n·x]: rows of H⁻¹ are objectFromWorld[i], so the result is Σ_i π_i row_i.
-real3 ds_world_normal(GpuObject obj, real3 n, real3 x) {
+real3 ds_world_normal(int index, real3 n, real3 x) {
   const real4 plane = real4(n, -dot(n, x));
-  return (plane.x * obj.objectFromWorld[0] + plane.y * obj.objectFromWorld[1] +
-          plane.z * obj.objectFromWorld[2] + plane.w * obj.objectFromWorld[3]).xyz;
+  return (plane.x * objects[index].objectFromWorld[0] + plane.y * objects[index].objectFromWorld[1] +
+          plane.z * objects[index].objectFromWorld[2] + plane.w * objects[index].objectFromWorld[3]).xyz;
 }
 
 bool ds_trace_nearest(real3 o, real3 d, out SurfaceHit hit) {
@@ -49,12 +49,11 @@ bool ds_trace_nearest(real3 o, real3 d, out SurfaceHit hit) {
   int bestObject = -1;
   const int objectCount = params.counts.z;
   for (int i = 0; i < objectCount; ++i) {
-    const GpuObject obj = objects[i];
     real3 oo, od;
     real w;
-    if (!ds_object_ray(obj, o, d, oo, od, w)) continue;
+    if (!ds_object_ray(i, o, d, oo, od, w)) continue;
     LocalHit local;
-    if (!ds_intersect_shape(obj, oo, od, 0.0, ds_object_param(tBest, w), false, local)) continue;
+    if (!ds_intersect_shape(i, oo, od, 0.0, ds_object_param(tBest, w), false, local)) continue;
     const real t = ds_world_param(local.s, w);
     if (t > 0.0 && t < tBest) {
       tBest = t;
@@ -66,7 +65,7 @@ bool ds_trace_nearest(real3 o, real3 d, out SurfaceHit hit) {
   if (bestObject < 0) return false;
   hit.t = tBest;
   hit.position = o + tBest * d;
-  hit.normal = normalize(ds_world_normal(objects[bestObject], best.normal, best.point));
+  hit.normal = normalize(ds_world_normal(bestObject, best.normal, best.point));
   if (dot(hit.normal, d) > 0.0) hit.normal = -hit.normal;
   hit.uv = best.uv;
   return true;
@@ -76,23 +75,23 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
   const real3 d = lightPosition - hit.position;
   const int objectCount = params.counts.z;
   for (int i = 0; i < objectCount; ++i) {
-    const GpuObject obj = objects[i];
     real3 oo, od;
     real w;
-    if (!ds_object_ray(obj, hit.position, d, oo, od, w)) continue;
+    if (!ds_object_ray(i, hit.position, d, oo, od, w)) continue;
     LocalHit local;
-    if (ds_intersect_shape(obj, oo, od, 0.0, ds_object_param(1.0, w), i == hit.object, local))
+    if (ds_intersect_shape(i, oo, od, 0.0, ds_object_param(1.0, w), i == hit.object, local))
       return true;
   }
   return false;
 }
 
 real ds_shade(SurfaceHit hit) {
-  const GpuObject obj = objects[hit.object];
-  real texture = obj.shading.y;
-  if (HAS_FILE_TEXTURES && obj.kinds.z >= 0) texture = ds_texture_lookup(obj.kinds.z, hit.uv);
-  const real reflectance = obj.shading.x * texture;
-  if (obj.kinds.y == DS_SHADER_CONSTANT) return reflectance;
+  const real4 shading = objects[hit.object].shading;
+  const ivec4 kinds = objects[hit.object].kinds;
+  real texture = shading.y;
+  if (HAS_FILE_TEXTURES && kinds.z >= 0) texture = ds_texture_lookup(kinds.z, hit.uv);
+  const real reflectance = shading.x * texture;
+  if (kinds.y == DS_SHADER_CONSTANT) return reflectance;
   // Lambert: L = (ρ/π) Σ I cosθ / r² over visible lights on the viewer's side (host/cpu/trace.cpp).
   real sum = 0.0;
   if (HAS_LIGHTS) {

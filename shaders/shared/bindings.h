@@ -11,9 +11,14 @@
 #define DS_BINDING_PIXELS 5
 #define DS_BINDING_COUNT 6
 
+// Workgroup size of render.comp (pixels).
+#define DS_LOCAL_SIZE_X 8
+#define DS_LOCAL_SIZE_Y 8
+
 // Specialization constant ids: features a scene lacks are compiled out.
 #define DS_SPEC_HAS_LIGHTS 0
 #define DS_SPEC_HAS_DISTORTION 1
 #define DS_SPEC_HAS_FILE_TEXTURES 2
+#define DS_SPEC_SHAPE_KINDS 3  // bit k set: some object has shape kind k
 
 #endif

@@ -29,6 +29,14 @@ class TempFolder {
   const std::filesystem::path& path() const { return path_; }
   std::string file(const std::string& name) const { return (path_ / name).string(); }
 
+  // Writes `text` to path/name (creating folders) and returns that path.
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::filesystem::path target = path_ / name;
+    std::filesystem::create_directories(target.parent_path());
+    std::ofstream(target, std::ios::binary) << text;
+    return target.string();
+  }
+
   // Every entry's name, hidden ones included, sorted.
   std::vector<std::string> entries() const {
     std::vector<std::string> names;

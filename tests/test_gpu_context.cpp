@@ -2,8 +2,6 @@
 // Runs on whatever Vulkan device is selected automatically (lavapipe on a machine without a GPU),
 // always with VK_LAYER_KHRONOS_validation: any warning or error it reports fails the test.
 #include <doctest/doctest.h>
-
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -17,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "run_cli.h"
 #include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu/context.h"
@@ -89,18 +88,6 @@ std::vector<uint8_t> readFile(const fs::path& path) {
 void writeFile(const fs::path& path, const std::vector<uint8_t>& data) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
-}
-
-// Runs the dicsynth binary; returns {exit code, stdout}.
-std::pair<int, std::string> runCli(const std::string& args) {
-  std::string command = std::string(DS_BINARY) + " " + args + " 2>/dev/null";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::string out;
-  char buf[4096];
-  while (size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 }  // namespace
@@ -422,17 +409,21 @@ TEST_CASE("gpu: validation messages are counted (a layout missing a binding the 
 TEST_CASE("gpu: dicsynth devices lists the devices as text and JSON") {
   std::vector<DeviceInfo> devices = listDevices();
   uint32_t automatic = selectDevice(devices, "");
-  auto [code, text] = runCli("devices");
+  const test::CliResult listed = test::runCli("devices");
+  const int code = listed.exitCode;
+  const std::string& text = listed.out;
   CHECK(code == 0);
   CHECK(text.find("* " + std::to_string(automatic) + ": " + devices[automatic].name) != std::string::npos);
   CHECK(text.find("fp64 (shaderFloat64): yes") != std::string::npos);
 
-  auto [jsonCode, json] = runCli("devices --json --device llvmpipe");
+  const test::CliResult asJson = test::runCli("devices --json --device llvmpipe");
+  const int jsonCode = asJson.exitCode;
+  const std::string& json = asJson.out;
   CHECK(jsonCode == 0);
   CHECK(json.rfind("[", 0) == 0);
   CHECK(json.find("\"name\": \"llvmpipe") != std::string::npos);
   CHECK(json.find("\"shaderFloat64\": true") != std::string::npos);
   CHECK(json.find("\"selected\": true") != std::string::npos);
 
-  CHECK(runCli("devices --device no-such-gpu").first == 2);
+  CHECK(test::runCli("devices --device no-such-gpu").exitCode == 2);
 }

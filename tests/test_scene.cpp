@@ -11,7 +11,7 @@
 using namespace dicsynth;
 using dicsynth::test::kCameraLine;
 using dicsynth::test::loadError;
-using dicsynth::test::TempSceneDir;
+using dicsynth::test::TempFolder;
 
 namespace {
 
@@ -35,14 +35,14 @@ dvec3 apply(const dmat4& m, const dvec3& p) {
 }
 
 // Loads a scene whose body follows kCameraLine.
-Scene loadBody(const TempSceneDir& dir, const std::string& body, const SceneParams& params = {}) {
+Scene loadBody(const TempFolder& dir, const std::string& body, const SceneParams& params = {}) {
   return loadScene(dir.write("scene.lua", std::string(kCameraLine) + body), params);
 }
 
 }  // namespace
 
 TEST_CASE("scene: Figure 1 of the paper loads verbatim") {
-  TempSceneDir dir;
+  TempFolder dir;
   dir.write("speckle.tif", "not really a TIFF; decoded elsewhere");
   const std::string path = dir.write(
       "figure1.lua",
@@ -92,7 +92,7 @@ object = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 
   CHECK(object.shader.color == dvec3(0.2, 0.8, 1.0));
   CHECK(object.texture.kind == TextureKind::File);
   CHECK(object.texture.where.line == 5);
-  CHECK(object.texture.path == (dir.dir() / "speckle.tif").string());
+  CHECK(object.texture.path == (dir.path() / "speckle.tif").string());
 
   // rotate_y(35°): right-handed, maps x to (cos a, 0, -sin a) and z to (sin a, 0, cos a).
   const double a = 35.0 * std::numbers::pi / 180.0;
@@ -104,7 +104,7 @@ object = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 
 }
 
 TEST_CASE("scene: constructors with their defaults") {
-  TempSceneDir dir;
+  TempFolder dir;
   const Scene scene = loadBody(dir, R"(
 a = Object.Simple { shape = Shape.Sphere { radius = 2 } }
 b = Object.Simple { shape = Shape.Box { size = {1, 2, 3} }; shader = Shader.Lambert {};
@@ -157,7 +157,7 @@ lamp = Light.Point { position = {1, 2, 3} }
 }
 
 TEST_CASE("scene: constructors with all their parameters") {
-  TempSceneDir dir;
+  TempFolder dir;
   dir.write("textures/s.png", "x");
   const std::string path = dir.write("scene.lua", R"(
 c = Camera.Pinhole { resolution = {640, 480}; principalPoint = {320.25, 239.75};
@@ -210,7 +210,7 @@ l2 = Light.Point { position = {0, 1, 0}; intensity = {1, 2, 3} }
   CHECK(b.shape.kind == ShapeKind::Box);
   CHECK(b.shape.location_m == dvec3(-1, 0, 1));
   CHECK(b.texture.kind == TextureKind::File);
-  CHECK(b.texture.path == (dir.dir() / "textures/s.png").string());
+  CHECK(b.texture.path == (dir.path() / "textures/s.png").string());
   CHECK(b.transform == glm::scale(dmat4(1.0), dvec3(1, 2, 3)));
   const Object& p = scene.objects[2];
   CHECK(p.name == "p");
@@ -241,7 +241,7 @@ l2 = Light.Point { position = {0, 1, 0}; intensity = {1, 2, 3} }
 }
 
 TEST_CASE("scene: lookAt pose") {
-  TempSceneDir dir;
+  TempFolder dir;
   auto pose = [&](const std::string& poseText) {
     const std::string path =
         dir.write("pose.lua",
@@ -282,7 +282,7 @@ TEST_CASE("scene: lookAt pose") {
 }
 
 TEST_CASE("scene: transform composition applies the right factor first") {
-  TempSceneDir dir;
+  TempFolder dir;
   const Scene scene = loadBody(dir, R"(
 tr = Object.Simple { shape = Shape.Sphere { radius = 1 };
                      transform = translate(1, 0, 0) * rotate_z(degrees(90)) }
@@ -315,7 +315,7 @@ id = Object.Simple { shape = Shape.Sphere { radius = 1 }; transform = identity()
 }
 
 TEST_CASE("scene: homography is written row by row") {
-  TempSceneDir dir;
+  TempFolder dir;
   const Scene scene = loadBody(dir, R"(
 h = Object.Simple { shape = Shape.Sphere { radius = 1 };
   transform = homography { 2, 1, 0, 5,
@@ -338,7 +338,7 @@ h = Object.Simple { shape = Shape.Sphere { radius = 1 };
 }
 
 TEST_CASE("scene: -D defines are numbers, booleans or strings") {
-  TempSceneDir dir;
+  TempFolder dir;
   dir.write("tex.png", "x");
   SceneParams params;
   params.defines = {{"radius", "0.25"},     {"count", "42"},  {"hex", "0x10"},
@@ -355,11 +355,11 @@ ball = Object.Simple { shape = Shape.Sphere { radius = radius };
                                params);
   REQUIRE(scene.objects.size() == 1);
   CHECK(scene.objects[0].shape.radius_m == 0.25);
-  CHECK(scene.objects[0].texture.path == (dir.dir() / "tex.png").string());
+  CHECK(scene.objects[0].texture.path == (dir.path() / "tex.png").string());
 }
 
 TEST_CASE("scene: defines are served until the scene assigns the name") {
-  TempSceneDir dir;
+  TempFolder dir;
   SceneParams params;
   params.defines = {{"r", "0.5"}};
   // The usual idiom: a default that -D overrides.
@@ -372,7 +372,7 @@ TEST_CASE("scene: defines are served until the scene assigns the name") {
 }
 
 TEST_CASE("scene: frame") {
-  TempSceneDir dir;
+  TempFolder dir;
   const std::string body =
       "assert(math.type(frame) == 'integer')\n"
       "b = Object.Simple { shape = Shape.Sphere { radius = 1 + frame } }\n";
@@ -383,7 +383,7 @@ TEST_CASE("scene: frame") {
 }
 
 TEST_CASE("scene: globals are collected and sorted by name") {
-  TempSceneDir dir;
+  TempFolder dir;
   const Scene scene = loadScene(dir.write("scene.lua", R"(
 zeta = Object.Simple { shape = Shape.Sphere { radius = 3 } }
 alpha = Object.Simple { shape = Shape.Sphere { radius = 1 } }
@@ -417,7 +417,7 @@ shapeOnly = Shape.Sphere { radius = 97 }
 }
 
 TEST_CASE("scene: the sandbox keeps the safe libraries and seeds random numbers") {
-  TempSceneDir dir;
+  TempFolder dir;
   const std::string body = R"(
 assert(string.format("%03d", 7) == "007")
 assert(table.concat({1, 2}, ",") == "1,2")
@@ -438,7 +438,7 @@ r = Object.Simple { shape = Shape.Sphere { radius = math.random() } }
 }
 
 TEST_CASE("scene: tostring of scene values") {
-  TempSceneDir dir;
+  TempFolder dir;
   loadBody(dir, R"(
 assert(tostring(Shape.Sphere { radius = 1 }) == "Shape.Sphere")
 assert(tostring(translate(1, 2, 3)) == "Transform{{1, 0, 0, 1}, {0, 1, 0, 2}, {0, 0, 1, 3}, {0, 0, 0, 1}}")

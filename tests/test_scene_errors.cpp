@@ -14,12 +14,12 @@
 using namespace dicsynth;
 using dicsynth::test::kCameraLine;
 using dicsynth::test::loadError;
-using dicsynth::test::TempSceneDir;
+using dicsynth::test::TempFolder;
 
 namespace {
 
 // Loads `text` and checks the error is exactly "PATH:LINE: rest" on one line.
-void checkError(const TempSceneDir& dir, const std::string& text, int line, const std::string& rest,
+void checkError(const TempFolder& dir, const std::string& text, int line, const std::string& rest,
                 const SceneParams& params = {}) {
   const std::string path = dir.write("scene.lua", text);
   const std::string message = loadError(path, params);
@@ -31,7 +31,7 @@ void checkError(const TempSceneDir& dir, const std::string& text, int line, cons
 // last count hook (see LuaSandbox::allocate), which these tests then do not pin down.
 constexpr bool kExactMemoryLine = LUA_VERSION_RELEASE_NUM <= 50404;
 
-void checkMemoryError(const TempSceneDir& dir, const std::string& text, int line,
+void checkMemoryError(const TempFolder& dir, const std::string& text, int line,
                       const std::string& rest, const SceneParams& params = {}) {
   if (kExactMemoryLine) return checkError(dir, text, line, rest, params);
   const std::string path = dir.write("scene.lua", text);
@@ -44,20 +44,20 @@ void checkMemoryError(const TempSceneDir& dir, const std::string& text, int line
 }  // namespace
 
 TEST_CASE("scene: syntax errors name their line") {
-  TempSceneDir dir;
+  TempFolder dir;
   checkError(dir, "a = 1\nb = = 2\n", 2, "unexpected symbol near '='");
   checkError(dir, "a = 1\n\n\nb = \"unfinished\n", 4, "unfinished string near '\"unfinished'");
   checkError(dir, "#!/usr/bin/env dicsynth\nx = (\n", 3, "unexpected symbol near <eof>");
 }
 
 TEST_CASE("scene: binary chunks are refused") {
-  TempSceneDir dir;
+  TempFolder dir;
   checkError(dir, std::string("\x1bLua\x54\x00", 6), 1,
              "attempt to load a binary chunk (mode is 't')");
 }
 
 TEST_CASE("scene: unknown keys are errors that list the valid keys") {
-  TempSceneDir dir;
+  TempFolder dir;
   checkError(dir, "\n\ns = Shape.Sphere { raduis = 0.1 }\n", 3,
              "Shape.Sphere: unknown key 'raduis' (did you mean 'radius'?); valid keys: radius, "
              "location");
@@ -71,7 +71,7 @@ TEST_CASE("scene: unknown keys are errors that list the valid keys") {
 }
 
 TEST_CASE("scene: wrong types, missing and non-finite values") {
-  TempSceneDir dir;
+  TempFolder dir;
   checkError(dir, "x = 1\ns = Shape.Sphere { radius = \"0.1\" }\n", 2,
              "Shape.Sphere: 'radius' must be a number, got string");
   checkError(dir, "s = Shape.Sphere {}\n", 1, "Shape.Sphere: missing required 'radius'");
@@ -101,7 +101,7 @@ TEST_CASE("scene: wrong types, missing and non-finite values") {
 }
 
 TEST_CASE("scene: out-of-range values") {
-  TempSceneDir dir;
+  TempFolder dir;
   const std::string cam = "c = Camera.Pinhole { focalLength = 0.01; pixelSize = {1e-5, 1e-5}; ";
   checkError(dir, "s = Shape.Sphere { radius = -1 }\n", 1,
              "Shape.Sphere: 'radius' must be > 0 (metres), got -1");
@@ -140,7 +140,7 @@ TEST_CASE("scene: out-of-range values") {
 }
 
 TEST_CASE("scene: camera pose errors") {
-  TempSceneDir dir;
+  TempFolder dir;
   const std::string cam =
       "c = Camera.Pinhole { resolution = {8, 8}; focalLength = 0.01; pixelSize = {1e-5, 1e-5};\n  ";
   checkError(dir, cam + "transform = translate(1, 0, 0); position = {0, 0, 0} }\n", 1,
@@ -166,19 +166,19 @@ TEST_CASE("scene: camera pose errors") {
 }
 
 TEST_CASE("scene: a missing texture file names the line, the given and the resolved path") {
-  TempSceneDir dir;
-  const std::string resolved = (dir.dir() / "nope.tif").string();
+  TempFolder dir;
+  const std::string resolved = (dir.path() / "nope.tif").string();
   checkError(dir, "\nt = Texture.File { fileName = \"nope.tif\" }\n", 2,
              "Texture.File: cannot read 'nope.tif' (resolved to '" + resolved +
                  "'): No such file or directory");
   dir.write("folder/x", "");
   checkError(dir, "t = Texture.File { fileName = \"folder\" }\n", 1,
-             "Texture.File: cannot read 'folder' (resolved to '" + (dir.dir() / "folder").string() +
+             "Texture.File: cannot read 'folder' (resolved to '" + (dir.path() / "folder").string() +
                  "'): it is a folder");
 }
 
 TEST_CASE("scene: runtime errors and error() calls") {
-  TempSceneDir dir;
+  TempFolder dir;
   checkError(dir, "x = 1\n\nerror(\"x\")\n", 3, "x");
   checkError(dir, "local function f()\n  error('deep')\nend\n\nf()\n", 2, "deep");
   checkError(dir, "error({})\n", 1, "(error object is a table value)");
@@ -192,7 +192,7 @@ TEST_CASE("scene: runtime errors and error() calls") {
 }
 
 TEST_CASE("scene: sandboxed functions are absent") {
-  TempSceneDir dir;
+  TempFolder dir;
   checkError(dir, "x = 1\nlocal f = io.open('/etc/passwd')\n", 2,
              "attempt to index a nil value (global 'io')");
   checkError(dir, "os.exit(1)\n", 1, "attempt to index a nil value (global 'os')");
@@ -210,7 +210,7 @@ TEST_CASE("scene: sandboxed functions are absent") {
 }
 
 TEST_CASE("scene: a runaway loop stops at the instruction limit") {
-  TempSceneDir dir;
+  TempFolder dir;
   const auto start = std::chrono::steady_clock::now();
   checkError(dir, std::string(kCameraLine) + "local x = 0\nwhile true do\n  x = x + 1\nend\n", 4,
              "scene exceeded the instruction limit (100000000 instructions)");
@@ -229,7 +229,7 @@ TEST_CASE("scene: a runaway loop stops at the instruction limit") {
 }
 
 TEST_CASE("scene: a memory bomb stops at the memory limit") {
-  TempSceneDir dir;
+  TempFolder dir;
   checkMemoryError(dir, "x = 1\nlocal s = string.rep('x', 1e9)\n", 2,
                    "scene exceeded the memory limit (256 MiB)");
   checkMemoryError(dir, "local s = 'x'\nwhile true do\n  s = s .. s\nend\n", 3,
@@ -246,7 +246,7 @@ TEST_CASE("scene: a memory bomb stops at the memory limit") {
 }
 
 TEST_CASE("scene: errors keep long paths whole") {
-  TempSceneDir dir;
+  TempFolder dir;
   const std::string path = dir.write(
       "a_rather_long_folder_name_for_testing/and_another_long_folder_name/"
       "scene_with_a_long_name.lua",
@@ -256,8 +256,8 @@ TEST_CASE("scene: errors keep long paths whole") {
 }
 
 TEST_CASE("scene: a missing scene file and a scene without camera") {
-  TempSceneDir dir;
-  const std::string missing = (dir.dir() / "missing.lua").string();
+  TempFolder dir;
+  const std::string missing = (dir.path() / "missing.lua").string();
   CHECK(loadError(missing) == missing + ": cannot read the scene file: No such file or directory");
   const std::string path = dir.write("empty.lua", "x = Shape.Sphere { radius = 1 }\n");
   CHECK(loadError(path) ==
@@ -265,7 +265,7 @@ TEST_CASE("scene: a missing scene file and a scene without camera") {
 }
 
 TEST_CASE("scene: -D errors") {
-  TempSceneDir dir;
+  TempFolder dir;
   const std::string path = dir.write("scene.lua", std::string(kCameraLine) + "r = radius\n");
   auto defineError = [&](std::vector<std::pair<std::string, std::string>> defines) {
     SceneParams params;
@@ -291,10 +291,10 @@ TEST_CASE("scene: -D errors") {
 }
 
 TEST_CASE("scene: print writes FILE:LINE: to stderr") {
-  TempSceneDir dir;
+  TempFolder dir;
   const std::string path =
       dir.write("scene.lua", std::string(kCameraLine) + "\nprint('hello', 42, nil)\n");
-  const std::string capture = (dir.dir() / "stderr.txt").string();
+  const std::string capture = (dir.path() / "stderr.txt").string();
   std::fflush(stderr);
   const int saved = ::dup(2);
   const int fd = ::open(capture.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);

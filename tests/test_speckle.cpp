@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "io/image_io.h"
+#include "run_cli.h"
 #include "temp_folder.h"
 #include "texture/speckle.h"
 
@@ -51,13 +52,6 @@ Model model(const SpeckleParams& p) {
   const double extArea = (p.width_px + 2 * r) * (p.height_px + 2 * r);
   const double n = std::floor(-std::log1p(-p.density) / (kPi * r * r) * extArea + 0.5);
   return {n, 1.0 - std::pow(1.0 - kPi * r * r / extArea, n)};
-}
-
-// Runs the CLI; returns its exit code (-1 if it did not exit normally).
-int runCli(const std::string& arguments) {
-  const std::string command = std::string(DS_BINARY) + " " + arguments + " >/dev/null 2>&1";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 }  // namespace
@@ -191,8 +185,8 @@ TEST_CASE("speckle: the CLI writes the texture, 16 and 8 bits, values rounded fr
   for (int bits : {16, 8}) {
     CAPTURE(bits);
     const std::string out = folder.file("speckle" + std::to_string(bits) + ".tif");
-    REQUIRE(runCli("speckle -o " + out + " --size 50 30 --radius 2 --density 0.6 --seed 9 "
-                   "--supersampling 5 --bits " + std::to_string(bits)) == 0);
+    REQUIRE(test::runCli("speckle -o " + out + " --size 50 30 --radius 2 --density 0.6 --seed 9 "
+                   "--supersampling 5 --bits " + std::to_string(bits)).exitCode == 0);
     const GrayImage image = readGrayImage(out);
     REQUIRE(image.width == 50);
     REQUIRE(image.height == 30);
@@ -202,13 +196,13 @@ TEST_CASE("speckle: the CLI writes the texture, 16 and 8 bits, values rounded fr
   }
   // Defaults: radius 3, density 0.5, seed 1, supersampling 4, 16 bits.
   const std::string defaults = folder.file("defaults.tif");
-  REQUIRE(runCli("speckle -o " + defaults + " --size 40 20") == 0);
+  REQUIRE(test::runCli("speckle -o " + defaults + " --size 40 20").exitCode == 0);
   const GrayImage image = readGrayImage(defaults);
   const GrayImage expected = generateSpeckle(params(40, 20));
   for (std::size_t i = 0; i < expected.pixels.size(); ++i)
     REQUIRE(image.pixels[i] == std::floor(expected.pixels[i] * 65535 + 0.5) / 65535);
   // Same command, same file, byte for byte.
-  REQUIRE(runCli("speckle -o " + folder.file("again.tif") + " --size 40 20") == 0);
+  REQUIRE(test::runCli("speckle -o " + folder.file("again.tif") + " --size 40 20").exitCode == 0);
   CHECK(test::readBytes(defaults) == test::readBytes(folder.file("again.tif")));
 }
 
@@ -220,12 +214,31 @@ TEST_CASE("speckle: the CLI exits with code 2 on bad parameters and writes nothi
         "--size 0 10", "--size 10", "--size 10 10 --radius -1", "--size 10 10 --supersampling 9",
         "--size 10 10 --seed -3", "--size ten 10", ""}) {
     CAPTURE(args);
-    CHECK(runCli("speckle -o " + out + " " + args) == 2);
+    CHECK(test::runCli("speckle -o " + out + " " + args).exitCode == 2);
   }
-  CHECK(runCli("speckle --size 10 10") == 2);                                   // no output
-  CHECK(runCli("speckle -o " + folder.file("bad.png") + " --size 10 10") == 2);  // not a TIFF
+  CHECK(test::runCli("speckle --size 10 10").exitCode == 2);                                   // no output
+  CHECK(test::runCli("speckle -o " + folder.file("bad.png") + " --size 10 10").exitCode == 2);  // not a TIFF
   CHECK(folder.entries().empty());
   // A missing folder is an I/O failure (code 3), still without any file.
-  CHECK(runCli("speckle -o " + folder.file("none/x.tif") + " --size 10 10") == 3);
+  CHECK(test::runCli("speckle -o " + folder.file("none/x.tif") + " --size 10 10").exitCode == 3);
   CHECK(folder.entries().empty());
+}
+
+TEST_CASE("speckle: scenes/speckle.tif is exactly what its documented command generates") {
+  // scenes/figure1.lua documents: dicsynth speckle --size 4096 2048 --radius 3 --density 0.5 --seed 1
+  // --bits 8 (supersampling 4 by default). Compare pixel values, not file bytes (zlib may differ).
+  SpeckleParams p;
+  p.width_px = 4096;
+  p.height_px = 2048;
+  p.radius_px = 3;
+  p.density = 0.5;
+  p.seed = 1;
+  const GrayImage truth = generateSpeckle(p);
+  const GrayImage shipped = readGrayImage(std::string(DS_SOURCE_DIR) + "/scenes/speckle.tif");
+  REQUIRE(shipped.width == 4096);
+  REQUIRE(shipped.height == 2048);
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < truth.pixels.size(); ++i)
+    differing += std::lround(std::floor(truth.pixels[i] * 255 + 0.5)) != std::lround(shipped.pixels[i] * 255);
+  CHECK(differing == 0);
 }

@@ -47,7 +47,6 @@ int runRender(const RenderCommand& cmd) {
   // Every frame's scene is evaluated first, so a scene error stops the run before any image exists.
   std::vector<Scene> scenes;
   for (int f : frames) scenes.push_back(loadScene(cmd.args.scenePath, {defines, f}));
-  createOutputDir(cmd.outputDir);
 
   const bool useGpu = cmd.backend == "gpu";
   std::unique_ptr<gpu::Context> context;
@@ -77,6 +76,7 @@ int runRender(const RenderCommand& cmd) {
     info.precision = result.precision;
     info.device = result.device;
     for (const auto& o : prepared.objects) info.objectNames.push_back(o.name);
+    createOutputDir(cmd.outputDir);  // only now: a run that fails earlier leaves nothing behind
     for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
       const Camera& cam = prepared.cameras[c].camera;
       const CameraImage& image = result.cameras[c];

@@ -1,0 +1,109 @@
+// The render and compare commands end to end, as a user runs them: outputs, frames, exit codes,
+// and bad input (one-line message with file:line, exit code 2, no output file at all).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "io/image_io.h"
+#include "run_cli.h"
+
+using namespace dicsynth;
+using test::runCli;
+using test::TempFolder;
+
+namespace {
+
+const std::string kScenes = std::string(DS_SOURCE_DIR) + "/scenes/";
+
+// A valid camera on line 1, so that errors below name later lines.
+const std::string kCamera =
+    "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n";
+
+bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
+
+// Runs `render` on a scene that must fail: exit code 2, one line on stderr that starts with
+// `prefix`, and no output folder created at all.
+void expectBadInput(const TempFolder& dir, const std::string& args, const std::string& prefix) {
+  const std::string outDir = dir.file("out");
+  const test::CliResult r = runCli("render " + args + " -o " + outDir);
+  INFO("args: " << args << "\nstderr: " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(oneLine(r.err));
+  CHECK(r.err.rfind(prefix, 0) == 0);
+  CHECK_FALSE(std::filesystem::exists(outDir));
+}
+
+}  // namespace
+
+TEST_CASE("cli: render writes a TIFF and an EXR per camera and frame, atomically") {
+  TempFolder dir;
+  const test::CliResult r =
+      runCli("render " + kScenes + "rectangle.lua -o " + dir.file("out") +
+             " --downscale 8 --spp 2 --frames 0:2 -D shift=0.001 --backend gpu --precision fp32");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir.file("out"))) files.push_back(e.path().filename().string());
+  std::sort(files.begin(), files.end());
+  // Only the final files: no temporary left behind.
+  CHECK(files == std::vector<std::string>{"camera_0000.exr", "camera_0000.tif", "camera_0001.exr", "camera_0001.tif",
+                                          "camera_0002.exr", "camera_0002.tif"});
+  const GrayImage image = readGrayImage(dir.file("out/camera_0001.tif"));
+  CHECK(image.width == 100);
+  CHECK(image.height == 75);
+  // Without --frames: one file pair named after the camera; the CPU backend writes the same layout.
+  REQUIRE(runCli("render " + kScenes + "rectangle.lua -o " + dir.file("cpu") + " --downscale 8 --spp 1 --backend cpu")
+              .exitCode == 0);
+  CHECK(std::filesystem::exists(dir.file("cpu/camera.tif")));
+  CHECK(std::filesystem::exists(dir.file("cpu/camera.exr")));
+}
+
+TEST_CASE("cli: compare --json reports every camera and passes on a scene") {
+  const test::CliResult r = runCli("compare " + kScenes + "triangle.lua --downscale 8 --spp 2 --precision fp64 --json");
+  INFO(r.err);
+  CHECK(r.exitCode == 0);
+  for (const char* key : {"\"max_radiance_diff\"", "\"rms_radiance_diff\"", "\"pixels_differing\"", "\"max_uv_diff\"",
+                          "\"max_P_diff_m\"", "\"camera\": {", "\"pass\": true"})
+    CHECK(r.out.find(key) != std::string::npos);
+}
+
+TEST_CASE("cli: scene errors give one line with file:line, exit code 2 and no output") {
+  TempFolder dir;
+  dir.write("notatexture.tif", "this is not an image");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {kCamera + "x = = 1\n", ":2:"},                                                         // syntax
+      {kCamera + "o = Object.Simple { shape = Shape.Sphere { raduis = 0.1 } }\n", ":2:"},     // unknown key
+      {kCamera + "o = Object.Simple {\n shape = Shape.Sphere { radius = 'big' } }\n", ":3:"},   // wrong type
+      {kCamera + "o = Object.Simple { shape = Shape.Sphere { radius = -1 } }\n", ":2:"},      // negative radius
+      {kCamera + "t = Texture.File { fileName = 'missing.tif' }\n", ":2:"},                  // missing texture
+      {kCamera + "o = Object.Simple { shape = Shape.Sphere { radius = 1; location = {0, 0, 5} };\n"
+                 "  texture = Texture.File { fileName = 'notatexture.tif' } }\n", ":3:"},  // unreadable image
+      {kCamera + "\nwhile true do end\n", ":3:"},                                            // runaway loop
+      {kCamera + "t = {}\nfor i = 1, 1e9 do t[i] = i end\n", ":3:"},                         // memory bomb
+      {"cam = Camera.Pinhole { resolution = {0, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n", ":1:"},
+      {"cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4};\n"
+       " fillFactor = 1.5 }\n", ":1:"},
+      {"cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4};\n"
+       " bitsPerPixel = 17 }\n", ":1:"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string scene = dir.write("scene" + std::to_string(i) + ".lua", cases[i].first);
+    expectBadInput(dir, scene, scene + cases[i].second);
+  }
+}
+
+TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
+  TempFolder dir;
+  const std::string scene = kScenes + "rectangle.lua";
+  expectBadInput(dir, scene + " --device no-such-gpu", "--device 'no-such-gpu'");
+  expectBadInput(dir, scene + " -D shift", "-D shift: expected name=value");
+  expectBadInput(dir, scene + " -D nonsense=1", "-D nonsense: the scene never reads 'nonsense'");
+  expectBadInput(dir, scene + " --frames 5:2", "--frames 5:2");
+  expectBadInput(dir, scene + " --spp 0", "--spp 0");
+  expectBadInput(dir, scene + " --downscale 0", "--downscale");
+  expectBadInput(dir, dir.file("no_such_scene.lua"), dir.file("no_such_scene.lua"));
+  const test::CliResult r = runCli("render " + scene + " --backend vulkan");  // CLI11's own check
+  CHECK(r.exitCode == 2);
+  CHECK(oneLine(r.err));
+}

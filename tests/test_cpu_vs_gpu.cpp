@@ -45,9 +45,9 @@ TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
       const RenderResult gpu = renderer.render(scene, options);
       const Tolerances tol = tolerancesFor(p);
       for (const CameraDifference& d : compareResults(scene, reference, gpu, tol)) {
-        INFO(file << " " << dicsynth::toString(p) << " camera " << d.camera);
+        INFO(file << " " << std::string(dicsynth::toString(p)) << " camera " << d.camera);
         MESSAGE(std::filesystem::path(file).filename().string()
-                << " " << dicsynth::toString(p) << " " << d.camera << ": max dL " << d.maxRadianceDiff << " (" << d.radianceOutliers
+                << " " << std::string(dicsynth::toString(p)) << " " << d.camera << ": max dL " << d.maxRadianceDiff << " (" << d.radianceOutliers
                 << " px over), max dP " << d.maxPositionDiff_m << " m, max duv " << d.maxUvDiff << ", object mismatches "
                 << d.objectIdMismatches << ", geometry outliers " << d.geometryOutliers << " of " << d.pixels << " px");
         CHECK(withinTolerance(d, tol));

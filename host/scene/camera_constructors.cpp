@@ -112,7 +112,7 @@ The camera frame is OpenCV's: x right, y down, z forward (along the optical axis
 
 Pose: give `transform`, or `position` with optional `lookAt`/`up`, not both. Without any, the
 camera sits at the origin looking down +z and its frame is the world frame. With lookAt:
-  z = normalize(lookAt - position), y = normalize(-(up - (up.z) z)), x = cross(y, z).
+  z = normalize(lookAt - position), y = normalize(-(up - (up · z) z)), x = cross(y, z).
 Without lookAt the camera at `position` keeps the world's orientation.
 
 Example:

@@ -62,6 +62,7 @@ int runCompare(const CompareCommand& cmd) {
   options.progress = progressPrinter("gpu " + std::string(toString(options.precision)));
   const RenderResult gpu = renderer.render(prepared, options);
 
+  failOnValidationMessages(context);
   const Tolerances tol = tolerancesFor(options.precision);
   const auto diffs = compareResults(prepared, cpu, gpu, tol);
   bool pass = true;

@@ -66,6 +66,7 @@ int runRender(const RenderCommand& cmd) {
     options.precision = precision;
     options.progress = progressPrinter("rendering" + (numbered ? " frame " + std::to_string(frames[fi]) : ""));
     const RenderResult result = useGpu ? renderer->render(prepared, options) : cpu::render(prepared, options);
+    if (context) failOnValidationMessages(*context);  // before any file of this frame is written
 
     OutputInfo info;
     info.sceneFile = cmd.args.scenePath;

@@ -74,6 +74,13 @@ Precision resolvePrecision(const std::string& requested, bool deviceHasFloat64) 
   return deviceHasFloat64 ? Precision::Fp64 : Precision::Fp32;
 }
 
+void failOnValidationMessages(const gpu::Context& context) {
+  const auto messages = context.validationMessages();
+  if (messages.empty()) return;
+  for (const auto& m : messages) std::fprintf(stderr, "validation: %s\n", m.c_str());
+  throw Error("the Vulkan validation layers reported " + std::to_string(messages.size()) + " message(s)");
+}
+
 bool stderrIsTerminal() { return isatty(fileno(stderr)) != 0; }
 
 std::function<void(double)> progressPrinter(const std::string& label) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "gpu/context.h"
 #include "render/options.h"
 #include "scene/scene.h"
 
@@ -35,6 +36,10 @@ RenderOptions renderOptions(const RenderArgs& args, int frame);
 
 // The GPU precision: the user's choice, or fp64 when the device supports it, else fp32.
 Precision resolvePrecision(const std::string& requested, bool deviceHasFloat64);
+
+// With validation layers on (DICSYNTH_VALIDATION=1), prints every message they reported to stderr
+// and throws Error: a run that the layers flagged must not look successful.
+void failOnValidationMessages(const gpu::Context& context);
 
 // True when stderr is a terminal (progress lines are printed only then).
 bool stderrIsTerminal();

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "core/json.h"
 #include "core/error.h"
 #include "gpu/context.h"
 #include "gpu/device_query.h"
@@ -25,28 +26,6 @@ struct DevicesOptions {
   std::string device;
   bool json = false;
 };
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-          out += buf;
-        } else {
-          out += c;  // UTF-8 bytes pass through
-        }
-    }
-  }
-  return out + "\"";
-}
 
 std::string mebibytes(uint64_t bytes) {
   char buf[32];
@@ -81,17 +60,17 @@ void printJson(const std::vector<gpu::DeviceInfo>& devices, uint32_t selected) {
     const auto& d = devices[i];
     std::printf("%s\n  {", i ? "," : "");
     std::printf("\"index\": %u, ", d.index);
-    std::printf("\"name\": %s, ", jsonString(d.name).c_str());
-    std::printf("\"type\": %s, ", jsonString(d.type).c_str());
-    std::printf("\"driver\": %s, ", jsonString(d.driver).c_str());
-    std::printf("\"vulkan\": %s, ", jsonString(gpu::apiVersionString(d.apiVersion)).c_str());
+    std::printf("\"name\": %s, ", json::quote(d.name).c_str());
+    std::printf("\"type\": %s, ", json::quote(d.type).c_str());
+    std::printf("\"driver\": %s, ", json::quote(d.driver).c_str());
+    std::printf("\"vulkan\": %s, ", json::quote(gpu::apiVersionString(d.apiVersion)).c_str());
     std::printf("\"vendorID\": %u, \"deviceID\": %u, ", d.vendorID, d.deviceID);
     std::printf("\"shaderFloat64\": %s, ", d.shaderFloat64 ? "true" : "false");
     std::printf("\"shaderInt64\": %s, ", d.shaderInt64 ? "true" : "false");
     std::printf("\"maxStorageBufferRange\": %llu, ", static_cast<unsigned long long>(d.maxStorageBufferRange));
     std::printf("\"maxStorageBuffer_MiB\": %s, ", mebibytes(d.maxStorageBufferRange).c_str());
     std::printf("\"subgroupSize\": %u, ", d.subgroupSize);
-    std::printf("\"pipelineCacheUUID\": %s, ", jsonString(d.pipelineCacheUUID).c_str());
+    std::printf("\"pipelineCacheUUID\": %s, ", json::quote(d.pipelineCacheUUID).c_str());
     std::printf("\"selected\": %s}", d.index == selected ? "true" : "false");
   }
   std::printf("%s]\n", devices.empty() ? "" : "\n");

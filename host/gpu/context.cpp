@@ -28,16 +28,6 @@ uint32_t findComputeQueueFamily(VkPhysicalDevice physical, const DeviceInfo& inf
               ") has no compute queue");
 }
 
-bool deviceHasExtension(VkPhysicalDevice physical, const char* name) {
-  uint32_t count = 0;
-  DS_VK(vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr));
-  std::vector<VkExtensionProperties> extensions(count);
-  DS_VK(vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()));
-  extensions.resize(count);
-  return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
-    return std::strcmp(e.extensionName, name) == 0;
-  });
-}
 
 }  // namespace
 
@@ -94,7 +84,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 
   // A portability (non-conformant) implementation requires its subset extension to be enabled.
   std::vector<const char*> extensions;
-  if (deviceHasExtension(m.physical, "VK_KHR_portability_subset"))
+  if (hasDeviceExtension(m.physical, "VK_KHR_portability_subset"))
     extensions.push_back("VK_KHR_portability_subset");
 
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};

@@ -31,6 +31,14 @@ int preference(const DeviceInfo& d) {
   return (d.apiVersion >= VK_API_VERSION_1_2 ? 10 : 0) + kind;
 }
 
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
 bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
   uint32_t count = 0;
   DS_VK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr));
@@ -40,13 +48,6 @@ bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
   return std::any_of(extensions.begin(), extensions.end(),
                      [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-}  // namespace
 
 std::string uuidHex(const uint8_t (&uuid)[VK_UUID_SIZE]) {
   char hex[2 * VK_UUID_SIZE + 1];

@@ -19,6 +19,9 @@ std::string describeDevices(const std::vector<DeviceInfo>& devices);
 // 32 lowercase hex digits of a VK_UUID_SIZE-byte UUID (DeviceInfo::pipelineCacheUUID).
 std::string uuidHex(const uint8_t (&uuid)[VK_UUID_SIZE]);
 
+// Whether the physical device offers a device extension.
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name);
+
 // "1.3.230"
 std::string apiVersionString(uint32_t apiVersion);
 

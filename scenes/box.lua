@@ -8,5 +8,5 @@ box = Object.Simple {
   shape = Shape.Box { size = {0.12, 0.08, 0.10}; location = {0, 0, 0.5}; };
   shader = Shader.Lambert { color = 0.85; };
   texture = Texture.File { fileName = "speckle.tif"; };
-  transform = rotate_y(degrees(25)) * rotate_x(degrees(-15)); };
-lamp = Light.Point { position = {-0.3, -0.5, 0.1}; intensity = 0.9; };
+  transform = rotate_y(degrees(-20)) * rotate_x(degrees(10)); };
+lamp = Light.Point { position = {-0.3, -0.5, 0.1}; intensity = 1.7; };

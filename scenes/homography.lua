@@ -2,7 +2,7 @@
 -- (bottom row 2, 1.5, 0, 1 in the rectangle's frame), which maps lines to lines but keystones the
 -- specimen and its texture, with a sphere beside it under another projective map. The paper allows
 -- any homography per object; rays are mapped into object space (README, "Transforms").
-camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.016; pixelSize = {5e-6, 5e-6}; };
+camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.010; pixelSize = {5e-6, 5e-6}; };
 keystone = homography { 1,   0,   0, 0,
                         0,   1,   0, 0,
                         0,   0,   1, 0,
@@ -13,7 +13,7 @@ specimen = Object.Simple {
   texture = Texture.File { fileName = "speckle.tif"; };
   transform = keystone; };
 egg = Object.Simple {
-  shape = Shape.Sphere { radius = 0.02; location = {0.06, 0.02, 0.38}; };
+  shape = Shape.Sphere { radius = 0.02; location = {0.055, 0.0, 0.38}; };
   shader = Shader.Constant { color = 0.7; };
   texture = Texture.File { fileName = "speckle.tif"; };
   transform = homography { 1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  0, 12, 0, 1 }; };

@@ -11,4 +11,4 @@ floor = Object.Simple {
 ball = Object.Simple {
   shape = Shape.Sphere { radius = 0.06; location = {0.02, 0.0, 0.55}; };
   shader = Shader.Lambert { color = {0.9, 0.9, 0.9}; }; };
-sun = Light.Point { position = {-0.25, -0.4, 0.4}; intensity = 0.35; };
+sun = Light.Point { position = {-0.25, -0.4, 0.4}; intensity = 0.6; };

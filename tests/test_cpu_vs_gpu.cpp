@@ -49,7 +49,7 @@ TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
         MESSAGE(std::filesystem::path(file).filename().string()
                 << " " << std::string(dicsynth::toString(p)) << " " << d.camera << ": max dL " << d.maxRadianceDiff << " (" << d.radianceOutliers
                 << " px over), max dP " << d.maxPositionDiff_m << " m, max duv " << d.maxUvDiff << ", object mismatches "
-                << d.objectIdMismatches << ", geometry outliers " << d.geometryOutliers << " of " << d.pixels << " px");
+                << d.objectIdMismatches << ", geometry outliers " << d.geometryOutliers << " of " << d.pixels << " px, worst error/bound " << d.maxGeometryRatio);
         CHECK(withinTolerance(d, tol));
         if (p == Precision::Fp64) {
           // The requirement, stated directly.

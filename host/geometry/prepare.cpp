@@ -80,6 +80,8 @@ ShapeGeometry<double> shapeGeometry(const Shape& s) {
     case ShapeKind::Box: g.halfSize = s.size_m * 0.5; break;
     case ShapeKind::Rectangle:
     case ShapeKind::Plane: g.extent = dvec2(s.size_m); break;
+    case ShapeKind::Nurbs:  // replaced by the NURBS preparation (issue 3, in progress)
+      throw InputError(s.where, "Shape.Nurbs: not supported by the renderer yet");
     case ShapeKind::Triangle:
       g.p0 = s.vertices_m[0];
       g.p1 = s.vertices_m[1];

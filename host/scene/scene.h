@@ -4,6 +4,7 @@
 // Units: metres, radians, pixels where the name says _px. Frames: the camera frame is OpenCV's
 // (x right, y down, z forward); world and object frames are right-handed.
 #include <array>
+#include <memory>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/math.h"
+#include "geometry/nurbs_surface.h"
 #include "shared/kinds.h"
 
 namespace dicsynth {
@@ -45,6 +47,7 @@ struct Camera {
 //   Rectangle: size_m.x, size_m.y (in the local xy-plane)
 //   Plane:     size_m.x, size_m.y = texture tile size (u, v repeat every tile)
 //   Triangle:  vertices_m[3] (relative to location), vertexUV[3]
+//   Nurbs:     nurbs (control points relative to location)
 struct Shape {
   ShapeKind kind = ShapeKind::Sphere;
   SourceLoc where;
@@ -53,6 +56,7 @@ struct Shape {
   dvec3 size_m{0, 0, 0};
   std::array<dvec3, 3> vertices_m{};
   std::array<dvec2, 3> vertexUV{dvec2{0, 0}, dvec2{1, 0}, dvec2{0, 1}};
+  std::shared_ptr<const NurbsSurface> nurbs;  // validated (validateNurbs)
 };
 
 struct Shader {

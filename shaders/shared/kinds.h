@@ -8,7 +8,8 @@
 #define DS_SHAPE_TRIANGLE 2
 #define DS_SHAPE_PLANE 3
 #define DS_SHAPE_RECTANGLE 4
-#define DS_SHAPE_COUNT 5
+#define DS_SHAPE_NURBS 5
+#define DS_SHAPE_COUNT 6
 
 #define DS_SHADER_CONSTANT 0
 #define DS_SHADER_LAMBERT 1
@@ -31,6 +32,7 @@ enum class ShapeKind : int {
   Triangle = DS_SHAPE_TRIANGLE,
   Plane = DS_SHAPE_PLANE,
   Rectangle = DS_SHAPE_RECTANGLE,
+  Nurbs = DS_SHAPE_NURBS,
 };
 enum class ShaderKind : int { Constant = DS_SHADER_CONSTANT, Lambert = DS_SHADER_LAMBERT };
 enum class TextureKind : int { Constant = DS_TEXTURE_CONSTANT, File = DS_TEXTURE_FILE };

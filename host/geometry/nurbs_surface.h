@@ -1,0 +1,32 @@
+#pragma once
+// A NURBS surface as a scene describes it (Shape.Nurbs), in the shape's own frame, double
+// precision. Its parameters (u, v) ∈ [0, 1]² are the knot domain [knotsU[degreeU],
+// knotsU[countU]] × [knotsV[degreeV], knotsV[countV]] normalized to the unit square; textures are
+// glued on (u, v). Conventions follow "The NURBS Book" (Piegl & Tiller): a knot vector has
+// count + degree + 1 entries.
+#include <vector>
+
+#include "core/math.h"
+
+namespace dicsynth {
+
+struct NurbsSurface {
+  int degreeU = 3, degreeV = 3;        // 1..kMaxNurbsDegree
+  std::vector<double> knotsU, knotsV;  // non-decreasing; countU + degreeU + 1 (resp. V) entries
+  int countU = 0, countV = 0;          // control points along u and along v
+  // countU × countV control points, "row-major": index i * countV + j, i along u, j along v.
+  std::vector<dvec3> controlPoints;
+  std::vector<double> weights;         // one per control point, > 0 (all 1: a polynomial B-spline)
+};
+
+inline constexpr int kMaxNurbsDegree = 5;
+inline constexpr std::size_t kMaxNurbsControlPoints = 1u << 20;  // 1 Mi points (see validateNurbs)
+
+// Throws InputError("<what is wrong>") without a location (the caller prepends file:line) when:
+// a degree is outside 1..kMaxNurbsDegree, a count is below degree + 1, the knot vectors have the
+// wrong length, decrease, or hold a knot of multiplicity > degree + 1 (or > degree inside), the
+// knot domain is empty, any number is not finite, a weight is not > 0, the control points and
+// weights do not number countU × countV, or there are more than kMaxNurbsControlPoints points.
+void validateNurbs(const NurbsSurface& surface);
+
+}  // namespace dicsynth

@@ -138,7 +138,7 @@ int shapeTriangle(lua_State* L) {
 }
 
 int shapeToString(lua_State* L) {
-  static const char* const kNames[] = {"Sphere", "Box", "Triangle", "Plane", "Rectangle"};
+  static const char* const kNames[] = {"Sphere", "Box", "Triangle", "Plane", "Rectangle", "Nurbs"};
   static_assert(std::size(kNames) == DS_SHAPE_COUNT);
   const Shape* shape = toUserdata<Shape>(L, 1);
   lua_pushfstring(L, "Shape.%s", shape ? kNames[static_cast<int>(shape->kind)] : "?");

@@ -1,9 +1,8 @@
 #version 460
 // Entry point of the renderer: one invocation per pixel of one tile of one camera.
 // Writes the mean radiance over the pixel's stratified samples and the ground truth of the ray
-// through the pixel centre (host/render/result.h). Compiled once per precision (DS_FP32, DS_FP64);
-// scene features are specialization constants (lib/features.glsl).
-#extension GL_EXT_scalar_block_layout : disable
+// through the pixel centre (host/render/result.h). Compiled once per precision (DS_FP32, DS_FP64,
+// DS_DF64; lib/real.glsl); scene features are specialization constants (lib/features.glsl).
 
 #include "lib/real.glsl"
 #include "lib/features.glsl"
@@ -30,39 +29,41 @@ void main() {
   const int cameraIndex = params.counts.x;
   const GpuCamera cam = cameras[cameraIndex];
   const ivec2 pixel = params.tile.xy + local;
-  const real2 centre = real2(pixel);
-  const real3 origin = ds_camera_centre(cam);
+  const hreal2 centre = h(real2(pixel));  // integers: exact in every variant
+  const hreal3 origin = ds_camera_centre(cam);
   const bool distorted = HAS_DISTORTION && cam.flags.x != 0;
 
   GpuPixel outPixel;
-  outPixel.radianceDepthUV = real4(0.0);
-  outPixel.positionId = real4(0.0);
+  outPixel.positionDepth = h(real4(0.0));
+  outPixel.uvRadianceId = h(real4(0.0));
   outPixel.normal = real4(0.0);
 
   // Ground truth: the ray through the exact pixel centre.
-  real3 d;
+  hreal3 d;
   SurfaceHit hit;
+  hreal2 uv = h2(h(real(0.0)), h(real(0.0)));
+  real objectId = 0.0;
   if (ds_camera_ray(cam, centre, distorted, d) && ds_trace_nearest(origin, d, hit)) {
-    outPixel.radianceDepthUV.yzw = real3(hit.t, hit.uv);
-    outPixel.positionId = real4(hit.position, real(objects[hit.object].kinds.w));
-    outPixel.normal.xyz = hit.normal;
+    outPixel.positionDepth = h4_31(hit.position, hit.t);
+    outPixel.normal = real4(hit.normal, 0.0);
+    uv = hit.uv;
+    objectId = real(objects[hit.object].kinds.w);
   }
 
   // Radiance: mean over stratified samples of the pixel's sensitive square.
-  const int spp = params.counts.y;  // = strata.x · strata.y
-  const ivec2 strata = cam.size.zw;
-  const real side = cam.brown1.y;
-  real sum = 0.0;
+  const ivec2 strata = cam.size.zw;  // strata.x · strata.y = samples per pixel
+  const hreal side = h_y(cam.brown1);
+  hreal sum = h(real(0.0));
   // Sample s = cellY · strataX + cellX, as in host/camera/sampling.h, without integer division.
   int s = 0;
   for (int cellY = 0; cellY < strata.y; ++cellY) {
     for (int cellX = 0; cellX < strata.x; ++cellX, ++s) {
-      const real2 offset = ds_sample_offset(strata, ivec2(cellX, cellY), side, params.random.x, params.random.y,
-                                            uint(cameraIndex), uint(pixel.x), uint(pixel.y), uint(s));
-      if (ds_camera_ray(cam, centre + offset, distorted, d) && ds_trace_nearest(origin, d, hit))
-        sum += ds_shade(hit);
+      const hreal2 offset = ds_sample_offset(strata, ivec2(cellX, cellY), side, params.random.x, params.random.y,
+                                             uint(cameraIndex), uint(pixel.x), uint(pixel.y), uint(s));
+      if (ds_camera_ray(cam, h_add(centre, offset), distorted, d) && ds_trace_nearest(origin, d, hit))
+        sum = h_add(sum, h(ds_shade(hit)));
     }
   }
-  outPixel.radianceDepthUV.x = sum / real(spp);
+  outPixel.uvRadianceId = h4_211(uv, h_div(sum, h(real(strata.x * strata.y))), h(objectId));
   pixels[local.y * params.tile.z + local.x] = outPixel;
 }

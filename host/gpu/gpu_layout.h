@@ -1,6 +1,8 @@
 #pragma once
 // C++ views of shaders/shared/gpu_types.h, one namespace per precision variant, with the std430
 // layout checked at compile time (a mismatch would silently garble every buffer).
+//   fp32: real = hreal = float;  fp64: real = hreal = double;  df64: real = float, hreal = a
+//   float pair {hi, lo} (shaders/lib/df64.glsl), stored as two vec4: all his, then all los.
 #include <cstddef>
 #include <cstdint>
 
@@ -8,36 +10,50 @@ namespace dicsynth::gpu {
 
 struct alignas(16) ivec4 { std::int32_t x, y, z, w; };
 struct alignas(16) uvec4 { std::uint32_t x, y, z, w; };
+struct alignas(16) float4 { float x, y, z, w; };
+struct alignas(32) double4 { double x, y, z, w; };
+struct alignas(16) df64x4 { float4 hi, lo; };
 
 namespace fp32 {
 using real = float;
-struct alignas(16) real4 { float x, y, z, w; };
+using real4 = float4;
+using hreal4 = float4;
 #include "shared/gpu_types.h"
 }  // namespace fp32
 
 namespace fp64 {
 using real = double;
-struct alignas(32) real4 { double x, y, z, w; };
+using real4 = double4;
+using hreal4 = double4;
 #include "shared/gpu_types.h"
 }  // namespace fp64
 
-#define DS_CHECK_LAYOUT(ns, R4)                                                            \
-  static_assert(sizeof(ns::real4) == R4);                                                  \
-  static_assert(sizeof(ns::GpuCamera) == 6 * R4 + 32);                                     \
-  static_assert(offsetof(ns::GpuCamera, intrinsics) == 3 * R4);                            \
-  static_assert(offsetof(ns::GpuCamera, size) == 6 * R4);                                  \
-  static_assert(offsetof(ns::GpuCamera, flags) == 6 * R4 + 16);                            \
-  static_assert(sizeof(ns::GpuObject) == 10 * R4 + 32);                                    \
-  static_assert(offsetof(ns::GpuObject, shape0) == 4 * R4);                                \
-  static_assert(offsetof(ns::GpuObject, shading) == 9 * R4);                               \
-  static_assert(offsetof(ns::GpuObject, kinds) == 10 * R4);                                \
+namespace df64 {
+using real = float;
+using real4 = float4;
+using hreal4 = df64x4;
+#include "shared/gpu_types.h"
+}  // namespace df64
+
+#define DS_CHECK_LAYOUT(ns, R4, H4, CAMERA, OBJECT, PIXEL)                                 \
+  static_assert(sizeof(ns::real4) == R4 && sizeof(ns::hreal4) == H4);                       \
+  static_assert(sizeof(ns::GpuCamera) == CAMERA);                                          \
+  static_assert(offsetof(ns::GpuCamera, intrinsics) == 3 * H4);                            \
+  static_assert(offsetof(ns::GpuCamera, size) == 6 * H4);                                  \
+  static_assert(offsetof(ns::GpuCamera, flags) == 6 * H4 + 16);                            \
+  static_assert(sizeof(ns::GpuObject) == OBJECT);                                          \
+  static_assert(offsetof(ns::GpuObject, shape0) == 4 * H4);                                \
+  static_assert(offsetof(ns::GpuObject, shading) == 9 * H4);                               \
+  static_assert(offsetof(ns::GpuObject, kinds) == 9 * H4 + R4);                            \
   static_assert(sizeof(ns::GpuLight) == R4);                                               \
   static_assert(sizeof(ns::GpuTexture) == 16);                                             \
-  static_assert(sizeof(ns::GpuPixel) == 3 * R4);                                           \
-  static_assert(offsetof(ns::GpuPixel, normal) == 2 * R4);                                 \
+  static_assert(sizeof(ns::GpuPixel) == PIXEL);                                            \
+  static_assert(offsetof(ns::GpuPixel, normal) == 2 * H4);                                 \
   static_assert(sizeof(ns::GpuTileParams) == 48);
-DS_CHECK_LAYOUT(fp32, 16)
-DS_CHECK_LAYOUT(fp64, 32)
+// Sizes: std430 rounds a struct up to its alignment (32 with a dvec4 member, else 16).
+DS_CHECK_LAYOUT(fp32, 16, 16, 6 * 16 + 32, 9 * 16 + 16 + 32, 3 * 16)
+DS_CHECK_LAYOUT(fp64, 32, 32, 6 * 32 + 32, 9 * 32 + 32 + 32, 3 * 32)
+DS_CHECK_LAYOUT(df64, 16, 32, 6 * 32 + 32, 9 * 32 + 16 + 32, 2 * 32 + 16)
 #undef DS_CHECK_LAYOUT
 
 }  // namespace dicsynth::gpu

@@ -11,8 +11,12 @@ namespace {
 
 template <class Layout>
 typename Layout::real4 r4(double x, double y = 0, double z = 0, double w = 0) {
-  using R = typename Layout::real;
-  return {R(x), R(y), R(z), R(w)};
+  return toReal4(x, y, z, w, static_cast<typename Layout::real4*>(nullptr));
+}
+
+template <class Layout>
+typename Layout::hreal4 h4(double x, double y = 0, double z = 0, double w = 0) {
+  return toReal4(x, y, z, w, static_cast<typename Layout::hreal4*>(nullptr));
 }
 
 template <class Layout>
@@ -20,11 +24,11 @@ typename Layout::GpuCamera packCamera(const PreparedCamera& pc, int spp) {
   const auto& m = pc.model;
   typename Layout::GpuCamera g{};
   for (int row = 0; row < 3; ++row)  // glm is column-major: m[col][row]
-    g.worldFromCamera[row] = r4<Layout>(m.worldFromCamera[0][row], m.worldFromCamera[1][row],
+    g.worldFromCamera[row] = h4<Layout>(m.worldFromCamera[0][row], m.worldFromCamera[1][row],
                                         m.worldFromCamera[2][row], m.centre[row]);
-  g.intrinsics = r4<Layout>(m.fx, m.fy, m.cx, m.cy);
-  g.brown0 = r4<Layout>(m.brown.k1, m.brown.k2, m.brown.k3, m.brown.p1);
-  g.brown1 = r4<Layout>(m.brown.p2, std::sqrt(pc.camera.fillFactor));
+  g.intrinsics = h4<Layout>(m.fx, m.fy, m.cx, m.cy);
+  g.brown0 = h4<Layout>(m.brown.k1, m.brown.k2, m.brown.k3, m.brown.p1);
+  g.brown1 = h4<Layout>(m.brown.p2, std::sqrt(pc.camera.fillFactor));
   const Strata strata = strataFor(spp);
   g.size = {pc.camera.width_px, pc.camera.height_px, strata.x, strata.y};
   g.flags = {m.distorted ? 1 : 0, 0, 0, 0};
@@ -35,20 +39,20 @@ template <class Layout>
 typename Layout::GpuObject packObject(const PreparedObject& o) {
   typename Layout::GpuObject g{};
   for (int row = 0; row < 4; ++row)
-    g.objectFromWorld[row] = r4<Layout>(o.objectFromWorld[0][row], o.objectFromWorld[1][row],
+    g.objectFromWorld[row] = h4<Layout>(o.objectFromWorld[0][row], o.objectFromWorld[1][row],
                                         o.objectFromWorld[2][row], o.objectFromWorld[3][row]);
   const auto& s = o.geometry;
   switch (s.kind) {
-    case DS_SHAPE_SPHERE: g.shape0 = r4<Layout>(s.radius); break;
-    case DS_SHAPE_BOX: g.shape0 = r4<Layout>(s.halfSize.x, s.halfSize.y, s.halfSize.z); break;
+    case DS_SHAPE_SPHERE: g.shape0 = h4<Layout>(s.radius); break;
+    case DS_SHAPE_BOX: g.shape0 = h4<Layout>(s.halfSize.x, s.halfSize.y, s.halfSize.z); break;
     case DS_SHAPE_PLANE:
-    case DS_SHAPE_RECTANGLE: g.shape0 = r4<Layout>(s.extent.x, s.extent.y); break;
+    case DS_SHAPE_RECTANGLE: g.shape0 = h4<Layout>(s.extent.x, s.extent.y); break;
     case DS_SHAPE_TRIANGLE:
-      g.shape0 = r4<Layout>(s.p0.x, s.p0.y, s.p0.z);
-      g.shape1 = r4<Layout>(s.p1.x, s.p1.y, s.p1.z);
-      g.shape2 = r4<Layout>(s.p2.x, s.p2.y, s.p2.z);
-      g.shape3 = r4<Layout>(s.uv0.x, s.uv0.y, s.uv1.x, s.uv1.y);
-      g.shape4 = r4<Layout>(s.uv2.x, s.uv2.y);
+      g.shape0 = h4<Layout>(s.p0.x, s.p0.y, s.p0.z);
+      g.shape1 = h4<Layout>(s.p1.x, s.p1.y, s.p1.z);
+      g.shape2 = h4<Layout>(s.p2.x, s.p2.y, s.p2.z);
+      g.shape3 = h4<Layout>(s.uv0.x, s.uv0.y, s.uv1.x, s.uv1.y);
+      g.shape4 = h4<Layout>(s.uv2.x, s.uv2.y);
       break;
     default: DS_CHECK(false, "unknown shape kind " + std::to_string(s.kind));
   }
@@ -58,6 +62,14 @@ typename Layout::GpuObject packObject(const PreparedObject& o) {
 }
 
 }  // namespace
+
+float4 toReal4(double x, double y, double z, double w, float4*) { return {float(x), float(y), float(z), float(w)}; }
+double4 toReal4(double x, double y, double z, double w, double4*) { return {x, y, z, w}; }
+df64x4 toReal4(double x, double y, double z, double w, df64x4*) {
+  // hi = the nearest float, lo = the nearest float to the rest: hi + lo is x to ~2^-48 relative.
+  const float4 hi{float(x), float(y), float(z), float(w)};
+  return {hi, {float(x - double(hi.x)), float(y - double(hi.y)), float(z - double(hi.z)), float(w - double(hi.w))}};
+}
 
 template <class Layout>
 PackedScene<Layout> packScene(const PreparedScene& scene, int spp) {
@@ -78,5 +90,6 @@ PackedScene<Layout> packScene(const PreparedScene& scene, int spp) {
 
 template PackedScene<Fp32Layout> packScene<Fp32Layout>(const PreparedScene&, int);
 template PackedScene<Fp64Layout> packScene<Fp64Layout>(const PreparedScene&, int);
+template PackedScene<Df64Layout> packScene<Df64Layout>(const PreparedScene&, int);
 
 }  // namespace dicsynth::gpu

@@ -21,6 +21,7 @@ struct PackedScene {
 struct Fp32Layout {
   using real = float;
   using real4 = fp32::real4;
+  using hreal4 = fp32::hreal4;
   using GpuCamera = fp32::GpuCamera;
   using GpuObject = fp32::GpuObject;
   using GpuLight = fp32::GpuLight;
@@ -31,6 +32,7 @@ struct Fp32Layout {
 struct Fp64Layout {
   using real = double;
   using real4 = fp64::real4;
+  using hreal4 = fp64::hreal4;
   using GpuCamera = fp64::GpuCamera;
   using GpuObject = fp64::GpuObject;
   using GpuLight = fp64::GpuLight;
@@ -38,6 +40,27 @@ struct Fp64Layout {
   using GpuPixel = fp64::GpuPixel;
   using GpuTileParams = fp64::GpuTileParams;
 };
+
+struct Df64Layout {
+  using real = float;
+  using real4 = df64::real4;
+  using hreal4 = df64::hreal4;
+  using GpuCamera = df64::GpuCamera;
+  using GpuObject = df64::GpuObject;
+  using GpuLight = df64::GpuLight;
+  using GpuTexture = df64::GpuTexture;
+  using GpuPixel = df64::GpuPixel;
+  using GpuTileParams = df64::GpuTileParams;
+};
+
+// Doubles as the variant's real4 / hreal4 (the pointer only selects the overload), and a component
+// back as a double (df64: hi + lo summed in double, exact).
+float4 toReal4(double x, double y, double z, double w, float4*);
+double4 toReal4(double x, double y, double z, double w, double4*);
+df64x4 toReal4(double x, double y, double z, double w, df64x4*);
+inline double component(const float4& v, int i) { return double((&v.x)[i]); }
+inline double component(const double4& v, int i) { return (&v.x)[i]; }
+inline double component(const df64x4& v, int i) { return double((&v.hi.x)[i]) + double((&v.lo.x)[i]); }
 
 template <class Layout>
 PackedScene<Layout> packScene(const PreparedScene& scene, int samplesPerPixel);

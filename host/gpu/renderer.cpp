@@ -62,14 +62,15 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
           for (int tx = 0; tx < tw; ++tx) {
             const auto& p = tile[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)];
             const std::size_t i = std::size_t(y0 + ty) * std::size_t(cam.width_px) + std::size_t(x0 + tx);
-            image.radiance[i] = double(p.radianceDepthUV.x);
-            const auto id = std::uint32_t(std::lround(double(p.positionId.w)));
+            image.radiance[i] = component(p.uvRadianceId, 2);
+            const auto id = std::uint32_t(std::lround(component(p.uvRadianceId, 3)));
             if (id == 0) continue;  // background keeps NaN ground truth (CameraImage::resize)
             image.objectId[i] = id;
-            image.depth_m[i] = double(p.radianceDepthUV.y);
-            image.uv[i] = {double(p.radianceDepthUV.z), double(p.radianceDepthUV.w)};
-            image.position_m[i] = {double(p.positionId.x), double(p.positionId.y), double(p.positionId.z)};
-            image.normal[i] = {double(p.normal.x), double(p.normal.y), double(p.normal.z)};
+            image.depth_m[i] = component(p.positionDepth, 3);
+            image.uv[i] = {component(p.uvRadianceId, 0), component(p.uvRadianceId, 1)};
+            image.position_m[i] = {component(p.positionDepth, 0), component(p.positionDepth, 1),
+                                   component(p.positionDepth, 2)};
+            image.normal[i] = {component(p.normal, 0), component(p.normal, 1), component(p.normal, 2)};
           }
         }
         donePixels += double(tw) * th;

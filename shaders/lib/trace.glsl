@@ -1,5 +1,8 @@
 // Ray casting over all objects, shadow rays and shading: the GPU twin of host/cpu/trace.cpp, with
 // the homography mapping of host/geometry/homography.h (derivation there).
+// A camera ray is given in hreal. Per object it is mapped into the object's frame in hreal (so an
+// object far from the origin loses nothing), the nearest hit is searched in `real`, and the
+// winner's parameter, point and (u, v) are recomputed in hreal (lib/shapes.glsl, attributes).
 // Expects the including shader to declare objects[], lights[] (and what texture.glsl needs) and the
 // push constants `params`, and to include lib/features.glsl.
 #ifndef DS_TRACE_GLSL
@@ -8,24 +11,26 @@
 #include "lib/texture.glsl"
 
 struct SurfaceHit {
-  real t;
-  real3 position;
-  real3 normal;
-  real2 uv;
+  hreal t;         // world ray parameter (primary rays: depth along the optical axis)
+  hreal3 position; // world
+  real3 normal;    // world, unit, facing the ray's origin
+  hreal2 uv;
   int object;
 };
 
 // World ray o + t d in the object frame: o' + s d', s = t / (1 + t w). False at infinity.
-bool ds_object_ray(int index, real3 o, real3 d, out real3 oo, out real3 od, out real w) {
-  const real4 p = real4(o, 1.0), v = real4(d, 0.0);
-  const real4 r0 = objects[index].objectFromWorld[0], r1 = objects[index].objectFromWorld[1],
-              r2 = objects[index].objectFromWorld[2], r3 = objects[index].objectFromWorld[3];
-  const real4 A = real4(dot(r0, p), dot(r1, p), dot(r2, p), dot(r3, p));
-  const real4 B = real4(dot(r0, v), dot(r1, v), dot(r2, v), dot(r3, v));
-  if (A.w == 0.0) return false;
-  oo = A.xyz / A.w;
-  w = B.w / A.w;
-  od = B.xyz / A.w - w * oo;
+bool ds_object_ray(int index, hreal3 o, hreal3 d, out hreal3 oo, out hreal3 od, out hreal w) {
+  const hreal4 r0 = objects[index].objectFromWorld[0], r1 = objects[index].objectFromWorld[1],
+               r2 = objects[index].objectFromWorld[2], r3 = objects[index].objectFromWorld[3];
+  // A = H⁻¹ [o; 1], B = H⁻¹ [d; 0], row by row.
+  const hreal aw = h_add(h_dot(h_xyz(r3), o), h_w(r3));
+  if (h_real(aw) == real(0.0)) return false;
+  const hreal3 a = h3(h_add(h_dot(h_xyz(r0), o), h_w(r0)), h_add(h_dot(h_xyz(r1), o), h_w(r1)),
+                      h_add(h_dot(h_xyz(r2), o), h_w(r2)));
+  const hreal3 b = h3(h_dot(h_xyz(r0), d), h_dot(h_xyz(r1), d), h_dot(h_xyz(r2), d));
+  oo = h_div(a, aw);
+  w = h_div(h_dot(h_xyz(r3), d), aw);
+  od = h_sub(h_div(b, aw), h_mul(oo, w));
   return true;
 }
 
@@ -39,47 +44,59 @@ real ds_world_param(real s, real w) { return s / (1.0 - s * w); }
 // (H⁻¹)ᵀ [n; −n·x]: rows of H⁻¹ are objectFromWorld[i], so the result is Σ_i π_i row_i.
 real3 ds_world_normal(int index, real3 n, real3 x) {
   const real4 plane = real4(n, -dot(n, x));
-  return (plane.x * objects[index].objectFromWorld[0] + plane.y * objects[index].objectFromWorld[1] +
-          plane.z * objects[index].objectFromWorld[2] + plane.w * objects[index].objectFromWorld[3]).xyz;
+  return (plane.x * h_real(objects[index].objectFromWorld[0]) + plane.y * h_real(objects[index].objectFromWorld[1]) +
+          plane.z * h_real(objects[index].objectFromWorld[2]) + plane.w * h_real(objects[index].objectFromWorld[3])).xyz;
 }
 
-bool ds_trace_nearest(real3 o, real3 d, out SurfaceHit hit) {
+// Nearest hit along the camera ray o + t d, t > 0, compared by world t.
+bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   real tBest = DS_FAR_AWAY;
-  LocalHit best;
+  ShapeHit best;
   int bestObject = -1;
   const int objectCount = params.counts.z;
   for (int i = 0; i < objectCount; ++i) {
-    real3 oo, od;
-    real w;
+    hreal3 oo, od;
+    hreal w;
     if (!ds_object_ray(i, o, d, oo, od, w)) continue;
-    LocalHit local;
-    if (!ds_intersect_shape(i, oo, od, 0.0, ds_object_param(tBest, w), false, local)) continue;
-    const real t = ds_world_param(local.s, w);
+    const real wr = h_real(w);
+    ShapeHit found;
+    if (!ds_search_shape(i, h_real(oo), h_real(od), 0.0, ds_object_param(tBest, wr), false, found)) continue;
+    const real t = ds_world_param(found.s, wr);
     if (t > 0.0 && t < tBest) {
       tBest = t;
-      best = local;
+      best = found;
       bestObject = i;
     }
   }
   hit.object = bestObject;
   if (bestObject < 0) return false;
-  hit.t = tBest;
-  hit.position = o + tBest * d;
-  hit.normal = normalize(ds_world_normal(bestObject, best.normal, best.point));
-  if (dot(hit.normal, d) > 0.0) hit.normal = -hit.normal;
-  hit.uv = best.uv;
+  // The winner in hreal: the ray in its frame again, then its attributes.
+  hreal3 oo, od;
+  hreal w;
+  ds_object_ray(bestObject, o, d, oo, od, w);
+  hreal s;
+  hreal3 point;
+  real3 normal;
+  ds_shape_attributes(bestObject, oo, od, best, s, point, normal, hit.uv);
+  hit.t = h_div(s, h_sub(h(real(1.0)), h_mul(s, w)));
+  hit.position = h_add(o, h_mul(d, hit.t));
+  hit.normal = normalize(ds_world_normal(bestObject, normal, h_real(point)));
+  if (dot(hit.normal, h_real(d)) > 0.0) hit.normal = -hit.normal;
   return true;
 }
 
+// Whether any object blocks the segment from the hit to the light (t in (0, 1)), in `real`: a
+// shadow ray only decides visibility.
 bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
-  const real3 d = lightPosition - hit.position;
+  const real3 p = h_real(hit.position);
+  const hreal3 ph = h(p), dh = h(lightPosition - p);
   const int objectCount = params.counts.z;
   for (int i = 0; i < objectCount; ++i) {
-    real3 oo, od;
-    real w;
-    if (!ds_object_ray(i, hit.position, d, oo, od, w)) continue;
-    LocalHit local;
-    if (ds_intersect_shape(i, oo, od, 0.0, ds_object_param(1.0, w), i == hit.object, local))
+    hreal3 oo, od;
+    hreal w;
+    if (!ds_object_ray(i, ph, dh, oo, od, w)) continue;
+    ShapeHit found;
+    if (ds_search_shape(i, h_real(oo), h_real(od), 0.0, ds_object_param(1.0, h_real(w)), i == hit.object, found))
       return true;
   }
   return false;
@@ -95,10 +112,11 @@ real ds_shade(SurfaceHit hit) {
   // Lambert: L = (ρ/π) Σ I cosθ / r² over visible lights on the viewer's side (host/cpu/trace.cpp).
   real sum = 0.0;
   if (HAS_LIGHTS) {
+    const real3 p = h_real(hit.position);
     const int lightCount = params.counts.w;
     for (int l = 0; l < lightCount; ++l) {
       const real4 light = lights[l].positionIntensity;
-      const real3 toLight = light.xyz - hit.position;
+      const real3 toLight = light.xyz - p;
       const real r2 = dot(toLight, toLight);
       const real cosTheta = dot(hit.normal, toLight) / sqrt(r2);
       if (!(cosTheta > 0.0) || ds_occluded(hit, light.xyz)) continue;

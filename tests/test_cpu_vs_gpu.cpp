@@ -45,7 +45,7 @@ TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
     } catch (const InputError& e) {
       if (std::string(e.what()).find("not supported by the renderer yet") == std::string::npos)
         throw;
-      MESSAGE(std::filesystem::path(file).filename().string() << " skipped: " << e.what());
+      MESSAGE(std::filesystem::path(file).filename().string() << " skipped: " << std::string(e.what()));
       continue;
     }
     const PreparedScene& scene = *prepared;

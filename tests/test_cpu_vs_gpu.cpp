@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
+#include <string>
 
 #include "cpu/reference_renderer.h"
 #include "gpu/renderer.h"
@@ -35,7 +37,18 @@ TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
   REQUIRE(files.size() >= 7);
   gpu::Renderer renderer(test::gpuContext());
   for (const std::string& file : files) {
-    const PreparedScene scene = prepareScene(loadScene(file, {}), {kDownscale});
+    // Scenes of NURBS surfaces (nurbs_plate.lua, dogbone.lua) join once the renderers draw them;
+    // until then preparation refuses them, and only that refusal is skipped.
+    std::optional<PreparedScene> prepared;
+    try {
+      prepared = prepareScene(loadScene(file, {}), {kDownscale});
+    } catch (const InputError& e) {
+      if (std::string(e.what()).find("not supported by the renderer yet") == std::string::npos)
+        throw;
+      MESSAGE(std::filesystem::path(file).filename().string() << " skipped: " << std::string(e.what()));
+      continue;
+    }
+    const PreparedScene& scene = *prepared;
     RenderOptions options;
     options.samplesPerPixel = kSpp;
     options.seed = 3;

@@ -91,7 +91,8 @@ TEST_CASE("scene: wrong types, missing and non-finite values") {
       1, "Object.Simple: 'shader' must be a Shader (Shader.Constant, Shader.Lambert), got Shape");
   checkError(dir, "o = Object.Simple { shape = 1 }\n", 1,
              "Object.Simple: 'shape' must be a Shape (Shape.Sphere, Shape.Box, Shape.Rectangle, "
-             "Shape.Plane, Shape.Triangle), got number");
+             "Shape.Plane, Shape.Triangle, Shape.Nurbs, Nurbs.plate, Nurbs.cylinderSegment, "
+             "Nurbs.dogbone), got number");
   checkError(dir, "o = Object.Simple { shader = Shader.Lambert {} }\n", 1,
              "Object.Simple: missing required 'shape'");
   checkError(dir, "t = Shape.Triangle { vertices = {{0,0,0}, {1,0,0}, {0,'1',0}} }\n", 1,

@@ -27,6 +27,13 @@ inline constexpr std::size_t kMaxNurbsControlPoints = 1u << 20;  // 1 Mi points 
 // wrong length, decrease, or hold a knot of multiplicity > degree + 1 (or > degree inside), the
 // knot domain is empty, any number is not finite, a weight is not > 0, the control points and
 // weights do not number countU × countV, or there are more than kMaxNurbsControlPoints points.
+// "Inside" is strictly inside the knot domain. Messages name entries by 1-based indices, as the
+// scene writes them: knotsU[5], controlPoints[7], weights[3].
 void validateNurbs(const NurbsSurface& surface);
+
+// The part of validateNurbs that needs neither control points nor weights (degrees, counts, the
+// size limit, knot vectors), in the same order and with the same messages: a reader can check the
+// counts before it reads (or allocates) countU × countV points. validateNurbs runs it first.
+void validateNurbsKnots(const NurbsSurface& surface);
 
 }  // namespace dicsynth

@@ -11,6 +11,8 @@ void registerSceneLanguage(lua_State* L);
 
 void registerCameraConstructors(lua_State* L);  // camera_constructors.cpp: Camera, Distortion
 void registerShapeConstructors(lua_State* L);   // shape_constructors.cpp: Shape
+void registerNurbsConstructors(lua_State* L);   // nurbs_constructors.cpp: Shape.Nurbs, Nurbs
+                                                //   (after registerShapeConstructors)
 void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Shader, Texture,
                                                 //   Object, Light
 void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...

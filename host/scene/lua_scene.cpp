@@ -28,6 +28,7 @@ namespace scene {
 void registerSceneLanguage(lua_State* L) {
   registerCameraConstructors(L);
   registerShapeConstructors(L);
+  registerNurbsConstructors(L);
   registerObjectConstructors(L);
   registerTransformFunctions(L);
 }

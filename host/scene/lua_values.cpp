@@ -172,11 +172,13 @@ double Params::checkNumber(int index, const std::string& what) const {
 
 std::vector<double> Params::checkNumbers(int index, const std::string& what, std::size_t minCount,
                                          std::size_t maxCount, const char* shape) const {
-  const std::string count = minCount == maxCount
-                                ? std::to_string(minCount)
-                                : std::to_string(minCount) + " to " + std::to_string(maxCount);
+  std::string count = minCount == maxCount ? std::to_string(minCount) + " "
+                      : maxCount != kAnyCount
+                          ? std::to_string(minCount) + " to " + std::to_string(maxCount) + " "
+                      : minCount > 0 ? "at least " + std::to_string(minCount) + " "
+                                     : "";
   const std::string expected =
-      what + " must be " + shape + " (" + count + (maxCount == 1 ? " number)" : " numbers)");
+      what + " must be " + shape + " (" + count + (maxCount == 1 ? "number)" : "numbers)");
   if (!lua_istable(L_, index)) fail(expected + ", got " + typeName(L_, index));
   const TableShape table = shapeOf(L_, index);
   if (!table.isSequence) fail(expected + ", got a table with named or missing entries");
@@ -261,6 +263,51 @@ std::optional<std::vector<std::vector<double>>> Params::tables(const char* key, 
     lua_pop(L_, 1);
   }
   return rows;
+}
+
+bool Params::readVec3(int index, dvec3& out) const {
+  if (!lua_istable(L_, index) || lua_rawlen(L_, index) != 3) return false;
+  int entries = 0;
+  lua_pushnil(L_);
+  while (entries <= 3 && lua_next(L_, index) != 0) {
+    lua_pop(L_, 1);
+    ++entries;
+  }
+  if (entries > 3) lua_pop(L_, 1);  // the key lua_next left on the stack
+  if (entries != 3) return false;
+  for (int c = 0; c < 3; ++c) {
+    const bool isNumber = lua_rawgeti(L_, index, c + 1) == LUA_TNUMBER;
+    out[c] = isNumber ? lua_tonumber(L_, -1) : 0.0;
+    lua_pop(L_, 1);
+    if (!isNumber || !std::isfinite(out[c])) return false;
+  }
+  return true;
+}
+
+std::optional<std::vector<dvec3>> Params::vec3List(const char* key, std::size_t count,
+                                                   const std::string& countText) const {
+  Pushed value(L_, key);
+  if (value.isNil()) return std::nullopt;
+  const int index = lua_gettop(L_);
+  const std::string expected =
+      quote(key) + " must be {{x, y, z}, ...} (" + countText + " tables {x, y, z})";
+  if (!lua_istable(L_, index)) fail(expected + ", got " + typeName(L_, index));
+  const TableShape table = shapeOf(L_, index);
+  if (!table.isSequence) fail(expected + ", got a table with named or missing entries");
+  if (table.entries != count) fail(expected + ", got " + std::to_string(table.entries) + " values");
+  std::vector<dvec3> points(count);
+  for (std::size_t i = 1; i <= count; ++i) {
+    lua_rawgeti(L_, index, static_cast<lua_Integer>(i));
+    const int point = lua_gettop(L_);
+    // The usual case, a plain {x, y, z} of finite numbers, is read without building messages;
+    // anything else goes to checkNumbers, which throws the message for what is wrong.
+    if (!readVec3(point, points[i - 1])) {
+      checkNumbers(point, quote(key) + "[" + std::to_string(i) + "]", 3, 3, "{x, y, z}");
+      DS_CHECK(false, "checkNumbers accepted a point that readVec3 refused");
+    }
+    lua_pop(L_, 1);
+  }
+  return points;
 }
 
 std::optional<dvec3> Params::color(const char* key) const {

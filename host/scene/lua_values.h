@@ -139,7 +139,8 @@ class Params {
   double requiredNumber(const char* key) const;
   std::optional<long long> integer(const char* key) const;
   std::optional<std::string> string(const char* key) const;
-  // A table of count numbers (minCount..maxCount), e.g. shape "{x, y, z}".
+  // A table of count numbers (minCount..maxCount, maxCount may be kAnyCount), e.g. "{x, y, z}".
+  static constexpr std::size_t kAnyCount = static_cast<std::size_t>(-1);
   std::optional<std::vector<double>> numbers(const char* key, std::size_t minCount,
                                              std::size_t maxCount, const char* shape) const;
   std::optional<dvec2> vec2(const char* key, const char* shape = "{x, y}") const;
@@ -147,6 +148,10 @@ class Params {
   // A table of `count` tables of `size` numbers each, e.g. vertices = {{x,y,z}, ...}.
   std::optional<std::vector<std::vector<double>>> tables(const char* key, std::size_t count,
                                                          std::size_t size, const char* shape) const;
+  // A table of exactly `count` {x, y, z} tables, e.g. controlPoints; `count` is described for
+  // messages by countText ("countU × countV = 4 × 5 = 20"). One pass, no per-point table copies.
+  std::optional<std::vector<dvec3>> vec3List(const char* key, std::size_t count,
+                                             const std::string& countText) const;
   // A colour: one gray number or {r, g, b}.
   std::optional<dvec3> color(const char* key) const;
   // Userdata of type T; `expected` names it for messages, e.g. "a Shader (Shader.Constant, ...)".
@@ -181,6 +186,8 @@ class Params {
   };
 
   double checkNumber(int index, const std::string& what) const;
+  // Reads a plain {x, y, z} of finite numbers at stack `index` (absolute); false if it is not one.
+  bool readVec3(int index, dvec3& out) const;
   // Numbers of the sequence at stack `index` (absolute), minCount..maxCount of them.
   std::vector<double> checkNumbers(int index, const std::string& what, std::size_t minCount,
                                    std::size_t maxCount, const char* shape) const;

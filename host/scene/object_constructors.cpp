@@ -125,7 +125,9 @@ int objectSimple(lua_State* L) {
   Object object;
   object.where = LuaSandbox::of(L).here(L);
   const Shape* shape = p.userdata<Shape>(
-      "shape", "a Shape (Shape.Sphere, Shape.Box, Shape.Rectangle, Shape.Plane, Shape.Triangle)");
+      "shape",
+      "a Shape (Shape.Sphere, Shape.Box, Shape.Rectangle, Shape.Plane, Shape.Triangle, "
+      "Shape.Nurbs, Nurbs.plate, Nurbs.cylinderSegment, Nurbs.dogbone)");
   if (!shape) p.fail("missing required 'shape'");
   object.shape = *shape;
   if (const Shader* shader =

@@ -1,4 +1,5 @@
-// Shape.Sphere, Shape.Box, Shape.Rectangle, Shape.Plane, Shape.Triangle.
+// Shape.Sphere, Shape.Box, Shape.Rectangle, Shape.Plane, Shape.Triangle (Shape.Nurbs and the
+// Nurbs.* specimens: nurbs_constructors.cpp).
 // Every shape is defined in its own frame; `location` (metres, default {0, 0, 0}) places that
 // frame's origin in the object's frame. An Object's transform is applied about the location
 // (worldFromShape = translate(location) * transform, see scene.h).

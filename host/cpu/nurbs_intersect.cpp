@@ -187,13 +187,29 @@ class Search {
     }
     if (lo.x > tol_ || hi.x < -tol_ || lo.y > tol_ || hi.y < -tol_ || lo.z > zHi() + tol_ || hi.z < zLo_ - tol_)
       return b;
-    b.hit = true;
-    b.zMin = lo.z;
-    b.size = glm::distance(lo, hi);
     auto at = [&](int i, int j) {
       const dvec4& h = piece.points[std::size_t(i * (q_ + 1) + j)];
       return dvec3(h) / h.w;
     };
+    // One more separating axis: the piece's normal (from its diagonals) projected on the ray's
+    // plane. Near a silhouette a piece projects to a sliver across that axis, which a box aligned
+    // with N1, N2 would cover by its length instead of its width (every piece within √(h/κ) of a
+    // tangent point, not within ~h, would survive). Any axis is conservative for the hull.
+    const dvec3 normal = glm::cross(at(p_, q_) - at(0, 0), at(p_, 0) - at(0, q_));
+    const dvec2 axis(normal.x, normal.y);
+    if (const double length = glm::length(axis); length > 0) {
+      double aMin = kInfinity, aMax = -kInfinity;
+      for (int i = 0; i < count; ++i) {
+        const dvec4& h = piece.points[std::size_t(i)];
+        const double t = (axis.x * h.x + axis.y * h.y) / (length * h.w);
+        aMin = std::min(aMin, t);
+        aMax = std::max(aMax, t);
+      }
+      if (aMin > tol_ || aMax < -tol_) return b;
+    }
+    b.hit = true;
+    b.zMin = lo.z;
+    b.size = glm::distance(lo, hi);
     auto length2 = [](const dvec3& v) { return glm::dot(v, v); };
     for (int j = 0; j <= q_; ++j) b.chordA = std::max(b.chordA, length2(at(p_, j) - at(0, j)));
     for (int i = 0; i <= p_; ++i) b.chordB = std::max(b.chordB, length2(at(i, q_) - at(i, 0)));
@@ -222,52 +238,53 @@ class Search {
   // Newton on F(a, b) = (x_h, y_h) of the ray-frame patch from the piece's centre (header, step 4).
   void newton(const Piece& piece) {
     dvec2 x = 0.5 * (piece.lo + piece.hi);
-    const dvec2 width = piece.hi - piece.lo;
+    // The iterate of least residual, for a tangent root where Newton does not converge: it stalls
+    // at the rounding level, or oscillates where the ray misses the surface by less than that.
     dvec2 best = x;
-    double bestResidual = kInfinity;
+    double bestResidual = kInfinity, residual = kInfinity;
     bool converged = false;
     for (int it = 0; it < kMaxNewtonIterations; ++it) {
       const HomogeneousPoint<double> h = evaluateBezierHomogeneous(patchRay_.data(), p_, q_, x.x, x.y);
       if (!(h.point.w > 0)) break;  // far outside the patch
       const double F0 = h.point.x, F1 = h.point.y;
-      const double residual = std::sqrt(F0 * F0 + F1 * F1) / h.point.w;
+      residual = std::sqrt(F0 * F0 + F1 * F1) / h.point.w;
       if (residual < bestResidual) {
         bestResidual = residual;
         best = x;
       }
-      if (residual == 0) { converged = true; break; }
+      if (residual == 0) converged = true;
+      if (converged) break;
       const double J00 = h.du.x, J01 = h.dv.x, J10 = h.du.y, J11 = h.dv.y;
       const double det = J00 * J11 - J01 * J10;
       const double norm2 = J00 * J00 + J01 * J01 + J10 * J10 + J11 * J11;
       if (!(norm2 > 0)) break;
       dvec2 step;
-      if (std::abs(det) > 1e-10 * norm2) {
+      // det/‖J‖² is the sine of the angle between the Jacobian's columns (~ the ray's incidence):
+      // full Newton steps down to 1e-12, far below any grazing angle a root is worth resolving at.
+      if (std::abs(det) > 1e-12 * norm2) {
         step = {-(J11 * F0 - J01 * F1) / det, -(J00 * F1 - J10 * F0) / det};
       } else {
-        // Rank ≈ 1 (tangent root, ray in the surface): the minimum-norm least-squares step.
+        // Rank ≈ 1 (ray in the surface): the minimum-norm least-squares step.
         step = {-(J00 * F0 + J10 * F1) / norm2, -(J01 * F0 + J11 * F1) / norm2};
       }
       x += step;
-      if (std::max(std::abs(step.x), std::abs(step.y)) <= 4 * kEps * std::max(1.0, std::max(std::abs(x.x), std::abs(x.y)))) {
-        converged = true;
-        const HomogeneousPoint<double> e = evaluateBezierHomogeneous(patchRay_.data(), p_, q_, x.x, x.y);
-        const double r = std::sqrt(e.point.x * e.point.x + e.point.y * e.point.y) / e.point.w;
-        if (e.point.w > 0 && r <= bestResidual) {
-          bestResidual = r;
-          best = x;
-        }
-        break;
-      }
-      // Left the piece's neighbourhood: that root (if any) belongs to another piece.
-      if (x.x < piece.lo.x - 2 * width.x || x.x > piece.hi.x + 2 * width.x || x.y < piece.lo.y - 2 * width.y ||
-          x.y > piece.hi.y + 2 * width.y)
-        break;
+      // Converged: the next pass evaluates the residual at x and stops. Iterates may leave the
+      // piece: converging to a root outside it proves that this piece's best iterate is not one.
+      converged = std::max(std::abs(step.x), std::abs(step.y)) <= 4 * kEps * std::max({1.0, std::abs(x.x), std::abs(x.y)});
+      if (!(std::abs(x.x) < 1e3 && std::abs(x.y) < 1e3)) break;  // diverged
     }
-    if (!(bestResidual <= kTangentResidual * nurbs_.size)) return;
-    if (best.x < piece.lo.x - kAcceptMargin || best.x > piece.hi.x + kAcceptMargin ||
-        best.y < piece.lo.y - kAcceptMargin || best.y > piece.hi.y + kAcceptMargin)
+    dvec2 root = best;
+    if (converged) {
+      // A least-squares step also converges where the ray misses the surface: check the residual.
+      root = x;
+      if (!(residual <= kTangentResidual * nurbs_.size)) return;
+    } else if (!(bestResidual <= kTangentResidual * nurbs_.size)) {
       return;
-    accept(best, !converged);
+    }
+    if (root.x < piece.lo.x - kAcceptMargin || root.x > piece.hi.x + kAcceptMargin ||
+        root.y < piece.lo.y - kAcceptMargin || root.y > piece.hi.y + kAcceptMargin)
+      return;
+    accept(root, !converged);
   }
 
   void accept(dvec2 ab, bool tangent) {

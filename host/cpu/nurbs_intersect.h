@@ -13,18 +13,23 @@
 //  2. BVH traversal with a conservative slab test (boxes padded by 1e-12 of their size and by
 //     the rounding of their coordinates; the slab parameters widened by 4 ulps).
 //  3. In each leaf sub-patch the ray meets: recursive de Casteljau halving while the ray meets the
-//     piece's control-hull box in the ray frame (a piece is dropped when all its control points lie
-//     on one side of a plane through the ray, or beyond the s range: conservative by the convex
-//     hull property, weights > 0, and tighter than an axis-aligned box), halving the spatially
-//     longer side, down to a piece whose longer side has a parameter width ≤ 2^-20 of the patch or
-//     whose box is ≤ 1e-12 of the surface's size. Near a pole or collapsed edge the spatially
-//     longer side is the one that shrinks the piece; the other one is not halved in vain.
+//     piece's control hull, tested on separating axes in the ray frame: the two plane normals, the
+//     piece's own normal projected on the ray's plane (tight at silhouettes, where a piece
+//     projects to a sliver) and the s range (all conservative by the convex hull property,
+//     weights > 0; padded by 1e-12 of the surface's size). The spatially longer side is halved,
+//     down to a piece whose longer side has a parameter width ≤ 2^-20 of the patch or whose box
+//     is ≤ 1e-12 of the surface's size; near a pole or collapsed edge the spatially longer side is
+//     the one that shrinks the piece, so the other one is not halved in vain.
 //  4. There, Newton on F from the piece's centre, with the analytic Jacobian (de Casteljau with
 //     derivatives on the patch itself, not on the piece, so the rounding of the halvings does not
-//     enter the root). A root is accepted inside the piece enlarged by 1e-9 (patch parameters)
-//     when Newton has converged (step below 4 ulps) or, at a tangent root (silhouette: det J → 0,
-//     Newton converges only linearly and stalls at the rounding level), when its residual |F|/w is
-//     below kTangentResidual · size. Near-singular Jacobians take the minimum-norm step −Jᵀ F/‖J‖².
+//     enter the root; iterates may leave the piece). Full Newton steps while det J exceeds 1e-12
+//     of ‖J‖², else the minimum-norm step −Jᵀ F/‖J‖² (a ray lying in the surface). A root is
+//     accepted inside the piece enlarged by 1e-9 (patch parameters) when
+//      - Newton converged (step below 4 ulps) with a residual |F|/w ≤ kTangentResidual · size, or
+//      - Newton did not converge (a tangent root at a silhouette: det J → 0, linear convergence
+//        down to the rounding level, then oscillation; or a miss by less than the rounding), at
+//        its iterate of least residual if that is ≤ kTangentResidual · size. A Newton that
+//        converges to a root outside the piece (a grazing ray's root nearby) accepts nothing.
 //  5. Duplicates (a root on a piece boundary is found from both sides) are merged: same (u, v)
 //     within 1e-9; same point within 1e-9 of the size (a pole: one point, many (u, v)); or two
 //     roots within 1e-6 in (u, v) of which one is a tangent root, whose position along the tangent
@@ -32,10 +37,15 @@
 //  s of a root is the projection of S(u, v) on the ray, s = s0 + (S − A)·d/|d|² with the exact
 //  rounding error of A = o + s0 d folded in (two-sum, fma).
 //
+// Accuracy and cost (measured, tests/test_nurbs_intersect.cpp prints them): hits re-evaluated in
+// long double lie within 5e-13 px of their ray (camera 0.5 m away, f = 12 mm, 4.4 µm pixels), and
+// a root's error times the cosine of incidence stays below 2e-17 m beyond the rounding of s itself;
+// a camera ray costs 15–21 µs on this 2-core machine (plate, cylinder, wavy specimen).
+//
 // Limits. Two genuine roots closer than ~2^-20 of a patch (a ray within ~1e-12 of the size of a
 // tangent contact) may be reported as one. A ray lying exactly in a flat region of the surface has
 // infinitely many roots; intersectNearest returns the nearest quickly, intersectAll returns one per
-// bottom piece (slow: avoid).
+// bottom piece along the ray (up to ~10^6, seconds: avoid).
 #include <vector>
 
 #include "geometry/nurbs_bvh.h"

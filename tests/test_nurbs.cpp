@@ -77,7 +77,7 @@ void checkExtraction(const NurbsSurface& s, int expectedPatches) {
   CHECK(int(patches.size()) == expectedPatches);
   double area = 0;
   for (const BezierPatch& p : patches) area += (p.uvMax.x - p.uvMin.x) * (p.uvMax.y - p.uvMin.y);
-  CHECK(area == doctest::Approx(1.0).epsilon(1e-14));  // the patches tile [0, 1]²
+  CHECK(area == doctest::Approx(1.0).epsilon(1e-14));  // the patches tile [0, 1]² (20 roundings)
   const double size = diagonal(s);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> uniform(0, 1);
@@ -94,6 +94,9 @@ void checkExtraction(const NurbsSurface& s, int expectedPatches) {
   }
   MESSAGE("extraction: worst |S_nurbs - S_bezier| = " << double(worstPoint / size) << " of the size, derivatives "
                                                       << double(worstDerivative / derivativeScale));
+  // Both sides are sums of a few dozen products of O(size) numbers: some 1e-16 of the size (the
+  // task's bound is 1e-13). Derivatives also go through the chain rule 1/(span width) (up to ~20
+  // here) and the quotient rule with weights down to 0.4: 1e-11 leaves a factor ~1000 of margin.
   CHECK(worstPoint <= 1e-13 * size);
   CHECK(worstDerivative <= 1e-11 * derivativeScale);
 }
@@ -101,7 +104,8 @@ void checkExtraction(const NurbsSurface& s, int expectedPatches) {
 }  // namespace
 
 TEST_CASE("nurbs: evaluation reproduces exact shapes (circle arcs, linear precision)") {
-  // Rational quadratic arcs: every point of the cylinder lies on x² + z² = R².
+  // Rational quadratic arcs: every point of the cylinder lies on x² + z² = R² (to the rounding of
+  // the double control points, ~1e-18 m at 0.05 m: 1e-17 is a few of those).
   const NurbsSurface cyl = cylinderSurface(0.05, -2.0, 2.0, 3, -0.02, 0.03);
   const NurbsSurface sphere = sphereOctantSurface(0.1);
   for (int k = 0; k <= 100; ++k) {
@@ -114,6 +118,7 @@ TEST_CASE("nurbs: evaluation reproduces exact shapes (circle arcs, linear precis
     // The normal of a sphere is radial: ∂S/∂u × ∂S/∂v ∥ S (away from the pole u = 0).
     if (u > 0.01L) {
       const auto n = glm::cross(s.du, s.dv);
+      // sin(angle between n and S) below 1e-15: rounding of the double control points only.
       CHECK(glm::length(glm::cross(n, s.point)) < 1e-15L * glm::length(n) * glm::length(s.point));
     }
   }
@@ -125,7 +130,7 @@ TEST_CASE("nurbs: evaluation reproduces exact shapes (circle arcs, linear precis
     const auto p = evaluateNurbs<long double>(plate, u, v);
     CHECK(std::abs(p.point.x - (-0.1L + 0.2L * u)) < 1e-16L);
     CHECK(std::abs(p.point.y - (-0.05L + 0.1L * v)) < 1e-16L);
-    CHECK(std::abs(p.du.x - 0.2L) < 1e-15L);
+    CHECK(std::abs(p.du.x - 0.2L) < 1e-15L);  // control differences / knot differences: ~1e-16 of 0.2
     CHECK(std::abs(p.dv.y - 0.1L) < 1e-15L);
   }
 }
@@ -212,6 +217,7 @@ TEST_CASE("nurbs: de Casteljau split and sub-range extraction are exact") {
     }
   }
   MESSAGE("split: worst difference " << worst / size << " of the size");
+  // Two or three de Casteljau levels and one evaluation on each side: ~10 roundings of O(size).
   CHECK(worst <= 1e-14 * size);
 }
 
@@ -241,9 +247,10 @@ TEST_CASE("nurbs: derivative bounds contain every sampled normal and speed") {
                                 1e-9 * std::max(glm::length(e.du), glm::length(e.dv));
           if (bounds.normalHalfAngle < kPi && !singular) {
             const double angle = std::acos(std::clamp(glm::dot(glm::normalize(n), bounds.normalAxis), -1.0, 1.0));
-            CHECK(angle <= bounds.normalHalfAngle + 1e-9);
+            CHECK(angle <= bounds.normalHalfAngle + 1e-9);  // acos near 0 loses half the digits
           }
           const double sa = glm::length(e.du), sb = glm::length(e.dv);
+          // The bounds are exact expressions of rounded control points: 1e-12 covers their rounding.
           CHECK(sa <= bounds.speedMaxA * (1 + 1e-12));
           CHECK(sa >= bounds.speedMinA * (1 - 1e-12));
           CHECK(sb <= bounds.speedMaxB * (1 + 1e-12));
@@ -310,7 +317,7 @@ BvhStats checkPrepared(const NurbsSurface& s, const std::string& name) {
           const double a = sp.localMin.x + (sp.localMax.x - sp.localMin.x) * i / 8;
           const double b = sp.localMin.y + (sp.localMax.y - sp.localMin.y) * j / 8;
           const dvec3 x = evaluateBezier<double>(patch, a, b).point;
-          const double tol = 1e-13 * pn.size;
+          const double tol = 1e-13 * pn.size;  // evaluation and split rounding: ~1e-16 of the size
           CHECK(glm::all(glm::greaterThanEqual(x, sp.boundsMin - tol)));
           CHECK(glm::all(glm::lessThanEqual(x, sp.boundsMax + tol)));
           for (int an : ancestors) {
@@ -334,7 +341,7 @@ BvhStats checkPrepared(const NurbsSurface& s, const std::string& name) {
   std::vector<double> area(pn.patches.size(), 0);
   for (const NurbsSubPatch& sp : pn.subPatches)
     area[sp.patch] += (sp.localMax.x - sp.localMin.x) * (sp.localMax.y - sp.localMin.y);
-  for (double a : area) CHECK(a == doctest::Approx(1.0).epsilon(1e-12));
+  for (double a : area) CHECK(a == doctest::Approx(1.0).epsilon(1e-12));  // dyadic ranges: near exact
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> uniform(0, 1);
   for (int k = 0; k < 2000; ++k) {
@@ -365,7 +372,7 @@ TEST_CASE("nurbs: sub-patches and BVH are conservative, cover the surface, and a
     // around) and its rational speed variation to ≤ 2.
     const BvhStats s = checkPrepared(cylinderSurface(0.05, -2.1, 2.1, 4, -0.05, 0.05, 3), "cylinder 240 deg");
     CHECK(s.degenerate == 0);
-    CHECK(s.leaves >= 8);
+    CHECK(s.leaves >= 8);  // a 60° patch has a 30° normal cone: at least one split each
   }
   SUBCASE("rational wavy surface") { checkPrepared(rationalSurface(), "rational wavy"); }
   SUBCASE("degenerate: sphere octant with a pole") {
@@ -376,7 +383,7 @@ TEST_CASE("nurbs: sub-patches and BVH are conservative, cover the surface, and a
   SUBCASE("degenerate: quarter disk with a collapsed edge") {
     const BvhStats s = checkPrepared(quarterDiskSurface(0.1), "quarter disk (collapsed edge)");
     CHECK(s.degenerate >= 1);
-    CHECK(s.degenerate <= 8);
+    CHECK(s.degenerate <= 8);  // as for the pole
   }
   SUBCASE("a typical specimen: 16 x 16 spans, curved") {
     std::vector<double> interior;
@@ -412,5 +419,6 @@ TEST_CASE("nurbs: a surface needing too many sub-patches is refused with its siz
   big.weights.assign(1026u * 1025u, 1.0);
   const auto start = std::chrono::steady_clock::now();
   CHECK_THROWS_WITH_AS(prepareNurbs(big), doctest::Contains("1049600 Bezier patches"), InputError);
+  // Counting spans is instant; extracting 10^6 patches first would take seconds.
   CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 1.0);
 }

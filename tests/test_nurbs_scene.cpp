@@ -148,3 +148,30 @@ TEST_CASE("nurbs: a surface the renderer refuses is reported at its scene line")
     CHECK(std::string(e.what()).rfind("scene.lua:7: Shape.Nurbs: the surface (1026 x 1025 control points", 0) == 0);
   }
 }
+
+TEST_CASE("nurbs: of two objects 1e-6 m apart the nearer one is seen, from either side") {
+  // Two curved objects (cylinder segments of radii R and R + 1e-6 about the same axis): from the
+  // outside the outer one is hit first, from the inside (the axis) the inner one.
+  const double R = 0.05;
+  Scene scene;
+  scene.objects.push_back(nurbsObject("inner", cylinderSurface(R, -2.1, 2.1, 4, -0.05, 0.05, 3), {0, 0, 0.5}));
+  scene.objects.push_back(nurbsObject("outer", cylinderSurface(R + 1e-6, -2.1, 2.1, 4, -0.05, 0.05, 3), {0, 0, 0.5}));
+  const PreparedScene ps = prepareScene(scene);
+  int seen = 0;
+  for (int k = 0; k < 400; ++k) {
+    const double phi = -1.5 + 3.0 * (k % 20) / 19, y = -0.04 + 0.08 * (k / 20) / 19;
+    const dvec3 onInner(R * std::sin(phi), y, 0.5 - R * std::cos(phi));
+    const dvec3 axis(0, y, 0.5);
+    cpu::SurfaceHit hit;
+    // From a camera at the origin (outside) towards the point, down to grazing near φ = ±1.5.
+    if (cpu::traceNearest(ps, dvec3(0), onInner, hit) && std::abs(hit.t - 1) < 1e-3) {
+      CHECK(hit.object == 1);
+      ++seen;
+    }
+    // From the axis outwards.
+    REQUIRE(cpu::traceNearest(ps, axis, onInner - axis, hit));
+    CHECK(hit.object == 0);
+    CHECK(hit.t == doctest::Approx(1).epsilon(1e-14));
+  }
+  CHECK(seen > 200);
+}

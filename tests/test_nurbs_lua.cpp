@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "nurbs_test_util.h"
+#include "nurbs_cox_de_boor.h"
 #include "scene/scene.h"
 #include "scene_test_util.h"
 

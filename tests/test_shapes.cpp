@@ -1,5 +1,5 @@
 // Each shape's intersection and (u, v) in its own frame, against hand-computed values, and the
-// shadow-ray rule (originOnSurface). The GPU twins are checked against these through the scenes
+// shadow-ray rule (a ray leaving the shape's own surface: `origin`). The GPU twins are checked against these through the scenes
 // (tests/test_cpu_vs_gpu.cpp).
 #include <doctest/doctest.h>
 
@@ -11,15 +11,18 @@ using namespace dicsynth;
 
 namespace {
 
+// The analytic shapes only look at whether a ray leaves their surface, not at where.
+const LocalHit<double> kSomeOrigin;
+
 LocalHit<double> mustHit(const ShapeGeometry<double>& g, dvec3 o, dvec3 d, bool originOnSurface = false) {
   LocalHit<double> hit;
-  REQUIRE(intersectShape(g, o, d, 0.0, 1e30, originOnSurface, hit));
+  REQUIRE(intersectShape(g, o, d, 0.0, 1e30, originOnSurface ? &kSomeOrigin : nullptr, hit));
   return hit;
 }
 
 bool hits(const ShapeGeometry<double>& g, dvec3 o, dvec3 d, double sMax = 1e30, bool originOnSurface = false) {
   LocalHit<double> hit;
-  return intersectShape(g, o, d, 0.0, sMax, originOnSurface, hit);
+  return intersectShape(g, o, d, 0.0, sMax, originOnSurface ? &kSomeOrigin : nullptr, hit);
 }
 
 constexpr double kEps = 1e-14;  // exact arithmetic up to a few ulps of O(1) values
@@ -171,8 +174,8 @@ TEST_CASE("shapes: float instantiation agrees with double to float accuracy") {
   LocalHit<float> hf;
   for (double x = -0.08; x <= 0.08; x += 0.01) {
     const dvec3 o{0, 0, 0}, d{x, 0.3 * x, 0.5};
-    REQUIRE(intersectShape(gd, o + dvec3(0, 0, -0.5), d, 0.0, 1e30, false, hd));
-    REQUIRE(intersectShape(gf, glm::vec3(o + dvec3(0, 0, -0.5)), glm::vec3(d), 0.0f, 1e30f, false, hf));
+    REQUIRE(intersectShape(gd, o + dvec3(0, 0, -0.5), d, 0.0, 1e30, nullptr, hd));
+    REQUIRE(intersectShape(gf, glm::vec3(o + dvec3(0, 0, -0.5)), glm::vec3(d), 0.0f, 1e30f, nullptr, hf));
     // Bound: 8 ε of the values involved (|s| ≈ 0.8, uv ≤ 1), ε = 2^-24.
     CHECK(std::abs(double(hf.s) - hd.s) < 8 * 6e-8);
     CHECK(std::abs(double(hf.uv.x) - hd.uv.x) < 8 * 6e-8);

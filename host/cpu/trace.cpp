@@ -16,7 +16,7 @@ bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit)
     ObjectRay<double> ray;
     if (!toObjectRay(obj.objectFromWorld, o, d, ray)) continue;
     LocalHit<double> local;
-    if (!intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(tBest, ray.w), false, local))
+    if (!intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(tBest, ray.w), nullptr, local))
       continue;
     const double t = worldParam(local.s, ray.w);
     if (t > 0 && t < tBest) {
@@ -38,13 +38,16 @@ bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit)
 
 bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosition) {
   const dvec3 d = lightPosition - hit.position;
+  // The shadow ray leaves the hit object at the hit: its shape skips that root by identity.
+  LocalHit<double> origin;
+  origin.uv = hit.uv;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const PreparedObject& obj = scene.objects[i];
     ObjectRay<double> ray;
     if (!toObjectRay(obj.objectFromWorld, hit.position, d, ray)) continue;
     LocalHit<double> local;
     if (intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(1.0, ray.w),
-                       int(i) == hit.object, local))
+                       int(i) == hit.object ? &origin : nullptr, local))
       return true;
   }
   return false;

@@ -80,8 +80,7 @@ ShapeGeometry<double> shapeGeometry(const Shape& s) {
     case ShapeKind::Box: g.halfSize = s.size_m * 0.5; break;
     case ShapeKind::Rectangle:
     case ShapeKind::Plane: g.extent = dvec2(s.size_m); break;
-    case ShapeKind::Nurbs:  // replaced by the NURBS preparation (issue 3, in progress)
-      throw InputError(s.where, "Shape.Nurbs: not supported by the renderer yet");
+    case ShapeKind::Nurbs: break;  // prepared by prepareNurbsShape (it owns the data)
     case ShapeKind::Triangle:
       g.p0 = s.vertices_m[0];
       g.p1 = s.vertices_m[1];
@@ -92,6 +91,16 @@ ShapeGeometry<double> shapeGeometry(const Shape& s) {
       break;
   }
   return g;
+}
+
+// Bézier patches, sub-patches and BVH of a Shape.Nurbs; its (u, v) are the normalized knot domain.
+std::shared_ptr<const PreparedNurbs> prepareNurbsShape(const Shape& s) {
+  DS_CHECK(s.nurbs != nullptr, "Shape.Nurbs without its surface");
+  try {
+    return std::make_shared<const PreparedNurbs>(prepareNurbs(*s.nurbs));
+  } catch (const InputError& e) {
+    throw InputError(s.where, e.what());
+  }
 }
 
 // A point that the homography sends to infinity cannot see (or light) the object.
@@ -137,6 +146,10 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     o.name = so.name;
     o.id = std::uint32_t(i + 1);
     o.geometry = shapeGeometry(so.shape);
+    if (so.shape.kind == ShapeKind::Nurbs) {
+      o.nurbs = prepareNurbsShape(so.shape);
+      o.geometry.nurbs = o.nurbs.get();
+    }
     o.shader = so.shader.kind;
     o.albedo = luminance(so.shader.color);
     anyLambert |= o.shader == ShaderKind::Lambert;

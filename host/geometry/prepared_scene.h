@@ -4,10 +4,12 @@
 // to its precision variant.
 #include <compare>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "camera/pinhole.h"
+#include "geometry/nurbs_bvh.h"
 #include "geometry/shapes.h"
 #include "scene/scene.h"
 
@@ -23,7 +25,8 @@ struct PreparedCamera {
 struct PreparedObject {
   std::string name;
   std::uint32_t id = 0;  // objectId in the outputs (index + 1)
-  ShapeGeometry<double> geometry;
+  ShapeGeometry<double> geometry;  // for a NURBS shape, geometry.nurbs == nurbs.get()
+  std::shared_ptr<const PreparedNurbs> nurbs;  // Bézier patches, sub-patches, BVH (Nurbs only)
   ShaderKind shader = ShaderKind::Constant;
   double albedo = 1;          // luminance of the shader colour
   int textureIndex = -1;      // into PreparedScene::textures, or -1 for a constant texture

@@ -4,9 +4,10 @@
 // tests study what fp32 loses. shaders/lib/shapes.glsl is the GPU twin, case for case.
 //
 // The ray is X(s) = o + s·d (d not normalized). A hit is the smallest s in (sMin, sMax).
-// With originOnSurface (a shadow ray leaving this very object), the root belonging to the origin is
-// discarded by identity instead of by an epsilon: for these convex or flat shapes the ray meets the
-// surface at most once more, at the root of larger |s| (none for flat shapes).
+// With `origin` (a shadow ray leaving this very object at that hit; nullptr for none), the root
+// belonging to the origin is discarded by identity instead of by an epsilon: for the convex or flat
+// analytic shapes the ray meets the surface at most once more, at the root of larger |s| (none for
+// flat shapes); a NURBS surface skips the root at the origin's (u, v) (cpu/nurbs_intersect.h).
 //
 // (u, v) ∈ [0, 1]² per shape, chosen so that seen from the default camera (at the origin looking
 // down +z, image y down) an untransformed shape shows its texture upright and unmirrored:
@@ -15,9 +16,11 @@
 //   Plane     as Rectangle for one tile, repeated: u = fract(x/w + 1/2), v = fract(y/h + 1/2)
 //   Triangle  barycentric blend of the vertices' uv
 //   Box       a 3 × 2 atlas of the faces, each seen from outside (see boxUV below)
+//   Nurbs     the surface's knot domain normalized to [0, 1]² (geometry/nurbs_surface.h)
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 #include <glm/glm.hpp>
@@ -27,6 +30,8 @@
 
 namespace dicsynth {
 
+struct PreparedNurbs;  // geometry/nurbs_bvh.h
+
 template <class Real>
 struct ShapeGeometry {
   int kind = DS_SHAPE_SPHERE;
@@ -35,6 +40,7 @@ struct ShapeGeometry {
   glm::vec<2, Real> extent{1};                // Rectangle: size (w, h); Plane: tile size (w, h)
   glm::vec<3, Real> p0{0}, p1{0}, p2{0};      // Triangle vertices
   glm::vec<2, Real> uv0{0}, uv1{0}, uv2{0};   // Triangle vertex uv
+  const PreparedNurbs* nurbs = nullptr;       // Nurbs (owned by the PreparedObject); double only
 };
 
 template <class Real>
@@ -183,15 +189,29 @@ bool intersectTriangle(const ShapeGeometry<Real>& g, glm::vec<3, Real> o, glm::v
 
 }  // namespace detail
 
+// The NURBS reference intersection (cpu/nurbs_intersect.h; declared here so that the shape switch
+// below stays in one place). Double precision only.
+namespace cpu {
+bool intersectNearest(const PreparedNurbs& nurbs, dvec3 o, dvec3 d, double sMin, double sMax,
+                      const dvec2* excludeUV, LocalHit<double>& hit);
+}  // namespace cpu
+
 template <class Real>
 bool intersectShape(const ShapeGeometry<Real>& g, glm::vec<3, Real> o, glm::vec<3, Real> d, Real sMin,
-                    Real sMax, bool originOnSurface, LocalHit<Real>& hit) {
+                    Real sMax, const std::type_identity_t<LocalHit<Real>>* origin, LocalHit<Real>& hit) {
+  const bool originOnSurface = origin != nullptr;
   switch (g.kind) {
     case DS_SHAPE_SPHERE: return detail::intersectSphere(g, o, d, sMin, sMax, originOnSurface, hit);
     case DS_SHAPE_BOX: return detail::intersectBox(g, o, d, sMin, sMax, originOnSurface, hit);
     case DS_SHAPE_TRIANGLE: return detail::intersectTriangle(g, o, d, sMin, sMax, originOnSurface, hit);
     case DS_SHAPE_PLANE: return detail::intersectXYPlane(g, o, d, sMin, sMax, originOnSurface, false, hit);
     case DS_SHAPE_RECTANGLE: return detail::intersectXYPlane(g, o, d, sMin, sMax, originOnSurface, true, hit);
+    case DS_SHAPE_NURBS:
+      if constexpr (std::is_same_v<Real, double>) {
+        return g.nurbs && cpu::intersectNearest(*g.nurbs, o, d, sMin, sMax, origin ? &origin->uv : nullptr, hit);
+      } else {
+        return false;  // no reduced-precision NURBS reference
+      }
   }
   return false;
 }

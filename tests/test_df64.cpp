@@ -16,6 +16,7 @@
 #include "gpu/df64.h"
 #include "gpu/df64_cases.h"
 #include "gpu_test_context.h"
+#include "run_cli.h"
 #include "shared/rng.h"
 #include "spirv/df64_probe_bad_split_fp32.h"
 #include "spirv/df64_probe_fp32.h"
@@ -249,3 +250,15 @@ TEST_CASE("df64: the self-test fails a library compiled without precise (on lava
   test::expectNoValidationMessages();
 }
 
+TEST_CASE("df64: dicsynth devices reports the self-test per device") {
+  const test::CliResult text = test::runCli("devices");
+  CHECK(text.exitCode == 0);
+  CHECK(text.out.find("df64 self-test:       pass (worst 2^-") != std::string::npos);
+  CHECK(text.out.find("fma exact:            ") != std::string::npos);
+  const test::CliResult json = test::runCli("devices --json");
+  CHECK(json.exitCode == 0);
+  CHECK(json.out.find("\"df64_pass\": true, \"df64_worst_log2\": -4") != std::string::npos);
+  CHECK(json.out.find("\"df64_worst_op\": \"") != std::string::npos);
+  CHECK(json.out.find("\"fma_exact\": ") != std::string::npos);
+  CHECK(json.err.empty());
+}

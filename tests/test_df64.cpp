@@ -153,8 +153,8 @@ TEST_CASE("df64: the self-test is cached per device; a damaged cache file is ign
   CHECK_FALSE(first.fromCache);
   CHECK(first.passed);
   MESSAGE("self-test on " << ctx.info().name << ": " << gpu::describeDf64(first) << ", fma exact: "
-                          << std::string(first.fmaExact ? "yes" : "no") << ", " << firstSeconds * 1e3 << " ms, cache "
-                          << first.cachePath);
+                          << std::string(first.fmaExact ? "yes" : "no") << ", " << firstSeconds * 1e3
+                          << " ms, cache " << first.cachePath);
   REQUIRE(!first.cachePath.empty());
   CHECK(std::filesystem::path(first.cachePath).parent_path() == folder.path());
   CHECK(first.cachePath.find(ctx.info().pipelineCacheUUID) != std::string::npos);
@@ -183,8 +183,8 @@ TEST_CASE("df64: the self-test is cached per device; a damaged cache file is ign
 
   const std::string valid = test::readBytes(first.cachePath);
   // Damaged: garbage, truncated (no end line), a bad number. Each is ignored and rewritten.
-  for (const std::string& damaged : {std::string("not a cache\n"), valid.substr(0, valid.size() / 2),
-                                     valid.substr(0, valid.find("op dekker mul")) + "op dekker mul 0x1pZZ 1 0\nend\n"}) {
+  const std::string badNumber = valid.substr(0, valid.find("op dekker mul")) + "op dekker mul 0x1pZZ 1 0\nend\n";
+  for (const std::string& damaged : {std::string("not a cache\n"), valid.substr(0, valid.size() / 2), badNumber}) {
     test::writeBytes(first.cachePath, damaged);
     const gpu::Df64SelfTest remeasured = gpu::runDf64SelfTest(ctx);
     CHECK_FALSE(remeasured.fromCache);
@@ -245,7 +245,8 @@ TEST_CASE("df64: the self-test fails a library compiled without precise (on lava
     CHECK_FALSE(op(ops, "add").passed());
     CHECK_FALSE(op(ops, "mul").passed());
   } else {
-    MESSAGE("'" << ctx.info().name << "' without precise: " << (allPassed ? std::string("all pass") : std::string("fails")));
+    MESSAGE("'" << ctx.info().name << "' without precise: "
+                << std::string(allPassed ? "every operation passes" : "fails"));
   }
   test::expectNoValidationMessages();
 }

@@ -77,8 +77,10 @@ void printText(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
     const Df64Status& status = df64[d.index];
     if (status.selfTest) {
       std::printf("    df64 self-test:       %s\n", gpu::describeDf64(*status.selfTest).c_str());
-      std::printf("    fma exact:            %s\n",
-                  status.selfTest->fmaExact ? "yes (df64 products use fma)" : "no (df64 products use Dekker's split)");
+      const gpu::Df64SelfTest& t = *status.selfTest;
+      std::printf("    fma exact:            %s\n", !t.fmaExact ? "no (df64 products use Dekker's split)"
+                                                    : t.useFma ? "yes (df64 products use fma)"
+                                                               : "yes, but the fma variant failed (Dekker's split)");
     } else {
       std::printf("    df64 self-test:       %s\n", status.note.c_str());
     }
@@ -89,7 +91,8 @@ void printText(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
     std::printf("* = selected by --device '%s'\n", selector.c_str());
 }
 
-void printJson(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df64Status>& df64, uint32_t selected) {
+void printJson(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df64Status>& df64,
+               uint32_t selected) {
   std::printf("[");
   for (size_t i = 0; i < devices.size(); ++i) {
     const auto& d = devices[i];

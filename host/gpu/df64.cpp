@@ -39,7 +39,8 @@ double joinDf64(Df64 d) { return static_cast<double>(d.hi) + static_cast<double>
 const Df64OpError& Df64SelfTest::worst() const {
   const auto& list = ops();
   DS_CHECK(!list.empty(), "df64 self-test without operations");
-  auto unnormalized = std::find_if(list.begin(), list.end(), [](const Df64OpError& e) { return e.unnormalized > 0; });
+  auto unnormalized =
+      std::find_if(list.begin(), list.end(), [](const Df64OpError& e) { return e.unnormalized > 0; });
   if (unnormalized != list.end()) return *unnormalized;
   return *std::max_element(list.begin(), list.end(), [](const Df64OpError& a, const Df64OpError& b) {
     return a.maxRelError < b.maxRelError;
@@ -130,7 +131,8 @@ std::string cacheFile(const Context& context) {
   if (folder.empty()) return "";
   char version[16];
   std::snprintf(version, sizeof version, "%08x", context.properties().driverVersion);
-  return (fs::path(folder) / ("df64-selftest-" + context.info().pipelineCacheUUID + "-" + version + ".txt")).string();
+  const std::string name = "df64-selftest-" + context.info().pipelineCacheUUID + "-" + version + ".txt";
+  return (fs::path(folder) / name).string();
 }
 
 std::string serialize(const Df64SelfTest& t, const std::string& key) {
@@ -184,7 +186,8 @@ bool readCache(const std::string& path, const std::string& key, Df64SelfTest& t)
     }
     std::istringstream fields(line);
     std::string tag, variant, name, error, inputs, unnormalized, extra;
-    if (!(fields >> tag >> variant >> name >> error >> inputs >> unnormalized) || (fields >> extra) || tag != "op")
+    if (!(fields >> tag >> variant >> name >> error >> inputs >> unnormalized) || (fields >> extra) ||
+        tag != "op")
       return false;
     std::vector<Df64OpError>* list = variant == "dekker" ? &t.dekker : variant == "fma" ? &t.fma : nullptr;
     if (!list || list->size() >= expected.size() || expected[list->size()].name != name) return false;
@@ -204,9 +207,10 @@ bool readCache(const std::string& path, const std::string& key, Df64SelfTest& t)
 
 void writeCache(const std::string& path, const std::string& text) {
   try {
+    const fs::path folder = fs::path(path).parent_path();
     std::error_code ec;
-    fs::create_directories(fs::path(path).parent_path(), ec);
-    if (ec) throw Error("cannot create folder '" + fs::path(path).parent_path().string() + "': " + ec.message());
+    fs::create_directories(folder, ec);
+    if (ec) throw Error("cannot create folder '" + folder.string() + "': " + ec.message());
     AtomicFile file(path);
     {
       std::ofstream out(file.tempPath(), std::ios::binary | std::ios::trunc);
@@ -259,7 +263,8 @@ Df64SelfTest requireDf64(Context& context) {
 std::string describeDf64(const Df64SelfTest& t) {
   const Df64OpError& w = t.worst();
   if (t.passed) return "pass (worst " + log2Text(w.maxRelError) + ", " + w.name + ")";
-  if (w.unnormalized > 0) return "FAIL (" + w.name + ": " + std::to_string(w.unnormalized) + " unnormalized results)";
+  if (w.unnormalized > 0)
+    return "FAIL (" + w.name + ": " + std::to_string(w.unnormalized) + " unnormalized results)";
   return "FAIL (" + w.name + " " + log2Text(w.maxRelError) + " > " + log2Text(kDf64MaxRelError) + ")";
 }
 

@@ -280,9 +280,10 @@ Df64ProbeItem randomVectorItem(int op, int width, CaseRng& r) {
   }
   if (cancel && op == DS_DF64_OP_DOT) {
     // The last b makes the dot product cancel to ~2^-53 of Σ|aᵢbᵢ| (or exactly).
+    auto a = [&](int k) { return joinDf64({item.aHi[k], item.aLo[k]}); };
     double s = 0;
-    for (int k = 0; k + 1 < width; ++k) s += joinDf64({item.aHi[k], item.aLo[k]}) * joinDf64({item.bHi[k], item.bLo[k]});
-    setB(item, width - 1, num(-s / joinDf64({item.aHi[width - 1], item.aLo[width - 1]})));
+    for (int k = 0; k + 1 < width; ++k) s += a(k) * joinDf64({item.bHi[k], item.bLo[k]});
+    setB(item, width - 1, num(-s / a(width - 1)));
   } else if (cancel) {
     // b nearly parallel to a: every cross component cancels.
     const double c = r.sign() * std::ldexp(1.0, r.range(-10, 10));
@@ -515,11 +516,12 @@ std::vector<Df64ProbeItem> makeFmaItems() {
   };
   add(1.0f + 0x1p-12f, 1.0f + 0x1p-12f, -(1.0f + 0x1p-11f));
   CaseRng r(0xf3au);
+  auto randomFloat = [&](int eMin, int eMax) {
+    return float(r.sign()) * std::ldexp(1.0f + float(r.next() >> 9) * 0x1p-23f, r.range(eMin, eMax));
+  };
   for (int i = 0; i < 255; ++i) {
-    const float a = float(r.sign()) * std::ldexp(1.0f + float(r.next() >> 9) * 0x1p-23f, r.range(-10, 10));
-    const float b = float(r.sign()) * std::ldexp(1.0f + float(r.next() >> 9) * 0x1p-23f, r.range(-10, 10));
-    const float c = i % 2 == 0 ? -(a * b) : float(r.sign()) * std::ldexp(1.0f + float(r.next() >> 9) * 0x1p-23f, r.range(-12, 12));
-    add(a, b, c);
+    const float a = randomFloat(-10, 10), b = randomFloat(-10, 10);
+    add(a, b, i % 2 == 0 ? -(a * b) : randomFloat(-12, 12));
   }
   return items;
 }

@@ -117,18 +117,21 @@ TEST_CASE("df64: the fma probe tells a fused fma from an unfused one") {
 TEST_CASE("df64: host split and join") {
   // Doubles of every exponent float can hold with lo normal: |x − (hi + lo)| ≤ 2^-48 |x|.
   double worst = 0;
+  std::size_t inexactJoins = 0, unnormalized = 0;
   for (std::uint32_t i = 0; i < 200000; ++i) {
     const double m = 1.0 + double(ds_hash(2 * i) >> 6) * 0x1p-26 + double(ds_hash(2 * i + 1) >> 6) * 0x1p-52;
     const int e = -100 + int(ds_hash(~i) % 228);  // 2^-100 … 2^127
     const double x = (i & 1 ? -1 : 1) * std::ldexp(m, e);
     const gpu::Df64 d = gpu::splitDf64(x);
     const long double sum = (long double)d.hi + (long double)d.lo;
-    CHECK(gpu::joinDf64(d) == sum);                          // join is exact
-    CHECK(float(d.hi + d.lo) == d.hi);                       // normalized
+    inexactJoins += gpu::joinDf64(d) != sum;
+    unnormalized += float(d.hi + d.lo) != d.hi;
     worst = std::max(worst, double(std::fabs(x - sum) / std::fabs(x)));
   }
   MESSAGE("split/join worst relative error 2^" << std::log2(worst));
   CHECK(worst <= 0x1p-48);
+  CHECK(inexactJoins == 0);
+  CHECK(unnormalized == 0);
   // A float splits into itself and 0.
   for (float f : {0.0f, -0.0f, 1.0f, 0x1p-149f, FLT_MIN, FLT_MAX, -3.1415927f, 0x1.fffffep-1f}) {
     const gpu::Df64 d = gpu::splitDf64(f);
@@ -143,7 +146,7 @@ TEST_CASE("df64: host split and join") {
   CHECK(gpu::splitDf64(-0x1p200).hi == -INFINITY);
 }
 
-TEST_CASE("df64: the self-test is cached per device; a damaged cache file is ignored") {
+TEST_CASE("df64: the self-test is cached per device and ignores a damaged cache file") {
   test::TempFolder folder;
   gpu::Context ctx(optionsWithCache(folder));
 

@@ -6,9 +6,16 @@
 //
 // Per device: index, name, type, driver, Vulkan version, fp64 (shaderFloat64), int64 (shaderInt64),
 // largest storage buffer, subgroup size. fp64 decides whether the native double-precision shader
-// variant can run on the device.
+// variant can run on the device. Also the df64 self-test (host/gpu/df64.h): whether double-float
+// arithmetic is right on the device, its worst operation, and whether fma() is exact there (then
+// df64 products use it). That needs a Vulkan context per device; the result is cached per device
+// and driver version next to the pipeline cache, so only the first listing pays for it.
+// Devices below Vulkan 1.2 are listed with a note instead.
+#include <cmath>
 #include <cstdio>
+#include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +23,7 @@
 #include "core/json.h"
 #include "core/error.h"
 #include "gpu/context.h"
+#include "gpu/df64.h"
 #include "gpu/device_query.h"
 
 namespace dicsynth::cli {
@@ -35,7 +43,26 @@ std::string mebibytes(uint64_t bytes) {
 
 const char* yesNo(bool b) { return b ? "yes" : "no"; }
 
-void printText(const std::vector<gpu::DeviceInfo>& devices, uint32_t selected, const std::string& selector) {
+// The df64 self-test of one device, or why there is none.
+struct Df64Status {
+  std::optional<gpu::Df64SelfTest> selfTest;
+  std::string note;  // when there is no self-test
+};
+
+Df64Status df64Status(const gpu::DeviceInfo& d) {
+  if (d.apiVersion < VK_API_VERSION_1_2) return {std::nullopt, "skipped (Vulkan below 1.2)"};
+  try {
+    gpu::ContextOptions options;
+    options.device = std::to_string(d.index);
+    gpu::Context context(options);
+    return {gpu::runDf64SelfTest(context), ""};
+  } catch (const std::exception& e) {
+    return {std::nullopt, std::string("not run: ") + e.what()};
+  }
+}
+
+void printText(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df64Status>& df64,
+               uint32_t selected, const std::string& selector) {
   for (const auto& d : devices) {
     std::string version = gpu::apiVersionString(d.apiVersion);
     if (d.apiVersion < VK_API_VERSION_1_2) version += " (dicsynth needs 1.2)";
@@ -47,6 +74,16 @@ void printText(const std::vector<gpu::DeviceInfo>& devices, uint32_t selected, c
     std::printf("    int64 (shaderInt64):  %s\n", yesNo(d.shaderInt64));
     std::printf("    max storage buffer:   %s MiB\n", mebibytes(d.maxStorageBufferRange).c_str());
     std::printf("    subgroup size:        %u\n", d.subgroupSize);
+    const Df64Status& status = df64[d.index];
+    if (status.selfTest) {
+      std::printf("    df64 self-test:       %s\n", gpu::describeDf64(*status.selfTest).c_str());
+      const gpu::Df64SelfTest& t = *status.selfTest;
+      std::printf("    fma exact:            %s\n", !t.fmaExact ? "no (df64 products use Dekker's split)"
+                                                    : t.useFma ? "yes (df64 products use fma)"
+                                                               : "yes, but the fma variant failed (Dekker's split)");
+    } else {
+      std::printf("    df64 self-test:       %s\n", status.note.c_str());
+    }
   }
   if (selector.empty())
     std::printf("* = automatic choice (discrete GPU > integrated > virtual > CPU); --device overrides\n");
@@ -54,7 +91,8 @@ void printText(const std::vector<gpu::DeviceInfo>& devices, uint32_t selected, c
     std::printf("* = selected by --device '%s'\n", selector.c_str());
 }
 
-void printJson(const std::vector<gpu::DeviceInfo>& devices, uint32_t selected) {
+void printJson(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df64Status>& df64,
+               uint32_t selected) {
   std::printf("[");
   for (size_t i = 0; i < devices.size(); ++i) {
     const auto& d = devices[i];
@@ -71,6 +109,19 @@ void printJson(const std::vector<gpu::DeviceInfo>& devices, uint32_t selected) {
     std::printf("\"maxStorageBuffer_MiB\": %s, ", mebibytes(d.maxStorageBufferRange).c_str());
     std::printf("\"subgroupSize\": %u, ", d.subgroupSize);
     std::printf("\"pipelineCacheUUID\": %s, ", json::quote(d.pipelineCacheUUID).c_str());
+    if (const Df64Status& status = df64[d.index]; status.selfTest) {
+      const gpu::Df64OpError& worst = status.selfTest->worst();
+      std::printf("\"df64_pass\": %s, ", json::boolean(status.selfTest->passed).c_str());
+      if (std::isfinite(worst.log2))
+        std::printf("\"df64_worst_log2\": %.2f, ", worst.log2);
+      else
+        std::printf("\"df64_worst_log2\": null, ");
+      std::printf("\"df64_worst_op\": %s, ", json::quote(worst.name).c_str());
+      std::printf("\"fma_exact\": %s, ", json::boolean(status.selfTest->fmaExact).c_str());
+    } else {
+      std::printf("\"df64_pass\": null, \"df64_worst_log2\": null, \"df64_worst_op\": null, "
+                  "\"fma_exact\": null, \"df64_note\": %s, ", json::quote(status.note).c_str());
+    }
     std::printf("\"selected\": %s}", d.index == selected ? "true" : "false");
   }
   std::printf("%s]\n", devices.empty() ? "" : "\n");
@@ -79,10 +130,12 @@ void printJson(const std::vector<gpu::DeviceInfo>& devices, uint32_t selected) {
 int runDevices(const DevicesOptions& options) {
   std::vector<gpu::DeviceInfo> devices = gpu::listDevices();
   uint32_t selected = gpu::selectDevice(devices, options.device);  // throws as render would
+  std::vector<Df64Status> df64;
+  for (const auto& d : devices) df64.push_back(df64Status(d));
   if (options.json)
-    printJson(devices, selected);
+    printJson(devices, df64, selected);
   else
-    printText(devices, selected, options.device);
+    printText(devices, df64, selected, options.device);
   return kExitOk;
 }
 

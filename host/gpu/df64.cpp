@@ -1,0 +1,271 @@
+// df64 on the host: split/join, running the probe shader, the cached self-test.
+#include "gpu/df64.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <system_error>
+
+#include "core/error.h"
+#include "gpu/buffer.h"
+#include "gpu/compute.h"
+#include "gpu/context.h"
+#include "gpu/df64_cases.h"
+#include "gpu/pipeline_cache.h"
+#include "io/atomic_file.h"
+#include "shared/bindings.h"
+#include "spirv/df64_probe_fp32.h"
+
+namespace dicsynth::gpu {
+
+namespace fs = std::filesystem;
+
+Df64 splitDf64(double x) {
+  // From 2^128·(1 − 2^-25) on, float(x) rounds to infinity (and C++ leaves the conversion undefined).
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  if (std::fabs(x) >= 0x1.ffffffp127) return {x > 0 ? kInf : -kInf, 0.0f};
+  const float hi = static_cast<float>(x);
+  return {hi, static_cast<float>(x - static_cast<double>(hi))};
+}
+
+double joinDf64(Df64 d) { return static_cast<double>(d.hi) + static_cast<double>(d.lo); }
+
+const Df64OpError& Df64SelfTest::worst() const {
+  const auto& list = ops();
+  DS_CHECK(!list.empty(), "df64 self-test without operations");
+  auto unnormalized =
+      std::find_if(list.begin(), list.end(), [](const Df64OpError& e) { return e.unnormalized > 0; });
+  if (unnormalized != list.end()) return *unnormalized;
+  return *std::max_element(list.begin(), list.end(), [](const Df64OpError& a, const Df64OpError& b) {
+    return a.maxRelError < b.maxRelError;
+  });
+}
+
+namespace {
+
+// The probe's results for `items`, in chunks of at most 2^16 items per dispatch.
+std::vector<Df64ProbeResult> runProbe(Context& context, std::span<const std::uint32_t> spirv, bool fma,
+                                      std::span<const Df64ProbeItem> items) {
+  std::vector<Df64ProbeResult> results(items.size());
+  if (items.empty()) return results;
+  const ComputePipeline pipeline(context, spirv, 2, sizeof(std::uint32_t),
+                                 {{DS_SPEC_DF64_FMA, fma ? 1u : 0u}});
+  const std::size_t chunk = std::min<std::size_t>(items.size(), 1u << 16);
+  Buffer in(context, chunk * sizeof(Df64ProbeItem), BufferUse::Input);
+  Buffer out(context, chunk * sizeof(Df64ProbeResult), BufferUse::Readback);
+  Buffer* buffers[] = {&in, &out};
+  for (std::size_t first = 0; first < items.size(); first += chunk) {
+    const std::size_t n = std::min(chunk, items.size() - first);
+    in.upload(items.data() + first, n * sizeof(Df64ProbeItem));
+    const auto count = static_cast<std::uint32_t>(n);
+    dispatchAndWait(context, pipeline, buffers, &count, static_cast<std::uint32_t>((n + 63) / 64));
+    out.download(results.data() + first, n * sizeof(Df64ProbeResult));
+  }
+  return results;
+}
+
+bool allPassed(const std::vector<Df64OpError>& ops) {
+  return !ops.empty() && std::all_of(ops.begin(), ops.end(), [](const Df64OpError& e) { return e.passed(); });
+}
+
+std::string log2Text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "2^%.1f", std::log2(x));
+  return x > 0 ? buf : "0";
+}
+
+std::string describeOp(const Df64OpError& e) {
+  if (e.unnormalized > 0)
+    return e.name + ": " + std::to_string(e.unnormalized) + " results not normalized (|lo| > ulp(hi)/2)";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%s: max relative error %s (%.3g) > bound %s", e.name.c_str(),
+                log2Text(e.maxRelError).c_str(), e.maxRelError, log2Text(kDf64MaxRelError).c_str());
+  return buf;
+}
+
+Df64SelfTest measureSelfTest(Context& context) {
+  const auto start = std::chrono::steady_clock::now();
+  Df64SelfTest t;
+  // The Dekker pipeline also runs the fma items (fma() itself does not depend on the constant).
+  const std::vector<Df64ProbeItem> items = df64::makeItems(kDf64SelfTestInputs);
+  const std::vector<Df64ProbeItem> fmaItems = df64::makeFmaItems();
+  std::vector<Df64ProbeItem> all = items;
+  all.insert(all.end(), fmaItems.begin(), fmaItems.end());
+  const std::vector<Df64ProbeResult> results = runProbe(context, spirv::df64_probe_fp32, false, all);
+  const std::span<const Df64ProbeResult> resultSpan(results);
+  t.dekker = df64::evaluate(items, resultSpan.first(items.size()));
+  t.fmaExact = df64::fmaResultsExact(fmaItems, resultSpan.subspan(items.size()));
+  if (t.fmaExact) t.fma = df64::evaluate(items, runProbe(context, spirv::df64_probe_fp32, true, items));
+  t.useFma = t.fmaExact && allPassed(t.fma);
+  t.passed = allPassed(t.ops());
+  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return t;
+}
+
+// ---- Cache file: one per device and driver version, in the pipeline cache's folder ----
+// Text, one fact per line; hexadecimal floats (%a) so the errors read back bit-exact. The key line
+// names the device and driver, the probe's SPIR-V (its FNV-1a hash: any change of df64.glsl or
+// the probe), the dicsynth version (the input set is host code) and the input count; a file whose
+// key, format or operation list differs is ignored and rewritten.
+constexpr const char* kCacheMagic = "dicsynth df64 self-test 1";
+
+std::string cacheKey(const Context& context) {
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (std::uint32_t word : spirv::df64_probe_fp32)
+    for (int byte = 0; byte < 4; ++byte) hash = (hash ^ ((word >> (8 * byte)) & 0xffu)) * 0x100000001b3ull;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "%s %08x %016llx %s %zu", context.info().pipelineCacheUUID.c_str(),
+                context.properties().driverVersion, static_cast<unsigned long long>(hash), DS_VERSION,
+                kDf64SelfTestInputs);
+  return buf;
+}
+
+std::string cacheFile(const Context& context) {
+  const std::string folder = resolveCacheDir(context.options().cacheDir);
+  if (folder.empty()) return "";
+  char version[16];
+  std::snprintf(version, sizeof version, "%08x", context.properties().driverVersion);
+  const std::string name = "df64-selftest-" + context.info().pipelineCacheUUID + "-" + version + ".txt";
+  return (fs::path(folder) / name).string();
+}
+
+std::string serialize(const Df64SelfTest& t, const std::string& key) {
+  std::ostringstream o;
+  char buf[256];
+  o << kCacheMagic << "\nkey " << key << "\nfma_exact " << t.fmaExact << "\n";
+  std::snprintf(buf, sizeof buf, "seconds %a\n", t.seconds);
+  o << buf;
+  auto ops = [&](const char* variant, const std::vector<Df64OpError>& list) {
+    for (const Df64OpError& e : list) {
+      std::snprintf(buf, sizeof buf, "op %s %s %a %zu %zu\n", variant, e.name.c_str(), e.maxRelError, e.inputs,
+                    e.unnormalized);
+      o << buf;
+    }
+  };
+  ops("dekker", t.dekker);
+  ops("fma", t.fma);
+  o << "end\n";
+  return o.str();
+}
+
+bool parseNumber(const std::string& text, double& value) {
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(value);
+}
+bool parseCount(const std::string& text, std::size_t& value) {
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+  value = static_cast<std::size_t>(v);
+  return !text.empty() && text[0] != '-' && end == text.c_str() + text.size();
+}
+
+// The cached self-test, or false when the file is absent, damaged or for another key.
+bool readCache(const std::string& path, const std::string& key, Df64SelfTest& t) {
+  std::ifstream in(path);
+  if (!in) return false;
+  const std::vector<Df64OpError> expected = df64::evaluate({}, {});  // names and bounds, in order
+  std::string line;
+  if (!std::getline(in, line) || line != kCacheMagic) return false;
+  if (!std::getline(in, line) || line != "key " + key) return false;
+  if (!std::getline(in, line) || (line != "fma_exact 0" && line != "fma_exact 1")) return false;
+  t.fmaExact = line.back() == '1';
+  if (!std::getline(in, line) || line.rfind("seconds ", 0) != 0 || !parseNumber(line.substr(8), t.seconds))
+    return false;
+  bool ended = false;
+  while (std::getline(in, line)) {
+    if (line == "end") {
+      ended = true;
+      break;
+    }
+    std::istringstream fields(line);
+    std::string tag, variant, name, error, inputs, unnormalized, extra;
+    if (!(fields >> tag >> variant >> name >> error >> inputs >> unnormalized) || (fields >> extra) ||
+        tag != "op")
+      return false;
+    std::vector<Df64OpError>* list = variant == "dekker" ? &t.dekker : variant == "fma" ? &t.fma : nullptr;
+    if (!list || list->size() >= expected.size() || expected[list->size()].name != name) return false;
+    Df64OpError e = expected[list->size()];
+    if (!parseNumber(error, e.maxRelError) || e.maxRelError < 0 || !parseCount(inputs, e.inputs) ||
+        !parseCount(unnormalized, e.unnormalized))
+      return false;
+    e.log2 = e.maxRelError > 0 ? std::log2(e.maxRelError) : -std::numeric_limits<double>::infinity();
+    list->push_back(e);
+  }
+  if (!ended || t.dekker.size() != expected.size() || t.fma.size() != (t.fmaExact ? expected.size() : 0))
+    return false;
+  t.useFma = t.fmaExact && allPassed(t.fma);
+  t.passed = allPassed(t.ops());
+  return true;
+}
+
+void writeCache(const std::string& path, const std::string& text) {
+  try {
+    const fs::path folder = fs::path(path).parent_path();
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec) throw Error("cannot create folder '" + folder.string() + "': " + ec.message());
+    AtomicFile file(path);
+    {
+      std::ofstream out(file.tempPath(), std::ios::binary | std::ios::trunc);
+      out << text;
+      out.close();
+      if (!out) throw Error("cannot write '" + file.tempPath() + "'");
+    }
+    file.commit();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dicsynth: warning: df64 self-test result not cached: %s\n", e.what());
+  }
+}
+
+}  // namespace
+
+std::vector<Df64OpError> measureDf64(Context& context, std::span<const std::uint32_t> probeSpirv,
+                                     const Df64ProbeOptions& options) {
+  const std::vector<Df64ProbeItem> items = df64::makeItems(options.randomInputsPerOp);
+  return df64::evaluate(items, runProbe(context, probeSpirv, options.fma, items));
+}
+
+bool probeFmaExact(Context& context, std::span<const std::uint32_t> probeSpirv) {
+  const std::vector<Df64ProbeItem> items = df64::makeFmaItems();
+  return df64::fmaResultsExact(items, runProbe(context, probeSpirv, false, items));
+}
+
+Df64SelfTest runDf64SelfTest(Context& context) {
+  const std::string path = cacheFile(context), key = cacheKey(context);
+  Df64SelfTest cached;
+  if (!path.empty() && readCache(path, key, cached)) {
+    cached.fromCache = true;
+    cached.cachePath = path;
+    return cached;
+  }
+  Df64SelfTest t = measureSelfTest(context);
+  t.cachePath = path;
+  if (!path.empty()) writeCache(path, serialize(t, key));
+  return t;
+}
+
+Df64SelfTest requireDf64(Context& context) {
+  Df64SelfTest t = runDf64SelfTest(context);
+  if (!t.passed)
+    throw InputError("df64: device '" + context.info().name + "' (" + context.info().driver +
+                     ") fails the df64 self-test: " + describeOp(t.worst()) +
+                     "; its df64 arithmetic cannot be trusted: use fp32 or fp64 on it, or another device");
+  return t;
+}
+
+std::string describeDf64(const Df64SelfTest& t) {
+  const Df64OpError& w = t.worst();
+  if (t.passed) return "pass (worst " + log2Text(w.maxRelError) + ", " + w.name + ")";
+  if (w.unnormalized > 0)
+    return "FAIL (" + w.name + ": " + std::to_string(w.unnormalized) + " unnormalized results)";
+  return "FAIL (" + w.name + " " + log2Text(w.maxRelError) + " > " + log2Text(kDf64MaxRelError) + ")";
+}
+
+}  // namespace dicsynth::gpu

@@ -1,0 +1,268 @@
+// df64 (shaders/lib/df64.glsl) on the device against long double references, the host split/join,
+// the cached self-test, and proof that the self-test fails a broken library.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "gpu/context.h"
+#include "gpu/df64.h"
+#include "gpu/df64_cases.h"
+#include "gpu_test_context.h"
+#include "run_cli.h"
+#include "shared/rng.h"
+#include "spirv/df64_probe_bad_split_fp32.h"
+#include "spirv/df64_probe_fp32.h"
+#include "spirv/df64_probe_no_precise_fp32.h"
+#include "temp_folder.h"
+
+using namespace dicsynth;
+
+namespace {
+
+void report(const char* variant, const std::vector<gpu::Df64OpError>& ops) {
+  for (const auto& e : ops) {
+    char line[200];
+    std::snprintf(line, sizeof line, "%s %-17s max rel. error 2^%6.1f  bound 2^%6.1f  (%zu inputs)", variant,
+                  e.name.c_str(), e.log2, e.bound > 0 ? std::log2(e.bound) : -INFINITY, e.inputs);
+    MESSAGE(line);
+  }
+}
+
+// ≥ 10^5 inputs per operation; each within 2^-44 and within the bound documented in df64.glsl.
+void checkAll(const char* variant, const std::vector<gpu::Df64OpError>& ops) {
+  report(variant, ops);
+  REQUIRE(ops.size() == 19);
+  for (const auto& e : ops) {
+    INFO(variant << " " << e.name);
+    CHECK(e.passed());
+    CHECK(e.unnormalized == 0);
+    CHECK(e.maxRelError <= e.bound);
+    if (e.name != "constants") CHECK(e.inputs >= 100000);
+  }
+}
+
+const gpu::Df64OpError& op(const std::vector<gpu::Df64OpError>& ops, const std::string& name) {
+  auto it = std::find_if(ops.begin(), ops.end(), [&](const auto& e) { return e.name == name; });
+  REQUIRE(it != ops.end());
+  return *it;
+}
+
+gpu::ContextOptions optionsWithCache(const test::TempFolder& folder) {
+  gpu::ContextOptions o;
+  o.validation = true;
+  o.cacheDir = folder.path().string();
+  return o;
+}
+
+void checkNoValidationMessages(const gpu::Context& ctx) {
+  for (const auto& m : ctx.validationMessages()) MESSAGE("validation: " << m);
+  CHECK(ctx.validationMessageCount() == 0);
+}
+
+}  // namespace
+
+TEST_CASE("df64: every operation within 2^-44 and its documented bound (Dekker TwoProd)") {
+  auto& ctx = test::gpuContext();
+  checkAll("dekker", gpu::measureDf64(ctx, spirv::df64_probe_fp32, {false, 100000}));
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("df64: the fma TwoProd variant where fma is exact, else Dekker only") {
+  auto& ctx = test::gpuContext();
+  const bool fmaExact = gpu::probeFmaExact(ctx, spirv::df64_probe_fp32);
+  const auto fmaOps = gpu::measureDf64(ctx, spirv::df64_probe_fp32, {true, 100000});
+  if (fmaExact) {
+    checkAll("fma", fmaOps);
+  } else {
+    MESSAGE("fma(a, b, c) is not computed exactly on '" << ctx.info().name
+                                                        << "': the fma TwoProd variant is not checked "
+                                                           "against the bounds (DS_SPEC_DF64_FMA stays false)");
+    // The probe's verdict is consistent: with an unfused fma, fma(a, b, −p) is 0 and a product
+    // keeps float accuracy, so the fma variant fails where the Dekker one passes.
+    report("fma (not exact, for information)", fmaOps);
+    CHECK_FALSE(op(fmaOps, "mul").passed());
+    const auto dekker = gpu::measureDf64(ctx, spirv::df64_probe_fp32, {false, 20000});
+    for (const auto& e : dekker) {
+      INFO(e.name);
+      CHECK(e.passed());
+    }
+  }
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("df64: the fma probe tells a fused fma from an unfused one") {
+  // Host-side check of the verdict itself: correctly rounded results pass, unfused ones do not.
+  const auto items = gpu::df64::makeFmaItems();
+  std::vector<gpu::Df64ProbeResult> fused(items.size()), unfused(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const float a = items[i].aHi[0], b = items[i].bHi[0], c = items[i].aLo[0];
+    fused[i].hi[0] = std::fmaf(a, b, c);
+    const float p = a * b;  // rounded: what an unfused fma computes first
+    unfused[i].hi[0] = p + c;
+  }
+  CHECK(gpu::df64::fmaResultsExact(items, fused));
+  CHECK_FALSE(gpu::df64::fmaResultsExact(items, unfused));
+  CHECK(unfused[0].hi[0] == 0.0f);  // (1 + 2^-12)² − (1 + 2^-11): 2^-24 fused, 0 unfused
+  CHECK(fused[0].hi[0] == 0x1p-24f);
+}
+
+TEST_CASE("df64: host split and join") {
+  // Doubles of every exponent float can hold with lo normal: |x − (hi + lo)| ≤ 2^-48 |x|.
+  double worst = 0;
+  std::size_t inexactJoins = 0, unnormalized = 0;
+  for (std::uint32_t i = 0; i < 200000; ++i) {
+    const double m = 1.0 + double(ds_hash(2 * i) >> 6) * 0x1p-26 + double(ds_hash(2 * i + 1) >> 6) * 0x1p-52;
+    const int e = -100 + int(ds_hash(~i) % 228);  // 2^-100 … 2^127
+    const double x = (i & 1 ? -1 : 1) * std::ldexp(m, e);
+    const gpu::Df64 d = gpu::splitDf64(x);
+    const long double sum = (long double)d.hi + (long double)d.lo;
+    inexactJoins += gpu::joinDf64(d) != sum;
+    unnormalized += float(d.hi + d.lo) != d.hi;
+    worst = std::max(worst, double(std::fabs(x - sum) / std::fabs(x)));
+  }
+  MESSAGE("split/join worst relative error 2^" << std::log2(worst));
+  CHECK(worst <= 0x1p-48);
+  CHECK(inexactJoins == 0);
+  CHECK(unnormalized == 0);
+  // A float splits into itself and 0.
+  for (float f : {0.0f, -0.0f, 1.0f, 0x1p-149f, FLT_MIN, FLT_MAX, -3.1415927f, 0x1.fffffep-1f}) {
+    const gpu::Df64 d = gpu::splitDf64(f);
+    CHECK(d.hi == f);
+    CHECK(d.lo == 0.0f);
+    CHECK(std::signbit(d.hi) == std::signbit(f));
+    CHECK(gpu::joinDf64(d) == double(f));
+  }
+  // Just inside float's range, and beyond it (where float rounding overflows).
+  CHECK(gpu::splitDf64(double(FLT_MAX) * (1 + 0x1p-30)).hi == FLT_MAX);
+  CHECK(std::isinf(gpu::splitDf64(0x1p128).hi));
+  CHECK(gpu::splitDf64(-0x1p200).hi == -INFINITY);
+}
+
+TEST_CASE("df64: the self-test is cached per device and ignores a damaged cache file") {
+  test::TempFolder folder;
+  gpu::Context ctx(optionsWithCache(folder));
+
+  const auto start = std::chrono::steady_clock::now();
+  const gpu::Df64SelfTest first = gpu::runDf64SelfTest(ctx);
+  const double firstSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CHECK_FALSE(first.fromCache);
+  CHECK(first.passed);
+  MESSAGE("self-test on " << ctx.info().name << ": " << gpu::describeDf64(first) << ", fma exact: "
+                          << std::string(first.fmaExact ? "yes" : "no") << ", " << firstSeconds * 1e3
+                          << " ms, cache " << first.cachePath);
+  REQUIRE(!first.cachePath.empty());
+  CHECK(std::filesystem::path(first.cachePath).parent_path() == folder.path());
+  CHECK(first.cachePath.find(ctx.info().pipelineCacheUUID) != std::string::npos);
+  REQUIRE(std::filesystem::exists(first.cachePath));
+
+  // Second call (and a second Context on the same device): read from the file, same numbers.
+  const auto again = std::chrono::steady_clock::now();
+  const gpu::Df64SelfTest second = gpu::runDf64SelfTest(ctx);
+  const double secondSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - again).count();
+  MESSAGE("cached read: " << secondSeconds * 1e3 << " ms");
+  CHECK(second.fromCache);
+  CHECK(second.passed == first.passed);
+  CHECK(second.fmaExact == first.fmaExact);
+  CHECK(second.useFma == first.useFma);
+  REQUIRE(second.dekker.size() == first.dekker.size());
+  for (std::size_t i = 0; i < first.dekker.size(); ++i) {
+    CHECK(second.dekker[i].name == first.dekker[i].name);
+    CHECK(second.dekker[i].maxRelError == first.dekker[i].maxRelError);  // bit-exact (%a)
+    CHECK(second.dekker[i].bound == first.dekker[i].bound);
+  }
+  {
+    gpu::Context other(optionsWithCache(folder));
+    CHECK(gpu::runDf64SelfTest(other).fromCache);
+    checkNoValidationMessages(other);
+  }
+
+  const std::string valid = test::readBytes(first.cachePath);
+  // Damaged: garbage, truncated (no end line), a bad number. Each is ignored and rewritten.
+  const std::string badNumber = valid.substr(0, valid.find("op dekker mul")) + "op dekker mul 0x1pZZ 1 0\nend\n";
+  for (const std::string& damaged : {std::string("not a cache\n"), valid.substr(0, valid.size() / 2), badNumber}) {
+    test::writeBytes(first.cachePath, damaged);
+    const gpu::Df64SelfTest remeasured = gpu::runDf64SelfTest(ctx);
+    CHECK_FALSE(remeasured.fromCache);
+    CHECK(remeasured.passed);
+    CHECK(gpu::runDf64SelfTest(ctx).fromCache);  // rewritten
+  }
+
+  // A valid entry claiming a failure: requireDf64 refuses df64, naming the operation, error, bound.
+  std::string failing = valid;
+  const auto at = failing.find("op dekker div ");
+  REQUIRE(at != std::string::npos);
+  const auto end = failing.find('\n', at);
+  failing.replace(at, end - at, "op dekker div 0x1p-40 100 0");
+  test::writeBytes(first.cachePath, failing);
+  const gpu::Df64SelfTest failed = gpu::runDf64SelfTest(ctx);
+  CHECK(failed.fromCache);
+  if (!failed.useFma) {  // the Dekker variant is the one in use
+    CHECK_FALSE(failed.passed);
+    CHECK(gpu::describeDf64(failed) == "FAIL (div 2^-40.0 > 2^-44.0)");
+    CHECK_THROWS_WITH_AS(gpu::requireDf64(ctx),
+                         doctest::Contains("div: max relative error 2^-40.0 (9.09e-13) > bound 2^-44.0"),
+                         InputError);
+  }
+  test::writeBytes(first.cachePath, valid);
+  CHECK_NOTHROW(gpu::requireDf64(ctx));
+  checkNoValidationMessages(ctx);
+}
+
+TEST_CASE("df64: the self-test fails a library with a broken split constant") {
+  // df64_probe_bad_split.comp: Dekker's split by 4096 instead of 4097, wrong only for operands
+  // within 2^-12 above a power of two. The hard cases ((1 + 2^-12)², …) catch it in every
+  // product-based operation that meets such an operand (a test that cannot fail is not a test).
+  auto& ctx = test::gpuContext();
+  const auto ops = gpu::measureDf64(ctx, spirv::df64_probe_bad_split_fp32, {false, gpu::kDf64SelfTestInputs});
+  report("bad split", ops);
+  for (const std::string name : {"mul", "mul_float", "mul_scalar", "mul_scalar_float", "sqrt"}) {
+    INFO(name);
+    CHECK_FALSE(op(ops, name).passed());
+    CHECK(op(ops, name).maxRelError > 0x1p-30);
+  }
+  // Sums do not use TwoProd and stay right: the failure is attributed to the broken operations.
+  CHECK(op(ops, "add").passed());
+  gpu::Df64SelfTest t;
+  t.dekker = ops;
+  CHECK(gpu::describeDf64(t) == "FAIL (mul 2^-24.0 > 2^-44.0)");
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("df64: the self-test fails a library compiled without precise (on lavapipe)") {
+  // df64_probe_no_precise.comp: no NoContraction. Whether a compiler then breaks the error-free
+  // transformations is its choice; lavapipe's does (DESIGN.md §4), so there the self-test must fail.
+  auto& ctx = test::gpuContext();
+  const auto ops = gpu::measureDf64(ctx, spirv::df64_probe_no_precise_fp32, {false, gpu::kDf64SelfTestInputs});
+  report("no precise", ops);
+  const bool allPassed = std::all_of(ops.begin(), ops.end(), [](const auto& e) { return e.passed(); });
+  if (ctx.info().name.find("llvmpipe") != std::string::npos) {
+    CHECK_FALSE(allPassed);
+    CHECK_FALSE(op(ops, "add").passed());
+    CHECK_FALSE(op(ops, "mul").passed());
+  } else {
+    MESSAGE("'" << ctx.info().name << "' without precise: "
+                << std::string(allPassed ? "every operation passes" : "fails"));
+  }
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("df64: dicsynth devices reports the self-test per device") {
+  const test::CliResult text = test::runCli("devices");
+  CHECK(text.exitCode == 0);
+  CHECK(text.out.find("df64 self-test:       pass (worst 2^-") != std::string::npos);
+  CHECK(text.out.find("fma exact:            ") != std::string::npos);
+  const test::CliResult json = test::runCli("devices --json");
+  CHECK(json.exitCode == 0);
+  CHECK(json.out.find("\"df64_pass\": true, \"df64_worst_log2\": -4") != std::string::npos);
+  CHECK(json.out.find("\"df64_worst_op\": \"") != std::string::npos);
+  CHECK(json.out.find("\"fma_exact\": ") != std::string::npos);
+  CHECK(json.err.empty());
+}

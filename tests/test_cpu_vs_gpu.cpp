@@ -1,6 +1,6 @@
 // Every scene in scenes/ rendered at reduced resolution on the CPU reference and on the GPU
-// (lavapipe in CI) with the same samples: fp64 must agree to 1e-9 of full scale and 1e-9 m, fp32
-// within the tolerances derived in host/render/compare.cpp. Also: specialization constants change
+// (lavapipe in CI) with the same samples: fp64 must agree to 1e-9 of full scale and 1e-9 m, df64
+// and fp32 within the tolerances derived in host/render/compare.cpp. Also: specialization constants change
 // nothing but speed.
 #include <doctest/doctest.h>
 
@@ -53,7 +53,7 @@ TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
     options.samplesPerPixel = kSpp;
     options.seed = 3;
     const RenderResult reference = cpu::render(scene, options);
-    for (Precision p : {Precision::Fp64, Precision::Fp32}) {
+    for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
       options.precision = p;
       const RenderResult gpu = renderer.render(scene, options);
       const Tolerances tol = tolerancesFor(p);
@@ -84,7 +84,7 @@ TEST_CASE("cpu-vs-gpu: switching features off by specialization changes no pixel
   gpu::Renderer renderer(test::gpuContext());
   RenderOptions options;
   options.samplesPerPixel = kSpp;
-  for (Precision p : {Precision::Fp64, Precision::Fp32}) {
+  for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
     options.precision = p;
     const RenderResult specialized = renderer.render(scene, options, {true});
     const RenderResult general = renderer.render(scene, options, {false});

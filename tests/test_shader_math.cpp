@@ -2,6 +2,7 @@
 // the very same sample positions), ds_atan2 is within a few ulps of std::atan2 in both precisions.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -11,6 +12,7 @@
 #include "gpu/compute.h"
 #include "gpu_test_context.h"
 #include "shared/rng.h"
+#include "spirv/math_probe_df64.h"
 #include "spirv/math_probe_fp32.h"
 #include "spirv/math_probe_fp64.h"
 
@@ -18,22 +20,23 @@ using namespace dicsynth;
 
 namespace {
 
-template <class Real>
+// Real: the variant's real (inputs, ds_unit); Out: its hreal as stored (df64: a float pair).
+template <class Real, class Out = Real>
 struct ProbeResult {
   std::vector<uint> bits;
   std::vector<Real> unit;
-  std::vector<Real> atan;
+  std::vector<Out> atan;
 };
 
-template <class Real>
-ProbeResult<Real> runProbe(std::span<const std::uint32_t> spirv, const std::vector<uint>& rngIn,
-                           const std::vector<Real>& atanIn) {
+template <class Real, class Out = Real>
+ProbeResult<Real, Out> runProbe(std::span<const std::uint32_t> spirv, const std::vector<uint>& rngIn,
+                                const std::vector<Real>& atanIn) {
   auto& ctx = test::gpuContext();
   const std::uint32_t rngCount = std::uint32_t(rngIn.size() / 7), atanCount = std::uint32_t(atanIn.size() / 2);
   gpu::Buffer bRngIn(ctx, rngIn.size() * 4, gpu::BufferUse::Input);
   gpu::Buffer bRngOut(ctx, rngCount * 4, gpu::BufferUse::Readback);
   gpu::Buffer bAtanIn(ctx, atanIn.size() * sizeof(Real), gpu::BufferUse::Input);
-  gpu::Buffer bAtanOut(ctx, atanCount * sizeof(Real), gpu::BufferUse::Readback);
+  gpu::Buffer bAtanOut(ctx, atanCount * sizeof(Out), gpu::BufferUse::Readback);
   gpu::Buffer bUnitOut(ctx, rngCount * sizeof(Real), gpu::BufferUse::Readback);
   bRngIn.upload(rngIn.data(), rngIn.size() * 4);
   bAtanIn.upload(atanIn.data(), atanIn.size() * sizeof(Real));
@@ -41,13 +44,13 @@ ProbeResult<Real> runProbe(std::span<const std::uint32_t> spirv, const std::vect
   gpu::Buffer* buffers[] = {&bRngIn, &bRngOut, &bAtanIn, &bAtanOut, &bUnitOut};
   const std::uint32_t push[2] = {rngCount, atanCount};
   gpu::dispatchAndWait(ctx, pipeline, buffers, push, (std::max(rngCount, atanCount) + 63) / 64);
-  ProbeResult<Real> r;
+  ProbeResult<Real, Out> r;
   r.bits.resize(rngCount);
   r.unit.resize(rngCount);
   r.atan.resize(atanCount);
   bRngOut.download(r.bits.data(), rngCount * 4);
   bUnitOut.download(r.unit.data(), rngCount * sizeof(Real));
-  bAtanOut.download(r.atan.data(), atanCount * sizeof(Real));
+  bAtanOut.download(r.atan.data(), atanCount * sizeof(Out));
   return r;
 }
 
@@ -99,12 +102,13 @@ TEST_CASE("gpu: RNG is bit-identical in C++ and both shader variants") {
   const auto in = rngInputs();
   const auto r32 = runProbe<float>(spirv::math_probe_fp32, in, std::vector<float>{0, 1});
   const auto r64 = runProbe<double>(spirv::math_probe_fp64, in, std::vector<double>{0, 1});
+  const auto rdf = runProbe<float, std::array<float, 2>>(spirv::math_probe_df64, in, std::vector<float>{0, 1});
   std::size_t mismatches = 0;
   for (std::size_t i = 0; i < r32.bits.size(); ++i) {
     const uint* a = &in[7 * i];
     const uint ref = ds_sample_bits(a[0], a[1], a[2], a[3], a[4], a[5], a[6]);
-    mismatches += r32.bits[i] != ref || r64.bits[i] != ref;
-    mismatches += double(r32.unit[i]) != ds_unit(ref) || r64.unit[i] != ds_unit(ref);
+    mismatches += r32.bits[i] != ref || r64.bits[i] != ref || rdf.bits[i] != ref;
+    mismatches += double(r32.unit[i]) != ds_unit(ref) || r64.unit[i] != ds_unit(ref) || double(rdf.unit[i]) != ds_unit(ref);
   }
   CHECK(mismatches == 0);
   test::expectNoValidationMessages();
@@ -137,5 +141,24 @@ TEST_CASE("gpu: ds_atan2 against std::atan2") {
   const auto in32 = atanInputs<float>();
   const auto r32 = runProbe<float>(spirv::math_probe_fp32, {0, 0, 0, 0, 0, 0, 0}, in32);
   checkAtan(in32, r32.atan, 8);
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("gpu: ds_atan2 in df64 against long double") {
+  // Float inputs, the df64 result (hi + lo) against atan2 in long double. About 40 df64 operations
+  // (two halvings with sqrt and division, 12 Horner steps), each within 2^-44 relative
+  // (self-tested), with no cancellation (the series' terms alternate but shrink by x² ≤ 0.04):
+  // an accumulated bound of 2^-40 relative is generous; the measured worst is printed.
+  const auto in = atanInputs<float>();
+  const auto r = runProbe<float, std::array<float, 2>>(spirv::math_probe_df64, {0, 0, 0, 0, 0, 0, 0}, in);
+  double worst = 0;
+  for (std::size_t i = 0; i < r.atan.size(); ++i) {
+    const long double ref = std::atan2((long double)in[2 * i], (long double)in[2 * i + 1]);
+    if (ref == 0) continue;
+    const long double got = (long double)r.atan[i][0] + (long double)r.atan[i][1];
+    worst = std::max(worst, double(std::abs((got - ref) / ref)));
+  }
+  MESSAGE("df64 ds_atan2 worst relative error: 2^" << std::log2(worst));
+  CHECK(worst <= 0x1p-40);
   test::expectNoValidationMessages();
 }

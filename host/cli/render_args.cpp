@@ -17,8 +17,9 @@ void addRenderArgs(CLI::App& app, RenderArgs& args) {
       ->capture_default_str();
   app.add_option("--seed", args.seed, "Seed of the sample positions")->capture_default_str();
   app.add_option("--precision", args.precision,
-                 "GPU arithmetic: fp32 or fp64 (default: fp64 when the device supports it)")
-      ->check(CLI::IsMember({"fp32", "fp64"}));
+                 "GPU arithmetic: fp32, df64 (float pairs) or fp64 (default: fp64 when the device supports it, "
+                 "else df64)")
+      ->check(CLI::IsMember({"fp32", "df64", "fp64"}));
   app.add_option("--device", args.device, "Vulkan device: index or name substring (see `dicsynth devices`)");
   app.add_option("--downscale", args.downscale,
                  "Divide every camera's resolution by this integer, keeping the field of view")
@@ -71,7 +72,8 @@ RenderOptions renderOptions(const RenderArgs& args, int frame) {
 Precision resolvePrecision(const std::string& requested, bool deviceHasFloat64) {
   if (requested == "fp32") return Precision::Fp32;
   if (requested == "fp64") return Precision::Fp64;
-  return deviceHasFloat64 ? Precision::Fp64 : Precision::Fp32;
+  if (requested == "df64") return Precision::Df64;
+  return deviceHasFloat64 ? Precision::Fp64 : Precision::Df64;
 }
 
 void failOnValidationMessages(const gpu::Context& context) {

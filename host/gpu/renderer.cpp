@@ -6,6 +6,8 @@
 #include "gpu/buffer.h"
 #include "gpu/pack.h"
 #include "shared/bindings.h"
+#include "gpu/df64.h"
+#include "spirv/render_df64.h"
 #include "spirv/render_fp32.h"
 #include "spirv/render_fp64.h"
 
@@ -93,11 +95,10 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
                                             {DS_SPEC_HAS_DISTORTION, used.distortion ? 1u : 0u},
                                             {DS_SPEC_HAS_FILE_TEXTURES, used.fileTextures ? 1u : 0u},
                                             {DS_SPEC_SHAPE_KINDS, used.shapeKinds}};
-    const std::span<const std::uint32_t> spirv =
-        precision == Precision::Fp64 ? std::span<const std::uint32_t>(spirv::render_fp64)
-                                     : std::span<const std::uint32_t>(spirv::render_fp32);
-    const std::uint32_t pushBytes = precision == Precision::Fp64 ? sizeof(fp64::GpuTileParams)
-                                                                 : sizeof(fp32::GpuTileParams);
+    std::span<const std::uint32_t> spirv = spirv::render_fp32;
+    if (precision == Precision::Fp64) spirv = spirv::render_fp64;
+    if (precision == Precision::Df64) spirv = spirv::render_df64;
+    const std::uint32_t pushBytes = sizeof(fp32::GpuTileParams);  // the same in every variant
     slot = std::make_unique<ComputePipeline>(context_, spirv, DS_BINDING_COUNT, pushBytes, spec);
   }
   return *slot;
@@ -107,7 +108,8 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
                               const RendererOptions& rendererOptions) {
   if (options.precision == Precision::Fp64 && !context_.info().shaderFloat64)
     throw InputError("--precision fp64: device '" + context_.info().name +
-                     "' has no shaderFloat64; use --precision fp32 or another --device");
+                     "' has no shaderFloat64; use --precision df64, fp32 or another --device");
+  if (options.precision == Precision::Df64) requireDf64(context_);  // self-test, cached per device
   if (options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
   if (rendererOptions.tileSize < 8 || rendererOptions.tileSize % 8 != 0)
     throw InputError("tile size must be a positive multiple of 8");
@@ -117,10 +119,11 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   result.precision = toString(options.precision);
   result.device = context_.info().name;
   const auto start = std::chrono::steady_clock::now();
-  if (options.precision == Precision::Fp64)
-    renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result);
-  else
-    renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result);
+  switch (options.precision) {
+    case Precision::Fp32: renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result); break;
+    case Precision::Df64: renderAll<Df64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result); break;
+    case Precision::Fp64: renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result); break;
+  }
   result.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

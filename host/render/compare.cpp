@@ -19,6 +19,15 @@ Tolerances tolerancesFor(Precision p) {
     // ~1e4 on that; absolute bounds, no outliers.
     return {1e-9, 1e-9, 1e-9, 0.0, 0.0, 0.0};
   }
+  if (p == Precision::Df64) {
+    // Geometry in df64: every operation within 2^-44 relative (self-tested on the device), so the
+    // per-pixel conditioned bounds derived for fp32 below apply with ε = 2^-44 (k = 32, the same
+    // count of rounding steps). Radiance: the texture weights, the B-spline sum of 16 coefficients
+    // (|c| < 2) and the shading run in float: ≲ 16 · 2 · 2^-24 ≈ 2e-6 of full scale, plus the
+    // texture slope times the uv bound. Sample positions are computed in df64 like the CPU's, so
+    // no sample lands on the other side of an edge: no outliers.
+    return {2e-6, 0.0, 0.0, 0x1p-44, 32.0, 0.0};
+  }
   // fp32, unit roundoff ε = 2^-24 ≈ 6e-8.
   // Geometry. A ray hit is computed from the camera centre and direction, mapped into the object
   // frame (|o'| ≈ |C − O|), intersected, mapped back. Each step rounds to a few ε of the lengths

@@ -6,8 +6,12 @@
 
 namespace dicsynth {
 
-enum class Precision { Fp32, Fp64 };
-inline const char* toString(Precision p) { return p == Precision::Fp32 ? "fp32" : "fp64"; }
+// GPU arithmetic (shaders/lib/real.glsl): fp32; df64 = float pairs (~45 bits) for the geometry,
+// float for the rest; fp64 = native double (needs shaderFloat64).
+enum class Precision { Fp32, Df64, Fp64 };
+inline const char* toString(Precision p) {
+  return p == Precision::Fp32 ? "fp32" : p == Precision::Df64 ? "df64" : "fp64";
+}
 
 struct RenderOptions {
   int samplesPerPixel = 4;  // stratified over the pixel's sensitive square (host/camera/sampling.h)

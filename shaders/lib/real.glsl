@@ -62,6 +62,7 @@
 #define h_xyz(v) df_xyz(v)
 #define h2(a, b) df2_make(a, b)
 #define h3(a, b, c) df3_make(a, b, c)
+df3 df_xyz(df4 v) { return df3(v.hi.xyz, v.lo.xyz); }
 df4 h4_31(df3 a, df1 b) { return df4(vec4(a.hi, b.hi), vec4(a.lo, b.lo)); }
 df4 h4_211(df2 a, df1 b, df1 c) { return df4(vec4(a.hi, b.hi, c.hi), vec4(a.lo, b.lo, c.lo)); }
 #else

@@ -1,13 +1,13 @@
 #version 460
 // Test shader of tests/test_gpu_context.cpp: out[i] = op(in[i]) for i < count.
-// DS_FP32: the arrays hold float. DS_FP64: they hold double and the arithmetic is done in double,
+// DS_FP32 (and DS_DF64): the arrays hold float. DS_FP64: they hold double and the arithmetic is done in double,
 // which proves shaderFloat64 works (1 + 2^-40 survives only there).
 #if defined(DS_FP64)
 #define Real double
-#elif defined(DS_FP32)
+#elif defined(DS_FP32) || defined(DS_DF64)
 #define Real float
 #else
-#error "compile with -DDS_FP32 or -DDS_FP64"
+#error "compile with -DDS_FP32, -DDS_FP64 or -DDS_DF64"
 #endif
 
 layout(local_size_x = 64) in;

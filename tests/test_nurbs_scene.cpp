@@ -53,6 +53,8 @@ TEST_CASE("nurbs: prepared scene holds the surface, hits follow the object trans
   const PreparedScene ps = prepareScene(scene);
   const PreparedObject& o = ps.objects.at(0);
   REQUIRE(o.nurbs != nullptr);
+  // The scene shape's frame → world (the prepared surface is re-centred by shapeOffset_m).
+  const dmat4 worldFromShape = o.worldFromObject * glm::translate(dmat4(1.0), -o.shapeOffset_m);
   CHECK(o.geometry.kind == DS_SHAPE_NURBS);
   CHECK(o.geometry.nurbs == o.nurbs.get());
   CHECK(o.nurbs->subPatches.size() >= 8);
@@ -63,13 +65,13 @@ TEST_CASE("nurbs: prepared scene holds the surface, hits follow the object trans
   for (int k = 0; k < 200; ++k) {
     const double u = 0.05 + 0.9 * (k % 20) / 19.0, v = 0.05 + 0.9 * (k / 20) / 9.0;
     const dvec3 local = evaluateNurbs<double>(*scene.objects[0].shape.nurbs, u, v).point;
-    const dvec3 world = dvec3(o.worldFromObject * dvec4(local, 1));
+    const dvec3 world = dvec3(worldFromShape * dvec4(local, 1));
     cpu::SurfaceHit hit;
     REQUIRE(cpu::traceNearest(ps, dvec3(0), world, hit));
     CHECK(hit.object == 0);
     CHECK(hit.t <= 1 + 1e-12);
     // The hit's (u, v) map to its position through the object transform.
-    const dvec3 back = dvec3(o.worldFromObject * dvec4(evaluateNurbs<double>(*scene.objects[0].shape.nurbs, hit.uv.x, hit.uv.y).point, 1));
+    const dvec3 back = dvec3(worldFromShape * dvec4(evaluateNurbs<double>(*scene.objects[0].shape.nurbs, hit.uv.x, hit.uv.y).point, 1));
     CHECK(glm::distance(back, hit.position) < 1e-15);
     CHECK(glm::dot(hit.normal, world) < 0);  // facing the ray's origin
     if (std::abs(hit.t - 1) < 1e-12) ++hits;

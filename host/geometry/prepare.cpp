@@ -1,4 +1,5 @@
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -94,10 +95,21 @@ ShapeGeometry<double> shapeGeometry(const Shape& s) {
 }
 
 // Bézier patches, sub-patches and BVH of a Shape.Nurbs; its (u, v) are the normalized knot domain.
-std::shared_ptr<const PreparedNurbs> prepareNurbsShape(const Shape& s) {
+// The control points are re-centred on the middle of their bounds, `centre` (returned), which the
+// caller puts back into the object's transform: a specimen placed 1 km from the origin by its
+// control points keeps small coordinates in its own frame, where the GPU searches in `real`.
+std::shared_ptr<const PreparedNurbs> prepareNurbsShape(const Shape& s, dvec3& centre) {
   DS_CHECK(s.nurbs != nullptr, "Shape.Nurbs without its surface");
+  NurbsSurface local = *s.nurbs;
+  dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const dvec3& p : local.controlPoints) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  centre = 0.5 * (lo + hi);
+  for (dvec3& p : local.controlPoints) p -= centre;
   try {
-    return std::make_shared<const PreparedNurbs>(prepareNurbs(*s.nurbs));
+    return std::make_shared<const PreparedNurbs>(prepareNurbs(local));
   } catch (const InputError& e) {
     throw InputError(s.where, e.what());
   }
@@ -147,7 +159,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     o.id = std::uint32_t(i + 1);
     o.geometry = shapeGeometry(so.shape);
     if (so.shape.kind == ShapeKind::Nurbs) {
-      o.nurbs = prepareNurbsShape(so.shape);
+      o.nurbs = prepareNurbsShape(so.shape, o.shapeOffset_m);
       o.geometry.nurbs = o.nurbs.get();
     }
     o.shader = so.shader.kind;
@@ -158,7 +170,8 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     } else {
       o.textureValue = so.texture.value;
     }
-    o.worldFromObject = glm::translate(dmat4(1.0), so.shape.location_m) * so.transform;
+    o.worldFromObject = glm::translate(dmat4(1.0), so.shape.location_m) * so.transform *
+                        glm::translate(dmat4(1.0), o.shapeOffset_m);
     o.objectFromWorld = isAffine(o.worldFromObject) ? glm::affineInverse(o.worldFromObject)
                                                     : glm::inverse(o.worldFromObject);
     for (const PreparedCamera& c : ps.cameras)

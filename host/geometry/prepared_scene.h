@@ -31,7 +31,11 @@ struct PreparedObject {
   double albedo = 1;          // luminance of the shader colour
   int textureIndex = -1;      // into PreparedScene::textures, or -1 for a constant texture
   double textureValue = 1;    // constant texture value (when textureIndex < 0)
-  dmat4 worldFromObject{1.0}; // translate(location) * transform
+  dmat4 worldFromObject{1.0}; // translate(location) * transform * translate(shapeOffset_m)
+  // Where the prepared shape's origin lies in the scene shape's frame: (0, 0, 0), except for a
+  // NURBS, whose control points are re-centred (prepare.cpp). A point p of the scene's shape frame
+  // is worldFromObject · (p − shapeOffset_m).
+  dvec3 shapeOffset_m{0};
   dmat4 objectFromWorld{1.0};
 };
 

@@ -18,6 +18,12 @@ layout(std430, set = 0, binding = DS_BINDING_LIGHTS) readonly buffer Lights { Gp
 layout(std430, set = 0, binding = DS_BINDING_TEXTURES) readonly buffer Textures { GpuTexture textures[]; };
 layout(std430, set = 0, binding = DS_BINDING_TEXELS) readonly buffer Texels { real texels[]; };
 layout(std430, set = 0, binding = DS_BINDING_PIXELS) writeonly buffer Pixels { GpuPixel pixels[]; };
+layout(std430, set = 0, binding = DS_BINDING_NURBS_NODES) readonly buffer NurbsNodes { GpuNurbsNode nurbsNodes[]; };
+layout(std430, set = 0, binding = DS_BINDING_NURBS_SUBPATCHES) readonly buffer NurbsSubPatches {
+  GpuNurbsSubPatch nurbsSubPatches[];
+};
+layout(std430, set = 0, binding = DS_BINDING_NURBS_PATCHES) readonly buffer NurbsPatches { GpuNurbsPatch nurbsPatches[]; };
+layout(std430, set = 0, binding = DS_BINDING_NURBS_POINTS) readonly buffer NurbsPoints { hreal4 nurbsPoints[]; };
 layout(push_constant) uniform Push { GpuTileParams params; };
 
 #include "lib/camera.glsl"

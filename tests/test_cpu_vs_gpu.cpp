@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <optional>
 #include <string>
 
 #include "cpu/reference_renderer.h"
@@ -34,21 +33,10 @@ constexpr int kSpp = 4;
 
 TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
   const auto files = sceneFiles();
-  REQUIRE(files.size() >= 7);
+  REQUIRE(files.size() >= 9);
   gpu::Renderer renderer(test::gpuContext());
   for (const std::string& file : files) {
-    // Scenes of NURBS surfaces (nurbs_plate.lua, dogbone.lua) join once the renderers draw them;
-    // until then preparation refuses them, and only that refusal is skipped.
-    std::optional<PreparedScene> prepared;
-    try {
-      prepared = prepareScene(loadScene(file, {}), {kDownscale});
-    } catch (const InputError& e) {
-      if (std::string(e.what()).find("not supported by the renderer yet") == std::string::npos)
-        throw;
-      MESSAGE(std::filesystem::path(file).filename().string() << " skipped: " << std::string(e.what()));
-      continue;
-    }
-    const PreparedScene& scene = *prepared;
+    const PreparedScene scene = prepareScene(loadScene(file, {}), {kDownscale});
     RenderOptions options;
     options.samplesPerPixel = kSpp;
     options.seed = 3;

@@ -13,6 +13,7 @@ struct alignas(16) uvec4 { std::uint32_t x, y, z, w; };
 struct alignas(16) float4 { float x, y, z, w; };
 struct alignas(32) double4 { double x, y, z, w; };
 struct alignas(16) df64x4 { float4 hi, lo; };
+using vec4 = float4;  // GLSL vec4 is float in every variant
 
 namespace fp32 {
 using real = float;
@@ -49,7 +50,9 @@ using hreal4 = df64x4;
   static_assert(sizeof(ns::GpuTexture) == 16);                                             \
   static_assert(sizeof(ns::GpuPixel) == PIXEL);                                            \
   static_assert(offsetof(ns::GpuPixel, normal) == 2 * H4);                                 \
-  static_assert(sizeof(ns::GpuTileParams) == 48);
+  static_assert(sizeof(ns::GpuTileParams) == 48);                                          \
+  static_assert(sizeof(ns::GpuNurbsNode) == 48 && sizeof(ns::GpuNurbsSubPatch) == 32);     \
+  static_assert(sizeof(ns::GpuNurbsPatch) == H4 + 32);
 // Sizes: std430 rounds a struct up to its alignment (32 with a dvec4 member, else 16).
 DS_CHECK_LAYOUT(fp32, 16, 16, 6 * 16 + 32, 9 * 16 + 16 + 32, 3 * 16)
 DS_CHECK_LAYOUT(fp64, 32, 32, 6 * 32 + 32, 9 * 32 + 32 + 32, 3 * 32)

@@ -5,6 +5,8 @@
 
 #include "camera/sampling.h"
 #include "core/error.h"
+#include "geometry/nurbs_bvh.h"
+#include "shared/bindings.h"
 
 namespace dicsynth::gpu {
 namespace {
@@ -54,11 +56,62 @@ typename Layout::GpuObject packObject(const PreparedObject& o) {
       g.shape3 = h4<Layout>(s.uv0.x, s.uv0.y, s.uv1.x, s.uv1.y);
       g.shape4 = h4<Layout>(s.uv2.x, s.uv2.y);
       break;
+    case DS_SHAPE_NURBS: g.shape0 = h4<Layout>(o.nurbs->size); break;  // extra.x set by packNurbs
     default: DS_CHECK(false, "unknown shape kind " + std::to_string(s.kind));
   }
   g.shading = r4<Layout>(o.albedo, o.textureValue);
   g.kinds = {s.kind, int(o.shader), o.textureIndex, int(o.id)};
   return g;
+}
+
+// A float bound rounded outwards, then widened by `margin`: the GPU's box tests in `real` see the
+// ray with rounding errors of a few ulps of the coordinates, so a box must never be tighter than
+// the surface it holds plus that error.
+float lowerBound(double x, double margin) {
+  const float f = float(x - margin);
+  return double(f) > x - margin ? std::nextafter(f, -INFINITY) : f;
+}
+float upperBound(double x, double margin) {
+  const float f = float(x + margin);
+  return double(f) < x + margin ? std::nextafter(f, INFINITY) : f;
+}
+
+// Appends one NURBS object's data; returns the index of its root node.
+template <class Layout>
+int packNurbs(const PreparedNurbs& n, PackedScene<Layout>& p) {
+  if (n.bvhDepth + 1 > DS_NURBS_STACK_SIZE)
+    throw Error("NURBS BVH of depth " + std::to_string(n.bvhDepth) + " exceeds the GPU traversal stack (" +
+                std::to_string(DS_NURBS_STACK_SIZE) + ")");
+  const int nodeOffset = int(p.nurbsNodes.size()), subOffset = int(p.nurbsSubPatches.size());
+  const int patchOffset = int(p.nurbsPatches.size());
+  // The ray's rounding in `real` (float: 2^-24 relative) at coordinates up to the surface size,
+  // with a factor 64 of margin for the few operations of a slab test.
+  const double margin = 64 * 0x1p-24 * n.size;
+  for (const NurbsBvhNode& node : n.nodes) {
+    typename Layout::GpuNurbsNode g{};
+    g.boundsMin = {lowerBound(node.boundsMin.x, margin), lowerBound(node.boundsMin.y, margin),
+                   lowerBound(node.boundsMin.z, margin), 0};
+    g.boundsMax = {upperBound(node.boundsMax.x, margin), upperBound(node.boundsMax.y, margin),
+                   upperBound(node.boundsMax.z, margin), 0};
+    g.links = {node.rightChild < 0 ? -1 : node.rightChild + nodeOffset, node.firstSubPatch + subOffset,
+               node.subPatchCount, 0};
+    p.nurbsNodes.push_back(g);
+  }
+  for (const NurbsSubPatch& sp : n.subPatches) {
+    typename Layout::GpuNurbsSubPatch g{};
+    // Sub-patch ranges come from halvings: dyadic fractions, exact in float.
+    g.local = {float(sp.localMin.x), float(sp.localMin.y), float(sp.localMax.x), float(sp.localMax.y)};
+    g.info = {int(sp.patch) + patchOffset, sp.degenerate ? 1 : 0, 0, 0};
+    p.nurbsSubPatches.push_back(g);
+  }
+  for (const BezierPatch& bp : n.patches) {
+    typename Layout::GpuNurbsPatch g{};
+    g.uvRange = h4<Layout>(bp.uvMin.x, bp.uvMin.y, bp.uvMax.x, bp.uvMax.y);
+    g.info = {bp.degreeU, bp.degreeV, int(p.nurbsPoints.size()), 0};
+    p.nurbsPatches.push_back(g);
+    for (const dvec4& q : bp.points) p.nurbsPoints.push_back(h4<Layout>(q.x, q.y, q.z, q.w));
+  }
+  return nodeOffset;
 }
 
 }  // namespace
@@ -75,7 +128,10 @@ template <class Layout>
 PackedScene<Layout> packScene(const PreparedScene& scene, int spp) {
   PackedScene<Layout> p;
   for (const auto& c : scene.cameras) p.cameras.push_back(packCamera<Layout>(c, spp));
-  for (const auto& o : scene.objects) p.objects.push_back(packObject<Layout>(o));
+  for (const auto& o : scene.objects) {
+    p.objects.push_back(packObject<Layout>(o));
+    if (o.nurbs) p.objects.back().extra = {packNurbs<Layout>(*o.nurbs, p), 0, 0, 0};
+  }
   for (const auto& l : scene.lights)
     p.lights.push_back({r4<Layout>(l.position_m.x, l.position_m.y, l.position_m.z, l.intensity)});
   for (const auto& t : scene.textures) {

@@ -15,6 +15,11 @@ struct PackedScene {
   std::vector<typename Layout::GpuLight> lights;
   std::vector<typename Layout::GpuTexture> textures;
   std::vector<typename Layout::real> texels;  // all textures' B-spline coefficients, concatenated
+  // Every NURBS object's BVH nodes, sub-patches, patches and control points, concatenated.
+  std::vector<typename Layout::GpuNurbsNode> nurbsNodes;
+  std::vector<typename Layout::GpuNurbsSubPatch> nurbsSubPatches;
+  std::vector<typename Layout::GpuNurbsPatch> nurbsPatches;
+  std::vector<typename Layout::hreal4> nurbsPoints;
 };
 
 // Layout traits: which namespace of gpu_layout.h a variant uses.
@@ -28,6 +33,9 @@ struct Fp32Layout {
   using GpuTexture = fp32::GpuTexture;
   using GpuPixel = fp32::GpuPixel;
   using GpuTileParams = fp32::GpuTileParams;
+  using GpuNurbsNode = fp32::GpuNurbsNode;
+  using GpuNurbsSubPatch = fp32::GpuNurbsSubPatch;
+  using GpuNurbsPatch = fp32::GpuNurbsPatch;
 };
 struct Fp64Layout {
   using real = double;
@@ -39,6 +47,9 @@ struct Fp64Layout {
   using GpuTexture = fp64::GpuTexture;
   using GpuPixel = fp64::GpuPixel;
   using GpuTileParams = fp64::GpuTileParams;
+  using GpuNurbsNode = fp64::GpuNurbsNode;
+  using GpuNurbsSubPatch = fp64::GpuNurbsSubPatch;
+  using GpuNurbsPatch = fp64::GpuNurbsPatch;
 };
 
 struct Df64Layout {
@@ -51,6 +62,9 @@ struct Df64Layout {
   using GpuTexture = df64::GpuTexture;
   using GpuPixel = df64::GpuPixel;
   using GpuTileParams = df64::GpuTileParams;
+  using GpuNurbsNode = df64::GpuNurbsNode;
+  using GpuNurbsSubPatch = df64::GpuNurbsSubPatch;
+  using GpuNurbsPatch = df64::GpuNurbsPatch;
 };
 
 // Doubles as the variant's real4 / hreal4 (the pointer only selects the overload), and a component

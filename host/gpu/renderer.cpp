@@ -30,6 +30,10 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   Buffer lights = inputBuffer(context, packed.lights);
   Buffer textures = inputBuffer(context, packed.textures);
   Buffer texels = inputBuffer(context, packed.texels);
+  Buffer nurbsNodes = inputBuffer(context, packed.nurbsNodes);
+  Buffer nurbsSubPatches = inputBuffer(context, packed.nurbsSubPatches);
+  Buffer nurbsPatches = inputBuffer(context, packed.nurbsPatches);
+  Buffer nurbsPoints = inputBuffer(context, packed.nurbsPoints);
   const std::size_t tilePixels = std::size_t(tileSize) * std::size_t(tileSize);
   Buffer pixels(context, tilePixels * sizeof(typename Layout::GpuPixel), BufferUse::Readback);
   Buffer* bindings[DS_BINDING_COUNT];
@@ -39,6 +43,10 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   bindings[DS_BINDING_TEXTURES] = &textures;
   bindings[DS_BINDING_TEXELS] = &texels;
   bindings[DS_BINDING_PIXELS] = &pixels;
+  bindings[DS_BINDING_NURBS_NODES] = &nurbsNodes;
+  bindings[DS_BINDING_NURBS_SUBPATCHES] = &nurbsSubPatches;
+  bindings[DS_BINDING_NURBS_PATCHES] = &nurbsPatches;
+  bindings[DS_BINDING_NURBS_POINTS] = &nurbsPoints;
   std::vector<typename Layout::GpuPixel> tile(tilePixels);
 
   double totalPixels = 0, donePixels = 0;

@@ -149,7 +149,8 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
         if (tol.epsilon > 0) {
           const dvec3 toHit = a.position_m[i] - model.centre;
           const double distance = glm::length(toHit);
-          const bool curved = scene.objects[obj].geometry.kind == DS_SHAPE_SPHERE;
+          const int kind = scene.objects[obj].geometry.kind;
+          const bool curved = kind == DS_SHAPE_SPHERE || kind == DS_SHAPE_NURBS;
           const double cosTheta = std::max(std::abs(glm::dot(a.normal[i], toHit)) / distance,
                                            curved ? std::sqrt(tol.epsilon) : tol.epsilon);
           const double D = distance + glm::length(model.centre - objectOrigins[obj]);

@@ -12,9 +12,11 @@
 
 struct ShapeHit {
   real s;
-  int part;     // Box: face = 2 · axis + (positive ? 1 : 0)
-  real2 param;  // Triangle: barycentric (b1, b2)
+  int part;     // Box: face = 2 · axis + (positive ? 1 : 0); Nurbs: sub-patch (-1: none)
+  real2 param;  // Triangle: barycentric (b1, b2); Nurbs: the patch's local (a, b)
 };
+
+#include "lib/nurbs.glsl"
 
 // ---------------------------------------------------------------------------------------- search
 
@@ -105,7 +107,8 @@ bool ds_search_triangle(int index, real3 o, real3 d, real sMin, real sMax, bool 
   return true;
 }
 
-bool ds_search_shape(int index, real3 o, real3 d, real sMin, real sMax, bool originOnSurface,
+// originOnSurface: the ray leaves this object's surface at `origin` (a shadow ray).
+bool ds_search_shape(int index, real3 o, real3 d, real sMin, real sMax, bool originOnSurface, ShapeHit origin,
                      inout ShapeHit hit) {
   const int kind = objects[index].kinds.x;
   const real4 shape0 = h_real(objects[index].shape0);
@@ -119,6 +122,8 @@ bool ds_search_shape(int index, real3 o, real3 d, real sMin, real sMax, bool ori
     return ds_search_xy_plane(shape0.xy, o, d, sMin, sMax, originOnSurface, false, hit);
   if (DS_HAS_SHAPE(DS_SHAPE_RECTANGLE) && kind == DS_SHAPE_RECTANGLE)
     return ds_search_xy_plane(shape0.xy, o, d, sMin, sMax, originOnSurface, true, hit);
+  if (DS_HAS_SHAPE(DS_SHAPE_NURBS) && kind == DS_SHAPE_NURBS)
+    return ds_search_nurbs(index, o, d, sMin, sMax, originOnSurface, origin, hit);
   return false;
 }
 
@@ -196,6 +201,8 @@ void ds_shape_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hrea
     const hreal b0 = h_sub(h_sub(h(real(1.0)), b1), b2);
     uv = h2(h_add(h_add(h_mul(b0, h_x(uv01)), h_mul(b1, h_z(uv01))), h_mul(b2, h_x(uv2))),
             h_add(h_add(h_mul(b0, h_y(uv01)), h_mul(b1, h_w(uv01))), h_mul(b2, h_y(uv2))));
+  } else if (DS_HAS_SHAPE(DS_SHAPE_NURBS) && kind == DS_SHAPE_NURBS) {
+    ds_nurbs_attributes(found, o, d, s, point, normal, uv);
   } else {  // Plane, Rectangle: z = 0
     s = h_div(h_neg(h_z(o)), h_z(d));
     point = h_add(o, h_mul(d, s));

@@ -16,6 +16,7 @@ struct SurfaceHit {
   real3 normal;    // world, unit, facing the ray's origin
   hreal2 uv;
   int object;
+  ShapeHit shape;  // what the search found (NURBS shadow rays leave from this root)
 };
 
 // World ray o + t d in the object frame: o' + s d', s = t / (1 + t w). False at infinity.
@@ -60,7 +61,8 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
     if (!ds_object_ray(i, o, d, oo, od, w)) continue;
     const real wr = h_real(w);
     ShapeHit found;
-    if (!ds_search_shape(i, h_real(oo), h_real(od), 0.0, ds_object_param(tBest, wr), false, found)) continue;
+    found.part = -1;
+    if (!ds_search_shape(i, h_real(oo), h_real(od), 0.0, ds_object_param(tBest, wr), false, found, found)) continue;
     const real t = ds_world_param(found.s, wr);
     if (t > 0.0 && t < tBest) {
       tBest = t;
@@ -70,6 +72,7 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   }
   hit.object = bestObject;
   if (bestObject < 0) return false;
+  hit.shape = best;
   // The winner in hreal: the ray in its frame again, then its attributes.
   hreal3 oo, od;
   hreal w;
@@ -96,7 +99,9 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
     hreal w;
     if (!ds_object_ray(i, ph, dh, oo, od, w)) continue;
     ShapeHit found;
-    if (ds_search_shape(i, h_real(oo), h_real(od), 0.0, ds_object_param(1.0, h_real(w)), i == hit.object, found))
+    found.part = -1;
+    if (ds_search_shape(i, h_real(oo), h_real(od), 0.0, ds_object_param(1.0, h_real(w)), i == hit.object, hit.shape,
+                        found))
       return true;
   }
   return false;

@@ -9,7 +9,14 @@
 #define DS_BINDING_TEXTURES 3
 #define DS_BINDING_TEXELS 4
 #define DS_BINDING_PIXELS 5
-#define DS_BINDING_COUNT 6
+#define DS_BINDING_NURBS_NODES 6
+#define DS_BINDING_NURBS_SUBPATCHES 7
+#define DS_BINDING_NURBS_PATCHES 8
+#define DS_BINDING_NURBS_POINTS 9
+#define DS_BINDING_COUNT 10
+
+// Deepest NURBS BVH the traversal stack holds (root = depth 0); the host refuses deeper ones.
+#define DS_NURBS_STACK_SIZE 48
 
 // Workgroup size of render.comp (pixels).
 #define DS_LOCAL_SIZE_X 8

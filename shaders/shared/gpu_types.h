@@ -26,7 +26,7 @@ struct GpuObject {
   hreal4 shape4;              // Triangle: uv2.xy
   real4 shading;             // albedo, constant texture value, 0, 0
   ivec4 kinds;               // shape kind, shader kind, texture index (-1: constant), objectId
-  ivec4 pad;
+  ivec4 extra;               // Nurbs: root node in the NURBS node buffer, 0, 0, 0
 };
 
 struct GpuLight {
@@ -35,6 +35,26 @@ struct GpuLight {
 
 struct GpuTexture {
   ivec4 info;  // width, height, offset of the first coefficient in the texel buffer, 0
+};
+
+// NURBS (host/geometry/nurbs_bvh.h): every NURBS object's BVH nodes, sub-patches, Bézier patches
+// and homogeneous control points, concatenated; indices below are global (into these buffers).
+// Bounds are float, rounded outwards: a box only decides where to look, never a result.
+struct GpuNurbsNode {
+  vec4 boundsMin;  // object frame, xyz
+  vec4 boundsMax;
+  ivec4 links;     // right child (-1: leaf; the left child is the next node), first sub-patch, count, 0
+};
+
+struct GpuNurbsSubPatch {
+  vec4 local;  // aMin, bMin, aMax, bMax: range of the patch's local parameters (dyadic: exact in float)
+  ivec4 info;  // patch, degenerate (0/1), 0, 0
+};
+
+struct GpuNurbsPatch {
+  hreal4 uvRange;  // uMin, vMin, uMax, vMax: the normalized surface parameters the patch covers
+  ivec4 info;      // degreeU, degreeV, first control point, 0
+  ivec4 pad;
 };
 
 // One pixel of output. Background: objectId 0 (the other ground-truth fields are then undefined).

@@ -12,7 +12,6 @@
 --   -D strain=<e>       uniform axial engineering strain (default 0)
 -- Texture: speckle.tif spans the whole specimen in u and the local width in v (in the gauge
 -- section the texture is squeezed to half its height in the grips).
--- Note: the renderers do not draw NURBS surfaces yet; the scene loads and is checked.
 necking = necking or frame * 0.001
 strain = strain or 0
 camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.012; pixelSize = {5e-6, 5e-6};

@@ -12,7 +12,6 @@
 --                       (a = curvature x 0.1 / 8): 6e-9 m at curvature = 4, where the fake
 --                       strain of its parametrization stays below 1e-7.
 -- Example: dicsynth render scenes/nurbs_plate.lua -D strain=0.002 -D curvature=4
--- Note: the renderers do not draw NURBS surfaces yet; the scene loads and is checked.
 strain = strain or 0
 curvature = curvature or 0
 camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.016; pixelSize = {5e-6, 5e-6};

@@ -221,6 +221,29 @@ TEST_CASE("nurbs: de Casteljau split and sub-range extraction are exact") {
   CHECK(worst <= 1e-14 * size);
 }
 
+TEST_CASE("nurbs: degree elevation keeps the surface") {
+  const auto patches = toBezierPatches(rationalSurface());
+  const double size = diagonal(rationalSurface());
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> uniform(0, 1);
+  double worst = 0;
+  for (const BezierPatch& p : patches) {
+    const BezierPatch e = elevateBezier(p, p.degreeU + 2, p.degreeV + 1);
+    REQUIRE(e.degreeU == p.degreeU + 2);
+    REQUIRE(e.degreeV == p.degreeV + 1);
+    REQUIRE(e.points.size() == std::size_t((e.degreeU + 1) * (e.degreeV + 1)));
+    CHECK(e.uvMin == p.uvMin);
+    for (int k = 0; k < 500; ++k) {
+      const double a = uniform(rng), b = uniform(rng);
+      worst = std::max(worst, glm::distance(evaluateBezier<double>(e, a, b).point, evaluateBezier<double>(p, a, b).point));
+    }
+  }
+  MESSAGE("elevation: worst difference " << worst / size << " of the size");
+  // Each elevation step is a convex combination per point (one rounding of O(size)); evaluation
+  // adds ~10 roundings: 1e-14 of the size leaves a margin of ~10.
+  CHECK(worst <= 1e-14 * size);
+}
+
 TEST_CASE("nurbs: derivative bounds contain every sampled normal and speed") {
   // On whole patches and on random sub-ranges of them (where the bounds are tighter).
   std::mt19937_64 rng(5);

@@ -1,5 +1,7 @@
 #include "geometry/nurbs.h"
 
+#include "core/error.h"
+
 #include <algorithm>
 #include <array>
 
@@ -285,5 +287,38 @@ DS_NURBS_INSTANTIATE(float)
 DS_NURBS_INSTANTIATE(double)
 DS_NURBS_INSTANTIATE(long double)
 #undef DS_NURBS_INSTANTIATE
+
+BezierPatch elevateBezier(const BezierPatch& patch, int degreeU, int degreeV) {
+  DS_CHECK(degreeU >= patch.degreeU && degreeV >= patch.degreeV, "degree elevation cannot lower a degree");
+  BezierPatch out = patch;
+  // One step along u: rows i of (p+1) × (q+1) points become (p+2) × (q+1).
+  auto raiseU = [](const BezierPatch& in) {
+    BezierPatch r = in;
+    const int p = in.degreeU, q = in.degreeV;
+    r.degreeU = p + 1;
+    r.points.assign(std::size_t((p + 2) * (q + 1)), dvec4(0));
+    for (int i = 0; i <= p + 1; ++i)
+      for (int j = 0; j <= q; ++j) {
+        const double alpha = double(i) / double(p + 1);
+        const dvec4 prev = i > 0 ? in.points[std::size_t((i - 1) * (q + 1) + j)] : dvec4(0);
+        const dvec4 here = i <= p ? in.points[std::size_t(i * (q + 1) + j)] : dvec4(0);
+        r.points[std::size_t(i * (q + 1) + j)] = alpha * prev + (1 - alpha) * here;
+      }
+    return r;
+  };
+  // Swapping the roles of u and v reuses raiseU for v.
+  auto transpose = [](const BezierPatch& in) {
+    BezierPatch r = in;
+    std::swap(r.degreeU, r.degreeV);
+    const int p = in.degreeU, q = in.degreeV;
+    for (int i = 0; i <= p; ++i)
+      for (int j = 0; j <= q; ++j) r.points[std::size_t(j * (p + 1) + i)] = in.points[std::size_t(i * (q + 1) + j)];
+    return r;
+  };
+  while (out.degreeU < degreeU) out = raiseU(out);
+  out = transpose(out);
+  while (out.degreeU < degreeV) out = raiseU(out);
+  return transpose(out);
+}
 
 }  // namespace dicsynth

@@ -80,6 +80,12 @@ SurfacePoint<Real> evaluateBezier(const BezierPatch& patch, Real a, Real b);
 template <class Real>
 SurfacePoint<Real> dehomogenize(const HomogeneousPoint<Real>& h);
 
+// The same patch with its degrees raised to (degreeU, degreeV) ≥ its own, exactly up to rounding
+// (degree elevation: a degree-p Bézier curve is the degree-(p+1) curve with control points
+// Q_i = (i/(p+1)) P_{i−1} + (1 − i/(p+1)) P_i, applied to homogeneous points, per direction).
+// The GPU elevates every patch of a scene to one degree so its loops have constant bounds.
+BezierPatch elevateBezier(const BezierPatch& patch, int degreeU, int degreeV);
+
 // de Casteljau split at local parameter t along a (direction 0) or b (direction 1). `lo` covers
 // [0, t] and `hi` covers [t, 1] of the input, each reparametrized to [0, 1]. Exact up to rounding:
 // the pieces are the very same polynomial surface (homogeneous, so also for rational patches).

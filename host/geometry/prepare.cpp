@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -183,7 +184,12 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   ps.features.lights = anyLambert && !ps.lights.empty();
   for (const PreparedCamera& c : ps.cameras) ps.features.distortion |= c.model.distorted;
   ps.features.fileTextures = !ps.textures.empty();
-  for (const PreparedObject& o : ps.objects) ps.features.shapeKinds |= 1u << o.geometry.kind;
+  for (const PreparedObject& o : ps.objects) {
+    ps.features.shapeKinds |= 1u << o.geometry.kind;
+    if (o.nurbs)
+      for (const BezierPatch& p : o.nurbs->patches)
+        ps.features.nurbsDegree = std::max({ps.features.nurbsDegree, p.degreeU, p.degreeV});
+  }
   return ps;
 }
 

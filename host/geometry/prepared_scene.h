@@ -56,8 +56,9 @@ struct SceneFeatures {
   bool distortion = false;    // some camera has lens distortion: Newton inversion per ray
   bool fileTextures = false;  // some object has a Texture.File: B-spline lookups
   std::uint32_t shapeKinds = 0;  // bit k set: some object has shape kind k (DS_SHAPE_*)
+  int nurbsDegree = 0;           // highest degree of any NURBS patch (GPU raises all to it), 0: none
 
-  static SceneFeatures all() { return {true, true, true, ~0u}; }
+  static SceneFeatures all(int nurbsDegree) { return {true, true, true, ~0u, nurbsDegree}; }
   auto operator<=>(const SceneFeatures&) const = default;
 };
 

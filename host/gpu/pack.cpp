@@ -76,9 +76,10 @@ float upperBound(double x, double margin) {
   return double(f) < x + margin ? std::nextafter(f, INFINITY) : f;
 }
 
-// Appends one NURBS object's data; returns the index of its root node.
+// Appends one NURBS object's data, every patch raised to `degree` in u and v; returns the index
+// of its root node.
 template <class Layout>
-int packNurbs(const PreparedNurbs& n, PackedScene<Layout>& p) {
+int packNurbs(const PreparedNurbs& n, int degree, PackedScene<Layout>& p) {
   if (n.bvhDepth + 1 > DS_NURBS_STACK_SIZE)
     throw Error("NURBS BVH of depth " + std::to_string(n.bvhDepth) + " exceeds the GPU traversal stack (" +
                 std::to_string(DS_NURBS_STACK_SIZE) + ")");
@@ -104,7 +105,8 @@ int packNurbs(const PreparedNurbs& n, PackedScene<Layout>& p) {
     g.info = {int(sp.patch) + patchOffset, sp.degenerate ? 1 : 0, 0, 0};
     p.nurbsSubPatches.push_back(g);
   }
-  for (const BezierPatch& bp : n.patches) {
+  for (const BezierPatch& original : n.patches) {
+    const BezierPatch bp = elevateBezier(original, degree, degree);
     typename Layout::GpuNurbsPatch g{};
     g.uvRange = h4<Layout>(bp.uvMin.x, bp.uvMin.y, bp.uvMax.x, bp.uvMax.y);
     g.info = {bp.degreeU, bp.degreeV, int(p.nurbsPoints.size()), 0};
@@ -130,7 +132,7 @@ PackedScene<Layout> packScene(const PreparedScene& scene, int spp) {
   for (const auto& c : scene.cameras) p.cameras.push_back(packCamera<Layout>(c, spp));
   for (const auto& o : scene.objects) {
     p.objects.push_back(packObject<Layout>(o));
-    if (o.nurbs) p.objects.back().extra = {packNurbs<Layout>(*o.nurbs, p), 0, 0, 0};
+    if (o.nurbs) p.objects.back().extra = {packNurbs<Layout>(*o.nurbs, scene.features.nurbsDegree, p), 0, 0, 0};
   }
   for (const auto& l : scene.lights)
     p.lights.push_back({r4<Layout>(l.position_m.x, l.position_m.y, l.position_m.z, l.intensity)});

@@ -96,13 +96,15 @@ Renderer::Renderer(Context& context) : context_(context) {}
 Renderer::~Renderer() = default;
 
 const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatures& f, bool specialize) {
-  const SceneFeatures used = specialize ? f : SceneFeatures::all();
+  // The NURBS degree is not a feature to switch on: the data is packed for exactly that degree.
+  const SceneFeatures used = specialize ? f : SceneFeatures::all(f.nurbsDegree);
   auto& slot = pipelines_[{precision, used}];
   if (!slot) {
     const std::vector<SpecConstant> spec = {{DS_SPEC_HAS_LIGHTS, used.lights ? 1u : 0u},
                                             {DS_SPEC_HAS_DISTORTION, used.distortion ? 1u : 0u},
                                             {DS_SPEC_HAS_FILE_TEXTURES, used.fileTextures ? 1u : 0u},
-                                            {DS_SPEC_SHAPE_KINDS, used.shapeKinds}};
+                                            {DS_SPEC_SHAPE_KINDS, used.shapeKinds},
+                                            {DS_SPEC_NURBS_DEGREE, std::uint32_t(std::max(used.nurbsDegree, 1))}};
     std::span<const std::uint32_t> spirv = spirv::render_fp32;
     if (precision == Precision::Fp64) spirv = spirv::render_fp64;
     if (precision == Precision::Df64) spirv = spirv::render_df64;

@@ -11,4 +11,7 @@ layout(constant_id = DS_SPEC_HAS_FILE_TEXTURES) const bool HAS_FILE_TEXTURES = t
 // which otherwise run every case of a switch whose value they cannot prove uniform.
 layout(constant_id = DS_SPEC_SHAPE_KINDS) const uint SHAPE_KINDS = 0xffffffffu;
 #define DS_HAS_SHAPE(kind) ((SHAPE_KINDS & (1u << (kind))) != 0u)
+// Every NURBS patch of the scene arrives raised to this degree in u and v (host/gpu/pack.cpp), so
+// the patch loops have constant bounds: unrolled, the control points stay in registers.
+layout(constant_id = DS_SPEC_NURBS_DEGREE) const int NURBS_DEGREE = 3;
 #endif

@@ -13,6 +13,7 @@
 // Expects nurbsNodes[], nurbsSubPatches[], nurbsPatches[], nurbsPoints[] and objects[].
 #ifndef DS_NURBS_GLSL
 #define DS_NURBS_GLSL
+#include "lib/features.glsl"
 #include "lib/real.glsl"
 #include "shared/bindings.h"
 
@@ -27,7 +28,7 @@ const real DS_NURBS_STEP_TOLERANCE = 1e-13LF;
 const real DS_NURBS_RESIDUAL_TOLERANCE = 1e-12LF;
 const real DS_NURBS_BORDER_TOLERANCE = 1e-9LF;
 #else
-const real DS_NURBS_STEP_TOLERANCE = 4e-7;
+const real DS_NURBS_STEP_TOLERANCE = 2e-6;
 const real DS_NURBS_RESIDUAL_TOLERANCE = 2e-6;
 const real DS_NURBS_BORDER_TOLERANCE = 1e-6;
 #endif
@@ -45,20 +46,29 @@ void ds_bernstein(int p, real t, out real basis[DS_NURBS_MAX_DEGREE + 1], out re
   }
 }
 
-// Homogeneous point S and partial derivatives Sa, Sb of patch `patchIndex` at local (a, b).
-void ds_patch_eval(int patchIndex, real2 ab, out real4 S, out real4 Sa, out real4 Sb) {
-  const ivec4 info = nurbsPatches[patchIndex].info;
-  const int p = info.x, q = info.y, first = info.z;
+// Control points of a patch (all raised to NURBS_DEGREE, lib/features.glsl), loaded once into
+// registers: the loops below have constant bounds and unroll.
+#define DS_NURBS_POINTS ((NURBS_DEGREE + 1) * (NURBS_DEGREE + 1))
+#define DS_NURBS_MAX_POINTS ((DS_NURBS_MAX_DEGREE + 1) * (DS_NURBS_MAX_DEGREE + 1))
+
+void ds_patch_load(int patchIndex, out real4 cp[DS_NURBS_MAX_POINTS]) {
+  const int first = nurbsPatches[patchIndex].info.z;
+  for (int i = 0; i < DS_NURBS_MAX_POINTS; ++i) cp[i] = i < DS_NURBS_POINTS ? h_real(nurbsPoints[first + i]) : real4(0.0);
+}
+
+// Homogeneous point S and partial derivatives Sa, Sb at local (a, b).
+void ds_patch_eval(real4 cp[DS_NURBS_MAX_POINTS], real2 ab, out real4 S, out real4 Sa, out real4 Sb) {
+  const int p = NURBS_DEGREE;
   real bu[DS_NURBS_MAX_DEGREE + 1], du[DS_NURBS_MAX_DEGREE + 1], bv[DS_NURBS_MAX_DEGREE + 1], dv[DS_NURBS_MAX_DEGREE + 1];
   ds_bernstein(p, ab.x, bu, du);
-  ds_bernstein(q, ab.y, bv, dv);
+  ds_bernstein(p, ab.y, bv, dv);
   S = real4(0.0);
   Sa = real4(0.0);
   Sb = real4(0.0);
   for (int i = 0; i <= p; ++i) {
     real4 row = real4(0.0), rowSlope = real4(0.0);
-    for (int j = 0; j <= q; ++j) {
-      const real4 point = h_real(nurbsPoints[first + i * (q + 1) + j]);
+    for (int j = 0; j <= p; ++j) {
+      const real4 point = cp[i * (p + 1) + j];
       row += bv[j] * point;
       rowSlope += dv[j] * point;
     }
@@ -90,7 +100,7 @@ RayPlanes ds_ray_planes(real3 o, real3 d) {
 // Newton from `start`; true when it converges inside the sub-patch's range enlarged by 1e-3 of
 // its size (a root on a shared border belongs to both neighbours) but not beyond the patch's own
 // [0, 1]² (plus the border tolerance), or stalls on a tangent root.
-bool ds_nurbs_newton(int patchIndex, vec4 range, RayPlanes r, real scale, real2 start, out real2 ab) {
+bool ds_nurbs_newton(real4 cp[DS_NURBS_MAX_POINTS], vec4 range, RayPlanes r, real scale, real2 start, out real2 ab) {
   ab = start;
   const real2 margin = 1e-3 * (real2(range.zw) - real2(range.xy));
   const real2 lo = max(real2(range.xy) - margin, real2(-DS_NURBS_BORDER_TOLERANCE));
@@ -99,7 +109,7 @@ bool ds_nurbs_newton(int patchIndex, vec4 range, RayPlanes r, real scale, real2 
   real residual = 0.0;
   for (int it = 0; it < DS_NURBS_MAX_ITERATIONS && !converged; ++it) {
     real4 S, Sa, Sb;
-    ds_patch_eval(patchIndex, ab, S, Sa, Sb);
+    ds_patch_eval(cp, ab, S, Sa, Sb);
     const real2 F = real2(dot(r.n1, S.xyz) - r.c1 * S.w, dot(r.n2, S.xyz) - r.c2 * S.w);
     const real j11 = dot(r.n1, Sa.xyz) - r.c1 * Sa.w, j12 = dot(r.n1, Sb.xyz) - r.c1 * Sb.w;
     const real j21 = dot(r.n2, Sa.xyz) - r.c2 * Sa.w, j22 = dot(r.n2, Sb.xyz) - r.c2 * Sb.w;
@@ -153,16 +163,18 @@ bool ds_search_nurbs(int object, real3 o, real3 d, real sMin, real sMax, bool or
         const vec4 local = nurbsSubPatches[k].local;
         const ivec4 info = nurbsSubPatches[k].info;
         const int starts = info.y != 0 ? 5 : 1;
+        real4 cp[DS_NURBS_MAX_POINTS];
+        ds_patch_load(info.x, cp);
         for (int n = 0; n < starts; ++n) {
           const real2 c = real2(0.5 * (local.xy + local.zw)), quarter = real2(0.25 * (local.zw - local.xy));
           const real2 start = n == 0 ? c : c + quarter * real2(n == 1 || n == 3 ? -1.0 : 1.0, n <= 2 ? -1.0 : 1.0);
           real2 ab;
-          if (!ds_nurbs_newton(info.x, local, planes, scale, start, ab)) continue;
+          if (!ds_nurbs_newton(cp, local, planes, scale, start, ab)) continue;
           if (originOnSurface && origin.part >= 0 && nurbsSubPatches[origin.part].info.x == info.x &&
               all(lessThanEqual(abs(ab - origin.param), real2(sameRoot))))
             continue;
           real4 S, Sa, Sb;
-          ds_patch_eval(info.x, ab, S, Sa, Sb);
+          ds_patch_eval(cp, ab, S, Sa, Sb);
           const real s = dot(S.xyz / S.w - o, d) / dd;
           if (s > sMin && s < sMax) {
             sMax = s;
@@ -198,15 +210,14 @@ void ds_bernstein_h(int p, hreal t, out hreal basis[DS_NURBS_MAX_DEGREE + 1]) {
 }
 
 hreal4 ds_patch_eval_h(int patchIndex, hreal2 ab) {
-  const ivec4 info = nurbsPatches[patchIndex].info;
-  const int p = info.x, q = info.y, first = info.z;
+  const int p = NURBS_DEGREE, first = nurbsPatches[patchIndex].info.z;
   hreal bu[DS_NURBS_MAX_DEGREE + 1], bv[DS_NURBS_MAX_DEGREE + 1];
   ds_bernstein_h(p, h_x(ab), bu);
-  ds_bernstein_h(q, h_y(ab), bv);
+  ds_bernstein_h(p, h_y(ab), bv);
   hreal4 S = h(real4(0.0));
   for (int i = 0; i <= p; ++i) {
     hreal4 row = h(real4(0.0));
-    for (int j = 0; j <= q; ++j) row = h_add(row, h_mul(nurbsPoints[first + i * (q + 1) + j], bv[j]));
+    for (int j = 0; j <= p; ++j) row = h_add(row, h_mul(nurbsPoints[first + i * (p + 1) + j], bv[j]));
     S = h_add(S, h_mul(row, bu[i]));
   }
   return S;
@@ -217,8 +228,10 @@ hreal4 ds_patch_eval_h(int patchIndex, hreal2 ab) {
 void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hreal3 point, out real3 normal,
                          out hreal2 uv) {
   const int patchIndex = nurbsSubPatches[found.part].info.x;
+  real4 cp[DS_NURBS_MAX_POINTS];
+  ds_patch_load(patchIndex, cp);
   real4 S, Sa, Sb;
-  ds_patch_eval(patchIndex, found.param, S, Sa, Sb);
+  ds_patch_eval(cp, found.param, S, Sa, Sb);
   // Cartesian derivatives ∝ w Sa.xyz − Sa.w S.xyz (quotient rule; the common 1/w² drops out).
   normal = cross(S.w * Sa.xyz - Sa.w * S.xyz, S.w * Sb.xyz - Sb.w * S.xyz);
 #if defined(DS_DF64)
@@ -242,7 +255,7 @@ void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hr
     const real2 F = real2(h_real(h_sub(h_dot(n1, h_xyz(Sh)), h_mul(c1, h_w(Sh)))),
                           h_real(h_sub(h_dot(n2, h_xyz(Sh)), h_mul(c2, h_w(Sh)))));
     const real2 abr = h_real(ab);
-    ds_patch_eval(patchIndex, abr, S, Sa, Sb);
+    ds_patch_eval(cp, abr, S, Sa, Sb);
     const real j11 = dot(r.n1, Sa.xyz) - r.c1 * Sa.w, j12 = dot(r.n1, Sb.xyz) - r.c1 * Sb.w;
     const real j21 = dot(r.n2, Sa.xyz) - r.c2 * Sa.w, j22 = dot(r.n2, Sb.xyz) - r.c2 * Sb.w;
     const real det = j11 * j22 - j12 * j21;

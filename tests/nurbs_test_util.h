@@ -3,9 +3,12 @@
 // makes counts, knots and weights consistent by construction), and long double helpers.
 #include <cmath>
 #include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "geometry/nurbs_surface.h"
+#include "scene/scene.h"
 
 namespace dicsynth::test {
 
@@ -112,6 +115,21 @@ inline NurbsSurface quarterDiskSurface(double R) {
       1, 2, clampedKnots(1, {}), clampedKnots(2, {}),
       [&](int i, int j) { return dvec3(i * R * circleX[j], i * R * circleY[j], 0); },
       [&](int, int j) { return circleW[j]; });
+}
+
+// A scene object holding the surface (Lambert, constant texture 0.5), as the scene loader builds it.
+inline Object nurbsObject(const std::string& name, const NurbsSurface& surface, dvec3 location, dmat4 transform = dmat4(1.0)) {
+  Object o;
+  o.name = name;
+  o.where = {"scene.lua", 7};
+  o.shape.kind = ShapeKind::Nurbs;
+  o.shape.where = {"scene.lua", 7};
+  o.shape.location_m = location;
+  o.shape.nurbs = std::make_shared<NurbsSurface>(surface);
+  o.shader.kind = ShaderKind::Lambert;
+  o.texture.value = 0.5;
+  o.transform = transform;
+  return o;
 }
 
 }  // namespace dicsynth::test

@@ -19,20 +19,6 @@ using namespace dicsynth::test;
 
 namespace {
 
-Object nurbsObject(const std::string& name, const NurbsSurface& surface, dvec3 location, dmat4 transform = dmat4(1.0)) {
-  Object o;
-  o.name = name;
-  o.where = {"scene.lua", 7};
-  o.shape.kind = ShapeKind::Nurbs;
-  o.shape.where = {"scene.lua", 7};
-  o.shape.location_m = location;
-  o.shape.nurbs = std::make_shared<NurbsSurface>(surface);
-  o.shader.kind = ShaderKind::Lambert;
-  o.texture.value = 0.5;
-  o.transform = transform;
-  return o;
-}
-
 Camera smallCamera() {
   Camera c;
   c.name = "cam";

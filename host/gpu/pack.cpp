@@ -1,5 +1,7 @@
 #include "gpu/pack.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <cmath>
 #include <limits>
 
@@ -22,12 +24,13 @@ typename Layout::hreal4 h4(double x, double y = 0, double z = 0, double w = 0) {
 }
 
 template <class Layout>
-typename Layout::GpuCamera packCamera(const PreparedCamera& pc, int spp) {
+typename Layout::GpuCamera packCamera(const PreparedCamera& pc, int spp, dvec3 origin) {
   const auto& m = pc.model;
+  const dvec3 centre = m.centre - origin;
   typename Layout::GpuCamera g{};
   for (int row = 0; row < 3; ++row)  // glm is column-major: m[col][row]
     g.worldFromCamera[row] = h4<Layout>(m.worldFromCamera[0][row], m.worldFromCamera[1][row],
-                                        m.worldFromCamera[2][row], m.centre[row]);
+                                        m.worldFromCamera[2][row], centre[row]);
   g.intrinsics = h4<Layout>(m.fx, m.fy, m.cx, m.cy);
   g.brown0 = h4<Layout>(m.brown.k1, m.brown.k2, m.brown.k3, m.brown.p1);
   g.brown1 = h4<Layout>(m.brown.p2, std::sqrt(pc.camera.fillFactor));
@@ -37,12 +40,14 @@ typename Layout::GpuCamera packCamera(const PreparedCamera& pc, int spp) {
   return g;
 }
 
+// objectFromWorld · translate(origin): maps camera-relative world coordinates into the object.
 template <class Layout>
-typename Layout::GpuObject packObject(const PreparedObject& o) {
+typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
   typename Layout::GpuObject g{};
+  const dmat4 objectFromRelative = o.objectFromWorld * glm::translate(dmat4(1.0), origin);
   for (int row = 0; row < 4; ++row)
-    g.objectFromWorld[row] = h4<Layout>(o.objectFromWorld[0][row], o.objectFromWorld[1][row],
-                                        o.objectFromWorld[2][row], o.objectFromWorld[3][row]);
+    g.objectFromWorld[row] = h4<Layout>(objectFromRelative[0][row], objectFromRelative[1][row],
+                                        objectFromRelative[2][row], objectFromRelative[3][row]);
   const auto& s = o.geometry;
   switch (s.kind) {
     case DS_SHAPE_SPHERE: g.shape0 = h4<Layout>(s.radius); break;
@@ -56,7 +61,7 @@ typename Layout::GpuObject packObject(const PreparedObject& o) {
       g.shape3 = h4<Layout>(s.uv0.x, s.uv0.y, s.uv1.x, s.uv1.y);
       g.shape4 = h4<Layout>(s.uv2.x, s.uv2.y);
       break;
-    case DS_SHAPE_NURBS: g.shape0 = h4<Layout>(o.nurbs->size); break;  // extra.x set by packNurbs
+    case DS_SHAPE_NURBS: g.shape0 = h4<Layout>(o.nurbs->size); break;  // extra.x: packFrame
     default: DS_CHECK(false, "unknown shape kind " + std::to_string(s.kind));
   }
   g.shading = r4<Layout>(o.albedo, o.textureValue);
@@ -127,15 +132,10 @@ df64x4 toReal4(double x, double y, double z, double w, df64x4*) {
 }
 
 template <class Layout>
-PackedScene<Layout> packScene(const PreparedScene& scene, int spp) {
+PackedScene<Layout> packScene(const PreparedScene& scene) {
   PackedScene<Layout> p;
-  for (const auto& c : scene.cameras) p.cameras.push_back(packCamera<Layout>(c, spp));
-  for (const auto& o : scene.objects) {
-    p.objects.push_back(packObject<Layout>(o));
-    if (o.nurbs) p.objects.back().extra = {packNurbs<Layout>(*o.nurbs, scene.features.nurbsDegree, p), 0, 0, 0};
-  }
-  for (const auto& l : scene.lights)
-    p.lights.push_back({r4<Layout>(l.position_m.x, l.position_m.y, l.position_m.z, l.intensity)});
+  for (const auto& o : scene.objects)
+    p.nurbsRoots.push_back(o.nurbs ? packNurbs<Layout>(*o.nurbs, scene.features.nurbsDegree, p) : -1);
   for (const auto& t : scene.textures) {
     // The shader indexes texels with 32-bit ints.
     if (p.texels.size() + t.coefficients.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
@@ -146,8 +146,30 @@ PackedScene<Layout> packScene(const PreparedScene& scene, int spp) {
   return p;
 }
 
-template PackedScene<Fp32Layout> packScene<Fp32Layout>(const PreparedScene&, int);
-template PackedScene<Fp64Layout> packScene<Fp64Layout>(const PreparedScene&, int);
-template PackedScene<Df64Layout> packScene<Df64Layout>(const PreparedScene&, int);
+template <class Layout>
+PackedFrame<Layout> packFrame(const PreparedScene& scene, const PackedScene<Layout>& packed, int spp,
+                              std::size_t camera) {
+  PackedFrame<Layout> f;
+  f.origin_m = scene.cameras.at(camera).model.centre;
+  for (const auto& c : scene.cameras) f.cameras.push_back(packCamera<Layout>(c, spp, f.origin_m));
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    f.objects.push_back(packObject<Layout>(scene.objects[i], f.origin_m));
+    f.objects.back().extra = {packed.nurbsRoots[i], 0, 0, 0};
+  }
+  for (const auto& l : scene.lights) {
+    const dvec3 position = l.position_m - f.origin_m;
+    f.lights.push_back({r4<Layout>(position.x, position.y, position.z, l.intensity)});
+  }
+  return f;
+}
+
+#define DS_INSTANTIATE(Layout)                                                                        \
+  template PackedScene<Layout> packScene<Layout>(const PreparedScene&);                               \
+  template PackedFrame<Layout> packFrame<Layout>(const PreparedScene&, const PackedScene<Layout>&, int, \
+                                                 std::size_t);
+DS_INSTANTIATE(Fp32Layout)
+DS_INSTANTIATE(Fp64Layout)
+DS_INSTANTIATE(Df64Layout)
+#undef DS_INSTANTIATE
 
 }  // namespace dicsynth::gpu

@@ -8,11 +8,9 @@
 
 namespace dicsynth::gpu {
 
+// What does not depend on the camera: textures and NURBS data (in their objects' frames).
 template <class Layout>
 struct PackedScene {
-  std::vector<typename Layout::GpuCamera> cameras;
-  std::vector<typename Layout::GpuObject> objects;
-  std::vector<typename Layout::GpuLight> lights;
   std::vector<typename Layout::GpuTexture> textures;
   std::vector<typename Layout::real> texels;  // all textures' B-spline coefficients, concatenated
   // Every NURBS object's BVH nodes, sub-patches, patches and control points, concatenated.
@@ -20,6 +18,19 @@ struct PackedScene {
   std::vector<typename Layout::GpuNurbsSubPatch> nurbsSubPatches;
   std::vector<typename Layout::GpuNurbsPatch> nurbsPatches;
   std::vector<typename Layout::hreal4> nurbsPoints;
+  std::vector<int> nurbsRoots;  // per object: its root node, or -1 when it is not a NURBS
+};
+
+// The world as one camera sees it, CAMERA-RELATIVE: world coordinates minus that camera's centre,
+// computed in double on the host. The GPU then never handles coordinates larger than the scene
+// around the camera, however far from the origin the scene lies (a specimen 1 km away keeps full
+// precision in every variant); the host adds the centre back to the positions it reads.
+template <class Layout>
+struct PackedFrame {
+  dvec3 origin_m{0};  // the camera centre: GPU world coordinates are world − origin
+  std::vector<typename Layout::GpuCamera> cameras;  // all cameras (RNG and params index them)
+  std::vector<typename Layout::GpuObject> objects;
+  std::vector<typename Layout::GpuLight> lights;
 };
 
 // Layout traits: which namespace of gpu_layout.h a variant uses.
@@ -77,6 +88,10 @@ inline double component(const double4& v, int i) { return (&v.x)[i]; }
 inline double component(const df64x4& v, int i) { return double((&v.hi.x)[i]) + double((&v.lo.x)[i]); }
 
 template <class Layout>
-PackedScene<Layout> packScene(const PreparedScene& scene, int samplesPerPixel);
+PackedScene<Layout> packScene(const PreparedScene& scene);
+
+template <class Layout>
+PackedFrame<Layout> packFrame(const PreparedScene& scene, const PackedScene<Layout>& packed, int samplesPerPixel,
+                              std::size_t camera);
 
 }  // namespace dicsynth::gpu

@@ -24,10 +24,7 @@ Buffer inputBuffer(Context& context, const std::vector<T>& values) {
 template <class Layout>
 void renderAll(Context& context, const ComputePipeline& pipeline, const PreparedScene& scene,
                const RenderOptions& options, int tileSize, RenderResult& result) {
-  const PackedScene<Layout> packed = packScene<Layout>(scene, options.samplesPerPixel);
-  Buffer cameras = inputBuffer(context, packed.cameras);
-  Buffer objects = inputBuffer(context, packed.objects);
-  Buffer lights = inputBuffer(context, packed.lights);
+  const PackedScene<Layout> packed = packScene<Layout>(scene);
   Buffer textures = inputBuffer(context, packed.textures);
   Buffer texels = inputBuffer(context, packed.texels);
   Buffer nurbsNodes = inputBuffer(context, packed.nurbsNodes);
@@ -37,9 +34,6 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   const std::size_t tilePixels = std::size_t(tileSize) * std::size_t(tileSize);
   Buffer pixels(context, tilePixels * sizeof(typename Layout::GpuPixel), BufferUse::Readback);
   Buffer* bindings[DS_BINDING_COUNT];
-  bindings[DS_BINDING_CAMERAS] = &cameras;
-  bindings[DS_BINDING_OBJECTS] = &objects;
-  bindings[DS_BINDING_LIGHTS] = &lights;
   bindings[DS_BINDING_TEXTURES] = &textures;
   bindings[DS_BINDING_TEXELS] = &texels;
   bindings[DS_BINDING_PIXELS] = &pixels;
@@ -53,6 +47,13 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   for (const auto& c : scene.cameras) totalPixels += double(c.camera.width_px) * c.camera.height_px;
   result.cameras.resize(scene.cameras.size());
   for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
+    const PackedFrame<Layout> frame = packFrame<Layout>(scene, packed, options.samplesPerPixel, ci);
+    Buffer cameras = inputBuffer(context, frame.cameras);
+    Buffer objects = inputBuffer(context, frame.objects);
+    Buffer lights = inputBuffer(context, frame.lights);
+    bindings[DS_BINDING_CAMERAS] = &cameras;
+    bindings[DS_BINDING_OBJECTS] = &objects;
+    bindings[DS_BINDING_LIGHTS] = &lights;
     const Camera& cam = scene.cameras[ci].camera;
     CameraImage& image = result.cameras[ci];
     image.cameraName = cam.name;
@@ -62,8 +63,7 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
         const int tw = std::min(tileSize, cam.width_px - x0), th = std::min(tileSize, cam.height_px - y0);
         typename Layout::GpuTileParams params{};
         params.tile = {x0, y0, tw, th};
-        params.counts = {int(ci), options.samplesPerPixel, int(packed.objects.size()),
-                         int(packed.lights.size())};
+        params.counts = {int(ci), options.samplesPerPixel, int(frame.objects.size()), int(frame.lights.size())};
         params.random = {options.seed, std::uint32_t(options.frame), 0, 0};
         dispatchAndWait(context, pipeline, bindings, &params, std::uint32_t((tw + DS_LOCAL_SIZE_X - 1) / DS_LOCAL_SIZE_X),
                         std::uint32_t((th + DS_LOCAL_SIZE_Y - 1) / DS_LOCAL_SIZE_Y));
@@ -78,8 +78,9 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
             image.objectId[i] = id;
             image.depth_m[i] = component(p.positionDepth, 3);
             image.uv[i] = {component(p.uvRadianceId, 0), component(p.uvRadianceId, 1)};
-            image.position_m[i] = {component(p.positionDepth, 0), component(p.positionDepth, 1),
-                                   component(p.positionDepth, 2)};
+            // Camera-relative on the GPU (PackedFrame): the centre goes back in, in double.
+            image.position_m[i] = frame.origin_m + dvec3(component(p.positionDepth, 0), component(p.positionDepth, 1),
+                                                         component(p.positionDepth, 2));
             image.normal[i] = {component(p.normal, 0), component(p.normal, 1), component(p.normal, 2)};
           }
         }

@@ -31,7 +31,8 @@ Tolerances tolerancesFor(Precision p) {
   // fp32, unit roundoff ε = 2^-24 ≈ 6e-8.
   // Geometry. A ray hit is computed from the camera centre and direction, mapped into the object
   // frame (|o'| ≈ |C − O|), intersected, mapped back. Each step rounds to a few ε of the lengths
-  // involved, so the object-frame ray carries an error ~ε D, D = |P − C| + |C − O|. Moving a ray
+  // involved, so the object-frame ray carries an error ~ε D, D = |P − C| + |C − O|. (The GPU works
+  // in camera-relative coordinates, host/gpu/pack.h: distances from the world origin never enter.) Moving a ray
   // sideways by δ moves its hit along the surface by δ / cos θ. On a curved surface the error
   // saturates near a tangent: the root of the quadratic is a square root of its discriminant, so
   // it errs by ~√ε of the radius, hence the floor √ε of cos θ there; a flat surface has no such

@@ -29,12 +29,14 @@ struct CameraDifference {
 };
 
 // Tolerances of one precision (values and derivations in compare.cpp, summarized in README).
-// fp64 has absolute bounds. fp32 bounds each pixel by the conditioning of its pixel-centre hit:
+// fp64 has absolute bounds. fp32 and df64 bound each pixel by the conditioning of its pixel-centre
+// hit (ε = the variant's unit roundoff: 2^-24, 2^-44):
 //   P:        k ε D / c
 //   uv:       k ε (max(1, g |P − O|) + g D / c)
 //   radiance: r0 + T · (uv bound)
-// with D = |P − C| + |C − O| (camera C, object origin O), c = max(cos θ, floor) (θ: incidence;
-// floor √ε on curved shapes, ε on flat ones), g = |∂uv/∂P| measured with two extra reference rays,
+// with D = |P − C| + |C − O| (camera C, object origin O; the GPU works camera-relative), c = max(cos θ,
+// floor) (θ: incidence; floor √ε on curved shapes, ε on flat ones), g = |∂uv/∂P| measured with two
+// extra reference rays,
 // T = the largest slope of the object's texture times its shading (radiance per unit uv).
 struct Tolerances {
   double radiance;     // |Δ radiance| as a fraction of full scale (r0 above)

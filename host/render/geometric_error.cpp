@@ -1,0 +1,77 @@
+#include "render/geometric_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "cpu/trace.h"
+
+namespace dicsynth {
+namespace {
+
+// Signed difference of two parameters on a periodic seam: in [−1/2, 1/2].
+double periodicDiff(double a, double b) { return a - b - std::round(a - b); }
+
+// ∂uv/∂pixel at a pixel centre (columns: per +x px, per +y px), by two reference rays; false when
+// either leaves the object or the Jacobian is singular.
+bool uvJacobian(const PreparedScene& scene, const PinholeModel<double>& m, dvec2 pixel, int object, dvec2 uv,
+                glm::dmat2& J) {
+  constexpr double h = 1e-3;
+  for (int k = 0; k < 2; ++k) {
+    cpu::SurfaceHit hit;
+    const dvec2 offset = k == 0 ? dvec2(h, 0) : dvec2(0, h);
+    if (!cpu::traceNearest(scene, m.centre, worldRayDirection(m, pixel + offset), hit) || hit.object != object)
+      return false;
+    J[k] = dvec2(periodicDiff(hit.uv.x, uv.x), periodicDiff(hit.uv.y, uv.y)) / h;
+  }
+  return std::abs(glm::determinant(J)) > 0;
+}
+
+}  // namespace
+
+GeometricError measureGeometricError(const PreparedScene& scene, std::size_t camera, const CameraImage& reference,
+                                     const CameraImage& test) {
+  DS_CHECK(reference.pixelCount() == test.pixelCount(), "image sizes differ");
+  const PinholeModel<double>& m = scene.cameras[camera].model;
+  const auto width = std::size_t(reference.width_px);
+  GeometricError e;
+  e.pixels = reference.pixelCount();
+  double sumSquares = 0;
+  const auto worst = [](double current, double v) {
+    return std::isnan(v) ? std::numeric_limits<double>::infinity() : std::max(current, v);
+  };
+  for (std::size_t i = 0; i < e.pixels; ++i) {
+    const std::uint32_t a = reference.objectId[i], b = test.objectId[i];
+    if (a != b) {
+      ++e.wrongHits;
+      continue;
+    }
+    if (a == 0) continue;
+    const dvec3 dP = test.position_m[i] - reference.position_m[i];
+    const double Z = reference.depth_m[i];
+    if (!(glm::length(dP) <= 1e-3 * Z)) {
+      ++e.wrongHits;
+      continue;
+    }
+    ++e.compared;
+    const dvec2 pixel{double(i % width), double(i / width)};
+    const double reprojection = glm::length(projectToPixel(m, test.position_m[i]) - projectToPixel(m, reference.position_m[i]));
+    const dvec2 dUv{periodicDiff(test.uv[i].x, reference.uv[i].x), periodicDiff(test.uv[i].y, reference.uv[i].y)};
+    glm::dmat2 J;
+    double material = 0;
+    if (uvJacobian(scene, m, pixel, int(a) - 1, reference.uv[i], J)) material = glm::length(glm::inverse(J) * dUv);
+    const double px = std::max(reprojection, material);
+    e.maxPx = worst(e.maxPx, px);
+    sumSquares += px * px;
+    e.maxReprojectionPx = worst(e.maxReprojectionPx, reprojection);
+    e.maxMaterialPx = worst(e.maxMaterialPx, material);
+    e.maxUv = worst(e.maxUv, std::max(std::abs(dUv.x), std::abs(dUv.y)));
+    e.maxPosition_m = worst(e.maxPosition_m, glm::length(dP));
+    e.maxPositionPx = worst(e.maxPositionPx, glm::length(dP) * m.fx / Z);
+  }
+  e.rmsPx = e.compared ? std::sqrt(sumSquares / double(e.compared)) : 0;
+  return e;
+}
+
+}  // namespace dicsynth

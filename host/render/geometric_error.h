@@ -1,0 +1,37 @@
+#pragma once
+// Geometric error of a render's ground truth against the CPU reference, in image pixels: the
+// measure the NURBS stress suite and `dicsynth bench` report (issue 3). Per pixel whose centre ray
+// hits the same object on both sides:
+//  - reprojection (px): |π(P_test) − π(P_ref)|, π the camera's projection with distortion. Both
+//    points lie (nearly) on the pixel's ray, so this is the error of the ray itself plus the
+//    lateral part of the hit's error;
+//  - material point (px): J⁻¹ Δuv, J = ∂uv/∂pixel from two extra reference rays 1e-3 px away: how
+//    far from its true image position the reported material point (u, v) is;
+//  - position (m, and px = |ΔP| / (Z / fx), the pixel footprint at the depth): the 3D error,
+//    including its component along the ray.
+// The geometric error of a pixel is the larger of the first two (in px); what a DIC user sees.
+// A wrong hit: different objects, a hit against a miss, or another root of the same surface
+// (|ΔP| > 1e-3 · Z: roots of one surface that close merge into a tangency, where "which root" has
+// no meaning).
+#include <cstddef>
+#include <vector>
+
+#include "geometry/prepared_scene.h"
+#include "render/result.h"
+
+namespace dicsynth {
+
+struct GeometricError {
+  std::size_t pixels = 0;     // all pixels
+  std::size_t compared = 0;   // same object hit on both sides (errors below are over these)
+  std::size_t wrongHits = 0;
+  double maxPx = 0, rmsPx = 0;                  // geometric error (px)
+  double maxReprojectionPx = 0, maxMaterialPx = 0;
+  double maxUv = 0;                             // max(|Δu|, |Δv|), modulo 1
+  double maxPosition_m = 0, maxPositionPx = 0;
+};
+
+GeometricError measureGeometricError(const PreparedScene& scene, std::size_t camera, const CameraImage& reference,
+                                     const CameraImage& test);
+
+}  // namespace dicsynth

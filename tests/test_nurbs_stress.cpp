@@ -63,11 +63,12 @@ struct CaseResult {
   CameraDifference difference;  // with the precision's tolerances (compare.cpp)
 };
 
-CaseResult runCase(const std::string& name, const PreparedScene& scene, const RenderResult& reference, Precision p) {
+CaseResult runCase(const std::string& name, const PreparedScene& scene, const RenderResult& reference,
+                   const GeometricErrorMeter& meter, Precision p) {
   gpu::Renderer renderer(gpuContext());
   const RenderResult gpu = renderer.render(scene, groundTruthOnly(p));
   CaseResult r;
-  r.error = measureGeometricError(scene, 0, reference.cameras[0], gpu.cameras[0]);
+  r.error = meter.measure(gpu.cameras[0]);
   r.difference = compareResults(scene, reference, gpu, tolerancesFor(p))[0];
   const GeometricError& e = r.error;
   MESSAGE(name << " " << std::string(toString(p)) << ": rays " << e.pixels << ", compared " << e.compared
@@ -86,12 +87,13 @@ void checkCase(const std::string& name, const Scene& sceneIn) {
   for (std::uint32_t id : reference.cameras[0].objectId) hits += id != 0;
   MESSAGE(name << ": the reference hits in " << hits << " of " << reference.cameras[0].pixelCount() << " pixels");
   REQUIRE(hits > 1000);  // the case really looks at the surface
+  const GeometricErrorMeter meter(scene, 0, reference.cameras[0]);
   for (Precision p : {Precision::Fp64, Precision::Df64}) {
-    const CaseResult r = runCase(name, scene, reference, p);
+    const CaseResult r = runCase(name, scene, reference, meter, p);
     CHECK(r.error.wrongHits == 0);
     CHECK(r.error.maxPx < 1e-8);
   }
-  const CaseResult r = runCase(name, scene, reference, Precision::Fp32);
+  const CaseResult r = runCase(name, scene, reference, meter, Precision::Fp32);
   const double allowed = 1e-4 * double(r.difference.pixels);
   CHECK(double(r.error.wrongHits) <= allowed);
   CHECK(double(r.difference.geometryOutliers) <= allowed);

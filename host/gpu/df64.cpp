@@ -1,5 +1,6 @@
 // df64 on the host: split/join, running the probe shader, the cached self-test.
 #include "gpu/df64.h"
+#include "gpu/device_cache.h"
 
 #include <algorithm>
 #include <chrono>
@@ -126,15 +127,6 @@ std::string cacheKey(const Context& context) {
   return buf;
 }
 
-std::string cacheFile(const Context& context) {
-  const std::string folder = resolveCacheDir(context.options().cacheDir);
-  if (folder.empty()) return "";
-  char version[16];
-  std::snprintf(version, sizeof version, "%08x", context.properties().driverVersion);
-  const std::string name = "df64-selftest-" + context.info().pipelineCacheUUID + "-" + version + ".txt";
-  return (fs::path(folder) / name).string();
-}
-
 std::string serialize(const Df64SelfTest& t, const std::string& key) {
   std::ostringstream o;
   char buf[256];
@@ -207,18 +199,7 @@ bool readCache(const std::string& path, const std::string& key, Df64SelfTest& t)
 
 void writeCache(const std::string& path, const std::string& text) {
   try {
-    const fs::path folder = fs::path(path).parent_path();
-    std::error_code ec;
-    fs::create_directories(folder, ec);
-    if (ec) throw Error("cannot create folder '" + folder.string() + "': " + ec.message());
-    AtomicFile file(path);
-    {
-      std::ofstream out(file.tempPath(), std::ios::binary | std::ios::trunc);
-      out << text;
-      out.close();
-      if (!out) throw Error("cannot write '" + file.tempPath() + "'");
-    }
-    file.commit();
+    writeCacheFile(path, text);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dicsynth: warning: df64 self-test result not cached: %s\n", e.what());
   }
@@ -238,7 +219,7 @@ bool probeFmaExact(Context& context, std::span<const std::uint32_t> probeSpirv) 
 }
 
 Df64SelfTest runDf64SelfTest(Context& context) {
-  const std::string path = cacheFile(context), key = cacheKey(context);
+  const std::string path = deviceCachePath(context, "df64-selftest"), key = cacheKey(context);
   Df64SelfTest cached;
   if (!path.empty() && readCache(path, key, cached)) {
     cached.fromCache = true;

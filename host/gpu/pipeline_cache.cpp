@@ -1,5 +1,6 @@
 // Pipeline cache file: folder resolution, header check, atomic save.
 #include "gpu/pipeline_cache.h"
+#include "gpu/device_cache.h"
 
 #include <unistd.h>
 
@@ -31,31 +32,6 @@ std::vector<uint8_t> readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return {};
   return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-// Writes `data` to `path` through a temporary file in the same folder; throws Error on failure.
-void writeAtomically(const std::string& path, const std::vector<uint8_t>& data) {
-  fs::path target(path);
-  std::error_code ec;
-  fs::create_directories(target.parent_path(), ec);
-  if (ec) throw Error("cannot create folder '" + target.parent_path().string() + "': " + ec.message());
-  std::string temp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("cannot write '" + temp + "': " + std::strerror(errno));
-    out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
-    out.close();
-    if (!out) {
-      fs::remove(temp, ec);
-      throw Error("cannot write '" + temp + "'");
-    }
-  }
-  fs::rename(temp, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw Error("cannot rename '" + temp + "' to '" + path + "': " + ec.message());
-  }
 }
 
 }  // namespace
@@ -110,7 +86,7 @@ void PipelineCache::save() noexcept {
     DS_VK(vkGetPipelineCacheData(device_, cache_.get(), &size, data.data()));
     data.resize(size);
     if (data == lastWritten_ && fs::exists(path_)) return;  // nothing new to write
-    writeAtomically(path_, data);
+    writeCacheFile(path_, std::string_view(reinterpret_cast<const char*>(data.data()), data.size()));
     lastWritten_ = std::move(data);
   } catch (const std::exception& e) {
     if (std::exchange(warned_, true)) return;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "cpu/trace.h"
 
 namespace dicsynth {
@@ -30,11 +31,25 @@ bool uvJacobian(const PreparedScene& scene, const PinholeModel<double>& m, dvec2
 
 }  // namespace
 
-GeometricError measureGeometricError(const PreparedScene& scene, std::size_t camera, const CameraImage& reference,
-                                     const CameraImage& test) {
-  DS_CHECK(reference.pixelCount() == test.pixelCount(), "image sizes differ");
+GeometricErrorMeter::GeometricErrorMeter(const PreparedScene& scene, std::size_t camera, const CameraImage& reference)
+    : scene_(scene), camera_(camera), reference_(reference), uvFromPixelInverse_(reference.pixelCount(), glm::dmat2(0.0)) {
   const PinholeModel<double>& m = scene.cameras[camera].model;
   const auto width = std::size_t(reference.width_px);
+  parallelFor(std::size_t(reference.height_px), [&](std::size_t y) {
+    for (std::size_t x = 0; x < width; ++x) {
+      const std::size_t i = y * width + x;
+      glm::dmat2 J;
+      if (reference.objectId[i] != 0 &&
+          uvJacobian(scene, m, dvec2(double(x), double(y)), int(reference.objectId[i]) - 1, reference.uv[i], J))
+        uvFromPixelInverse_[i] = glm::inverse(J);
+    }
+  });
+}
+
+GeometricError GeometricErrorMeter::measure(const CameraImage& test) const {
+  const CameraImage& reference = reference_;
+  DS_CHECK(reference.pixelCount() == test.pixelCount(), "image sizes differ");
+  const PinholeModel<double>& m = scene_.cameras[camera_].model;
   GeometricError e;
   e.pixels = reference.pixelCount();
   double sumSquares = 0;
@@ -55,12 +70,9 @@ GeometricError measureGeometricError(const PreparedScene& scene, std::size_t cam
       continue;
     }
     ++e.compared;
-    const dvec2 pixel{double(i % width), double(i / width)};
     const double reprojection = glm::length(projectToPixel(m, test.position_m[i]) - projectToPixel(m, reference.position_m[i]));
     const dvec2 dUv{periodicDiff(test.uv[i].x, reference.uv[i].x), periodicDiff(test.uv[i].y, reference.uv[i].y)};
-    glm::dmat2 J;
-    double material = 0;
-    if (uvJacobian(scene, m, pixel, int(a) - 1, reference.uv[i], J)) material = glm::length(glm::inverse(J) * dUv);
+    const double material = glm::length(uvFromPixelInverse_[i] * dUv);
     const double px = std::max(reprojection, material);
     e.maxPx = worst(e.maxPx, px);
     sumSquares += px * px;

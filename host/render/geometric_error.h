@@ -16,6 +16,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "geometry/prepared_scene.h"
 #include "render/result.h"
 
@@ -31,7 +33,18 @@ struct GeometricError {
   double maxPosition_m = 0, maxPositionPx = 0;
 };
 
-GeometricError measureGeometricError(const PreparedScene& scene, std::size_t camera, const CameraImage& reference,
-                                     const CameraImage& test);
+// Measures renders of one camera against its reference. The Jacobians J (two reference rays per
+// pixel) are computed once, at construction, and serve every test render.
+class GeometricErrorMeter {
+ public:
+  GeometricErrorMeter(const PreparedScene& scene, std::size_t camera, const CameraImage& reference);
+  GeometricError measure(const CameraImage& test) const;
+
+ private:
+  const PreparedScene& scene_;
+  std::size_t camera_;
+  const CameraImage& reference_;
+  std::vector<glm::dmat2> uvFromPixelInverse_;  // J⁻¹ per pixel (zero where unavailable)
+};
 
 }  // namespace dicsynth

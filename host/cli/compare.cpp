@@ -55,7 +55,7 @@ int runCompare(const CompareCommand& cmd) {
   co.device = cmd.args.device;
   gpu::Context context(co);
   gpu::Renderer renderer(context);
-  options.precision = resolvePrecision(cmd.args.precision, context.info().shaderFloat64);
+  options.precision = resolvePrecision(cmd.args, context, renderer);
 
   options.progress = progressPrinter("cpu reference");
   const RenderResult cpu = cpu::render(prepared, options);

@@ -9,7 +9,9 @@
 // variant can run on the device. Also the df64 self-test (host/gpu/df64.h): whether double-float
 // arithmetic is right on the device, its worst operation, and whether fma() is exact there (then
 // df64 products use it). That needs a Vulkan context per device; the result is cached per device
-// and driver version next to the pipeline cache, so only the first listing pays for it.
+// and driver version next to the pipeline cache, so only the first listing pays for it. And the
+// precision calibration behind `--precision auto` (render/precision_calibration.h): each
+// precision's speed and geometric error on a small fixed scene, also cached.
 // Devices below Vulkan 1.2 are listed with a note instead.
 #include <cmath>
 #include <cstdio>
@@ -24,6 +26,8 @@
 #include "core/error.h"
 #include "gpu/context.h"
 #include "gpu/df64.h"
+#include "gpu/renderer.h"
+#include "render/precision_calibration.h"
 #include "gpu/device_query.h"
 
 namespace dicsynth::cli {
@@ -43,21 +47,24 @@ std::string mebibytes(uint64_t bytes) {
 
 const char* yesNo(bool b) { return b ? "yes" : "no"; }
 
-// The df64 self-test of one device, or why there is none.
+// The df64 self-test and the precision calibration of one device (both cached per device), or
+// why there are none.
 struct Df64Status {
   std::optional<gpu::Df64SelfTest> selfTest;
+  std::optional<PrecisionCalibration> calibration;
   std::string note;  // when there is no self-test
 };
 
 Df64Status df64Status(const gpu::DeviceInfo& d) {
-  if (d.apiVersion < VK_API_VERSION_1_2) return {std::nullopt, "skipped (Vulkan below 1.2)"};
+  if (d.apiVersion < VK_API_VERSION_1_2) return {std::nullopt, std::nullopt, "skipped (Vulkan below 1.2)"};
   try {
     gpu::ContextOptions options;
     options.device = std::to_string(d.index);
     gpu::Context context(options);
-    return {gpu::runDf64SelfTest(context), ""};
+    gpu::Renderer renderer(context);
+    return {gpu::runDf64SelfTest(context), calibratePrecisions(context, renderer), ""};
   } catch (const std::exception& e) {
-    return {std::nullopt, std::string("not run: ") + e.what()};
+    return {std::nullopt, std::nullopt, std::string("not run: ") + e.what()};
   }
 }
 
@@ -84,6 +91,9 @@ void printText(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
     } else {
       std::printf("    df64 self-test:       %s\n", status.note.c_str());
     }
+    if (status.calibration)
+      std::printf("    calibration:          %s%s\n", status.calibration->fromCache ? "(cached) " : "",
+                  describeCalibration(*status.calibration).c_str());
   }
   if (selector.empty())
     std::printf("* = automatic choice (discrete GPU > integrated > virtual > CPU); --device overrides\n");
@@ -122,7 +132,17 @@ void printJson(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
       std::printf("\"df64_pass\": null, \"df64_worst_log2\": null, \"df64_worst_op\": null, "
                   "\"fma_exact\": null, \"df64_note\": %s, ", json::quote(status.note).c_str());
     }
-    std::printf("\"selected\": %s}", d.index == selected ? "true" : "false");
+    std::printf("\"precisions\": [");
+    if (const Df64Status& status = df64[d.index]; status.calibration) {
+      bool first = true;
+      for (const PrecisionMeasurement& m : status.calibration->modes) {
+        std::printf("%s{\"precision\": %s, \"available\": %s, \"mrays_per_s\": %s, \"max_error_px\": %s}",
+                    first ? "" : ", ", json::quote(toString(m.precision)).c_str(), json::boolean(m.available).c_str(),
+                    json::number(m.mraysPerSecond).c_str(), json::number(m.maxErrorPx).c_str());
+        first = false;
+      }
+    }
+    std::printf("], \"selected\": %s}", d.index == selected ? "true" : "false");
   }
   std::printf("%s]\n", devices.empty() ? "" : "\n");
 }

@@ -57,8 +57,7 @@ int runRender(const RenderCommand& cmd) {
     context = std::make_unique<gpu::Context>(co);
     renderer = std::make_unique<gpu::Renderer>(*context);
   }
-  const Precision precision =
-      resolvePrecision(cmd.args.precision, useGpu ? context->info().shaderFloat64 : true);
+  const Precision precision = useGpu ? resolvePrecision(cmd.args, *context, *renderer) : Precision::Fp64;
 
   for (std::size_t fi = 0; fi < frames.size(); ++fi) {
     const PreparedScene prepared = prepareScene(scenes[fi], {cmd.args.downscale});

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "render/precision_calibration.h"
 
 namespace dicsynth::cli {
 
@@ -17,9 +18,13 @@ void addRenderArgs(CLI::App& app, RenderArgs& args) {
       ->capture_default_str();
   app.add_option("--seed", args.seed, "Seed of the sample positions")->capture_default_str();
   app.add_option("--precision", args.precision,
-                 "GPU arithmetic: fp32, df64 (float pairs) or fp64 (default: fp64 when the device supports it, "
-                 "else df64)")
-      ->check(CLI::IsMember({"fp32", "df64", "fp64"}));
+                 "GPU arithmetic: fp32, df64 (float pairs), fp64, or auto: the fastest whose measured geometric "
+                 "error on this device is <= --max-error-px")
+      ->check(CLI::IsMember({"fp32", "df64", "fp64", "auto"}))
+      ->capture_default_str();
+  app.add_option("--max-error-px", args.maxErrorPx, "--precision auto: largest acceptable geometric error (px)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--device", args.device, "Vulkan device: index or name substring (see `dicsynth devices`)");
   app.add_option("--downscale", args.downscale,
                  "Divide every camera's resolution by this integer, keeping the field of view")
@@ -69,11 +74,16 @@ RenderOptions renderOptions(const RenderArgs& args, int frame) {
   return o;
 }
 
-Precision resolvePrecision(const std::string& requested, bool deviceHasFloat64) {
-  if (requested == "fp32") return Precision::Fp32;
-  if (requested == "fp64") return Precision::Fp64;
-  if (requested == "df64") return Precision::Df64;
-  return deviceHasFloat64 ? Precision::Fp64 : Precision::Df64;
+Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::Renderer& renderer) {
+  if (args.precision == "fp32") return Precision::Fp32;
+  if (args.precision == "fp64") return Precision::Fp64;
+  if (args.precision == "df64") return Precision::Df64;
+  const PrecisionCalibration calibration = calibratePrecisions(context, renderer);
+  const Precision chosen = choosePrecision(calibration, args.maxErrorPx);
+  std::fprintf(stderr, "precision auto: %s (max error %g px; %s calibration on %s: %s)\n", toString(chosen),
+               args.maxErrorPx, calibration.fromCache ? "cached" : "new", context.info().name.c_str(),
+               describeCalibration(calibration).c_str());
+  return chosen;
 }
 
 void failOnValidationMessages(const gpu::Context& context) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gpu/context.h"
+#include "gpu/renderer.h"
 #include "render/options.h"
 #include "scene/scene.h"
 
@@ -18,7 +19,8 @@ struct RenderArgs {
   std::vector<std::string> defines;  // "name=value"
   int spp = 4;
   std::uint32_t seed = 1;
-  std::string precision;             // "" = fp64 when the device has it, else fp32
+  std::string precision = "auto";    // fp32 | df64 | fp64 | auto (render/precision_calibration.h)
+  double maxErrorPx = 1e-6;          // auto: largest acceptable geometric error (px)
   std::string device;
   int downscale = 1;
 };
@@ -34,8 +36,9 @@ std::vector<int> parseFrames(const std::string& text);
 // Validates spp and seed, returns RenderOptions (precision resolved by resolvePrecision).
 RenderOptions renderOptions(const RenderArgs& args, int frame);
 
-// The GPU precision: the user's choice, or fp64 when the device supports it, else fp32.
-Precision resolvePrecision(const std::string& requested, bool deviceHasFloat64);
+// The GPU precision: the user's choice, or for "auto" the fastest whose calibrated error on this
+// device is ≤ maxErrorPx (calibrating once per device; the choice is reported on stderr).
+Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::Renderer& renderer);
 
 // With validation layers on (DICSYNTH_VALIDATION=1), prints every message they reported to stderr
 // and throws Error: a run that the layers flagged must not look successful.

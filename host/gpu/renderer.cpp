@@ -96,16 +96,18 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
 Renderer::Renderer(Context& context) : context_(context) {}
 Renderer::~Renderer() = default;
 
-const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatures& f, bool specialize) {
+const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatures& f, bool specialize,
+                                          bool df64Fma) {
   // The NURBS degree is not a feature to switch on: the data is packed for exactly that degree.
   const SceneFeatures used = specialize ? f : SceneFeatures::all(f.nurbsDegree);
-  auto& slot = pipelines_[{precision, used}];
+  auto& slot = pipelines_[{precision, used, df64Fma}];
   if (!slot) {
     const std::vector<SpecConstant> spec = {{DS_SPEC_HAS_LIGHTS, used.lights ? 1u : 0u},
                                             {DS_SPEC_HAS_DISTORTION, used.distortion ? 1u : 0u},
                                             {DS_SPEC_HAS_FILE_TEXTURES, used.fileTextures ? 1u : 0u},
                                             {DS_SPEC_SHAPE_KINDS, used.shapeKinds},
-                                            {DS_SPEC_NURBS_DEGREE, std::uint32_t(std::max(used.nurbsDegree, 1))}};
+                                            {DS_SPEC_NURBS_DEGREE, std::uint32_t(std::max(used.nurbsDegree, 1))},
+                                            {DS_SPEC_DF64_FMA, df64Fma ? 1u : 0u}};
     std::span<const std::uint32_t> spirv = spirv::render_fp32;
     if (precision == Precision::Fp64) spirv = spirv::render_fp64;
     if (precision == Precision::Df64) spirv = spirv::render_df64;
@@ -120,11 +122,12 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   if (options.precision == Precision::Fp64 && !context_.info().shaderFloat64)
     throw InputError("--precision fp64: device '" + context_.info().name +
                      "' has no shaderFloat64; use --precision df64, fp32 or another --device");
-  if (options.precision == Precision::Df64) requireDf64(context_);  // self-test, cached per device
+  // df64: the device's self-test (cached per device) decides, and whether its products use fma.
+  const bool df64Fma = options.precision == Precision::Df64 && requireDf64(context_).useFma;
   if (options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
   if (rendererOptions.tileSize < 8 || rendererOptions.tileSize % 8 != 0)
     throw InputError("tile size must be a positive multiple of 8");
-  const ComputePipeline& pipe = pipeline(options.precision, scene.features, rendererOptions.specialize);
+  const ComputePipeline& pipe = pipeline(options.precision, scene.features, rendererOptions.specialize, df64Fma);
   RenderResult result;
   result.backend = "gpu";
   result.precision = toString(options.precision);

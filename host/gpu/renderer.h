@@ -3,7 +3,7 @@
 // features, dispatches it tile by tile and reads the results back into a RenderResult.
 #include <map>
 #include <memory>
-#include <utility>
+#include <tuple>
 
 #include "geometry/prepared_scene.h"
 #include "gpu/compute.h"
@@ -32,11 +32,13 @@ class Renderer {
 
   // Creates (or finds) the pipeline for a precision and feature set; render() calls it, start-up
   // benchmarks call it alone.
-  const ComputePipeline& pipeline(Precision precision, const SceneFeatures& features, bool specialize);
+  // df64Fma: TwoProd by fma in df64 (only where the self-test proved fma exact).
+  const ComputePipeline& pipeline(Precision precision, const SceneFeatures& features, bool specialize,
+                                  bool df64Fma = false);
 
  private:
   Context& context_;
-  std::map<std::pair<Precision, SceneFeatures>, std::unique_ptr<ComputePipeline>> pipelines_;
+  std::map<std::tuple<Precision, SceneFeatures, bool>, std::unique_ptr<ComputePipeline>> pipelines_;
 };
 
 }  // namespace dicsynth::gpu

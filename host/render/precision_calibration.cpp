@@ -1,0 +1,202 @@
+#include "render/precision_calibration.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "cpu/reference_renderer.h"
+#include "geometry/prepared_scene.h"
+#include "gpu/context.h"
+#include "gpu/device_cache.h"
+#include "gpu/df64.h"
+#include "gpu/renderer.h"
+#include "render/geometric_error.h"
+#include "scene/nurbs_specimens.h"
+#include "spirv/render_df64.h"
+#include "spirv/render_fp32.h"
+#include "spirv/render_fp64.h"
+
+namespace dicsynth {
+namespace {
+
+constexpr Precision kAll[] = {Precision::Fp32, Precision::Df64, Precision::Fp64};
+constexpr int kSpp = 2;
+
+// The calibration scene: a curved NURBS plate and a sphere seen by a 128 × 96 camera with Figure 1's
+// field of view. Geometry only (constant shading, no texture): the error measured is geometric.
+Scene calibrationScene() {
+  Scene s;
+  s.file = "(calibration scene)";
+  Camera c;
+  c.name = "calibration";
+  c.width_px = 128;
+  c.height_px = 96;
+  c.principalPoint_px = {63.5, 47.5};
+  c.focalLength_m = 0.012;
+  c.pixelSize_m = {5.5e-5, 5.5e-5};
+  s.cameras.push_back(c);
+
+  scene::PlateSpec plate;
+  plate.size_m = {0.12, 0.09};
+  plate.curvature_per_m = 6;
+  Object specimen;
+  specimen.name = "plate";
+  specimen.shape.kind = ShapeKind::Nurbs;
+  specimen.shape.location_m = {-0.03, 0, 0.5};
+  specimen.shape.nurbs = std::make_shared<NurbsSurface>(scene::makePlate(plate));
+  specimen.transform = glm::rotate(dmat4(1.0), 0.4, dvec3(0.2, 1, 0));
+  s.objects.push_back(specimen);
+
+  Object ball;
+  ball.name = "sphere";
+  ball.shape.kind = ShapeKind::Sphere;
+  ball.shape.radius_m = 0.04;
+  ball.shape.location_m = {0.05, 0.01, 0.45};
+  s.objects.push_back(ball);
+  return s;
+}
+
+// The renderer build: any change of the shaders invalidates the calibration.
+std::string cacheKey() {
+  std::uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a over the three variants' SPIR-V
+  for (auto spirv : {std::span<const std::uint32_t>(spirv::render_fp32), std::span<const std::uint32_t>(spirv::render_df64),
+                     std::span<const std::uint32_t>(spirv::render_fp64)})
+    for (std::uint32_t word : spirv) hash = (hash ^ word) * 0x100000001b3ull;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s %016llx", DS_VERSION, static_cast<unsigned long long>(hash));
+  return buf;
+}
+
+constexpr const char* kMagic = "dicsynth precision calibration 1";
+
+std::string serialize(const PrecisionCalibration& c, const std::string& key) {
+  std::ostringstream o;
+  char buf[256];
+  o << kMagic << "\nkey " << key << "\n";
+  std::snprintf(buf, sizeof buf, "seconds %a\n", c.seconds);
+  o << buf;
+  for (const PrecisionMeasurement& m : c.modes) {
+    std::snprintf(buf, sizeof buf, "mode %s %d %a %a ", toString(m.precision), m.available ? 1 : 0, m.mraysPerSecond,
+                  m.maxErrorPx);
+    o << buf << m.unavailable << "\n";
+  }
+  o << "end\n";
+  return o.str();
+}
+
+bool readCache(const std::string& path, const std::string& key, PrecisionCalibration& c) {
+  std::ifstream in(path);
+  std::string line;
+  if (!in || !std::getline(in, line) || line != kMagic) return false;
+  if (!std::getline(in, line) || line != "key " + key) return false;
+  if (!std::getline(in, line) || std::sscanf(line.c_str(), "seconds %la", &c.seconds) != 1) return false;
+  for (Precision p : kAll) {
+    if (!std::getline(in, line)) return false;
+    std::istringstream fields(line);
+    std::string tag, name, rate, error;
+    int available = 0;
+    if (!(fields >> tag >> name >> available >> rate >> error) || tag != "mode" || name != toString(p)) return false;
+    PrecisionMeasurement m;
+    m.precision = p;
+    m.available = available == 1;
+    m.mraysPerSecond = std::strtod(rate.c_str(), nullptr);
+    m.maxErrorPx = std::strtod(error.c_str(), nullptr);
+    std::getline(fields >> std::ws, m.unavailable);
+    if (!std::isfinite(m.mraysPerSecond) || !std::isfinite(m.maxErrorPx)) return false;
+    c.modes.push_back(m);
+  }
+  return std::getline(in, line) && line == "end";
+}
+
+PrecisionCalibration measure(gpu::Context& context, gpu::Renderer& renderer) {
+  const auto start = std::chrono::steady_clock::now();
+  const PreparedScene scene = prepareScene(calibrationScene());
+  RenderOptions options;
+  options.samplesPerPixel = kSpp;
+  const RenderResult reference = cpu::render(scene, options);
+  const GeometricErrorMeter meter(scene, 0, reference.cameras[0]);
+  const double rays = double(scene.cameras[0].camera.width_px) * scene.cameras[0].camera.height_px * (kSpp + 1);
+  PrecisionCalibration c;
+  for (Precision p : kAll) {
+    PrecisionMeasurement m;
+    m.precision = p;
+    if (p == Precision::Fp64 && !context.info().shaderFloat64) {
+      m.unavailable = "no shaderFloat64";
+    } else if (p == Precision::Df64 && !gpu::runDf64SelfTest(context).passed) {
+      m.unavailable = "df64 self-test failed: " + gpu::describeDf64(gpu::runDf64SelfTest(context));
+    } else {
+      options.precision = p;
+      double best = 1e300;
+      RenderResult result;
+      for (int run = 0; run < 2; ++run) {  // the first run may include the pipeline's compilation
+        result = renderer.render(scene, options);
+        best = std::min(best, result.renderSeconds);
+      }
+      m.available = true;
+      m.mraysPerSecond = rays / best / 1e6;
+      const GeometricError e = meter.measure(result.cameras[0]);
+      // A wrong hit is an error no bound accepts.
+      m.maxErrorPx = e.wrongHits > 0 ? std::numeric_limits<double>::max() : e.maxPx;
+    }
+    c.modes.push_back(m);
+  }
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return c;
+}
+
+}  // namespace
+
+PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& renderer) {
+  const std::string path = gpu::deviceCachePath(context, "precision-calibration"), key = cacheKey();
+  PrecisionCalibration cached;
+  if (!path.empty() && readCache(path, key, cached)) {
+    cached.fromCache = true;
+    cached.cachePath = path;
+    return cached;
+  }
+  PrecisionCalibration c = measure(context, renderer);
+  c.cachePath = path;
+  if (!path.empty()) {
+    try {
+      gpu::writeCacheFile(path, serialize(c, key));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "dicsynth: warning: precision calibration not cached: %s\n", e.what());
+    }
+  }
+  return c;
+}
+
+Precision choosePrecision(const PrecisionCalibration& calibration, double maxErrorPx) {
+  const PrecisionMeasurement* best = nullptr;
+  for (const PrecisionMeasurement& m : calibration.modes)
+    if (m.available && m.maxErrorPx <= maxErrorPx && (!best || m.mraysPerSecond > best->mraysPerSecond)) best = &m;
+  if (!best) {
+    char bound[32];
+    std::snprintf(bound, sizeof bound, "%g", maxErrorPx);
+    throw InputError(std::string("--precision auto: no precision of this device stays under --max-error-px ") + bound +
+                     " (" + describeCalibration(calibration) + ")");
+  }
+  return best->precision;
+}
+
+std::string describeCalibration(const PrecisionCalibration& calibration) {
+  std::string out;
+  for (const PrecisionMeasurement& m : calibration.modes) {
+    if (!out.empty()) out += ", ";
+    char buf[160];
+    if (m.available)
+      std::snprintf(buf, sizeof buf, "%s %.3g Mrays/s, error %.2g px", toString(m.precision), m.mraysPerSecond,
+                    m.maxErrorPx);
+    else
+      std::snprintf(buf, sizeof buf, "%s unavailable (%s)", toString(m.precision), m.unavailable.c_str());
+    out += buf;
+  }
+  return out;
+}
+
+}  // namespace dicsynth

@@ -1,0 +1,47 @@
+#pragma once
+// `--precision auto`: which GPU precision is fastest on this device while its measured geometric
+// error stays under a bound (`--max-error-px`, default 1e-6 px). A short calibration renders one
+// small fixed scene (a curved NURBS plate and a sphere, 128 × 96 px, 2 spp) in every precision the
+// device offers (fp32; df64 if its self-test passes; fp64 if it has shaderFloat64), measures speed
+// and geometric error against the CPU reference (render/geometric_error.h), and caches the result
+// per device, driver and renderer build in the cache folder. The error measured there stands for
+// what the precision achieves on this device; a scene's own error is what `compare`/`bench` report.
+#include <string>
+#include <vector>
+
+#include "render/options.h"
+
+namespace dicsynth {
+
+namespace gpu {
+class Context;
+class Renderer;
+}  // namespace gpu
+
+struct PrecisionMeasurement {
+  Precision precision = Precision::Fp32;
+  bool available = false;
+  std::string unavailable;   // why not (no shaderFloat64, df64 self-test failed)
+  double mraysPerSecond = 0; // camera rays of the calibration scene per second (best of 2 runs)
+  double maxErrorPx = 0;     // geometric error against the CPU reference, px
+};
+
+struct PrecisionCalibration {
+  std::vector<PrecisionMeasurement> modes;  // fp32, df64, fp64
+  bool fromCache = false;
+  std::string cachePath;  // "" without a cache folder
+  double seconds = 0;     // wall time of the calibration (that of the original run when cached)
+};
+
+// The device's calibration: read from the cache when valid for this device, driver and renderer
+// build, else measured (a few seconds) and cached.
+PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& renderer);
+
+// The fastest available precision whose calibration error is ≤ maxErrorPx. Throws InputError,
+// listing the measurements, when none is.
+Precision choosePrecision(const PrecisionCalibration& calibration, double maxErrorPx);
+
+// "fp32 41.2 Mrays/s 1.3e-04 px, df64 …, fp64 …" for `devices` and messages.
+std::string describeCalibration(const PrecisionCalibration& calibration);
+
+}  // namespace dicsynth

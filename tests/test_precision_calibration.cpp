@@ -1,0 +1,64 @@
+// --precision auto: the calibration measures every precision the device offers, is cached per
+// device, and the choice is the fastest precision under the error bound.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+
+#include "gpu/context.h"
+#include "gpu/renderer.h"
+#include "render/precision_calibration.h"
+#include "run_cli.h"
+#include "temp_folder.h"
+
+using namespace dicsynth;
+
+TEST_CASE("calibration: choosePrecision takes the fastest mode under the bound") {
+  PrecisionCalibration c;
+  c.modes = {{Precision::Fp32, true, "", 40.0, 2e-4}, {Precision::Df64, true, "", 10.0, 1e-11},
+             {Precision::Fp64, true, "", 20.0, 1e-13}};
+  CHECK((choosePrecision(c, 1e-6) == Precision::Fp64));  // (( )): no doctest decomposition of an enum
+  CHECK((choosePrecision(c, 1e-3) == Precision::Fp32));  // (( )): no doctest decomposition of an enum
+  c.modes[2].available = false;  // no shaderFloat64
+  CHECK((choosePrecision(c, 1e-6) == Precision::Df64));  // (( )): no doctest decomposition of an enum
+  CHECK_THROWS_AS(choosePrecision(c, 1e-12), InputError);
+}
+
+TEST_CASE("calibration: measured on the device, cached, and read back") {
+  test::TempFolder cache;
+  gpu::ContextOptions options;
+  options.validation = true;
+  options.cacheDir = cache.path().string();
+  gpu::Context context(options);
+  gpu::Renderer renderer(context);
+  const PrecisionCalibration first = calibratePrecisions(context, renderer);
+  const std::string measured = describeCalibration(first);
+  MESSAGE("calibration: " << measured << " in " << first.seconds << " s");
+  REQUIRE(first.modes.size() == 3);
+  CHECK_FALSE(first.fromCache);
+  REQUIRE(std::filesystem::exists(first.cachePath));
+  for (const PrecisionMeasurement& m : first.modes) {
+    if (!m.available) continue;
+    CHECK(m.mraysPerSecond > 0);
+    // Each precision's error on the calibration scene, against the bounds of the stress suite:
+    // fp32 ~1e-4 px, df64 and fp64 far below 1e-8 px.
+    CHECK(m.maxErrorPx < (m.precision == Precision::Fp32 ? 1e-2 : 1e-8));
+  }
+  const PrecisionCalibration second = calibratePrecisions(context, renderer);
+  CHECK(second.fromCache);
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(second.modes[k].mraysPerSecond == first.modes[k].mraysPerSecond);  // hex floats: exact
+    CHECK(second.modes[k].maxErrorPx == first.modes[k].maxErrorPx);
+  }
+  // A damaged file is ignored (and rewritten by a new measurement).
+  test::writeBytes(first.cachePath, "dicsynth precision calibration 1\nkey nonsense\n");
+  CHECK_FALSE(calibratePrecisions(context, renderer).fromCache);
+  CHECK(context.validationMessages().empty());
+}
+
+TEST_CASE("calibration: render --precision auto refuses an unreachable bound") {
+  const test::CliResult r = test::runCli("render " + std::string(DS_SOURCE_DIR) +
+                                         "/scenes/rectangle.lua --downscale 8 --max-error-px 1e-300 -o " +
+                                         (std::filesystem::temp_directory_path() / "dicsynth_never").string());
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("--precision auto: no precision of this device stays under --max-error-px") != std::string::npos);
+}

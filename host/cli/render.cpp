@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.h"
 #include "cli/render_args.h"
@@ -57,12 +58,13 @@ int runRender(const RenderCommand& cmd) {
     context = std::make_unique<gpu::Context>(co);
     renderer = std::make_unique<gpu::Renderer>(*context);
   }
-  const Precision precision = useGpu ? resolvePrecision(cmd.args, *context, *renderer) : Precision::Fp64;
+  std::optional<Precision> precision;  // resolved after the first frame is prepared (its errors first)
 
   for (std::size_t fi = 0; fi < frames.size(); ++fi) {
     const PreparedScene prepared = prepareScene(scenes[fi], {cmd.args.downscale});
+    if (!precision) precision = useGpu ? resolvePrecision(cmd.args, *context, *renderer) : Precision::Fp64;
     RenderOptions options = renderOptions(cmd.args, frames[fi]);
-    options.precision = precision;
+    options.precision = *precision;
     options.progress = progressPrinter("rendering" + (numbered ? " frame " + std::to_string(frames[fi]) : ""));
     const RenderResult result = useGpu ? renderer->render(prepared, options) : cpu::render(prepared, options);
     if (context) failOnValidationMessages(*context);  // before any file of this frame is written

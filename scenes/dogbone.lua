@@ -1,5 +1,5 @@
 -- A flat dogbone tensile specimen (Nurbs.dogbone: 10 cm long, 2 cm grips, a 3 cm x 1 cm gauge
--- section, 1.5 cm C² transitions) necking frame after frame, seen by an 800 x 600 camera 40 cm
+-- section, 1.5 cm C² transitions) necking frame after frame, seen by a 1600 x 1200 camera 40 cm
 -- away, without distortion, under constant shading. The speckle is glued on (u, v), so it follows
 -- the specimen: the same (u, v) is the same material point in every frame, and the ground truth
 -- of a frame pair is the mapping of the documented material points (Nurbs.dogbone's comment in
@@ -14,7 +14,7 @@
 -- section the texture is squeezed to half its height in the grips).
 necking = necking or frame * 0.001
 strain = strain or 0
-camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.012; pixelSize = {5e-6, 5e-6};
+camera = Camera.Pinhole { resolution = {1600, 1200}; focalLength = 0.012; pixelSize = {2.5e-6, 2.5e-6};
   bitsPerPixel = 8; };
 specimen = Object.Simple {
   shape = Nurbs.dogbone { length = 0.1; width = 0.02; gaugeLength = 0.03; gaugeWidth = 0.01;

@@ -1,4 +1,4 @@
--- A speckled plate (10 cm x 7.5 cm) built as a NURBS surface by Nurbs.plate, facing an 800 x 600
+-- A speckled plate (10 cm x 7.5 cm) built as a NURBS surface by Nurbs.plate, facing a 1600 x 1200
 -- camera 50 cm away, without distortion, under constant shading: the classic 2D-DIC specimen made
 -- deformable. (u, v) = (0, 0) is its top-left corner as the camera sees it (as on Shape.Rectangle),
 -- and the speckle is glued on (u, v): it stretches and bends with the plate, so the same (u, v) is
@@ -14,7 +14,7 @@
 -- Example: dicsynth render scenes/nurbs_plate.lua -D strain=0.002 -D curvature=4
 strain = strain or 0
 curvature = curvature or 0
-camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.016; pixelSize = {5e-6, 5e-6};
+camera = Camera.Pinhole { resolution = {1600, 1200}; focalLength = 0.016; pixelSize = {2.5e-6, 2.5e-6};
   bitsPerPixel = 8; };
 plate = Object.Simple {
   shape = Nurbs.plate { size = {0.1, 0.075}; strain = {strain, -0.3 * strain};

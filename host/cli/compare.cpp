@@ -37,7 +37,9 @@ std::string toJson(const std::string& scene, const RenderResult& cpu, const Rend
     o << (i ? ", " : "") << quote(d.camera) << ": {\"pixels\": " << d.pixels
       << ", \"max_radiance_diff\": " << number(d.maxRadianceDiff)
       << ", \"rms_radiance_diff\": " << number(d.rmsRadianceDiff) << ", \"pixels_differing\": " << d.pixelsDiffering
-      << ", \"radiance_outliers\": " << d.radianceOutliers << ", \"object_id_mismatches\": " << d.objectIdMismatches
+      << ", \"radiance_outliers\": " << d.radianceOutliers << ", \"radiance_outliers_off_edge\": "
+      << d.radianceOutliersOffEdge << ", \"object_id_mismatches\": " << d.objectIdMismatches
+      << ", \"object_id_mismatches_off_edge\": " << d.objectIdMismatchesOffEdge
       << ", \"max_uv_diff\": " << number(d.maxUvDiff) << ", \"max_P_diff_m\": " << number(d.maxPositionDiff_m)
       << ", \"max_Z_diff_m\": " << number(d.maxDepthDiff_m) << ", \"max_geometry_ratio\": " << number(d.maxGeometryRatio)
       << ", \"geometry_outliers\": " << d.geometryOutliers
@@ -74,16 +76,17 @@ int runCompare(const CompareCommand& cmd) {
                 gpu.precision.c_str(), gpu.device.c_str(), gpu.renderSeconds, options.samplesPerPixel);
     for (const auto& d : diffs) {
       std::printf(
-          "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, over tolerance %.3g: %zu px;"
-          " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px; max |duv| %.3g,"
+          "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, over tolerance %.3g: %zu px (%zu off edges);"
+          " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px (%zu off edges); max |duv| %.3g,"
           " max |dP| %.3g m, max |dZ| %.3g m; worst error/bound %.3g, over bound: %zu px\n",
           d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff,
-          tol.radiance, d.radianceOutliers, d.pixelsDiffering, d.objectIdMismatches, d.maxUvDiff,
+          tol.radiance, d.radianceOutliers, d.radianceOutliersOffEdge, d.pixelsDiffering, d.objectIdMismatches,
+          d.objectIdMismatchesOffEdge, d.maxUvDiff,
           d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxGeometryRatio, d.geometryOutliers);
     }
     if (tol.epsilon > 0)
       std::printf("tolerances (%s): radiance %.3g; P and uv per pixel, %g eps D / max(cos, sqrt eps) (README);"
-                  " outliers <= %.3g of the pixels\n",
+                  " outliers off edges <= %.3g of the pixels\n",
                   gpu.precision.c_str(), tol.radiance, tol.k, tol.outlierFraction);
     else
       std::printf("tolerances (%s): radiance %.3g, P %.3g m, uv %.3g, no outliers\n", gpu.precision.c_str(),

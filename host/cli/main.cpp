@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   cli::addCompareCommand(app, run);
   cli::addDevicesCommand(app, run);
   cli::addSpeckleCommand(app, run);
+  cli::addBenchCommand(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -31,12 +31,15 @@ bool uvJacobian(const PreparedScene& scene, const PinholeModel<double>& m, dvec2
 
 }  // namespace
 
-GeometricErrorMeter::GeometricErrorMeter(const PreparedScene& scene, std::size_t camera, const CameraImage& reference)
+GeometricErrorMeter::GeometricErrorMeter(const PreparedScene& scene, std::size_t camera, const CameraImage& reference,
+                                         int stride)
     : scene_(scene), camera_(camera), reference_(reference), uvFromPixelInverse_(reference.pixelCount(), glm::dmat2(0.0)) {
+  DS_CHECK(stride >= 1, "stride must be >= 1");
   const PinholeModel<double>& m = scene.cameras[camera].model;
-  const auto width = std::size_t(reference.width_px);
-  parallelFor(std::size_t(reference.height_px), [&](std::size_t y) {
-    for (std::size_t x = 0; x < width; ++x) {
+  const auto width = std::size_t(reference.width_px), step = std::size_t(stride);
+  parallelFor((std::size_t(reference.height_px) + step - 1) / step, [&](std::size_t row) {
+    const std::size_t y = row * step;
+    for (std::size_t x = 0; x < width; x += step) {
       const std::size_t i = y * width + x;
       glm::dmat2 J;
       if (reference.objectId[i] != 0 &&

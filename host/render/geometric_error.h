@@ -37,7 +37,9 @@ struct GeometricError {
 // pixel) are computed once, at construction, and serve every test render.
 class GeometricErrorMeter {
  public:
-  GeometricErrorMeter(const PreparedScene& scene, std::size_t camera, const CameraImage& reference);
+  // stride > 1 measures the material-point error on every stride-th pixel in x and y only (its
+  // Jacobians cost two reference rays per pixel); the other measures use every pixel.
+  GeometricErrorMeter(const PreparedScene& scene, std::size_t camera, const CameraImage& reference, int stride = 1);
   GeometricError measure(const CameraImage& test) const;
 
  private:

@@ -126,6 +126,68 @@ bool ds_nurbs_newton(real4 cp[DS_NURBS_MAX_POINTS], vec4 range, RayPlanes r, rea
   return inside && (converged || residual <= DS_NURBS_RESIDUAL_TOLERANCE * scale);
 }
 
+#if defined(DS_DF64)
+// Bernstein basis in hreal (no derivatives) for the df64 residual.
+void ds_bernstein_h(int p, hreal t, out hreal basis[DS_NURBS_MAX_DEGREE + 1]) {
+  const hreal zero = h(real(0.0)), one = h(real(1.0)), u = h_sub(one, t);
+  for (int i = 0; i <= DS_NURBS_MAX_DEGREE; ++i) basis[i] = zero;
+  basis[0] = one;
+  for (int k = 1; k <= p; ++k)
+    for (int i = k; i >= 0; --i)
+      basis[i] = h_add(i < k ? h_mul(u, basis[i]) : zero, i > 0 ? h_mul(t, basis[i - 1]) : zero);
+}
+
+hreal4 ds_patch_eval_h(int patchIndex, hreal2 ab) {
+  const int p = NURBS_DEGREE, first = nurbsPatches[patchIndex].info.z;
+  hreal bu[DS_NURBS_MAX_DEGREE + 1], bv[DS_NURBS_MAX_DEGREE + 1];
+  ds_bernstein_h(p, h_x(ab), bu);
+  ds_bernstein_h(p, h_y(ab), bv);
+  hreal4 S = h(real4(0.0));
+  for (int i = 0; i <= p; ++i) {
+    hreal4 row = h(real4(0.0));
+    for (int j = 0; j <= p; ++j) row = h_add(row, h_mul(nurbsPoints[first + i * (p + 1) + j], bv[j]));
+    S = h_add(S, h_mul(row, bu[i]));
+  }
+  return S;
+}
+#endif
+
+#if defined(DS_DF64)
+// Iterative refinement of a float root (a, b): the residual in df64 from the df64 ray, the Jacobian
+// in float. Each step multiplies the error by ~ε_float · cond(J); cond(J) is bounded by the host's
+// sub-patch criteria away from silhouettes, so two steps reach the df64 limit from a float root.
+// The two planes must contain the df64 ray itself: n1 = d × e, n2 = d × n1 in df64 (not
+// normalized: F's scale does not matter), their float roundings for the Jacobian.
+hreal2 ds_nurbs_refine(int patchIndex, real4 cp[DS_NURBS_MAX_POINTS], hreal3 o, hreal3 d, real2 start) {
+  const real3 ad = abs(h_real(d));
+  const real3 e = ad.x <= ad.y && ad.x <= ad.z ? real3(1.0, 0.0, 0.0) : ad.y <= ad.z ? real3(0.0, 1.0, 0.0) : real3(0.0, 0.0, 1.0);
+  const hreal3 n1 = h_cross(d, h(e)), n2 = h_cross(d, n1);
+  const hreal c1 = h_dot(n1, o), c2 = h_dot(n2, o);
+  const real3 f1 = h_real(n1), f2 = h_real(n2);
+  const real g1 = h_real(c1), g2 = h_real(c2);
+  hreal2 ab = h(start);
+  for (int step = 0; step < 2; ++step) {
+    const hreal4 Sh = ds_patch_eval_h(patchIndex, ab);
+    const real2 F = real2(h_real(h_sub(h_dot(n1, h_xyz(Sh)), h_mul(c1, h_w(Sh)))),
+                          h_real(h_sub(h_dot(n2, h_xyz(Sh)), h_mul(c2, h_w(Sh)))));
+    real4 S, Sa, Sb;
+    ds_patch_eval(cp, h_real(ab), S, Sa, Sb);
+    const real j11 = dot(f1, Sa.xyz) - g1 * Sa.w, j12 = dot(f1, Sb.xyz) - g1 * Sb.w;
+    const real j21 = dot(f2, Sa.xyz) - g2 * Sa.w, j22 = dot(f2, Sb.xyz) - g2 * Sb.w;
+    const real det = j11 * j22 - j12 * j21;
+    if (det == 0.0) break;
+    ab = h_sub(ab, h(real2(j22 * F.x - j12 * F.y, -j21 * F.x + j11 * F.y) / det));
+  }
+  return ab;
+}
+
+// Whether a df64 root lies in its patch's [0, 1]² (within the tolerance of the CPU reference).
+bool ds_nurbs_inside_patch(hreal2 ab) {
+  const hreal lo = h(real(-1e-9)), hi = h_add(h(real(1.0)), h(real(1e-9)));
+  return h_ge(h_x(ab), lo) && h_ge(h_y(ab), lo) && h_le(h_x(ab), hi) && h_le(h_y(ab), hi);
+}
+#endif
+
 // Ray–box slabs in `real`; returns the entry and exit parameters (entry > exit: missed).
 real2 ds_box_range(vec4 lo, vec4 hi, real3 o, real3 invD) {
   const real3 t0 = (real3(lo.xyz) - o) * invD, t1 = (real3(hi.xyz) - o) * invD;
@@ -135,7 +197,8 @@ real2 ds_box_range(vec4 lo, vec4 hi, real3 o, real3 invD) {
 
 // Nearest root with s in (sMin, sMax). With an origin (a shadow ray leaving this surface), a root
 // in the origin's patch within 1e-5 (float; 1e-10 double) of its local parameters is the origin.
-bool ds_search_nurbs(int object, real3 o, real3 d, real sMin, real sMax, bool originOnSurface,
+// oh, dh: the same ray in hreal (df64 decides roots near a patch border with it).
+bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sMin, real sMax, bool originOnSurface,
                      ShapeHit origin, inout ShapeHit hit) {
   const RayPlanes planes = ds_ray_planes(o, d);
   // 1/d with zeros replaced by a huge number of the right sign (0·∞ would make NaN slabs).
@@ -170,6 +233,13 @@ bool ds_search_nurbs(int object, real3 o, real3 d, real sMin, real sMax, bool or
           const real2 start = n == 0 ? c : c + quarter * real2(n == 1 || n == 3 ? -1.0 : 1.0, n <= 2 ? -1.0 : 1.0);
           real2 ab;
           if (!ds_nurbs_newton(cp, local, planes, scale, start, ab)) continue;
+#if defined(DS_DF64)
+          // Near the patch's border the float root cannot tell inside from outside (the surface's
+          // edge: hit or miss); its df64 refinement can, as precisely as the CPU reference.
+          if ((any(lessThan(ab, real2(1e-4))) || any(greaterThan(ab, real2(1.0 - 1e-4)))) &&
+              !ds_nurbs_inside_patch(ds_nurbs_refine(info.x, cp, oh, dh, ab)))
+            continue;
+#endif
           if (originOnSurface && origin.part >= 0 && nurbsSubPatches[origin.part].info.x == info.x &&
               all(lessThanEqual(abs(ab - origin.param), real2(sameRoot))))
             continue;
@@ -198,31 +268,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, real sMin, real sMax, bool or
   return found;
 }
 
-#if defined(DS_DF64)
-// Bernstein basis in hreal (no derivatives) for the df64 residual.
-void ds_bernstein_h(int p, hreal t, out hreal basis[DS_NURBS_MAX_DEGREE + 1]) {
-  const hreal zero = h(real(0.0)), one = h(real(1.0)), u = h_sub(one, t);
-  for (int i = 0; i <= DS_NURBS_MAX_DEGREE; ++i) basis[i] = zero;
-  basis[0] = one;
-  for (int k = 1; k <= p; ++k)
-    for (int i = k; i >= 0; --i)
-      basis[i] = h_add(i < k ? h_mul(u, basis[i]) : zero, i > 0 ? h_mul(t, basis[i - 1]) : zero);
-}
 
-hreal4 ds_patch_eval_h(int patchIndex, hreal2 ab) {
-  const int p = NURBS_DEGREE, first = nurbsPatches[patchIndex].info.z;
-  hreal bu[DS_NURBS_MAX_DEGREE + 1], bv[DS_NURBS_MAX_DEGREE + 1];
-  ds_bernstein_h(p, h_x(ab), bu);
-  ds_bernstein_h(p, h_y(ab), bv);
-  hreal4 S = h(real4(0.0));
-  for (int i = 0; i <= p; ++i) {
-    hreal4 row = h(real4(0.0));
-    for (int j = 0; j <= p; ++j) row = h_add(row, h_mul(nurbsPoints[first + i * (p + 1) + j], bv[j]));
-    S = h_add(S, h_mul(row, bu[i]));
-  }
-  return S;
-}
-#endif
 
 // The winner's s, point (object frame), normal and (u, v) (normalized surface parameters).
 void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hreal3 point, out real3 normal,
@@ -235,33 +281,7 @@ void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hr
   // Cartesian derivatives ∝ w Sa.xyz − Sa.w S.xyz (quotient rule; the common 1/w² drops out).
   normal = cross(S.w * Sa.xyz - Sa.w * S.xyz, S.w * Sb.xyz - Sb.w * S.xyz);
 #if defined(DS_DF64)
-  // Iterative refinement: the residual in df64 from the df64 ray, the Jacobian in float. Each
-  // step multiplies the error by ~ε_float · cond(J); cond(J) is bounded by the host's sub-patch
-  // criteria away from silhouettes, so two steps reach the df64 limit from a float root.
-  // The two planes must contain the df64 ray itself: n1 = d × e, n2 = d × n1 in df64 (not
-  // normalized: F's scale does not matter), their float roundings for the Jacobian.
-  const real3 ad = abs(h_real(d));
-  const real3 e = ad.x <= ad.y && ad.x <= ad.z ? real3(1.0, 0.0, 0.0) : ad.y <= ad.z ? real3(0.0, 1.0, 0.0) : real3(0.0, 0.0, 1.0);
-  const hreal3 n1 = h_cross(d, h(e)), n2 = h_cross(d, n1);
-  const hreal c1 = h_dot(n1, o), c2 = h_dot(n2, o);
-  RayPlanes r;
-  r.n1 = h_real(n1);
-  r.n2 = h_real(n2);
-  r.c1 = h_real(c1);
-  r.c2 = h_real(c2);
-  hreal2 ab = h(found.param);
-  for (int step = 0; step < 2; ++step) {
-    const hreal4 Sh = ds_patch_eval_h(patchIndex, ab);
-    const real2 F = real2(h_real(h_sub(h_dot(n1, h_xyz(Sh)), h_mul(c1, h_w(Sh)))),
-                          h_real(h_sub(h_dot(n2, h_xyz(Sh)), h_mul(c2, h_w(Sh)))));
-    const real2 abr = h_real(ab);
-    ds_patch_eval(cp, abr, S, Sa, Sb);
-    const real j11 = dot(r.n1, Sa.xyz) - r.c1 * Sa.w, j12 = dot(r.n1, Sb.xyz) - r.c1 * Sb.w;
-    const real j21 = dot(r.n2, Sa.xyz) - r.c2 * Sa.w, j22 = dot(r.n2, Sb.xyz) - r.c2 * Sb.w;
-    const real det = j11 * j22 - j12 * j21;
-    if (det == 0.0) break;
-    ab = h_sub(ab, h(real2(j22 * F.x - j12 * F.y, -j21 * F.x + j11 * F.y) / det));
-  }
+  const hreal2 ab = ds_nurbs_refine(patchIndex, cp, o, d, found.param);
   const hreal4 Sh = ds_patch_eval_h(patchIndex, ab);
   point = h_div(h_xyz(Sh), h_w(Sh));
 #else

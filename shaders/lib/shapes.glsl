@@ -107,9 +107,10 @@ bool ds_search_triangle(int index, real3 o, real3 d, real sMin, real sMax, bool 
   return true;
 }
 
+// o, d: the ray in `real`; oh, dh: the same in hreal (NURBS in df64 uses it near patch borders).
 // originOnSurface: the ray leaves this object's surface at `origin` (a shadow ray).
-bool ds_search_shape(int index, real3 o, real3 d, real sMin, real sMax, bool originOnSurface, ShapeHit origin,
-                     inout ShapeHit hit) {
+bool ds_search_shape(int index, real3 o, real3 d, hreal3 oh, hreal3 dh, real sMin, real sMax, bool originOnSurface,
+                     ShapeHit origin, inout ShapeHit hit) {
   const int kind = objects[index].kinds.x;
   const real4 shape0 = h_real(objects[index].shape0);
   if (DS_HAS_SHAPE(DS_SHAPE_SPHERE) && kind == DS_SHAPE_SPHERE)
@@ -123,7 +124,7 @@ bool ds_search_shape(int index, real3 o, real3 d, real sMin, real sMax, bool ori
   if (DS_HAS_SHAPE(DS_SHAPE_RECTANGLE) && kind == DS_SHAPE_RECTANGLE)
     return ds_search_xy_plane(shape0.xy, o, d, sMin, sMax, originOnSurface, true, hit);
   if (DS_HAS_SHAPE(DS_SHAPE_NURBS) && kind == DS_SHAPE_NURBS)
-    return ds_search_nurbs(index, o, d, sMin, sMax, originOnSurface, origin, hit);
+    return ds_search_nurbs(index, o, d, oh, dh, sMin, sMax, originOnSurface, origin, hit);
   return false;
 }
 

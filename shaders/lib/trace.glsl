@@ -62,7 +62,8 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
     const real wr = h_real(w);
     ShapeHit found;
     found.part = -1;
-    if (!ds_search_shape(i, h_real(oo), h_real(od), 0.0, ds_object_param(tBest, wr), false, found, found)) continue;
+    if (!ds_search_shape(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(tBest, wr), false, found, found))
+      continue;
     const real t = ds_world_param(found.s, wr);
     if (t > 0.0 && t < tBest) {
       tBest = t;
@@ -100,8 +101,8 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
     if (!ds_object_ray(i, ph, dh, oo, od, w)) continue;
     ShapeHit found;
     found.part = -1;
-    if (ds_search_shape(i, h_real(oo), h_real(od), 0.0, ds_object_param(1.0, h_real(w)), i == hit.object, hit.shape,
-                        found))
+    if (ds_search_shape(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(1.0, h_real(w)), i == hit.object,
+                        hit.shape, found))
       return true;
   }
   return false;

@@ -1,0 +1,89 @@
+// `dicsynth bench`: the run-time-versus-error benchmark (render/benchmark.h) over three scenes at
+// 1600 × 1200: the paper's Figure 1 (sphere), a NURBS plate under 0.2 % strain, the necking
+// dogbone. Writes DIR/bench.csv and DIR/bench.svg (atomically) and prints a table, or with --json
+// the rows as a JSON array.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "render/benchmark.h"
+
+namespace dicsynth::cli {
+namespace {
+
+struct BenchCommand {
+  std::string outputDir = "bench-out";
+  std::string scenesDir = std::string(DS_SOURCE_DIR) + "/scenes";
+  bool json = false;
+  BenchmarkOptions options;
+};
+
+void writeText(const std::string& path, const std::string& text) {
+  AtomicFile file(path);
+  {
+    std::ofstream out(file.tempPath(), std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw Error("cannot write '" + file.tempPath() + "'");
+  }
+  file.commit();
+}
+
+int runBench(BenchCommand cmd) {
+  if (cmd.options.runs < 1 || cmd.options.cpuRuns < 1) throw InputError("--runs and --cpu-runs must be >= 1");
+  if (cmd.options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
+  cmd.options.scenes = {{"figure1", cmd.scenesDir + "/figure1.lua", {}},
+                        {"nurbs_plate", cmd.scenesDir + "/nurbs_plate.lua", {{"strain", "0.002"}}},
+                        {"dogbone", cmd.scenesDir + "/dogbone.lua", {{"necking", "0.002"}}}};
+  for (const auto& s : cmd.options.scenes)
+    if (!std::filesystem::exists(s.path)) throw InputError("--scenes " + cmd.scenesDir + ": no " + s.path);
+  std::error_code ec;
+  std::filesystem::create_directories(cmd.outputDir, ec);
+  if (ec) throw InputError("-o " + cmd.outputDir + ": cannot create the output folder: " + ec.message());
+  cmd.options.log = [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); };
+
+  const std::vector<BenchmarkRow> rows = runBenchmark(cmd.options);
+  const std::string csv = cmd.outputDir + "/bench.csv", svg = cmd.outputDir + "/bench.svg";
+  writeText(csv, benchmarkCsv(rows));
+  writeText(svg, benchmarkSvg(rows));
+  if (cmd.json) {
+    std::printf("%s", benchmarkJson(rows).c_str());
+  } else {
+    std::printf("%-12s %-4s %-5s %9s %9s %11s %11s %11s %6s\n", "scene", "", "prec.", "s/frame", "Mrays/s",
+                "geom max px", "geom rms px", "DN12 max", "wrong");
+    for (const BenchmarkRow& r : rows)
+      std::printf("%-12s %-4s %-5s %9.3f %9.2f %11.3g %11.3g %11.3g %6zu\n", r.scene.c_str(), r.backend.c_str(),
+                  r.precision.c_str(), r.secondsPerFrame, r.mraysPerSecond, r.geomErrPxMax, r.geomErrPxRms,
+                  r.radianceErrDnMax, r.wrongHits);
+    std::printf("wrote %s and %s\n", csv.c_str(), svg.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& root, RunFn& run) {
+  auto cmd = std::make_shared<BenchCommand>();
+  CLI::App* sub = root.add_subcommand(
+      "bench", "Run time versus error: CPU reference and every GPU precision on three scenes (CSV + SVG plot)");
+  sub->add_option("-o,--out", cmd->outputDir, "Output folder for bench.csv and bench.svg")->capture_default_str();
+  sub->add_option("--scenes", cmd->scenesDir, "Folder holding figure1.lua, nurbs_plate.lua, dogbone.lua")
+      ->capture_default_str();
+  sub->add_flag("--json", cmd->json, "Print the rows as a JSON array instead of a table");
+  sub->add_option("--runs", cmd->options.runs, "GPU runs per precision (median reported)")->capture_default_str();
+  sub->add_option("--cpu-runs", cmd->options.cpuRuns, "CPU reference runs (median reported)")->capture_default_str();
+  sub->add_option("--spp", cmd->options.samplesPerPixel, "Samples per pixel")->capture_default_str();
+  sub->add_option("--downscale", cmd->options.downscale, "Divide the scenes' resolution (quick runs)")
+      ->capture_default_str();
+  sub->add_option("--error-stride", cmd->options.errorStride,
+                  "Material-point error on every n-th pixel in x and y (2 reference rays each)")
+      ->capture_default_str();
+  sub->add_option("--device", cmd->options.device, "Vulkan device: index or name substring");
+  sub->callback([cmd, &run] { run = [cmd] { return runBench(*cmd); }; });
+}
+
+}  // namespace dicsynth::cli

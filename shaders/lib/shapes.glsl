@@ -163,7 +163,9 @@ void ds_shape_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hrea
   const hreal halfOne = h(real(0.5));
   s = h(found.s);
   if (DS_HAS_SHAPE(DS_SHAPE_SPHERE) && kind == DS_SHAPE_SPHERE) {
-    // The root nearest to the search's, from the stable formula in hreal.
+#if defined(DS_DF64)
+    // The root nearest to the search's, from the stable formula in hreal. (In fp32/fp64 hreal is
+    // real: the search's root is that very value.)
     const hreal radius = h_x(shape0);
     const hreal a = h_dot(d, d), b = h_dot(o, d), c = h_sub(h_dot(o, o), h_mul(radius, radius));
     const hreal3 f = h_sub(o, h_mul(d, h_div(b, a)));
@@ -172,6 +174,7 @@ void ds_shape_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hrea
     const hreal q = h_neg(h_real(b) >= 0.0 ? h_add(b, root) : h_sub(b, root));
     const hreal r0 = h_div(c, q), r1 = h_div(q, a);
     s = abs(h_real(r0) - found.s) <= abs(h_real(r1) - found.s) ? r0 : r1;
+#endif
     point = h_add(o, h_mul(d, s));
     normal = h_real(point);
     const hreal px = h_x(point), py = h_y(point), pz = h_z(point);
@@ -191,11 +194,16 @@ void ds_shape_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hrea
   } else if (DS_HAS_SHAPE(DS_SHAPE_TRIANGLE) && kind == DS_SHAPE_TRIANGLE) {
     const hreal3 p0 = h_xyz(shape0);
     const hreal3 e1 = h_sub(h_xyz(objects[index].shape1), p0), e2 = h_sub(h_xyz(objects[index].shape2), p0);
+#if defined(DS_DF64)
+    // Möller–Trumbore again in hreal (in fp32/fp64 the search's values are already that).
     const hreal3 pv = h_cross(d, e2);
     const hreal det = h_dot(e1, pv);
     const hreal3 tv = h_sub(o, p0), qv = h_cross(tv, e1);
     const hreal b1 = h_div(h_dot(tv, pv), det), b2 = h_div(h_dot(d, qv), det);
     s = h_div(h_dot(e2, qv), det);
+#else
+    const hreal b1 = found.param.x, b2 = found.param.y;
+#endif
     point = h_add(p0, h_add(h_mul(e1, b1), h_mul(e2, b2)));
     normal = cross(h_real(e1), h_real(e2));
     const hreal4 uv01 = objects[index].shape3, uv2 = objects[index].shape4;

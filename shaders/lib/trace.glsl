@@ -54,6 +54,8 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   real tBest = DS_FAR_AWAY;
   ShapeHit best;
   int bestObject = -1;
+  hreal3 bestOo, bestOd;  // the winner's ray in its frame, kept for its attributes
+  hreal bestW;
   const int objectCount = params.counts.z;
   for (int i = 0; i < objectCount; ++i) {
     hreal3 oo, od;
@@ -69,20 +71,20 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
       tBest = t;
       best = found;
       bestObject = i;
+      bestOo = oo;
+      bestOd = od;
+      bestW = w;
     }
   }
   hit.object = bestObject;
   if (bestObject < 0) return false;
   hit.shape = best;
-  // The winner in hreal: the ray in its frame again, then its attributes.
-  hreal3 oo, od;
-  hreal w;
-  ds_object_ray(bestObject, o, d, oo, od, w);
+  // The winner's attributes in hreal.
   hreal s;
   hreal3 point;
   real3 normal;
-  ds_shape_attributes(bestObject, oo, od, best, s, point, normal, hit.uv);
-  hit.t = h_div(s, h_sub(h(real(1.0)), h_mul(s, w)));
+  ds_shape_attributes(bestObject, bestOo, bestOd, best, s, point, normal, hit.uv);
+  hit.t = h_div(s, h_sub(h(real(1.0)), h_mul(s, bestW)));
   hit.position = h_add(o, h_mul(d, hit.t));
   hit.normal = normalize(ds_world_normal(bestObject, normal, h_real(point)));
   if (dot(hit.normal, h_real(d)) > 0.0) hit.normal = -hit.normal;

@@ -213,3 +213,26 @@ TEST_CASE("nurbs-stress: tiny deformations (a control point moved by 1e-9 m)") {
   }
   expectNoValidationMessages();
 }
+
+TEST_CASE("nurbs-stress: zero-area surfaces (a point, a line) prepare and render as nothing") {
+  // Bad input that validation cannot refuse (the numbers are valid): every control point equal,
+  // or all of them on one line. Documented behaviour: the surface has no area, so no ray hits it;
+  // preparation marks its pieces degenerate and neither renderer hangs or crashes.
+  NurbsSurface point = plateSurface(0.1, 0.1, 2), line = point;
+  for (dvec3& p : point.controlPoints) p = dvec3(0.01, 0.02, 0);
+  for (dvec3& p : line.controlPoints) p = dvec3(p.x, 0, 0);
+  for (const NurbsSurface& s : {point, line}) {
+    const PreparedScene scene =
+        prepareScene(sceneOf(stressCamera({0, 0, 0}, {0, 0, 0.5}), {nurbsObject("flat", s, {0, 0, 0.5})}));
+    const RenderResult reference = cpu::render(scene, groundTruthOnly(Precision::Fp64));
+    gpu::Renderer renderer(gpuContext());
+    for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
+      const RenderResult gpu = renderer.render(scene, groundTruthOnly(p));
+      std::size_t hits = 0;
+      for (std::size_t i = 0; i < gpu.cameras[0].pixelCount(); ++i)
+        hits += gpu.cameras[0].objectId[i] != 0 || reference.cameras[0].objectId[i] != 0;
+      CHECK(hits == 0);
+    }
+  }
+  expectNoValidationMessages();
+}

@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "run_cli.h"
+#include "temp_folder.h"
 #include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu/context.h"
@@ -29,24 +30,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh folder under the system temp dir, removed with its contents at scope exit.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "dicsynth-gpu-test-XXXXXX").string();
-    REQUIRE(::mkdtemp(pattern.data()) != nullptr);
-    path = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-ContextOptions testOptions(const TempDir& cache) {
+ContextOptions testOptions(const test::TempFolder& cache) {
   ContextOptions options;
   options.validation = true;
-  options.cacheDir = cache.path.string();
+  options.cacheDir = cache.path().string();
   return options;
 }
 
@@ -151,7 +138,7 @@ TEST_CASE("gpu: selectDevice prefers discrete GPUs and accepts index or name") {
 }
 
 TEST_CASE("gpu: Context selects a device by index or name; unknown names are input errors") {
-  TempDir cache;
+  test::TempFolder cache;
   ContextOptions options = testOptions(cache);
   std::vector<DeviceInfo> devices = listDevices();
   uint32_t lvp = selectDevice(devices, "llvmpipe");
@@ -194,7 +181,7 @@ TEST_CASE("gpu: DS_VK names the call, the result and the place") {
 }
 
 TEST_CASE("gpu: an fp32 shader doubles an array exactly") {
-  TempDir cache;
+  test::TempFolder cache;
   Context ctx(testOptions(cache));
   std::vector<float> input(1000);  // not a multiple of the work group size
   for (size_t i = 0; i < input.size(); ++i) input[i] = 0.1f * float(i) - 17.25f;
@@ -204,7 +191,7 @@ TEST_CASE("gpu: an fp32 shader doubles an array exactly") {
 }
 
 TEST_CASE("gpu: the fp64 variant keeps 1 + 2^-40, which float cannot hold") {
-  TempDir cache;
+  test::TempFolder cache;
   Context ctx(testOptions(cache));
   REQUIRE(ctx.info().shaderFloat64);
   const double tiny = std::ldexp(1.0, -40);
@@ -222,7 +209,7 @@ TEST_CASE("gpu: the fp64 variant keeps 1 + 2^-40, which float cannot hold") {
 }
 
 TEST_CASE("gpu: specialization constants change the result") {
-  TempDir cache;
+  test::TempFolder cache;
   Context ctx(testOptions(cache));
   std::vector<float> input = {1, 2, 3, 4};
   CHECK(runBufferOps<float>(ctx, spirv::buffer_ops_fp32, input, {4, 3.0f}) == std::vector<float>{3, 6, 9, 12});
@@ -235,7 +222,7 @@ TEST_CASE("gpu: specialization constants change the result") {
 }
 
 TEST_CASE("gpu: push constants reach the shader") {
-  TempDir cache;
+  test::TempFolder cache;
   Context ctx(testOptions(cache));
   std::vector<float> input = {1, 2, 3, 4, 5};
   // count = 3: the last two outputs keep the sentinel; scale = 0.5.
@@ -247,7 +234,7 @@ TEST_CASE("gpu: push constants reach the shader") {
 }
 
 TEST_CASE("gpu: dispatchAndWait reuses its resources over many dispatches") {
-  TempDir cache;
+  test::TempFolder cache;
   Context ctx(testOptions(cache));
   constexpr uint32_t n = 256;
   std::vector<float> values(n);
@@ -281,7 +268,7 @@ TEST_CASE("gpu: dispatchAndWait reuses its resources over many dispatches") {
 }
 
 TEST_CASE("gpu: buffer sizes and ranges are checked") {
-  TempDir cache;
+  test::TempFolder cache;
   Context ctx(testOptions(cache));
   const uint64_t limit = ctx.info().maxStorageBufferRange;
   CHECK_THROWS_WITH_AS(Buffer(ctx, limit + 1, BufferUse::Input),
@@ -316,7 +303,7 @@ TEST_CASE("gpu: buffer sizes and ranges are checked") {
 }
 
 TEST_CASE("gpu: Input buffers work through staging copies when they are not mapped") {
-  TempDir cache;
+  test::TempFolder cache;
   ContextOptions options = testOptions(cache);
   options.mapInputBuffers = false;  // as on a discrete GPU without host-visible device memory
   Context ctx(options);
@@ -337,13 +324,13 @@ TEST_CASE("gpu: Input buffers work through staging copies when they are not mapp
 }
 
 TEST_CASE("gpu: the pipeline cache file is written and reloaded; bad files are ignored") {
-  TempDir cache;
+  test::TempFolder cache;
   ContextOptions options = testOptions(cache);
   fs::path file;
   {
     Context ctx(options);
     file = ctx.pipelineCachePath();
-    CHECK(file == cache.path / ("pipelines-" + ctx.info().pipelineCacheUUID + ".bin"));
+    CHECK(file == cache.path() / ("pipelines-" + ctx.info().pipelineCacheUUID + ".bin"));
     CHECK(ctx.pipelineCacheLoadedBytes() == 0);
     ComputePipeline pipeline(ctx, spirv::buffer_ops_fp32, 2, sizeof(Push));
     ctx.savePipelineCache();
@@ -353,7 +340,7 @@ TEST_CASE("gpu: the pipeline cache file is written and reloaded; bad files are i
   std::vector<uint8_t> saved = readFile(file);
   REQUIRE(saved.size() >= 32);
   MESSAGE("pipeline cache file: ", saved.size(), " bytes");
-  for (const auto& entry : fs::directory_iterator(cache.path))  // no temporary file left behind
+  for (const auto& entry : fs::directory_iterator(cache.path()))  // no temporary file left behind
     CHECK(entry.path() == file);
   {
     Context ctx(options);
@@ -380,7 +367,7 @@ TEST_CASE("gpu: the pipeline cache file is written and reloaded; bad files are i
     checkNoValidationMessages(ctx);
   }
   // An unusable folder disables the cache with a warning, never an exception.
-  options.cacheDir = (cache.path / "file-not-folder").string();
+  options.cacheDir = (cache.path() / "file-not-folder").string();
   writeFile(options.cacheDir, {1, 2, 3});
   {
     Context ctx(options);
@@ -392,7 +379,7 @@ TEST_CASE("gpu: the pipeline cache file is written and reloaded; bad files are i
 }
 
 TEST_CASE("gpu: validation messages are counted (a layout missing a binding the shader uses)") {
-  TempDir cache;
+  test::TempFolder cache;
   Context ctx(testOptions(cache));
   REQUIRE(ctx.validationEnabled());
   // buffer_ops uses bindings 0 and 1; a layout with only binding 0 is invalid API use.

@@ -34,49 +34,25 @@ struct PackedFrame {
 };
 
 // Layout traits: which namespace of gpu_layout.h a variant uses.
-struct Fp32Layout {
-  using real = float;
-  using real4 = fp32::real4;
-  using hreal4 = fp32::hreal4;
-  using GpuCamera = fp32::GpuCamera;
-  using GpuObject = fp32::GpuObject;
-  using GpuLight = fp32::GpuLight;
-  using GpuTexture = fp32::GpuTexture;
-  using GpuPixel = fp32::GpuPixel;
-  using GpuTileParams = fp32::GpuTileParams;
-  using GpuNurbsNode = fp32::GpuNurbsNode;
-  using GpuNurbsSubPatch = fp32::GpuNurbsSubPatch;
-  using GpuNurbsPatch = fp32::GpuNurbsPatch;
-};
-struct Fp64Layout {
-  using real = double;
-  using real4 = fp64::real4;
-  using hreal4 = fp64::hreal4;
-  using GpuCamera = fp64::GpuCamera;
-  using GpuObject = fp64::GpuObject;
-  using GpuLight = fp64::GpuLight;
-  using GpuTexture = fp64::GpuTexture;
-  using GpuPixel = fp64::GpuPixel;
-  using GpuTileParams = fp64::GpuTileParams;
-  using GpuNurbsNode = fp64::GpuNurbsNode;
-  using GpuNurbsSubPatch = fp64::GpuNurbsSubPatch;
-  using GpuNurbsPatch = fp64::GpuNurbsPatch;
-};
-
-struct Df64Layout {
-  using real = float;
-  using real4 = df64::real4;
-  using hreal4 = df64::hreal4;
-  using GpuCamera = df64::GpuCamera;
-  using GpuObject = df64::GpuObject;
-  using GpuLight = df64::GpuLight;
-  using GpuTexture = df64::GpuTexture;
-  using GpuPixel = df64::GpuPixel;
-  using GpuTileParams = df64::GpuTileParams;
-  using GpuNurbsNode = df64::GpuNurbsNode;
-  using GpuNurbsSubPatch = df64::GpuNurbsSubPatch;
-  using GpuNurbsPatch = df64::GpuNurbsPatch;
-};
+#define DS_LAYOUT_TRAITS(Name, ns)                  \
+  struct Name {                                     \
+    using real = ns::real;                          \
+    using real4 = ns::real4;                        \
+    using hreal4 = ns::hreal4;                      \
+    using GpuCamera = ns::GpuCamera;                \
+    using GpuObject = ns::GpuObject;                \
+    using GpuLight = ns::GpuLight;                  \
+    using GpuTexture = ns::GpuTexture;              \
+    using GpuPixel = ns::GpuPixel;                  \
+    using GpuTileParams = ns::GpuTileParams;        \
+    using GpuNurbsNode = ns::GpuNurbsNode;          \
+    using GpuNurbsSubPatch = ns::GpuNurbsSubPatch;  \
+    using GpuNurbsPatch = ns::GpuNurbsPatch;        \
+  };
+DS_LAYOUT_TRAITS(Fp32Layout, fp32)
+DS_LAYOUT_TRAITS(Fp64Layout, fp64)
+DS_LAYOUT_TRAITS(Df64Layout, df64)
+#undef DS_LAYOUT_TRAITS
 
 // Doubles as the variant's real4 / hreal4 (the pointer only selects the overload), and a component
 // back as a double (df64: hi + lo summed in double, exact).

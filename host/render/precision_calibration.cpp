@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -125,10 +126,12 @@ PrecisionCalibration measure(gpu::Context& context, gpu::Renderer& renderer) {
   for (Precision p : kAll) {
     PrecisionMeasurement m;
     m.precision = p;
+    std::optional<gpu::Df64SelfTest> selfTest;  // cached per device
+    if (p == Precision::Df64) selfTest = gpu::runDf64SelfTest(context);
     if (p == Precision::Fp64 && !context.info().shaderFloat64) {
       m.unavailable = "no shaderFloat64";
-    } else if (p == Precision::Df64 && !gpu::runDf64SelfTest(context).passed) {
-      m.unavailable = "df64 self-test failed: " + gpu::describeDf64(gpu::runDf64SelfTest(context));
+    } else if (selfTest && !selfTest->passed) {
+      m.unavailable = "df64 self-test failed: " + gpu::describeDf64(*selfTest);
     } else {
       options.precision = p;
       double best = 1e300;

@@ -27,4 +27,13 @@ inline constexpr const char* kCameraLine =
     "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} "
     "}\n";
 
+// The scene is kCameraLine + body (so body's first line is line 2); checks that loading it fails
+// with the one-line error "<path>:<line>: <rest>".
+inline void checkBodyError(const TempFolder& dir, const std::string& body, int line, const std::string& rest) {
+  const std::string path = dir.write("scene.lua", std::string(kCameraLine) + body);
+  const std::string message = loadError(path);
+  CHECK(message.find('\n') == std::string::npos);
+  CHECK(message == path + ":" + std::to_string(line) + ": " + rest);
+}
+
 }  // namespace dicsynth::test

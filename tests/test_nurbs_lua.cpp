@@ -14,6 +14,7 @@ using namespace dicsynth;
 using dicsynth::test::controlPoint;
 using dicsynth::test::evaluateNurbs;
 using dicsynth::test::kCameraLine;
+using dicsynth::test::checkBodyError;
 using dicsynth::test::loadError;
 using dicsynth::test::TempFolder;
 
@@ -31,14 +32,6 @@ NurbsSurface loadShape(const TempFolder& dir, const std::string& shape, Shape* o
   REQUIRE(s.nurbs);
   if (out) *out = s;
   return *s.nurbs;
-}
-
-void checkBodyError(const TempFolder& dir, const std::string& body, int line,
-                    const std::string& rest) {
-  const std::string path = dir.write("scene.lua", std::string(kCameraLine) + body);
-  const std::string message = loadError(path);
-  CHECK(message.find('\n') == std::string::npos);
-  CHECK(message == path + ":" + std::to_string(line) + ": " + rest);
 }
 
 std::vector<double> clampedUniform(int degree, int spans) {

@@ -12,6 +12,7 @@
 using namespace dicsynth;
 using dicsynth::test::evaluateNurbs;
 using dicsynth::test::kCameraLine;
+using dicsynth::test::checkBodyError;
 using dicsynth::test::loadError;
 using dicsynth::test::TempFolder;
 
@@ -19,15 +20,6 @@ namespace {
 
 Scene loadBody(const TempFolder& dir, const std::string& body) {
   return loadScene(dir.write("scene.lua", std::string(kCameraLine) + body), {});
-}
-
-// The scene is kCameraLine + body (so body's first line is line 2); checks the one-line error.
-void checkBodyError(const TempFolder& dir, const std::string& body, int line,
-                    const std::string& rest) {
-  const std::string path = dir.write("scene.lua", std::string(kCameraLine) + body);
-  const std::string message = loadError(path);
-  CHECK(message.find('\n') == std::string::npos);
-  CHECK(message == path + ":" + std::to_string(line) + ": " + rest);
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {

@@ -150,6 +150,16 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   ps.file = scene.file;
   for (const Camera& c : scene.cameras) ps.cameras.push_back(prepareCamera(c, options.downscale));
   for (const Light& l : scene.lights) ps.lights.push_back({l.position_m, l.intensity});
+  for (const StereoRig& r : scene.rigs) {
+    PreparedRig pr;
+    pr.name = r.name;
+    for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
+      if (scene.cameras[c].name == r.left) pr.left = int(c);
+      if (scene.cameras[c].name == r.right) pr.right = int(c);
+    }
+    DS_CHECK(pr.left >= 0 && pr.right >= 0, "rig '" + r.name + "' names a camera the scene lacks");
+    ps.rigs.push_back(std::move(pr));
+  }
 
   std::map<std::string, int> texturesByPath;
   bool anyLambert = false;
@@ -161,6 +171,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     o.geometry = shapeGeometry(so.shape);
     if (so.shape.kind == ShapeKind::Nurbs) {
       o.nurbs = prepareNurbsShape(so.shape, o.shapeOffset_m);
+      o.surface = so.shape.nurbs;
       o.geometry.nurbs = o.nurbs.get();
     }
     o.shader = so.shader.kind;

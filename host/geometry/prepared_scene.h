@@ -27,6 +27,7 @@ struct PreparedObject {
   std::uint32_t id = 0;  // objectId in the outputs (index + 1)
   ShapeGeometry<double> geometry;  // for a NURBS shape, geometry.nurbs == nurbs.get()
   std::shared_ptr<const PreparedNurbs> nurbs;  // Bézier patches, sub-patches, BVH (Nurbs only)
+  std::shared_ptr<const NurbsSurface> surface; // the scene's surface (Nurbs only; scene shape frame)
   ShaderKind shader = ShaderKind::Constant;
   double albedo = 1;          // luminance of the shader colour
   int textureIndex = -1;      // into PreparedScene::textures, or -1 for a constant texture
@@ -62,9 +63,15 @@ struct SceneFeatures {
   auto operator<=>(const SceneFeatures&) const = default;
 };
 
+struct PreparedRig {
+  std::string name;
+  int left = -1, right = -1;  // indices into PreparedScene::cameras
+};
+
 struct PreparedScene {
   std::string file;
   std::vector<PreparedCamera> cameras;
+  std::vector<PreparedRig> rigs;
   std::vector<PreparedObject> objects;
   std::vector<PreparedLight> lights;
   std::vector<PreparedTexture> textures;

@@ -91,9 +91,19 @@ struct Light {
   double intensity = 1;  // radiant intensity (radiance units · m²); luminance if given as RGB
 };
 
+// Two cameras of the scene that form a stereo pair (Rig.Stereo). The rig's cameras are part of
+// Scene::cameras under the names "<rig>.left" and "<rig>.right". Outputs state their relation as
+// cv::stereoCalibrate does: x_right = R·x_left + T (camera frames, metres).
+struct StereoRig {
+  std::string name;   // the scene's global variable name
+  SourceLoc where;
+  std::string left, right;  // camera names
+};
+
 struct Scene {
   std::string file;               // the scene file as given
   std::vector<Camera> cameras;    // sorted by name
+  std::vector<StereoRig> rigs;    // sorted by name
   std::vector<Object> objects;    // sorted by name; objectId = index + 1 (0 = background)
   std::vector<Light> lights;      // sorted by name
 };

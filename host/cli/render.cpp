@@ -1,5 +1,6 @@
 // `dicsynth render SCENE.lua`: renders every camera of every frame and writes, per camera and frame,
 // the sensor image (TIFF) and the ground truth (EXR) into the output folder.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "gpu/context.h"
 #include "gpu/renderer.h"
 #include "io/outputs.h"
+#include "render/ground_truth.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth::cli {
@@ -23,6 +25,7 @@ struct RenderCommand {
   std::string outputDir = "out";
   std::string backend = "gpu";
   std::string frames;
+  std::optional<int> referenceFrame;  // default: the first of --frames
 };
 
 void createOutputDir(const std::string& dir) {
@@ -41,7 +44,14 @@ std::string outputStem(const std::string& camera, bool numbered, int frame) {
 
 int runRender(const RenderCommand& cmd) {
   const bool numbered = !cmd.frames.empty();
-  const std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
+  std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
+  // The reference frame is rendered first: every frame's motion truth is measured from it.
+  const int referenceFrame = cmd.referenceFrame.value_or(frames.front());
+  const auto ref = std::find(frames.begin(), frames.end(), referenceFrame);
+  if (ref == frames.end())
+    throw InputError("--reference-frame " + std::to_string(referenceFrame) + " is not among the frames rendered (" +
+                     (numbered ? "--frames " + cmd.frames : "frame 0") + ")");
+  std::rotate(frames.begin(), ref, ref + 1);
   const auto defines = parseDefines(cmd.args.defines);
   renderOptions(cmd.args, 0);  // validate the sampling options before any work
 
@@ -59,15 +69,17 @@ int runRender(const RenderCommand& cmd) {
     renderer = std::make_unique<gpu::Renderer>(*context);
   }
   std::optional<Precision> precision;  // resolved after the first frame is prepared (its errors first)
+  std::unique_ptr<ReferenceFrame> reference;
 
   for (std::size_t fi = 0; fi < frames.size(); ++fi) {
-    const PreparedScene prepared = prepareScene(scenes[fi], {cmd.args.downscale});
+    PreparedScene prepared = prepareScene(scenes[fi], {cmd.args.downscale});
     if (!precision) precision = useGpu ? resolvePrecision(cmd.args, *context, *renderer) : Precision::Fp64;
     RenderOptions options = renderOptions(cmd.args, frames[fi]);
     options.precision = *precision;
     options.progress = progressPrinter("rendering" + (numbered ? " frame " + std::to_string(frames[fi]) : ""));
     const RenderResult result = useGpu ? renderer->render(prepared, options) : cpu::render(prepared, options);
     if (context) failOnValidationMessages(*context);  // before any file of this frame is written
+    if (fi == 0) reference = std::make_unique<ReferenceFrame>(frames[fi], prepared, result);
 
     OutputInfo info;
     info.sceneFile = cmd.args.scenePath;
@@ -82,8 +94,12 @@ int runRender(const RenderCommand& cmd) {
     for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
       const Camera& cam = prepared.cameras[c].camera;
       const CameraImage& image = result.cameras[c];
+      const DerivedTruth truth = deriveTruth(*reference, prepared, result, c);
+      if (!truth.disparityCamera.empty() && truth.disparityVisibleCount == 0)
+        std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
+                     truth.disparityCamera.c_str(), cam.name.c_str());
       const OutputFiles files = writeCameraOutputs(cmd.outputDir, outputStem(cam.name, numbered, frames[fi]),
-                                                   cam, image, digitize(image.radiance, cam), info);
+                                                   cam, image, digitize(image.radiance, cam), info, &truth);
       std::printf("%s, %s: %dx%d, %d spp, %s %s on %s, %.2f s\n", files.image.c_str(),
                   files.groundTruth.c_str(), cam.width_px, cam.height_px, options.samplesPerPixel,
                   result.backend.c_str(), result.precision.c_str(), result.device.c_str(),
@@ -106,6 +122,9 @@ void addRenderCommand(CLI::App& root, RunFn& run) {
       ->capture_default_str();
   sub->add_option("--frames", cmd->frames,
                   "Frames A:B (both included) or N; sets the scene global `frame` and numbers the files");
+  sub->add_option("--reference-frame", cmd->referenceFrame,
+                  "Frame whose pixels the motion ground truth (disp, flow) starts from; one of --frames "
+                  "(default: the first)");
   sub->callback([cmd, &run] { run = [cmd] { return runRender(*cmd); }; });
 }
 

@@ -9,7 +9,14 @@
 //   uv.U/V    float   surface parameters in [0, 1]²
 //   objectId  uint    0 = background, else index in dicsynth:objects + 1
 //   mask      float   1 where objectId > 0, else 0
-// Background pixels hold NaN in Z, P, N and uv. OpenEXR stores channels sorted by name, so a reader
+// and the derived layers (render/ground_truth.h), each only when the run computed it:
+//   disp.X/Y/Z       float   displacement since the reference frame (m), reference pixels
+//   flow.X/Y         float   image motion since the reference frame (px), reference pixels
+//   flow.mask        float   1 where that material point is visible in this image
+//   disparity.X/Y    float   position in the rig's other camera minus this one (px)
+//   disparity.mask   float   1 where the other camera sees this pixel's point
+//   distortion.X/Y   float   distorted minus undistorted position of the pixel centre (px)
+// Background pixels hold NaN in Z, P, N and uv (and in disp, flow, disparity where undefined). OpenEXR stores channels sorted by name, so a reader
 // sees them in the file's order (OIIO: Y, Z, mask, objectId, N.*, P.*, uv.*): find them by name.
 //
 // Header attributes, all strings; numbers are written with 17 significant digits, so every double
@@ -21,6 +28,7 @@
 //   dicsynth:R, dicsynth:t            x_cam = R·x_world + t (R row-major, t in metres)
 //   dicsynth:image_size               w h
 //   dicsynth:bits_per_pixel, :exposure, :fill_factor
+//   dicsynth:reference_frame, :disparity_camera   with the derived layers
 // Plus OpenEXR's standard worldToCamera (float 4x4, Imath row-vector convention, camera frame
 // x right, y UP, z forward as the OpenEXR standard defines it, i.e. OpenCV's frame with y negated)
 // and PixelAspectRatio = pixelSize.x / pixelSize.y. No DateTime: the same render gives the same file.
@@ -30,6 +38,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstring>
+#include <functional>
 #include <filesystem>
 #include <system_error>
 
@@ -67,32 +77,45 @@ std::string tiffDescription(const Camera& camera, const OutputInfo& info) {
          info.sceneFile + "; seed " + std::to_string(info.seed) + "; dicsynth " + kVersion;
 }
 
-// The native pixel layout of the EXR (per-channel formats), in the channel order of the spec.
-struct ExrPixel {
-  float y, z, px, py, pz, nx, ny, nz, u, v;
-  std::uint32_t objectId;
-  float mask;
+// One EXR channel: its name and how to get its value at pixel i (float, or uint for objectId).
+struct ExrChannel {
+  std::string name;
+  std::function<float(std::size_t)> value;             // float channels
+  std::function<std::uint32_t(std::size_t)> idValue;  // the uint channel
 };
-static_assert(sizeof(ExrPixel) == 12 * 4, "EXR pixel must be packed: OIIO reads it contiguously");
 
-const char* const kExrChannels[12] = {"Y",   "Z",   "P.X",  "P.Y",  "P.Z",      "N.X",
-                                      "N.Y", "N.Z", "uv.U", "uv.V", "objectId", "mask"};
-
-ExrPixel exrPixel(const CameraImage& image, std::size_t i) {
-  ExrPixel p;
-  p.y = float(image.radiance[i]);
-  p.z = float(image.depth_m[i]);
-  p.px = float(image.position_m[i].x);
-  p.py = float(image.position_m[i].y);
-  p.pz = float(image.position_m[i].z);
-  p.nx = float(image.normal[i].x);
-  p.ny = float(image.normal[i].y);
-  p.nz = float(image.normal[i].z);
-  p.u = float(image.uv[i].x);
-  p.v = float(image.uv[i].y);
-  p.objectId = image.objectId[i];
-  p.mask = image.objectId[i] > 0 ? 1.0f : 0.0f;
-  return p;
+// The channels of the file: the backend's layers, then the derived ones that `truth` holds.
+std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth* truth) {
+  std::vector<ExrChannel> ch;
+  auto add = [&](std::string name, std::function<float(std::size_t)> f) { ch.push_back({std::move(name), std::move(f), {}}); };
+  auto addVec2 = [&](const std::string& layer, const std::vector<dvec2>& v, const char* x, const char* y) {
+    if (v.empty()) return;
+    add(layer + "." + x, [&v](std::size_t i) { return float(v[i].x); });
+    add(layer + "." + y, [&v](std::size_t i) { return float(v[i].y); });
+  };
+  auto addVec3 = [&](const std::string& layer, const std::vector<dvec3>& v) {
+    if (v.empty()) return;
+    add(layer + ".X", [&v](std::size_t i) { return float(v[i].x); });
+    add(layer + ".Y", [&v](std::size_t i) { return float(v[i].y); });
+    add(layer + ".Z", [&v](std::size_t i) { return float(v[i].z); });
+  };
+  add("Y", [&](std::size_t i) { return float(image.radiance[i]); });
+  add("Z", [&](std::size_t i) { return float(image.depth_m[i]); });
+  addVec3("P", image.position_m);
+  addVec3("N", image.normal);
+  addVec2("uv", image.uv, "U", "V");
+  ch.push_back({"objectId", {}, [&](std::size_t i) { return image.objectId[i]; }});
+  add("mask", [&](std::size_t i) { return image.objectId[i] > 0 ? 1.0f : 0.0f; });
+  if (truth) {
+    addVec3("disp", truth->displacement_m);
+    addVec2("flow", truth->flow_px, "X", "Y");
+    if (!truth->flowMask.empty()) add("flow.mask", [truth](std::size_t i) { return truth->flowMask[i]; });
+    addVec2("disparity", truth->disparity_px, "X", "Y");
+    if (!truth->disparityMask.empty())
+      add("disparity.mask", [truth](std::size_t i) { return truth->disparityMask[i]; });
+    addVec2("distortion", truth->distortion_px, "X", "Y");
+  }
+  return ch;
 }
 
 void addMetadata(OIIO::ImageSpec& spec, const Camera& camera, const OutputInfo& info) {
@@ -134,33 +157,53 @@ void addMetadata(OIIO::ImageSpec& spec, const Camera& camera, const OutputInfo& 
 }
 
 void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraImage& image,
-                         const OutputInfo& info) {
+                         const DerivedTruth* truth, const OutputInfo& info) {
   const std::string& path = file.finalPath();
   auto out = OIIO::ImageOutput::create("openexr");  // by format name, not by the temporary name
   if (!out) throw Error(path + ": OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
   if (!out->supports("channelformats"))
     throw Error(path + ": this OpenImageIO's OpenEXR writer lacks per-channel formats");
 
-  OIIO::ImageSpec spec(image.width_px, image.height_px, 12, OIIO::TypeDesc::FLOAT);
-  spec.channelnames.assign(std::begin(kExrChannels), std::end(kExrChannels));
-  spec.channelformats.assign(12, OIIO::TypeDesc::FLOAT);
-  spec.channelformats[10] = OIIO::TypeDesc::UINT;  // objectId: exact 32-bit integers
+  const std::vector<ExrChannel> channels = exrChannels(image, truth);
+  const int channelCount = int(channels.size());
+  OIIO::ImageSpec spec(image.width_px, image.height_px, channelCount, OIIO::TypeDesc::FLOAT);
+  spec.channelnames.clear();
+  spec.channelformats.clear();
+  for (const ExrChannel& c : channels) {
+    spec.channelnames.push_back(c.name);
+    // objectId: exact 32-bit integers; everything else float32.
+    spec.channelformats.push_back(c.idValue ? OIIO::TypeDesc::UINT : OIIO::TypeDesc::FLOAT);
+  }
   spec.attribute("compression", "zip");
   addMetadata(spec, camera, info);
+  if (truth) {
+    spec.attribute("dicsynth:reference_frame", std::to_string(truth->referenceFrame));
+    if (!truth->disparityCamera.empty()) spec.attribute("dicsynth:disparity_camera", truth->disparityCamera);
+  }
   if (!out->open(file.tempPath(), spec)) throw Error(path + ": cannot create EXR: " + out->geterror());
 
-  // Convert and write in bands of rows: bounded memory for any image size.
+  // Convert and write in bands of rows: bounded memory for any image size. Every channel is 4
+  // bytes, so a pixel is channelCount 32-bit words in the file's native per-channel layout.
   const int width = image.width_px;
   const int bandRows = 64;
-  std::vector<ExrPixel> band(std::size_t(width) * bandRows);
+  std::vector<std::uint32_t> band(std::size_t(width) * bandRows * std::size_t(channelCount));
   for (int y0 = 0; y0 < image.height_px; y0 += bandRows) {
     const int y1 = std::min(image.height_px, y0 + bandRows);
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < width; ++x) {
         const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
-        band[std::size_t(y - y0) * std::size_t(width) + std::size_t(x)] = exrPixel(image, i);
+        std::uint32_t* word = &band[(std::size_t(y - y0) * std::size_t(width) + std::size_t(x)) * channelCount];
+        for (int c = 0; c < channelCount; ++c) {
+          const ExrChannel& ch = channels[std::size_t(c)];
+          if (ch.idValue) {
+            word[c] = ch.idValue(i);
+          } else {
+            const float v = ch.value(i);
+            std::memcpy(&word[c], &v, sizeof v);
+          }
+        }
       }
-    // TypeUnknown: the buffer is in the file's native per-channel layout (ExrPixel).
+    // TypeUnknown: the buffer is in the file's native per-channel layout.
     if (!out->write_scanlines(y0, y1, 0, OIIO::TypeUnknown, band.data()))
       throw Error(path + ": cannot write EXR pixels: " + out->geterror());
   }
@@ -171,7 +214,7 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
 
 OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, const Camera& camera,
                                const CameraImage& image, const std::vector<std::uint16_t>& digital,
-                               const OutputInfo& info) {
+                               const OutputInfo& info, const DerivedTruth* truth) {
   // Consistency of the caller's data: a mismatch is a bug upstream, not a user error.
   const std::size_t n = image.pixelCount();
   DS_CHECK(image.width_px == camera.width_px && image.height_px == camera.height_px && n > 0,
@@ -180,6 +223,11 @@ OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, 
                image.normal.size() == n && image.uv.size() == n && image.objectId.size() == n &&
                digital.size() == n,
            "camera " + camera.name + ": a layer has the wrong pixel count");
+  if (truth) {
+    for (std::size_t size : {truth->displacement_m.size(), truth->flow_px.size(), truth->flowMask.size(),
+                             truth->disparity_px.size(), truth->disparityMask.size(), truth->distortion_px.size()})
+      DS_CHECK(size == 0 || size == n, "camera " + camera.name + ": a derived layer has the wrong pixel count");
+  }
   DS_CHECK(!stem.empty() && stem.find('/') == std::string::npos, "output stem '" + stem + "'");
 
   std::error_code ec;
@@ -195,7 +243,7 @@ OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, 
   AtomicFile exr(files.groundTruth);
   writeGrayTiff(tiff, camera.width_px, camera.height_px, digital, camera.bitsPerPixel,
                 tiffDescription(camera, info));
-  writeGroundTruthExr(exr, camera, image, info);
+  writeGroundTruthExr(exr, camera, image, truth, info);
   tiff.commit();
   try {
     exr.commit();

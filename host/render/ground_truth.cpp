@@ -1,0 +1,177 @@
+#include "render/ground_truth.h"
+
+#include <cmath>
+#include <limits>
+
+#include "core/parallel.h"
+#include "cpu/trace.h"
+#include "geometry/material_point.h"
+
+namespace dicsynth {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+const dvec2 kNaN2{kNaN, kNaN};
+
+// The ray towards a visible point first meets the point's own object within this fraction of the
+// distance (header comment of ground_truth.h).
+constexpr double kVisibilityTolerance = 1e-6;
+
+// Rows in parallel: one pixel's work is a few traced rays at most.
+template <class Body>
+void forEachPixel(int width, int height, Body body) {
+  parallelFor(std::size_t(height), [&](std::size_t y) {
+    for (int x = 0; x < width; ++x) body(std::size_t(y) * std::size_t(width) + std::size_t(x), x, int(y));
+  });
+}
+
+int objectIndexByName(const PreparedScene& scene, const std::string& name) {
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].name == name) return int(i);
+  return -1;
+}
+
+std::vector<dvec2> distortionField(const PreparedCamera& pc) {
+  const Camera& c = pc.camera;
+  std::vector<dvec2> field(std::size_t(c.width_px) * std::size_t(c.height_px), dvec2(0));
+  const auto& m = pc.model;
+  if (!m.distorted) return field;
+  // Each pixel centre is a distorted position; its undistorted position is K·undistort(K⁻¹x).
+  // prepareScene checked that the inverse round-trips to < 1e-9 px over the whole image.
+  forEachPixel(c.width_px, c.height_px, [&](std::size_t i, int x, int y) {
+    const dvec2 ideal = undistort(m.brown, dvec2{(x - m.cx) / m.fx, (y - m.cy) / m.fy});
+    field[i] = dvec2{x, y} - dvec2{m.fx * ideal.x + m.cx, m.fy * ideal.y + m.cy};
+  });
+  return field;
+}
+
+}  // namespace
+
+dvec2 projectPoint(const PreparedCamera& camera, dvec3 world_m) {
+  const auto& m = camera.model;
+  const dvec3 pc = camera.rotationCameraFromWorld * world_m + camera.translationCameraFromWorld;
+  if (!(pc.z > 0)) return kNaN2;
+  const dvec2 ideal{pc.x / pc.z, pc.y / pc.z};
+  dvec2 xy = ideal;
+  if (m.distorted) {
+    xy = distort(m.brown, ideal);
+    // Far outside the view a distortion polynomial can fold back: a point there would land on a
+    // pixel whose ray is another direction. Keep only projections the inverse maps back.
+    const dvec2 back = undistort(m.brown, xy);
+    if (!(glm::length(back - ideal) <= 1e-9 * (1 + glm::length(ideal)))) return kNaN2;
+  }
+  return {m.fx * xy.x + m.cx, m.fy * xy.y + m.cy};
+}
+
+Sighting sight(const PreparedScene& scene, const PreparedCamera& camera, int object, dvec3 world_m) {
+  Sighting s;
+  s.pixel_px = projectPoint(camera, world_m);
+  const auto& m = camera.model;
+  const Camera& c = camera.camera;
+  if (!(s.pixel_px.x >= -0.5 && s.pixel_px.x <= c.width_px - 0.5 && s.pixel_px.y >= -0.5 &&
+        s.pixel_px.y <= c.height_px - 0.5))
+    return s;
+  cpu::SurfaceHit hit;
+  // d = world − centre: the point itself is at t = 1.
+  if (!cpu::traceNearest(scene, m.centre, world_m - m.centre, hit)) return s;
+  s.visible = hit.object == object && std::abs(hit.t - 1) <= kVisibilityTolerance;
+  return s;
+}
+
+ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result)
+    : frame_(frame), scene_(std::move(scene)) {
+  DS_CHECK(result.cameras.size() == scene_.cameras.size(), "reference render and scene disagree");
+  for (std::size_t c = 0; c < result.cameras.size(); ++c) {
+    const CameraImage& image = result.cameras[c];
+    View v;
+    v.camera = image.cameraName;
+    v.width_px = image.width_px;
+    v.height_px = image.height_px;
+    const std::size_t n = image.pixelCount();
+    v.object.assign(n, -1);
+    v.material.assign(n, kNaN2);
+    v.position_m.assign(n, dvec3(kNaN));
+    v.pixel_px.assign(n, kNaN2);
+    const PreparedCamera& camera = scene_.cameras[c];
+    forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
+      if (image.objectId[i] == 0) return;
+      const int o = int(image.objectId[i]) - 1;
+      const PreparedObject& obj = scene_.objects[std::size_t(o)];
+      const dvec2 m = materialCoordinates(obj, image.uv[i], image.position_m[i]);
+      const auto p = worldPointOfMaterial(obj, m);
+      if (!p) return;
+      v.object[i] = o;
+      v.material[i] = m;
+      v.position_m[i] = *p;
+      v.pixel_px[i] = projectPoint(camera, *p);
+    });
+    views_.push_back(std::move(v));
+  }
+}
+
+const ReferenceFrame::View* ReferenceFrame::view(const std::string& camera) const {
+  for (const View& v : views_)
+    if (v.camera == camera) return &v;
+  return nullptr;
+}
+
+DerivedTruth deriveTruth(const ReferenceFrame& reference, const PreparedScene& scene,
+                         const RenderResult& result, std::size_t cameraIndex) {
+  const PreparedCamera& camera = scene.cameras[cameraIndex];
+  const CameraImage& image = result.cameras[cameraIndex];
+  DerivedTruth truth;
+  truth.referenceFrame = reference.frame();
+  truth.distortion_px = distortionField(camera);
+
+  // Motion: follow each reference pixel's material point into this frame.
+  const ReferenceFrame::View* view = reference.view(camera.camera.name);
+  if (view && view->width_px == image.width_px && view->height_px == image.height_px) {
+    const std::size_t n = image.pixelCount();
+    truth.displacement_m.assign(n, dvec3(kNaN));
+    truth.flow_px.assign(n, kNaN2);
+    truth.flowMask.assign(n, 0.0f);
+    // Objects are matched by name: a frame may add or drop objects, which renumbers them.
+    std::vector<int> objectNow(reference.scene().objects.size());
+    for (std::size_t o = 0; o < objectNow.size(); ++o)
+      objectNow[o] = objectIndexByName(scene, reference.scene().objects[o].name);
+    forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
+      if (view->object[i] < 0) return;
+      const int o = objectNow[std::size_t(view->object[i])];
+      if (o < 0) return;
+      const auto p = worldPointOfMaterial(scene.objects[std::size_t(o)], view->material[i]);
+      if (!p) return;
+      truth.displacement_m[i] = *p - view->position_m[i];
+      const Sighting s = sight(scene, camera, o, *p);
+      truth.flow_px[i] = s.pixel_px - view->pixel_px[i];
+      truth.flowMask[i] = s.visible ? 1.0f : 0.0f;
+    });
+  }
+
+  // Disparity: this pixel's material point seen by the rig's other camera.
+  int other = -1;
+  for (const PreparedRig& rig : scene.rigs) {
+    if (rig.left == int(cameraIndex)) other = rig.right;
+    if (rig.right == int(cameraIndex)) other = rig.left;
+  }
+  if (other >= 0) {
+    const PreparedCamera& otherCamera = scene.cameras[std::size_t(other)];
+    truth.disparityCamera = otherCamera.camera.name;
+    const std::size_t n = image.pixelCount();
+    truth.disparity_px.assign(n, kNaN2);
+    truth.disparityMask.assign(n, 0.0f);
+    forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
+      if (image.objectId[i] == 0) return;
+      const int o = int(image.objectId[i]) - 1;
+      const PreparedObject& obj = scene.objects[std::size_t(o)];
+      const auto p = worldPointOfMaterial(obj, materialCoordinates(obj, image.uv[i], image.position_m[i]));
+      if (!p) return;
+      const Sighting there = sight(scene, otherCamera, o, *p);
+      truth.disparity_px[i] = there.pixel_px - projectPoint(camera, *p);
+      truth.disparityMask[i] = there.visible ? 1.0f : 0.0f;
+    });
+    for (float v : truth.disparityMask) truth.disparityVisibleCount += v > 0 ? 1 : 0;
+  }
+  return truth;
+}
+
+}  // namespace dicsynth

@@ -1,0 +1,91 @@
+#pragma once
+// Ground truth derived from the renders, per camera and frame: the motion of the material since the
+// reference frame (disp, flow), the stereo correspondence to the rig's other camera (disparity) and
+// the lens distortion of every pixel. Written to the .exr beside the backend's own layers
+// (io/outputs.h); README's ground-truth table documents channels, units and conventions.
+//
+// Every value is a difference computed in double from material points (geometry/material_point.h):
+// disp = P_k(m) − P_ref(m), flow = x_k(m) − x_ref(m), disparity = x_other(m) − x_this(m), where m
+// is the material point the backend found at the pixel centre. Computing both ends from m (instead
+// of subtracting the pixel centre) means the backend's error in finding m (its geometric error,
+// ≤ the precision's bound) enters only multiplied by the field's gradient, i.e. the strain:
+// a 1e-6 px error in m moves a flow of strain 1e-2 by 1e-8 px. Float32 storage then limits each
+// value to a relative 2^-24 of its magnitude, e.g. 3e-5 px for a 500 px disparity.
+//
+// Visibility (the masks) is traced in double by the CPU reference (cpu::traceNearest): a material
+// point is visible in a camera when it lies in front of it, projects inside the image (pixel
+// centres' square [−0.5, w − 0.5] × [−0.5, h − 0.5]) through a distortion that is invertible there,
+// and the ray from the camera centre towards it first meets its own object within 1e-6 of the
+// distance (0.5 µm at 0.5 m: far closer than any occluder a scene can mean, far looser than the
+// 1e-12 relative accuracy of the traced hit).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "geometry/prepared_scene.h"
+#include "render/result.h"
+
+namespace dicsynth {
+
+struct DerivedTruth {
+  // Motion since the reference frame, indexed by the REFERENCE image's pixels (Lagrangian, as DIC
+  // reports displacements at reference subset centres). NaN where the reference pixel sees no
+  // object, or its object is absent from this frame. Empty when the camera has no reference view
+  // (absent from the reference frame or with another resolution there).
+  int referenceFrame = 0;
+  std::vector<dvec3> displacement_m;  // disp.X/Y/Z: world displacement (m)
+  std::vector<dvec2> flow_px;         // flow.X/Y: image motion (px, this frame's camera model)
+  std::vector<float> flowMask;        // flow.mask: 1 where the material point is visible now
+  // Correspondence to the other camera of the rig this camera belongs to, indexed by THIS image's
+  // pixels. NaN where this pixel sees no object. Empty when the camera is in no rig.
+  std::string disparityCamera;
+  std::vector<dvec2> disparity_px;    // disparity.X/Y (px)
+  std::vector<float> disparityMask;   // disparity.mask: 1 where the other camera sees the point
+  std::size_t disparityVisibleCount = 0;
+  // distortion.X/Y: distorted minus undistorted image position of every pixel centre (px);
+  // zero for a camera without distortion.
+  std::vector<dvec2> distortion_px;
+};
+
+// What the motion truth keeps of the reference frame: its scene and, per camera, the material
+// point the backend found at each pixel centre.
+class ReferenceFrame {
+ public:
+  ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result);
+  int frame() const { return frame_; }
+
+  struct View {
+    std::string camera;
+    int width_px = 0, height_px = 0;
+    std::vector<int> object;       // index into scene().objects, −1 for background
+    std::vector<dvec2> material;   // material coordinates (geometry/material_point.h)
+    std::vector<dvec3> position_m; // P_ref(m), recomputed in double from the material coordinates
+    std::vector<dvec2> pixel_px;   // x_ref(m): its projection into the reference camera
+  };
+  const View* view(const std::string& camera) const;
+  const PreparedScene& scene() const { return scene_; }
+
+ private:
+  int frame_;
+  PreparedScene scene_;
+  std::vector<View> views_;
+};
+
+// The derived layers of camera `camera` (index into scene.cameras and result.cameras) of a frame.
+DerivedTruth deriveTruth(const ReferenceFrame& reference, const PreparedScene& scene,
+                         const RenderResult& result, std::size_t camera);
+
+// Image position (px, distorted, OpenCV) of a world point in `camera`; NaN when the point is not in
+// front of the camera or the distortion cannot be inverted at its projection.
+dvec2 projectPoint(const PreparedCamera& camera, dvec3 world_m);
+
+// Where world point `world_m` of object `object` appears in `camera` (projectPoint), and whether it
+// is visible there (see the header comment).
+struct Sighting {
+  dvec2 pixel_px{0};
+  bool visible = false;
+};
+Sighting sight(const PreparedScene& scene, const PreparedCamera& camera, int object, dvec3 world_m);
+
+}  // namespace dicsynth

@@ -1,0 +1,289 @@
+// Derived ground truth (render/ground_truth.h): displacement, flow, disparity and distortion layers
+// checked against closed forms and against an independent path (tracing the ray through the
+// predicted pixel and finding the same material point there).
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "cpu/reference_renderer.h"
+#include "cpu/trace.h"
+#include "geometry/material_point.h"
+#include "render/ground_truth.h"
+#include "scene/scene.h"
+#include "temp_folder.h"
+
+namespace dicsynth {
+namespace {
+
+struct Frame {
+  PreparedScene scene;
+  RenderResult result;
+};
+
+// Scene `body` with -D values, frame `frame`, rendered by the CPU reference (1 spp: only the
+// pixel-centre ground truth matters here).
+Frame renderFrame(const std::string& path, int frame, std::vector<std::pair<std::string, std::string>> defines = {},
+                  const std::vector<StereoRig>& rigs = {}) {
+  Scene scene = loadScene(path, {defines, frame});
+  scene.rigs = rigs;
+  Frame f{prepareScene(scene), {}};
+  RenderOptions options;
+  options.samplesPerPixel = 1;
+  options.frame = frame;
+  f.result = cpu::render(f.scene, options);
+  return f;
+}
+
+// cam: 160x120, f = 16 mm, 20 µm pixels (fx = 800 px), at the origin looking down +z.
+const std::string kCamera =
+    "cam = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} %s }\n";
+
+std::string camera(const std::string& extra = "") {
+  std::string s = kCamera;
+  s.replace(s.find("%s"), 2, extra);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("ground truth: rigid translation of a fronto-parallel rectangle, closed form") {
+  test::TempFolder dir;
+  // Frame k moves the rectangle by k·1 mm along x at Z = 0.4 m: disp = (k mm, 0, 0) and, without
+  // distortion, flow = (fx·k mm / Z, 0) = (2k px, 0) at every pixel.
+  const std::string path = dir.write("s.lua", camera() +
+      "obj = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {frame * 1e-3, 0, 0.4} } }\n");
+  Frame f0 = renderFrame(path, 0), f3 = renderFrame(path, 3);
+  const ReferenceFrame reference(0, f0.scene, f0.result);
+  const DerivedTruth t = deriveTruth(reference, f3.scene, f3.result, 0);
+  REQUIRE(t.displacement_m.size() == 160 * 120);
+  int visible = 0, movedOut = 0;
+  for (std::size_t i = 0; i < t.displacement_m.size(); ++i) {
+    if (f0.result.cameras[0].objectId[i] == 0) {
+      CHECK(std::isnan(t.flow_px[i].x));
+      continue;
+    }
+    // Double rounding only: the points are ~0.05 m, the displacement 3e-3 m.
+    CHECK(std::abs(t.displacement_m[i].x - 3e-3) < 1e-15);
+    CHECK(std::abs(t.displacement_m[i].y) < 1e-15);
+    CHECK(std::abs(t.displacement_m[i].z) < 1e-15);
+    CHECK(std::abs(t.flow_px[i].x - 6) < 1e-11);
+    CHECK(std::abs(t.flow_px[i].y) < 1e-11);
+    const int x = int(i % 160);
+    // Points that move beyond the last pixel centre's half pixel leave the image: x + 6 > 159.5.
+    if (x + 6 > 159.5) {
+      ++movedOut;
+      CHECK(t.flowMask[i] == 0.0f);
+    } else {
+      visible += t.flowMask[i] == 1.0f;
+    }
+  }
+  CHECK(movedOut == 6 * 120);
+  CHECK(visible == 154 * 120);
+  // The reference frame's own truth: no motion.
+  const DerivedTruth t0 = deriveTruth(reference, f0.scene, f0.result, 0);
+  for (std::size_t i = 0; i < t0.flow_px.size(); ++i)
+    if (f0.result.cameras[0].objectId[i] != 0) {
+      CHECK(t0.flow_px[i] == dvec2(0));
+      CHECK(t0.flowMask[i] == 1.0f);
+    }
+}
+
+TEST_CASE("ground truth: a rotating sphere under distortion; the ray through x + flow meets the same material point") {
+  test::TempFolder dir;
+  // The sphere turns 20° per frame about its own vertical axis: disp = (R − I)(P − c). The flow is
+  // checked without any formula of ours: the renderer's own ray through the predicted pixel
+  // (inverse distortion by Newton) must meet the surface at the same (u, v).
+  const std::string path = dir.write("s.lua", camera("; distortion = Distortion.Brown { radial = {-0.2, 0.1, 0}; tangential = {1e-3, -2e-3} }") +
+      "obj = Object.Simple { shape = Shape.Sphere { radius = 0.04; location = {0.005, 0, 0.3} };"
+      " transform = rotate_y(degrees(20) * frame) }\n");
+  Frame f0 = renderFrame(path, 0), f1 = renderFrame(path, 1);
+  const ReferenceFrame reference(0, f0.scene, f0.result);
+  const DerivedTruth t = deriveTruth(reference, f1.scene, f1.result, 0);
+  const double a = 20 * std::acos(-1.0) / 180;
+  const dvec3 centre{0.005, 0, 0.3};
+  int checked = 0, hidden = 0;
+  const CameraImage& ref = f0.result.cameras[0];
+  for (std::size_t i = 0; i < ref.pixelCount(); ++i) {
+    if (ref.objectId[i] == 0) continue;
+    // rotate_y(a) (right-handed about +y): x' = x cos a + z sin a, z' = −x sin a + z cos a.
+    const dvec3 p = ref.position_m[i] - centre;
+    const dvec3 expected = dvec3{p.x * std::cos(a) + p.z * std::sin(a), p.y, -p.x * std::sin(a) + p.z * std::cos(a)} - p;
+    CHECK(glm::length(t.displacement_m[i] - expected) < 1e-14);
+    if (t.flowMask[i] == 0) { ++hidden; continue; }
+    const dvec2 pixel = dvec2(double(i % 160), double(i / 160)) + t.flow_px[i];
+    const auto& m = f1.scene.cameras[0].model;
+    cpu::SurfaceHit hit;
+    REQUIRE(cpu::traceNearest(f1.scene, m.centre, worldRayDirection(m, pixel), hit));
+    // (u, v) are angles/π: 1e-12 in uv is ~1e-13 m on this sphere, ~1e-10 px.
+    CHECK(glm::length(hit.uv - ref.uv[i]) < 1e-11);
+    ++checked;
+  }
+  CHECK(checked > 1000);
+  CHECK(hidden > 50);  // points turning to the back are masked
+}
+
+TEST_CASE("ground truth: uniform strain of a NURBS plate, closed form") {
+  test::TempFolder dir;
+  // Nurbs.plate stretches about its centre: strain e along x, −0.3 e along y, so a material point
+  // at (x, y) from the centre moves by (e x, −0.3 e y, 0).
+  const std::string path = dir.write("s.lua", camera() +
+      "obj = Object.Simple { shape = Nurbs.plate { size = {0.1, 0.075}; strain = {strain * frame, -0.3 * strain * frame};"
+      " spans = {2, 2}; location = {0, 0, 0.4} } }\n");
+  const std::vector<std::pair<std::string, std::string>> d{{"strain", "0.01"}};
+  Frame f0 = renderFrame(path, 0, d), f1 = renderFrame(path, 1, d);
+  const ReferenceFrame reference(0, f0.scene, f0.result);
+  const DerivedTruth t = deriveTruth(reference, f1.scene, f1.result, 0);
+  const CameraImage& ref = f0.result.cameras[0];
+  int checked = 0;
+  for (std::size_t i = 0; i < ref.pixelCount(); ++i) {
+    if (ref.objectId[i] == 0) continue;
+    const dvec3 p = ref.position_m[i] - dvec3{0, 0, 0.4};
+    // The reference P comes from the CPU NURBS intersection (~1e-13 m); displacements ~5e-4 m.
+    CHECK(glm::length(t.displacement_m[i] - dvec3{0.01 * p.x, -0.003 * p.y, 0}) < 1e-12);
+    // Fronto-parallel, no distortion: flow = fx · disp / Z (fx = 800 px).
+    CHECK(glm::length(t.flow_px[i] - 800.0 * dvec2(t.displacement_m[i]) / 0.4) < 1e-9);
+    ++checked;
+  }
+  CHECK(checked > 5000);
+}
+
+TEST_CASE("ground truth: an occluder entering the view masks the flow behind it") {
+  test::TempFolder dir;
+  // In frame 1 a 2 cm square at Z = 0.2 m covers the centre of the specimen (at 0.4 m): it hides
+  // an 80 x 80 px square of the image (fx · 0.02 / 0.2).
+  const std::string path = dir.write("s.lua", camera() +
+      "specimen = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {0, 0, 0.4} } }\n"
+      "if frame == 1 then blocker = Object.Simple { shape = Shape.Rectangle { size = {0.02, 0.02};"
+      " location = {0, 0, 0.2} } } end\n");
+  Frame f0 = renderFrame(path, 0), f1 = renderFrame(path, 1);
+  const ReferenceFrame reference(0, f0.scene, f0.result);
+  const DerivedTruth t = deriveTruth(reference, f1.scene, f1.result, 0);
+  int hidden = 0;
+  for (std::size_t i = 0; i < t.flowMask.size(); ++i) {
+    const int x = int(i % 160), y = int(i / 160);
+    // The square covers pixel centres with |x − 79.5| < 40 and |y − 59.5| < 40.
+    const bool behind = std::abs(x - 79.5) < 40 && std::abs(y - 59.5) < 40;
+    CHECK(t.flowMask[i] == (behind ? 0.0f : 1.0f));
+    hidden += behind;
+    CHECK(t.flow_px[i] == dvec2(0));  // the specimen did not move: hidden, yet its flow is known
+  }
+  CHECK(hidden == 80 * 80);
+}
+
+TEST_CASE("ground truth: disparity of a rectified pair on a plane, closed form") {
+  test::TempFolder dir;
+  // Two parallel cameras 2 cm apart along x, a wall at Z = 0.5 m: a point seen by the left camera
+  // at x appears in the right one at x − fx·b/Z = x − 32 px, and the reverse for the right camera.
+  const std::string path = dir.write("s.lua",
+      "left = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
+      " position = {-0.01, 0, 0}; lookAt = {-0.01, 0, 1}; up = {0, -1, 0} }\n"
+      "right = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
+      " position = {0.01, 0, 0}; lookAt = {0.01, 0, 1}; up = {0, -1, 0} }\n"
+      "wall = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 0.5} } }\n");
+  Frame f = renderFrame(path, 0, {}, {StereoRig{"rig", {}, "left", "right"}});
+  const ReferenceFrame reference(0, f.scene, f.result);
+  for (std::size_t c = 0; c < 2; ++c) {
+    const DerivedTruth t = deriveTruth(reference, f.scene, f.result, c);
+    CHECK(t.disparityCamera == (c == 0 ? "right" : "left"));
+    const double expected = c == 0 ? -32 : 32;
+    std::size_t visible = 0;
+    for (std::size_t i = 0; i < t.disparity_px.size(); ++i) {
+      const double x = double(i % 160);
+      CHECK(std::abs(t.disparity_px[i].x - expected) < 1e-10);
+      CHECK(std::abs(t.disparity_px[i].y) < 1e-10);
+      const bool inside = x + expected >= -0.5 && x + expected <= 159.5;
+      CHECK(t.disparityMask[i] == (inside ? 1.0f : 0.0f));
+      visible += inside;
+    }
+    CHECK(t.disparityVisibleCount == visible);
+    CHECK(visible == 128 * 120);
+  }
+}
+
+TEST_CASE("ground truth: cameras without overlap give an empty disparity mask, not an error") {
+  test::TempFolder dir;
+  // Back to back: whatever one camera sees lies behind the other.
+  const std::string path = dir.write("s.lua",
+      "a = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.016; pixelSize = {1e-4, 1e-4} }\n"
+      "b = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.016; pixelSize = {1e-4, 1e-4};"
+      " position = {0, 0, 0}; lookAt = {0, 0, -1}; up = {0, -1, 0} }\n"
+      "front = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 0.5} } }\n"
+      "back = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, -0.5} } }\n");
+  Frame f = renderFrame(path, 0, {}, {StereoRig{"rig", {}, "a", "b"}});
+  const ReferenceFrame reference(0, f.scene, f.result);
+  for (std::size_t c = 0; c < 2; ++c) {
+    const DerivedTruth t = deriveTruth(reference, f.scene, f.result, c);
+    CHECK(t.disparityVisibleCount == 0);
+    for (std::size_t i = 0; i < t.disparity_px.size(); ++i) {
+      CHECK(t.disparityMask[i] == 0.0f);
+      CHECK(std::isnan(t.disparity_px[i].x));  // behind the other camera: no image position
+    }
+  }
+}
+
+TEST_CASE("ground truth: disparity with overlap; points hidden from the other camera are masked") {
+  test::TempFolder dir;
+  // Converging cameras: both look at (0, 0, 0.5). The post (a thin vertical strip at Z = 0.4 m,
+  // x = 0.02) is seen by both, and hides a strip of the wall from the right camera only where it
+  // falls between the wall and that camera. Checked independently: for every left pixel whose
+  // point the right camera sees, the right camera's ray through x + disparity meets that point.
+  const std::string path = dir.write("s.lua",
+      "left = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
+      " position = {-0.05, 0, 0}; lookAt = {0, 0, 0.5}; up = {0, -1, 0};"
+      " distortion = Distortion.Brown { radial = {-0.1, 0, 0} } }\n"
+      "right = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
+      " position = {0.05, 0, 0}; lookAt = {0, 0, 0.5}; up = {0, -1, 0} }\n"
+      "wall = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 0.5} } }\n"
+      "post = Object.Simple { shape = Shape.Rectangle { size = {0.004, 1}; location = {0.02, 0, 0.4} } }\n");
+  Frame f = renderFrame(path, 0, {}, {StereoRig{"rig", {}, "left", "right"}});
+  const ReferenceFrame reference(0, f.scene, f.result);
+  const DerivedTruth t = deriveTruth(reference, f.scene, f.result, 0);
+  const CameraImage& img = f.result.cameras[0];
+  const auto& rightModel = f.scene.cameras[1].model;
+  int visible = 0, occluded = 0;
+  for (std::size_t i = 0; i < img.pixelCount(); ++i) {
+    if (img.objectId[i] == 0) continue;
+    const dvec2 there = dvec2(double(i % 160), double(i / 160)) + t.disparity_px[i];
+    cpu::SurfaceHit hit;
+    const bool inside = there.x >= -0.5 && there.x <= 159.5 && there.y >= -0.5 && there.y <= 119.5;
+    REQUIRE(cpu::traceNearest(f.scene, rightModel.centre, worldRayDirection(rightModel, there), hit));
+    const bool same = hit.object == int(img.objectId[i]) - 1 && glm::length(hit.uv - img.uv[i]) < 1e-9;
+    CHECK(t.disparityMask[i] == ((inside && same) ? 1.0f : 0.0f));
+    if (t.disparityMask[i] > 0) ++visible;
+    else if (inside) ++occluded;
+  }
+  CHECK(visible > 5000);
+  CHECK(occluded > 100);  // the strip of wall behind the post, seen from the right
+  CHECK(t.disparityVisibleCount == std::size_t(visible));
+}
+
+TEST_CASE("ground truth: the distortion layer maps each pixel centre to its undistorted position") {
+  test::TempFolder dir;
+  const std::string path = dir.write("s.lua", camera("; distortion = Distortion.Brown { radial = {-0.3, 0.2, -0.05}; tangential = {2e-3, 1e-3} }") +
+      "obj = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {0, 0, 0.4} } }\n");
+  Frame f = renderFrame(path, 0);
+  const ReferenceFrame reference(0, f.scene, f.result);
+  const DerivedTruth t = deriveTruth(reference, f.scene, f.result, 0);
+  const auto& m = f.scene.cameras[0].model;
+  double largest = 0;
+  for (std::size_t i = 0; i < t.distortion_px.size(); ++i) {
+    const dvec2 pixel{double(i % 160), double(i / 160)};
+    const dvec2 undistorted = pixel - t.distortion_px[i];
+    // Forward model (closed form) from the undistorted position must land on the pixel centre.
+    const dvec2 ideal{(undistorted.x - m.cx) / m.fx, (undistorted.y - m.cy) / m.fy};
+    const dvec2 back = distort(m.brown, ideal);
+    CHECK(glm::length(dvec2{m.fx * back.x + m.cx, m.fy * back.y + m.cy} - pixel) < 1e-9);
+    largest = std::max(largest, glm::length(t.distortion_px[i]));
+  }
+  // The test means something: at the corners (r = 0.125 in normalized units) k1 alone moves the
+  // position by 0.3 · 0.125³ · 800 ≈ 0.47 px.
+  CHECK(largest > 0.4);
+  // Without distortion the layer is zero.
+  const std::string plain = dir.write("p.lua", camera() +
+      "obj = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {0, 0, 0.4} } }\n");
+  Frame g = renderFrame(plain, 0);
+  const DerivedTruth tp = deriveTruth(ReferenceFrame(0, g.scene, g.result), g.scene, g.result, 0);
+  for (const dvec2& v : tp.distortion_px) CHECK(v == dvec2(0));
+}
+
+}  // namespace dicsynth

@@ -13,10 +13,13 @@
 
 #include "core/error.h"
 #include "io/opencv_camera.h"
+#include "exr_test_util.h"
 #include "io/outputs.h"
 #include "temp_folder.h"
 
 using namespace dicsynth;
+using dicsynth::test::ExrContents;
+using dicsynth::test::readExr;
 using dicsynth::test::TempFolder;
 
 namespace {
@@ -91,31 +94,6 @@ std::vector<double> parseNumbers(const std::string& text) {
     p = end;
   }
   return numbers;
-}
-
-struct ExrContents {
-  OIIO::ImageSpec spec;
-  std::map<std::string, std::vector<float>> floats;  // float channels by name
-  std::vector<std::uint32_t> objectId;
-};
-
-ExrContents readExr(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  REQUIRE_MESSAGE(in, OIIO::geterror());
-  ExrContents exr{in->spec(), {}, {}};
-  const std::size_t n = std::size_t(exr.spec.width) * std::size_t(exr.spec.height);
-  for (int c = 0; c < exr.spec.nchannels; ++c) {
-    const std::string& name = exr.spec.channelnames[c];
-    if (name == "objectId") {
-      exr.objectId.resize(n);
-      REQUIRE(in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::UINT, exr.objectId.data()));
-    } else {
-      auto& values = exr.floats[name];
-      values.resize(n);
-      REQUIRE(in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, values.data()));
-    }
-  }
-  return exr;
 }
 
 }  // namespace

@@ -1,0 +1,61 @@
+// The derived ground-truth layers as `dicsynth render` writes them: channels, reference frame,
+// and the bad input around them.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "exr_test_util.h"
+#include "run_cli.h"
+
+using namespace dicsynth;
+using test::runCli;
+using test::TempFolder;
+
+namespace {
+
+// A rectangle moving 1 mm along x per frame at Z = 0.4 m; fx = 0.016 / 2e-4 = 80 px, so the
+// flow between frames is 80 · 1e-3 / 0.4 = 0.2 px per frame.
+const std::string kMovingScene =
+    "cam = Camera.Pinhole { resolution = {40, 30}; focalLength = 0.016; pixelSize = {2e-4, 2e-4} }\n"
+    "obj = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {frame * 1e-3, 0, 0.4} } }\n";
+
+}  // namespace
+
+TEST_CASE("cli: render writes disp, flow and distortion layers measured from --reference-frame") {
+  TempFolder dir;
+  const std::string scene = dir.write("moving.lua", kMovingScene);
+  const test::CliResult r = runCli("render " + scene + " -o " + dir.file("out") +
+                                   " --frames 0:2 --reference-frame 1 --spp 1 --backend gpu --precision fp64");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  for (int frame : {0, 1, 2}) {
+    CAPTURE(frame);
+    const test::ExrContents exr = test::readExr(dir.file("out/cam_000" + std::to_string(frame) + ".exr"));
+    CHECK(exr.spec.get_string_attribute("dicsynth:reference_frame") == "1");
+    for (const char* channel : {"disp.X", "disp.Y", "disp.Z", "flow.X", "flow.Y", "flow.mask", "distortion.X",
+                                "distortion.Y"})
+      REQUIRE(exr.floats.count(channel) == 1);
+    CHECK(exr.floats.count("disparity.X") == 0);  // no rig: no disparity
+    // Every pixel sees the rectangle; float32 of 0.2 px and 1e-3 m: relative 2^-24.
+    const double expectedFlow = 0.2 * (frame - 1), expectedDisp = 1e-3 * (frame - 1);
+    for (std::size_t i = 0; i < 40 * 30; ++i) {
+      CHECK(std::abs(exr.floats.at("flow.X")[i] - expectedFlow) < 1e-6);
+      CHECK(std::abs(exr.floats.at("disp.X")[i] - expectedDisp) < 1e-9);
+      CHECK(exr.floats.at("distortion.X")[i] == 0.0f);
+    }
+  }
+}
+
+TEST_CASE("cli: a reference frame outside --frames is bad input: exit code 2, no output") {
+  TempFolder dir;
+  const std::string scene = dir.write("moving.lua", kMovingScene);
+  for (const std::string& args : {std::string(" --frames 0:2 --reference-frame 5"), std::string(" --reference-frame 1")}) {
+    const test::CliResult r = runCli("render " + scene + " -o " + dir.file("out") + args + " --backend cpu");
+    INFO(args << "\n" << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.rfind("--reference-frame", 0) == 0);
+    CHECK(r.err.find('\n') == r.err.size() - 1);
+    CHECK_FALSE(std::filesystem::exists(dir.file("out")));
+  }
+}

@@ -54,7 +54,7 @@ TEST_CASE("ground truth: rigid translation of a fronto-parallel rectangle, close
       "obj = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {frame * 1e-3, 0, 0.4} } }\n");
   Frame f0 = renderFrame(path, 0), f3 = renderFrame(path, 3);
   const ReferenceFrame reference(0, f0.scene, f0.result);
-  const DerivedTruth t = deriveTruth(reference, f3.scene, f3.result, 0);
+  const DerivedTruth t = deriveTruth(reference, 3, f3.scene, f3.result, 0);
   REQUIRE(t.displacement_m.size() == 160 * 120);
   int visible = 0, movedOut = 0;
   for (std::size_t i = 0; i < t.displacement_m.size(); ++i) {
@@ -80,7 +80,7 @@ TEST_CASE("ground truth: rigid translation of a fronto-parallel rectangle, close
   CHECK(movedOut == 6 * 120);
   CHECK(visible == 154 * 120);
   // The reference frame's own truth: no motion.
-  const DerivedTruth t0 = deriveTruth(reference, f0.scene, f0.result, 0);
+  const DerivedTruth t0 = deriveTruth(reference, 0, f0.scene, f0.result, 0);
   for (std::size_t i = 0; i < t0.flow_px.size(); ++i)
     if (f0.result.cameras[0].objectId[i] != 0) {
       CHECK(t0.flow_px[i] == dvec2(0));
@@ -98,7 +98,7 @@ TEST_CASE("ground truth: a rotating sphere under distortion; the ray through x +
       " transform = rotate_y(degrees(20) * frame) }\n");
   Frame f0 = renderFrame(path, 0), f1 = renderFrame(path, 1);
   const ReferenceFrame reference(0, f0.scene, f0.result);
-  const DerivedTruth t = deriveTruth(reference, f1.scene, f1.result, 0);
+  const DerivedTruth t = deriveTruth(reference, 1, f1.scene, f1.result, 0);
   const double a = 20 * std::acos(-1.0) / 180;
   const dvec3 centre{0.005, 0, 0.3};
   int checked = 0, hidden = 0;
@@ -132,7 +132,7 @@ TEST_CASE("ground truth: uniform strain of a NURBS plate, closed form") {
   const std::vector<std::pair<std::string, std::string>> d{{"strain", "0.01"}};
   Frame f0 = renderFrame(path, 0, d), f1 = renderFrame(path, 1, d);
   const ReferenceFrame reference(0, f0.scene, f0.result);
-  const DerivedTruth t = deriveTruth(reference, f1.scene, f1.result, 0);
+  const DerivedTruth t = deriveTruth(reference, 1, f1.scene, f1.result, 0);
   const CameraImage& ref = f0.result.cameras[0];
   int checked = 0;
   for (std::size_t i = 0; i < ref.pixelCount(); ++i) {
@@ -157,7 +157,7 @@ TEST_CASE("ground truth: an occluder entering the view masks the flow behind it"
       " location = {0, 0, 0.2} } } end\n");
   Frame f0 = renderFrame(path, 0), f1 = renderFrame(path, 1);
   const ReferenceFrame reference(0, f0.scene, f0.result);
-  const DerivedTruth t = deriveTruth(reference, f1.scene, f1.result, 0);
+  const DerivedTruth t = deriveTruth(reference, 1, f1.scene, f1.result, 0);
   int hidden = 0;
   for (std::size_t i = 0; i < t.flowMask.size(); ++i) {
     const int x = int(i % 160), y = int(i / 160);
@@ -183,7 +183,7 @@ TEST_CASE("ground truth: disparity of a rectified pair on a plane, closed form")
   Frame f = renderFrame(path, 0, {}, {StereoRig{"rig", {}, "left", "right"}});
   const ReferenceFrame reference(0, f.scene, f.result);
   for (std::size_t c = 0; c < 2; ++c) {
-    const DerivedTruth t = deriveTruth(reference, f.scene, f.result, c);
+    const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, c);
     CHECK(t.disparityCamera == (c == 0 ? "right" : "left"));
     const double expected = c == 0 ? -32 : 32;
     std::size_t visible = 0;
@@ -212,7 +212,7 @@ TEST_CASE("ground truth: cameras without overlap give an empty disparity mask, n
   Frame f = renderFrame(path, 0, {}, {StereoRig{"rig", {}, "a", "b"}});
   const ReferenceFrame reference(0, f.scene, f.result);
   for (std::size_t c = 0; c < 2; ++c) {
-    const DerivedTruth t = deriveTruth(reference, f.scene, f.result, c);
+    const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, c);
     CHECK(t.disparityVisibleCount == 0);
     for (std::size_t i = 0; i < t.disparity_px.size(); ++i) {
       CHECK(t.disparityMask[i] == 0.0f);
@@ -237,7 +237,7 @@ TEST_CASE("ground truth: disparity with overlap; points hidden from the other ca
       "post = Object.Simple { shape = Shape.Rectangle { size = {0.004, 1}; location = {0.02, 0, 0.4} } }\n");
   Frame f = renderFrame(path, 0, {}, {StereoRig{"rig", {}, "left", "right"}});
   const ReferenceFrame reference(0, f.scene, f.result);
-  const DerivedTruth t = deriveTruth(reference, f.scene, f.result, 0);
+  const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, 0);
   const CameraImage& img = f.result.cameras[0];
   const auto& rightModel = f.scene.cameras[1].model;
   int visible = 0, occluded = 0;
@@ -263,7 +263,7 @@ TEST_CASE("ground truth: the distortion layer maps each pixel centre to its undi
       "obj = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {0, 0, 0.4} } }\n");
   Frame f = renderFrame(path, 0);
   const ReferenceFrame reference(0, f.scene, f.result);
-  const DerivedTruth t = deriveTruth(reference, f.scene, f.result, 0);
+  const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, 0);
   const auto& m = f.scene.cameras[0].model;
   double largest = 0;
   for (std::size_t i = 0; i < t.distortion_px.size(); ++i) {
@@ -282,7 +282,7 @@ TEST_CASE("ground truth: the distortion layer maps each pixel centre to its undi
   const std::string plain = dir.write("p.lua", camera() +
       "obj = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {0, 0, 0.4} } }\n");
   Frame g = renderFrame(plain, 0);
-  const DerivedTruth tp = deriveTruth(ReferenceFrame(0, g.scene, g.result), g.scene, g.result, 0);
+  const DerivedTruth tp = deriveTruth(ReferenceFrame(0, g.scene, g.result), 0, g.scene, g.result, 0);
   for (const dvec2& v : tp.distortion_px) CHECK(v == dvec2(0));
 }
 

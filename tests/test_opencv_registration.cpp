@@ -100,7 +100,7 @@ TEST_CASE("opencv: ECC registration of a translated speckle measures the ground-
   for (double shift : {0.05, 0.5}) {
     CAPTURE(shift);
     const Frame cur = render(path, shift);
-    const DerivedTruth truth = deriveTruth(reference, cur.scene, cur.result, 0);
+    const DerivedTruth truth = deriveTruth(reference, 1, cur.scene, cur.result, 0);
     // The ground truth: fronto-parallel, no distortion, so the flow is the shift at every pixel.
     dvec2 flowMin(1e9), flowMax(-1e9);
     for (int y = 16; y < 240; ++y)

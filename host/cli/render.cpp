@@ -94,7 +94,7 @@ int runRender(const RenderCommand& cmd) {
     for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
       const Camera& cam = prepared.cameras[c].camera;
       const CameraImage& image = result.cameras[c];
-      const DerivedTruth truth = deriveTruth(*reference, prepared, result, c);
+      const DerivedTruth truth = deriveTruth(*reference, frames[fi], prepared, result, c);
       if (!truth.disparityCamera.empty() && truth.disparityVisibleCount == 0)
         std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
                      truth.disparityCamera.c_str(), cam.name.c_str());

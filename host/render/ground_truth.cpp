@@ -115,7 +115,7 @@ const ReferenceFrame::View* ReferenceFrame::view(const std::string& camera) cons
   return nullptr;
 }
 
-DerivedTruth deriveTruth(const ReferenceFrame& reference, const PreparedScene& scene,
+DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const PreparedScene& scene,
                          const RenderResult& result, std::size_t cameraIndex) {
   const PreparedCamera& camera = scene.cameras[cameraIndex];
   const CameraImage& image = result.cameras[cameraIndex];
@@ -134,8 +134,15 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, const PreparedScene& s
     std::vector<int> objectNow(reference.scene().objects.size());
     for (std::size_t o = 0; o < objectNow.size(); ++o)
       objectNow[o] = objectIndexByName(scene, reference.scene().objects[o].name);
+    const bool isReference = frame == reference.frame();
     forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
       if (view->object[i] < 0) return;
+      if (isReference) {
+        truth.displacement_m[i] = dvec3(0);
+        truth.flow_px[i] = dvec2(0);
+        truth.flowMask[i] = 1.0f;
+        return;
+      }
       const int o = objectNow[std::size_t(view->object[i])];
       if (o < 0) return;
       const auto p = worldPointOfMaterial(scene.objects[std::size_t(o)], view->material[i]);

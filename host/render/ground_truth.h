@@ -72,8 +72,10 @@ class ReferenceFrame {
   std::vector<View> views_;
 };
 
-// The derived layers of camera `camera` (index into scene.cameras and result.cameras) of a frame.
-DerivedTruth deriveTruth(const ReferenceFrame& reference, const PreparedScene& scene,
+// The derived layers of camera `camera` (index into scene.cameras and result.cameras) of frame
+// `frame`. For the reference frame itself disp = flow = 0 and flow.mask = 1 wherever the reference
+// pixel sees an object (it is visible there by construction), without tracing.
+DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const PreparedScene& scene,
                          const RenderResult& result, std::size_t camera);
 
 // Image position (px, distorted, OpenCV) of a world point in `camera`; NaN when the point is not in

@@ -2,7 +2,7 @@
 -- seen by two 1600 x 1200 cameras (12 mm lenses, 4.4 um pixels, 8 bits) 15 cm apart, converging on
 -- a point 50 cm ahead, each with its own Brown distortion and principal point.
 -- The poses come from Target.poses: deterministic for the seed, every inner corner at least 20 px
--- inside both images, the board's centre 40 to 55 cm away, tilted up to 35 degrees.
+-- inside both images, the board's centre 35 to 50 cm away, tilted up to 35 degrees.
 -- Render all 15 frames (30 images, and per image the ground truth of every corner:
 -- out/<camera>_<frame>.features.csv/.json):
 --   build/dicsynth render scenes/stereo_calibration.lua --frames 0:14 -o out
@@ -21,6 +21,6 @@ right = Camera.Pinhole { resolution = {1600, 1200}; principalPoint = {794.0, 603
 
 local board_spec = { squares = {10, 7}; squareSize = 0.012; border = 0.012 }
 local poses = Target.poses { target = Target.Checkerboard(board_spec); cameras = {left, right};
-  count = 15; seed = 1; distance = {0.40, 0.55}; tilt = degrees(35); margin = 20 }
+  count = 15; seed = 1; distance = {0.35, 0.5}; tilt = degrees(35); margin = 20 }
 board_spec.transform = poses[frame + 1]  -- an error for a frame outside 0..14
 board = Target.Checkerboard(board_spec)

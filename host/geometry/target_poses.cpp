@@ -84,8 +84,10 @@ std::vector<dmat4> generateTargetPoses(const TargetLayout& layout, const std::ve
     for (int attempt = 0; attempt < o.triesPerPose && !found; ++attempt) {
       // Draw every number of an attempt, in a fixed order, whether or not it is used.
       const double distance = uniform(rng, o.distance_m.x, o.distance_m.y);
-      const double offsetX = uniform(rng, -0.5, 0.5) * distance * tanHalfX;
-      const double offsetY = uniform(rng, -0.5, 0.5) * distance * tanHalfY;
+      // Anywhere in the narrowest view, so that the poses reach the image's corners, where
+      // the distortion is strongest (the rejection below keeps the features inside).
+      const double offsetX = uniform(rng, -1, 1) * distance * tanHalfX;
+      const double offsetY = uniform(rng, -1, 1) * distance * tanHalfY;
       const double tilt = uniform(rng, 0, o.maxTilt_rad);
       const double tiltAzimuth = uniform(rng, 0, 2 * kPi);
       const double roll = uniform(rng, -o.maxRoll_rad, o.maxRoll_rad);

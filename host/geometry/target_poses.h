@@ -31,8 +31,8 @@ std::string poseViolation(const TargetLayout& layout, const dmat4& worldFromTarg
 
 // `count` rigid worldFromTarget transforms (target frame: geometry/targets.h), a deterministic
 // function of the inputs and `seed` (a specified generator, std::mt19937_64, and our own mapping to
-// [0, 1): the same list on every platform). Each pose: distance, lateral offset (within half the
-// narrowest camera's half field of view), tilt about a random axis in the target's plane and
+// [0, 1): the same list on every platform). Each pose: distance, lateral offset (within the
+// narrowest camera's field of view), tilt about a random axis in the target's plane and
 // roll are drawn, then kept only if poseViolation() is empty for every camera. Throws InputError
 // (without a location; the caller adds it) when a pose needs more than triesPerPose draws.
 std::vector<dmat4> generateTargetPoses(const TargetLayout& layout, const std::vector<Camera>& cameras,

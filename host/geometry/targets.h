@@ -11,8 +11,9 @@
 //
 // Features, index = row · perRow + col (row-major, the first row first, left to right):
 //   Checkerboard {cols × rows squares of side s}: the (cols − 1) × (rows − 1) inner corners,
-//     target_m = (col · s, row · s, 0). The top-left square is dark; the first feature is the inner
-//     corner at the bottom-right of that square. cv::calibrateCamera's object points are target_m
+//     target_m = (col · s, row · s, 0). The top-left square is light; the first feature is the inner
+//     corner at the bottom-right of that square. cv::findChessboardCornersSB reports the corners of
+//     such a board (even × odd squares, roll within ±45°) in this order (tested). cv::calibrateCamera's object points are target_m
 //     with patternSize = (cols − 1, rows − 1).
 //   CircleGrid {cols × rows dots, spacing s}: the dots' centres,
 //     symmetric:  target_m = (col · s, row · s, 0),                patternSize = (cols, rows);

@@ -85,7 +85,8 @@ int pushTarget(lua_State* L, const Params& p, TextureKind kind, TargetPattern pa
 /* ------------------------------------------------------------------------------------------------
 Target.Checkerboard: a printed chessboard for camera calibration (cv::findChessboardCornersSB),
 drawn analytically: every point is exactly dark or light. A Rectangle of (cols·squareSize +
-2·border) × (rows·squareSize + 2·border) with a light quiet border; the top-left square is dark.
+2·border) × (rows·squareSize + 2·border) with a light quiet border; the top-left square is light
+(so that cv::findChessboardCornersSB reports the corners from the top left, in the order below).
 
   Parameter  | Value               | Default             | Meaning
   -----------+---------------------+---------------------+-----------------------------------------

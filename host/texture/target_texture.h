@@ -8,7 +8,9 @@
 // Cell coordinates (cx, cy) = ((u, v) − origin_uv) / cell_uv: one unit is one `spacing` of the
 // target in both directions, so the cells are square on the target and circles are round.
 //   Checkerboard: squares [i, i+1) × [j, j+1), 0 ≤ i < cols, 0 ≤ j < rows; square (i, j) is dark
-//                 when i + j is even (the top-left square is dark); light outside the squares.
+//                 when i + j is odd (the top-left square is light: then cv::findChessboardCornersSB
+//                 reports the inner corners starting at the top left, tests/test_opencv_calibration.cpp);
+//                 light outside the squares.
 //   CircleGrid:   dots of radius √radiusSquared_cells centred at (step·i + o_j, j), 0 ≤ i < cols,
 //                 0 ≤ j < rows, step = 1 and o_j = 0 (symmetric) or step = 2 and o_j = j mod 2
 //                 (asymmetric); a point is dark when its squared distance to a centre is ≤ r².
@@ -56,7 +58,7 @@ inline double targetTextureValue(const TargetTexture& t, dvec2 uv) {
   if (t.kind == DS_TEXTURE_CHECKERBOARD) {
     if (!(cx >= 0 && cx < double(t.cols) && cy >= 0 && cy < double(t.rows))) return t.light;
     const int i = int(std::floor(cx)), j = int(std::floor(cy));
-    return (i + j) % 2 == 0 ? t.dark : t.light;
+    return (i + j) % 2 == 1 ? t.dark : t.light;
   }
   return nearestDotDistanceSquared(t, cx, cy) <= t.radiusSquared_cells ? t.dark : t.light;
 }

@@ -89,7 +89,7 @@ real ds_target_texture(int object, hreal2 uv) {
     if (!(h_ge(cx, zero) && h_lt(cx, h(real(info.x))) && h_ge(cy, zero) && h_lt(cy, h(real(info.y)))))
       return light;
     const int i = int(h_real(h_floor(cx))), j = int(h_real(h_floor(cy)));
-    return (i + j) % 2 == 0 ? dark : light;
+    return (i + j) % 2 == 1 ? dark : light;
   }
   return h_le(ds_nearest_dot_distance_squared(cx, cy, info.x, info.y, info.z != 0), h_x(t1)) ? dark : light;
 }

@@ -13,6 +13,7 @@
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
+#include "io/feature_files.h"
 #include "io/outputs.h"
 #include "render/ground_truth.h"
 #include "sensor/sensor.h"
@@ -100,6 +101,7 @@ int runRender(const RenderCommand& cmd) {
                      truth.disparityCamera.c_str(), cam.name.c_str());
       const OutputFiles files = writeCameraOutputs(cmd.outputDir, outputStem(cam.name, numbered, frames[fi]),
                                                    cam, image, digitize(image.radiance, cam), info, &truth);
+      writeFeatureFiles(cmd.outputDir, outputStem(cam.name, numbered, frames[fi]), prepared, c, frames[fi]);
       std::printf("%s, %s: %dx%d, %d spp, %s %s on %s, %.2f s\n", files.image.c_str(),
                   files.groundTruth.c_str(), cam.width_px, cam.height_px, options.samplesPerPixel,
                   result.backend.c_str(), result.precision.c_str(), result.device.c_str(),

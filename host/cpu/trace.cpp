@@ -4,6 +4,7 @@
 
 #include "geometry/homography.h"
 #include "texture/bspline.h"
+#include "texture/target_texture.h"
 
 namespace dicsynth::cpu {
 
@@ -56,7 +57,12 @@ bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosi
 namespace {
 
 double textureValue(const PreparedScene& scene, const PreparedObject& obj, dvec2 uv) {
-  if (obj.textureIndex < 0) return obj.textureValue;
+  switch (obj.textureKind) {
+    case TextureKind::Constant: return obj.textureValue;
+    case TextureKind::Checkerboard:
+    case TextureKind::CircleGrid: return targetTextureValue(obj.targetTexture, uv);
+    case TextureKind::File: break;
+  }
   const PreparedTexture& tex = scene.textures[std::size_t(obj.textureIndex)];
   return bsplineLookup(tex.coefficients.data(), tex.width, tex.height, std::clamp(uv.x, 0.0, 1.0),
                        std::clamp(uv.y, 0.0, 1.0));

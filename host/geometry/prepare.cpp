@@ -58,16 +58,8 @@ void checkDistortionInvertible(const PreparedCamera& pc) {
 PreparedCamera prepareCamera(const Camera& sceneCamera, int downscale) {
   PreparedCamera pc;
   pc.camera = downscaled(sceneCamera, downscale);
-  const Camera& c = pc.camera;
-  auto& m = pc.model;
-  m.fx = c.focalLength_m / c.pixelSize_m.x;
-  m.fy = c.focalLength_m / c.pixelSize_m.y;
-  m.cx = c.principalPoint_px.x;
-  m.cy = c.principalPoint_px.y;
-  m.distorted = c.distortion.kind == DistortionKind::Brown;
-  m.brown = {c.distortion.k1, c.distortion.k2, c.distortion.k3, c.distortion.p1, c.distortion.p2};
-  m.worldFromCamera = dmat3(c.worldFromCamera);
-  m.centre = dvec3(c.worldFromCamera[3]);
+  pc.model = pinholeModel(pc.camera);
+  const auto& m = pc.model;
   pc.rotationCameraFromWorld = glm::transpose(m.worldFromCamera);
   pc.translationCameraFromWorld = -(pc.rotationCameraFromWorld * m.centre);
   checkDistortionInvertible(pc);
@@ -116,6 +108,21 @@ std::shared_ptr<const PreparedNurbs> prepareNurbsShape(const Shape& s, dvec3& ce
   }
 }
 
+// A calibration target none of whose features lies in front of a camera cannot calibrate it: a
+// pose behind the camera is an error in the scene, not an empty image.
+void checkTargetInFront(const PreparedObject& o, const Object& so, const std::vector<PreparedCamera>& cameras) {
+  for (const PreparedCamera& c : cameras) {
+    bool anyInFront = false;
+    for (const TargetFeature& f : o.target->features) {
+      const dvec4 world = o.worldFromTarget * dvec4(f.target_m, 1);
+      anyInFront |= (c.rotationCameraFromWorld * dvec3(world) + c.translationCameraFromWorld).z > 0;
+    }
+    if (!anyInFront)
+      throw InputError(so.where, "target '" + so.name + "' lies behind camera '" + c.camera.name +
+                                     "': none of its features is in front of it (check the target's pose)");
+  }
+}
+
 // A point that the homography sends to infinity cannot see (or light) the object.
 void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, const std::string& what) {
   const dvec4 a = o.objectFromWorld * dvec4(p, 1);
@@ -143,6 +150,19 @@ int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::m
 }
 
 }  // namespace
+
+PinholeModel<double> pinholeModel(const Camera& c) {
+  PinholeModel<double> m;
+  m.fx = c.focalLength_m / c.pixelSize_m.x;
+  m.fy = c.focalLength_m / c.pixelSize_m.y;
+  m.cx = c.principalPoint_px.x;
+  m.cy = c.principalPoint_px.y;
+  m.distorted = c.distortion.kind == DistortionKind::Brown;
+  m.brown = {c.distortion.k1, c.distortion.k2, c.distortion.k3, c.distortion.p1, c.distortion.p2};
+  m.worldFromCamera = dmat3(c.worldFromCamera);
+  m.centre = dvec3(c.worldFromCamera[3]);
+  return m;
+}
 
 PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   if (options.downscale < 1) throw InputError("--downscale must be >= 1");
@@ -177,6 +197,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     o.shader = so.shader.kind;
     o.albedo = luminance(so.shader.color);
     anyLambert |= o.shader == ShaderKind::Lambert;
+    o.textureKind = so.texture.kind;
     if (so.texture.kind == TextureKind::File) {
       o.textureIndex = loadTexture(so.texture, ps.textures, texturesByPath);
     } else {
@@ -186,6 +207,15 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
                         glm::translate(dmat4(1.0), o.shapeOffset_m);
     o.objectFromWorld = isAffine(o.worldFromObject) ? glm::affineInverse(o.worldFromObject)
                                                     : glm::inverse(o.worldFromObject);
+    if (isTargetTexture(so.texture.kind)) {
+      // The target's rectangle is centred on rectangleCentre_m of the target frame
+      // (Target.* constructors: transform = worldFromTarget · translate(rectangleCentre_m)).
+      auto layout = std::make_shared<const TargetLayout>(targetLayout(so.texture.kind, so.texture.target));
+      o.targetTexture = layout->texture;
+      o.worldFromTarget = o.worldFromObject * glm::translate(dmat4(1.0), -layout->rectangleCentre_m);
+      o.target = std::move(layout);
+      checkTargetInFront(o, so, ps.cameras);
+    }
     for (const PreparedCamera& c : ps.cameras)
       checkFinite(o, so, c.model.centre, "camera '" + c.camera.name + "'");
     for (const Light& l : scene.lights) checkFinite(o, so, l.position_m, "light '" + l.name + "'");

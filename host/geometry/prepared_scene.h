@@ -11,6 +11,7 @@
 #include "camera/pinhole.h"
 #include "geometry/nurbs_bvh.h"
 #include "geometry/shapes.h"
+#include "geometry/targets.h"
 #include "scene/scene.h"
 
 namespace dicsynth {
@@ -30,8 +31,13 @@ struct PreparedObject {
   std::shared_ptr<const NurbsSurface> surface; // the scene's surface (Nurbs only; scene shape frame)
   ShaderKind shader = ShaderKind::Constant;
   double albedo = 1;          // luminance of the shader colour
-  int textureIndex = -1;      // into PreparedScene::textures, or -1 for a constant texture
-  double textureValue = 1;    // constant texture value (when textureIndex < 0)
+  TextureKind textureKind = TextureKind::Constant;
+  int textureIndex = -1;      // into PreparedScene::textures (File), else -1
+  double textureValue = 1;    // Constant: the texture value
+  TargetTexture targetTexture;  // Checkerboard, CircleGrid: the pattern in (u, v)
+  // A calibration target's layout and features (geometry/targets.h); null for other objects.
+  std::shared_ptr<const TargetLayout> target;
+  dmat4 worldFromTarget{1.0};   // the target frame in the world (targets only; rigid)
   dmat4 worldFromObject{1.0}; // translate(location) * transform * translate(shapeOffset_m)
   // Where the prepared shape's origin lies in the scene shape's frame: (0, 0, 0), except for a
   // NURBS, whose control points are re-centred (prepare.cpp). A point p of the scene's shape frame
@@ -78,6 +84,9 @@ struct PreparedScene {
   SceneFeatures features;
 };
 
+// The pinhole model (intrinsics in px, distortion, pose) of a scene camera, as rendered.
+PinholeModel<double> pinholeModel(const Camera& camera);
+
 struct PrepareOptions {
   // Integer factor dividing the resolution while keeping the field of view: pixel size × k,
   // principal point c' = (c + 1/2)/k − 1/2 (OpenCV pixel centres). For previews and fast tests.
@@ -86,7 +95,7 @@ struct PrepareOptions {
 
 // Throws InputError (with the scene's file:line) for what only shows up now: unreadable textures,
 // distortion that cannot be inverted over the image, a camera or light on an object's plane at
-// infinity.
+// infinity, a calibration target wholly behind a camera (none of its features in front of it).
 PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options = {});
 
 }  // namespace dicsynth

@@ -66,6 +66,10 @@ typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
   }
   g.shading = r4<Layout>(o.albedo, o.textureValue);
   g.kinds = {s.kind, int(o.shader), o.textureIndex, int(o.id)};
+  const TargetTexture& t = o.targetTexture;
+  g.target0 = h4<Layout>(t.origin_uv.x, t.origin_uv.y, t.cell_uv.x, t.cell_uv.y);
+  g.target1 = h4<Layout>(t.radiusSquared_cells, t.dark, t.light);
+  g.targetInfo = {t.cols, t.rows, t.asymmetric ? 1 : 0, 0};
   return g;
 }
 
@@ -154,7 +158,7 @@ PackedFrame<Layout> packFrame(const PreparedScene& scene, const PackedScene<Layo
   for (const auto& c : scene.cameras) f.cameras.push_back(packCamera<Layout>(c, spp, f.origin_m));
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     f.objects.push_back(packObject<Layout>(scene.objects[i], f.origin_m));
-    f.objects.back().extra = {packed.nurbsRoots[i], 0, 0, 0};
+    f.objects.back().extra = {packed.nurbsRoots[i], int(scene.objects[i].textureKind), 0, 0};
   }
   for (const auto& l : scene.lights) {
     const dvec3 position = l.position_m - f.origin_m;

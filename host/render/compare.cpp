@@ -64,6 +64,10 @@ double uvDiff(dvec2 a, dvec2 b) { return std::max(wrappedDiff(a.x, b.x), wrapped
 // Radiance per unit uv of an object's texture: the B-spline's slope is bounded by the largest
 // difference of neighbouring coefficients per texel (its derivative is a quadratic B-spline, a
 // convex combination, of those differences), times texels per unit uv, times the albedo.
+// Target textures (Checkerboard, CircleGrid) are steps, not slopes: 0 here. A sample within the uv
+// error of an edge may land on the other side; in fp32 that is one of the off-edge discontinuities
+// counted against the outlier fraction (below); in df64/fp64 the uv error (≲ 1e-12 of a square) makes
+// it improbable (~1e-7 per image).
 double textureSlope(const PreparedScene& scene, const PreparedObject& o) {
   if (o.textureIndex < 0) return 0;
   const PreparedTexture& t = scene.textures[std::size_t(o.textureIndex)];

@@ -16,5 +16,7 @@ void registerNurbsConstructors(lua_State* L);   // nurbs_constructors.cpp: Shape
 void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Shader, Texture,
                                                 //   Object, Light
 void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...
+void registerTargetConstructors(lua_State* L);  // target_constructors.cpp: Target (after
+                                                //   registerObjectConstructors)
 
 }  // namespace dicsynth::scene

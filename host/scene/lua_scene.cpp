@@ -31,6 +31,7 @@ void registerSceneLanguage(lua_State* L) {
   registerNurbsConstructors(L);
   registerObjectConstructors(L);
   registerTransformFunctions(L);
+  registerTargetConstructors(L);
 }
 
 namespace {

@@ -209,7 +209,11 @@ int textureToString(lua_State* L) {
 }
 
 int objectToString(lua_State* L) {
-  lua_pushliteral(L, "Object.Simple");
+  const Object* object = toUserdata<Object>(L, 1);
+  const TextureKind kind = object ? object->texture.kind : TextureKind::Constant;
+  lua_pushstring(L, kind == TextureKind::Checkerboard ? "Target.Checkerboard"
+                    : kind == TextureKind::CircleGrid ? "Target.CircleGrid"
+                                                      : "Object.Simple");
   return 1;
 }
 

@@ -65,11 +65,25 @@ struct Shader {
   dvec3 color{1, 1, 1};  // linear RGB; the renderer uses its luminance (grayscale sensor)
 };
 
+// The printed pattern of a calibration target (Target.Checkerboard, Target.CircleGrid); its layout,
+// the target frame and its features are defined in host/geometry/targets.h.
+struct TargetPattern {
+  int cols = 0, rows = 0;   // Checkerboard: squares per row, rows of squares. CircleGrid: circles
+                            // per row, rows (OpenCV's patternSize)
+  bool asymmetric = false;  // CircleGrid: OpenCV's CALIB_CB_ASYMMETRIC_GRID layout
+  double spacing_m = 0;     // Checkerboard: square size. CircleGrid: OpenCV's squareSize (row
+                            // pitch; centres in a row are 2·spacing apart when asymmetric)
+  double radius_m = 0;      // CircleGrid: dot radius
+  double border_m = 0;      // light margin around the squares / around the dots' edges
+  double dark = 0, light = 1;  // texture values of the dark and the light parts
+};
+
 struct Texture {
   TextureKind kind = TextureKind::Constant;
   SourceLoc where;
   double value = 1;      // Constant
   std::string path;      // File: resolved path (relative paths resolve against the scene's folder)
+  TargetPattern target;  // Checkerboard, CircleGrid
 };
 
 struct Object {

@@ -26,7 +26,12 @@ struct GpuObject {
   hreal4 shape4;              // Triangle: uv2.xy
   real4 shading;             // albedo, constant texture value, 0, 0
   ivec4 kinds;               // shape kind, shader kind, texture index (-1: constant), objectId
-  ivec4 extra;               // Nurbs: root node in the NURBS node buffer, 0, 0, 0
+  ivec4 extra;               // Nurbs: root node in the NURBS node buffer; texture kind, 0, 0
+  // Checkerboard and CircleGrid textures (host/texture/target_texture.h):
+  hreal4 target0;            // origin_uv.xy, cell_uv.xy
+  hreal4 target1;            // radiusSquared_cells, dark, light, 0
+  ivec4 targetInfo;          // cols, rows, asymmetric (0/1), 0
+  ivec4 pad;                 // size a multiple of 32 bytes in fp64 (no hidden padding)
 };
 
 struct GpuLight {

@@ -16,6 +16,8 @@
 
 #define DS_TEXTURE_CONSTANT 0
 #define DS_TEXTURE_FILE 1
+#define DS_TEXTURE_CHECKERBOARD 2  // calibration targets, drawn analytically (texture/target_texture.h)
+#define DS_TEXTURE_CIRCLE_GRID 3
 
 #define DS_LIGHT_POINT 0
 
@@ -35,7 +37,12 @@ enum class ShapeKind : int {
   Nurbs = DS_SHAPE_NURBS,
 };
 enum class ShaderKind : int { Constant = DS_SHADER_CONSTANT, Lambert = DS_SHADER_LAMBERT };
-enum class TextureKind : int { Constant = DS_TEXTURE_CONSTANT, File = DS_TEXTURE_FILE };
+enum class TextureKind : int {
+  Constant = DS_TEXTURE_CONSTANT,
+  File = DS_TEXTURE_FILE,
+  Checkerboard = DS_TEXTURE_CHECKERBOARD,
+  CircleGrid = DS_TEXTURE_CIRCLE_GRID,
+};
 enum class LightKind : int { Point = DS_LIGHT_POINT };
 enum class CameraKind : int { Pinhole = DS_CAMERA_PINHOLE };
 enum class DistortionKind : int { None = DS_DISTORTION_NONE, Brown = DS_DISTORTION_BROWN };

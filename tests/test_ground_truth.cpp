@@ -38,6 +38,14 @@ Frame renderFrame(const std::string& path, int frame, std::vector<std::pair<std:
 const std::string kCamera =
     "cam = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} %s }\n";
 
+StereoRig rig(const std::string& left, const std::string& right) {
+  StereoRig r;
+  r.name = "rig";
+  r.left = left;
+  r.right = right;
+  return r;
+}
+
 std::string camera(const std::string& extra = "") {
   std::string s = kCamera;
   s.replace(s.find("%s"), 2, extra);
@@ -180,7 +188,7 @@ TEST_CASE("ground truth: disparity of a rectified pair on a plane, closed form")
       "right = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
       " position = {0.01, 0, 0}; lookAt = {0.01, 0, 1}; up = {0, -1, 0} }\n"
       "wall = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 0.5} } }\n");
-  Frame f = renderFrame(path, 0, {}, {StereoRig{"rig", {}, "left", "right"}});
+  Frame f = renderFrame(path, 0, {}, {rig("left", "right")});
   const ReferenceFrame reference(0, f.scene, f.result);
   for (std::size_t c = 0; c < 2; ++c) {
     const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, c);
@@ -209,7 +217,7 @@ TEST_CASE("ground truth: cameras without overlap give an empty disparity mask, n
       " position = {0, 0, 0}; lookAt = {0, 0, -1}; up = {0, -1, 0} }\n"
       "front = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 0.5} } }\n"
       "back = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, -0.5} } }\n");
-  Frame f = renderFrame(path, 0, {}, {StereoRig{"rig", {}, "a", "b"}});
+  Frame f = renderFrame(path, 0, {}, {rig("a", "b")});
   const ReferenceFrame reference(0, f.scene, f.result);
   for (std::size_t c = 0; c < 2; ++c) {
     const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, c);
@@ -235,7 +243,7 @@ TEST_CASE("ground truth: disparity with overlap; points hidden from the other ca
       " position = {0.05, 0, 0}; lookAt = {0, 0, 0.5}; up = {0, -1, 0} }\n"
       "wall = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 0.5} } }\n"
       "post = Object.Simple { shape = Shape.Rectangle { size = {0.004, 1}; location = {0.02, 0, 0.4} } }\n");
-  Frame f = renderFrame(path, 0, {}, {StereoRig{"rig", {}, "left", "right"}});
+  Frame f = renderFrame(path, 0, {}, {rig("left", "right")});
   const ReferenceFrame reference(0, f.scene, f.result);
   const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, 0);
   const CameraImage& img = f.result.cameras[0];

@@ -40,7 +40,6 @@ cv::Mat sensorImage(const PreparedCamera& camera, const CameraImage& image) {
   return out;
 }
 
-
 cv::Matx33d toCv(const dmat3& m) {  // glm is column-major
   return {m[0][0], m[1][0], m[2][0], m[0][1], m[1][1], m[2][1], m[0][2], m[1][2], m[2][2]};
 }

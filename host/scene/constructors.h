@@ -16,5 +16,6 @@ void registerNurbsConstructors(lua_State* L);   // nurbs_constructors.cpp: Shape
 void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Shader, Texture,
                                                 //   Object, Light
 void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...
+void registerRigConstructors(lua_State* L);     // rig_constructors.cpp: Rig
 
 }  // namespace dicsynth::scene

@@ -240,6 +240,12 @@ TEST_CASE("calibration: the YAML files read back with cv::FileStorage, every dou
     CHECK(matValues(t) == values(cv.t));
   }
 
+  // A scene may name a global _G["any text"]: such a name reads back as it was.
+  Camera odd = left;
+  odd.name = "a \"quoted\" \\ name\twith\ncontrol characters";
+  writeCalibrationFiles(dir.path().string(), {{"odd.yml", cameraYaml(odd)}});
+  CHECK(std::string(cv::FileStorage(dir.file("odd.yml"), cv::FileStorage::READ)["camera_name"]) == odd.name);
+
   cv::FileStorage fs(dir.file("rig.yml"), cv::FileStorage::READ);
   REQUIRE(fs.isOpened());
   const StereoExtrinsics e = stereoExtrinsics(left, right);
@@ -266,7 +272,7 @@ TEST_CASE("calibration: the YAML files read back with cv::FileStorage, every dou
 
 TEST_CASE("calibration: the DICe camera-system XML parses and projects as the right camera does") {
   const auto [left, right] = makeRig();
-  const std::string xml = diceCameraSystemXml("rig", left, right);
+  const std::string xml = diceCameraSystemXml(left, right);
   pugi::xml_document document;
   const pugi::xml_parse_result parsed = document.load_string(xml.c_str());
   INFO(xml);
@@ -345,18 +351,21 @@ TEST_CASE("calibration: the DICe camera-system XML parses and projects as the ri
   }
 }
 
-TEST_CASE("calibration: a camera without distortion says NO_LENS_DISTORTION to DICe") {
+TEST_CASE("calibration: DICe XML without distortion says NO_LENS_DISTORTION, odd names read back") {
   auto [left, right] = makeRig();
   left.distortion = {};
-  const std::string xml = diceCameraSystemXml("rig", left, right);
+  // A scene may name a global _G["any text"]: the XML stays well-formed and keeps the name.
+  left.name = "<a> & \"b\" -- c\td\ne";
+  const std::string xml = diceCameraSystemXml(left, right);
   pugi::xml_document document;
   REQUIRE(document.load_string(xml.c_str()));
   const ParameterList system = readList(document.first_child());
   CHECK(readList(system.sublists.at("CAMERA 0")).parameters.at("LENS_DISTORTION_MODEL").second == "NO_LENS_DISTORTION");
+  CHECK(readList(system.sublists.at("CAMERA 0")).parameters.at("CAMERA_ID").second == left.name);
   CHECK(readList(system.sublists.at("CAMERA 1")).parameters.at("LENS_DISTORTION_MODEL").second == "OPENCV_LENS_DISTORTION");
 }
 
-TEST_CASE("calibration: same cameras in every frame give one unnumbered set; any change, per frame") {
+TEST_CASE("calibration: same cameras in every frame give one unnumbered set, any change one per frame") {
   const auto [left, right] = makeRig();
   Scene a;
   a.cameras = {left, right};

@@ -34,7 +34,7 @@ TEST_CASE("cli: a rig renders rig.left and rig.right with calibration files writ
   TempFolder dir;
   const std::string scene = dir.write("rig.lua", kRigScene);
   const test::CliResult r =
-      runCli("render " + scene + " -o " + dir.file("out") + " --frames 0:1 --spp 1 --backend cpu");
+      runCli("render " + scene + " -o " + dir.file("out") + " --frames 0:1 --spp 1 --backend cpu --downscale 2");
   INFO(r.err);
   REQUIRE(r.exitCode == 0);
   CHECK(r.out.find("calibration: ") != std::string::npos);
@@ -47,6 +47,9 @@ TEST_CASE("cli: a rig renders rig.left and rig.right with calibration files writ
   const std::string rigYaml = test::readBytes(dir.file("out/rig.yml"));
   CHECK(rigYaml.rfind("%YAML:1.0\n---\n", 0) == 0);
   CHECK(rigYaml.find("camera_name_left: \"rig.left\"") != std::string::npos);
+  // The cameras as rendered: --downscale 2 halves the 32×24 images.
+  CHECK(rigYaml.find("image_width_left: 16\n") != std::string::npos);
+  CHECK(test::readBytes(dir.file("out/rig.right.yml")).find("image_height: 12\n") != std::string::npos);
 }
 
 TEST_CASE("cli: moving cameras get calibration files per frame") {
@@ -68,7 +71,7 @@ TEST_CASE("cli: moving cameras get calibration files per frame") {
   CHECK(test::readBytes(dir.file("out/rig_0002.yml")) != test::readBytes(dir.file("out/rig_0003.yml")));
 }
 
-TEST_CASE("cli: a rig error in one frame stops the run before any file; a failed write leaves none") {
+TEST_CASE("cli: a rig error in one frame stops the run before any file, a failed write leaves none") {
   TempFolder dir;
   const std::string scene = dir.write("rig.lua", kRigScene);
   // Frame 5's negative baseline: exit 2, the scene's line, no output folder.

@@ -59,11 +59,23 @@ std::string yamlMatrix(const std::string& key, int rows, int cols, const std::ar
          std::to_string(cols) + "\n   dt: d\n   data: [ " + numberList(data, ", ") + " ]\n";
 }
 
-// Camera names are Lua identifiers (plus ".left"/".right"), so quoting needs no escapes; a quote or
-// backslash would be a bug upstream.
+// A double-quoted YAML scalar. Names are global variable names, usually identifiers, but a scene may
+// write _G["any text"]: quotes, backslashes, tabs and line breaks are escaped the way
+// cv::FileStorage reads them back. It reads no other escape correctly (its \x yields 0, measured
+// with OpenCV 4.6), so any other control character is written as '?'.
 std::string yamlString(const std::string& key, const std::string& value) {
-  DS_CHECK(value.find_first_of("\"\\\n") == std::string::npos, "unexpected character in " + value);
-  return key + ": \"" + value + "\"\n";
+  std::string quoted;
+  for (char c : value) {
+    switch (c) {
+      case '"': quoted += "\\\""; break;
+      case '\\': quoted += "\\\\"; break;
+      case '\t': quoted += "\\t"; break;
+      case '\n': quoted += "\\n"; break;
+      case '\r': quoted += "\\r"; break;
+      default: quoted += static_cast<unsigned char>(c) < 0x20 ? '?' : c;
+    }
+  }
+  return key + ": \"" + quoted + "\"\n";
 }
 
 // The intrinsics of one camera; `side` ("", "_left", "_right") ends every key.
@@ -77,6 +89,8 @@ std::string yamlIntrinsics(const Camera& camera, const OpenCvCamera& cv, const s
 
 // ---- DICe XML -----------------------------------------------------------------------------------
 
+// Text for an attribute value or a comment. Tab and line breaks as character references (a parser
+// would turn them into spaces); other control characters cannot appear in XML 1.0 at all: '?'.
 std::string xmlEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
@@ -85,7 +99,10 @@ std::string xmlEscape(const std::string& text) {
       case '<': out += "&lt;"; break;
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
-      default: out += c;
+      case '\t': out += "&#9;"; break;
+      case '\n': out += "&#10;"; break;
+      case '\r': out += "&#13;"; break;
+      default: out += static_cast<unsigned char>(c) < 0x20 ? '?' : c;
     }
   }
   return out;
@@ -161,25 +178,26 @@ StereoExtrinsics stereoExtrinsics(const Camera& left, const Camera& right) {
 
 std::string cameraYaml(const Camera& camera) {
   const OpenCvCamera cv = toOpenCv(camera);
-  return yamlHeader("camera \"" + camera.name + "\"; pose x_cam = R x_world + t") +
+  return yamlHeader("this camera; pose x_cam = R x_world + t") +
          yamlIntrinsics(camera, cv, "") + yamlMatrix("R", 3, 3, cv.R) + yamlMatrix("t", 3, 1, cv.t);
 }
 
 std::string rigYaml(const std::string& rigName, const Camera& left, const Camera& right) {
   const StereoExtrinsics e = stereoExtrinsics(left, right);
-  return yamlHeader("stereo rig \"" + rigName + "\"; x_right = R x_left + T (cv::stereoCalibrate)") +
+  return yamlHeader("this stereo rig; x_right = R x_left + T (cv::stereoCalibrate)") +
          yamlString("rig_name", rigName) + yamlIntrinsics(left, toOpenCv(left), "_left") +
          yamlIntrinsics(right, toOpenCv(right), "_right") + yamlMatrix("R", 3, 3, e.R) +
          yamlMatrix("T", 3, 1, e.T);
 }
 
-std::string diceCameraSystemXml(const std::string& rigName, const Camera& left, const Camera& right) {
+std::string diceCameraSystemXml(const Camera& left, const Camera& right) {
   const StereoExtrinsics e = stereoExtrinsics(left, right);
   std::string xml = "<ParameterList>\n";
-  xml += "<!-- dicsynth " + std::string(kVersion) + ": exact calibration of stereo rig " +
-         xmlEscape(rigName) + ", in DICe's camera-system format -->\n";
-  xml += "<!-- CAMERA 0 = " + xmlEscape(left.name) + " (reference: DICe's world frame is this "
-         "camera's frame), CAMERA 1 = " + xmlEscape(right.name) + " -->\n";
+  // Comments name no camera: a name could hold "--", which XML forbids in a comment.
+  xml += "<!-- dicsynth " + std::string(kVersion) + ": exact calibration of a stereo rig, in "
+         "DICe's camera-system format -->\n";
+  xml += "<!-- CAMERA 0 = the left camera (reference: DICe's world frame is this camera's frame), "
+         "CAMERA 1 = the right camera; CAMERA_ID = their dicsynth names -->\n";
   xml += "<!-- pixel (0, 0) = centre of the top-left pixel; lengths in metres; CAMERA 1: "
          "x_cam1 = R x_cam0 + (TX, TY, TZ), the stereo R, T of OpenCV -->\n";
   xml += xmlParameter("xml_file_format", "string", "DICe_xml_camera_system_file");
@@ -199,7 +217,7 @@ std::vector<CalibrationFile> calibrationFiles(const std::vector<Camera>& cameras
     const Camera& left = cameraNamed(cameras, rig.left);
     const Camera& right = cameraNamed(cameras, rig.right);
     files.push_back({rig.name + suffix + ".yml", rigYaml(rig.name, left, right)});
-    files.push_back({rig.name + suffix + ".dice.xml", diceCameraSystemXml(rig.name, left, right)});
+    files.push_back({rig.name + suffix + ".dice.xml", diceCameraSystemXml(left, right)});
   }
   return files;
 }

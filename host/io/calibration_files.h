@@ -37,7 +37,7 @@ StereoExtrinsics stereoExtrinsics(const Camera& left, const Camera& right);
 // The three formats, for one camera or one rig (left = DICe's CAMERA 0).
 std::string cameraYaml(const Camera& camera);
 std::string rigYaml(const std::string& rigName, const Camera& left, const Camera& right);
-std::string diceCameraSystemXml(const std::string& rigName, const Camera& left, const Camera& right);
+std::string diceCameraSystemXml(const Camera& left, const Camera& right);
 
 // Every calibration file of `cameras` and `rigs` (rigs name their cameras; each must be among
 // `cameras`, else Error). `suffix` goes between the name and the extension: "" or "_0003".

@@ -47,8 +47,9 @@ TEST_CASE("cli: render writes a TIFF and an EXR per camera and frame, atomically
   for (const auto& e : std::filesystem::directory_iterator(dir.file("out"))) files.push_back(e.path().filename().string());
   std::sort(files.begin(), files.end());
   // Only the final files: no temporary left behind.
-  CHECK(files == std::vector<std::string>{"camera_0000.exr", "camera_0000.tif", "camera_0001.exr", "camera_0001.tif",
-                                          "camera_0002.exr", "camera_0002.tif"});
+  // The camera is the same in every frame: its calibration file once, unnumbered.
+  CHECK(files == std::vector<std::string>{"camera.yml", "camera_0000.exr", "camera_0000.tif", "camera_0001.exr",
+                                          "camera_0001.tif", "camera_0002.exr", "camera_0002.tif"});
   const GrayImage image = readGrayImage(dir.file("out/camera_0001.tif"));
   CHECK(image.width == 100);
   CHECK(image.height == 75);

@@ -14,6 +14,7 @@
 #include "gpu/context.h"
 #include "gpu/renderer.h"
 #include "io/feature_files.h"
+#include "io/calibration_files.h"
 #include "io/outputs.h"
 #include "render/ground_truth.h"
 #include "sensor/sensor.h"
@@ -43,6 +44,14 @@ std::string outputStem(const std::string& camera, bool numbered, int frame) {
   return camera + buf;
 }
 
+// Writes the calibration files (io/calibration_files.h) of a frame, with `suffix` ("" or "_0003").
+void writeCalibration(const std::string& dir, const PreparedScene& prepared, const std::string& suffix) {
+  std::string list;
+  for (const std::string& path : writeCalibrationFiles(dir, calibrationFiles(prepared, suffix)))
+    list += (list.empty() ? "" : ", ") + path;
+  std::printf("calibration: %s\n", list.c_str());
+}
+
 int runRender(const RenderCommand& cmd) {
   const bool numbered = !cmd.frames.empty();
   std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
@@ -59,6 +68,8 @@ int runRender(const RenderCommand& cmd) {
   // Every frame's scene is evaluated first, so a scene error stops the run before any image exists.
   std::vector<Scene> scenes;
   for (int f : frames) scenes.push_back(loadScene(cmd.args.scenePath, {defines, f}));
+  // Calibration files: once and unnumbered when every frame has the same cameras, else per frame.
+  const bool calibrationPerFrame = !sameCalibration(scenes);
 
   const bool useGpu = cmd.backend == "gpu";
   std::unique_ptr<gpu::Context> context;
@@ -92,6 +103,8 @@ int runRender(const RenderCommand& cmd) {
     info.device = result.device;
     for (const auto& o : prepared.objects) info.objectNames.push_back(o.name);
     createOutputDir(cmd.outputDir);  // only now: a run that fails earlier leaves nothing behind
+    if (fi == 0 || calibrationPerFrame)
+      writeCalibration(cmd.outputDir, prepared, calibrationPerFrame ? outputStem("", true, frames[fi]) : "");
     for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
       const Camera& cam = prepared.cameras[c].camera;
       const CameraImage& image = result.cameras[c];

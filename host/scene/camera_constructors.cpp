@@ -164,6 +164,7 @@ int cameraPinhole(lua_State* L) {
   const bool byPosition = p.has("position") || p.has("lookAt") || p.has("up");
   if (transform && byPosition)
     p.fail("give either 'transform' or 'position'/'lookAt'/'up', not both");
+  camera.poseGiven = transform != nullptr || byPosition;
   if (transform) {
     camera.worldFromCamera = checkRigid(p, transform->matrix);
   } else if (byPosition) {

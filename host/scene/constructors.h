@@ -18,5 +18,6 @@ void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Shad
 void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...
 void registerTargetConstructors(lua_State* L);  // target_constructors.cpp: Target (after
                                                 //   registerObjectConstructors)
+void registerRigConstructors(lua_State* L);     // rig_constructors.cpp: Rig
 
 }  // namespace dicsynth::scene

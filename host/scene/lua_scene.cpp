@@ -1,11 +1,12 @@
 // loadScene: runs a scene file in a LuaSandbox with the scene language, the global `frame` and the
-// -D defines, then collects the cameras, objects and lights the scene assigned to globals.
+// -D defines, then collects the cameras, objects, lights and rigs the scene assigned to globals.
 //
 // Collection rule: after the chunk has run, every global variable whose value is a Camera, an
-// Object or a Light is part of the scene, named by the variable. Values reachable only through
-// tables or locals (lights = { Light.Point{...} }) are NOT collected: assign them to globals, e.g.
-// _G["light" .. i] = Light.Point { ... }. Each list is sorted by name (Lua's table order is not
-// deterministic); objectId = index + 1 follows that order.
+// Object or a Light is part of the scene, named by the variable; a global Rig `rig` adds its two
+// posed cameras as "rig.left" and "rig.right" and the rig itself to Scene::rigs. Values reachable
+// only through tables or locals (lights = { Light.Point{...} }) are NOT collected: assign them to
+// globals, e.g. _G["light" .. i] = Light.Point { ... }. Each list is sorted by name (Lua's table
+// order is not deterministic); objectId = index + 1 follows that order.
 //
 // Defines (-D name=value) are not globals: _G's metatable serves them through __index and records
 // each read, so that a define the scene never reads (a typo) is an error. A value is a number when
@@ -32,6 +33,7 @@ void registerSceneLanguage(lua_State* L) {
   registerObjectConstructors(L);
   registerTransformFunctions(L);
   registerTargetConstructors(L);
+  registerRigConstructors(L);
 }
 
 namespace {
@@ -148,10 +150,57 @@ void sortByName(std::vector<T>& items) {
   std::sort(items.begin(), items.end(), [](const T& a, const T& b) { return a.name < b.name; });
 }
 
-// Copies every Camera, Object and Light held by a global (string key) into the scene.
+// A Rig global as collectGlobals finds it: the identities (userdata addresses) of its Lua values.
+// They stay valid while collectGlobals runs: the globals keep the rigs, the rigs their user values.
+struct RigGlobal {
+  std::string name;
+  const StereoRigValue* rig = nullptr;
+  const void* posed[2] = {nullptr, nullptr};  // rig.left, rig.right
+  const void* given[2] = {nullptr, nullptr};  // the cameras passed as left and right
+};
+
+RigGlobal rigGlobal(lua_State* L, std::string name, const StereoRigValue* rig) {
+  RigGlobal g{std::move(name), rig};
+  const int index = lua_gettop(L);
+  for (int side = 0; side < 2; ++side) {
+    lua_getiuservalue(L, index, kRigPosedLeft + side);
+    g.posed[side] = lua_touserdata(L, -1);
+    lua_getiuservalue(L, index, kRigGivenLeft + side);
+    g.given[side] = lua_touserdata(L, -1);
+    lua_pop(L, 2);
+  }
+  return g;
+}
+
+// Every global Camera is rendered, so a rig's camera that is also a global would be rendered twice
+// (once without the rig's pose): refused, at the rig's line.
+void checkRigCamerasNotGlobals(const RigGlobal& rig,
+                               const std::vector<std::pair<const void*, std::string>>& cameraGlobals) {
+  const char* sides[2] = {"left", "right"};
+  for (const auto& [identity, global] : cameraGlobals) {
+    for (int side = 0; side < 2; ++side) {
+      const std::string prefix = "Rig.Stereo '" + rig.name + "': ";
+      if (identity == rig.given[side])
+        throw InputError(rig.rig->where,
+                         prefix + "its " + sides[side] + " camera is also the global '" + global +
+                             "', which would be rendered as an extra camera without the rig's pose; "
+                             "make it local (local " + global + " = Camera.Pinhole { ... }) or write "
+                             "it inside the rig");
+      if (identity == rig.posed[side])
+        throw InputError(rig.rig->where,
+                         prefix + "the global '" + global + "' holds " + rig.name + "." +
+                             sides[side] + ", which is already rendered as '" + rig.name + "." +
+                             sides[side] + "'; make '" + global + "' local");
+    }
+  }
+}
+
+// Copies every Camera, Object, Light and Rig held by a global (string key) into the scene.
 Scene collectGlobals(lua_State* L, const std::string& path) {
   Scene scene;
   scene.file = path;
+  std::vector<std::pair<const void*, std::string>> cameraGlobals;
+  std::vector<RigGlobal> rigs;
   lua_pushglobaltable(L);
   lua_pushnil(L);
   while (lua_next(L, -2) != 0) {
@@ -160,20 +209,42 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
       if (const Camera* camera = toUserdata<Camera>(L, -1)) {
         scene.cameras.push_back(*camera);
         scene.cameras.back().name = name;
+        cameraGlobals.emplace_back(lua_touserdata(L, -1), name);
       } else if (const Object* object = toUserdata<Object>(L, -1)) {
         scene.objects.push_back(*object);
         scene.objects.back().name = name;
       } else if (const Light* light = toUserdata<Light>(L, -1)) {
         scene.lights.push_back(*light);
         scene.lights.back().name = name;
+      } else if (const StereoRigValue* rig = toUserdata<StereoRigValue>(L, -1)) {
+        rigs.push_back(rigGlobal(L, name, rig));
       }
     }
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
+
+  // A rig `rig` contributes the cameras "rig.left" and "rig.right".
+  for (const RigGlobal& rig : rigs) {
+    checkRigCamerasNotGlobals(rig, cameraGlobals);
+    StereoRig stereo{rig.name, rig.rig->where, rig.name + ".left", rig.name + ".right"};
+    scene.cameras.push_back(rig.rig->left);
+    scene.cameras.back().name = stereo.left;
+    scene.cameras.push_back(rig.rig->right);
+    scene.cameras.back().name = stereo.right;
+    scene.rigs.push_back(std::move(stereo));
+  }
   sortByName(scene.cameras);
+  sortByName(scene.rigs);
   sortByName(scene.objects);
   sortByName(scene.lights);
+  // Only _G["rig.left"] = Camera.Pinhole { ... } can collide with a rig's camera names; outputs are
+  // named after cameras, so two cameras of one name would overwrite each other's files.
+  for (std::size_t i = 1; i < scene.cameras.size(); ++i)
+    if (scene.cameras[i].name == scene.cameras[i - 1].name)
+      throw InputError(scene.cameras[i].where,
+                       "two cameras are named '" + scene.cameras[i].name +
+                           "' (a rig names its cameras <rig>.left and <rig>.right): rename the global");
   return scene;
 }
 

@@ -36,6 +36,22 @@ struct TransformValue {
   dmat4 matrix{1.0};
 };
 
+// The value of Rig.Stereo (rig_constructors.cpp): its two cameras, posed by the rig. The userdata
+// also holds Lua values (user values, indices below): the posed cameras as Camera values, which
+// rig.left / rig.right return (the same value each time), and the cameras the scene passed in, so
+// that collectGlobals can tell when one of them is also a global.
+struct StereoRigValue {
+  SourceLoc where;
+  Camera left, right;
+};
+enum RigUserValue : int {
+  kRigPosedLeft = 1,
+  kRigPosedRight = 2,
+  kRigGivenLeft = 3,
+  kRigGivenRight = 4,
+  kRigUserValueCount = 4
+};
+
 // The type name of each userdata kind, as error messages and tostring() show it.
 template <class T>
 inline constexpr const char* kUserdataName = nullptr;
@@ -55,6 +71,8 @@ template <>
 inline constexpr const char* kUserdataName<Light> = "Light";
 template <>
 inline constexpr const char* kUserdataName<TransformValue> = "Transform";
+template <>
+inline constexpr const char* kUserdataName<StereoRigValue> = "Rig";
 
 // The metatable of T lives in the registry under the address of this variable: lookups by a light
 // userdata key allocate nothing, so they cannot raise a Lua error.
@@ -96,10 +114,11 @@ void registerUserdataType(lua_State* L, std::initializer_list<luaL_Reg> methods)
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kMetatableKey<T>);
 }
 
-// Pushes a new userdata holding `value`. The metatable (hence __gc) is set once it is constructed.
+// Pushes a new userdata holding `value` (and `userValues` Lua user values, nil until set). The
+// metatable (hence __gc) is set once it is constructed.
 template <class T>
-void pushUserdata(lua_State* L, T value) {
-  void* memory = lua_newuserdatauv(L, sizeof(T), 0);
+void pushUserdata(lua_State* L, T value, int userValues = 0) {
+  void* memory = lua_newuserdatauv(L, sizeof(T), userValues);
   new (memory) T(std::move(value));
   lua_rawgetp(L, LUA_REGISTRYINDEX, &kMetatableKey<T>);
   lua_setmetatable(L, -2);

@@ -38,6 +38,9 @@ struct Camera {
   double exposure = 1;     // digital number = round(clamp(exposure * radiance, 0, 1) * (2^bits - 1))
   Distortion distortion;
   dmat4 worldFromCamera{1.0};  // rigid; identity = at the origin looking down +z, y down
+  // The scene gave the pose (transform, position, lookAt or up). Rig.Stereo refuses such a camera:
+  // the rig places its cameras, and silently dropping a pose the user wrote would hide a mistake.
+  bool poseGiven = false;
 };
 
 // A shape in its own frame; `location` places that frame's origin in the object's frame.

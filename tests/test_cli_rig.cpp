@@ -1,0 +1,92 @@
+// `dicsynth render` of a stereo rig, end to end: images named after the rig's cameras, and the
+// calibration files once (cameras fixed) or per frame (cameras moving), never partial.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "run_cli.h"
+
+using namespace dicsynth;
+using test::runCli;
+using test::TempFolder;
+
+namespace {
+
+// A rig looking at a plate 1 m ahead; -D moving=true widens the baseline by 1 cm per frame. Frame 5
+// has a negative baseline (a scene error that only one frame shows).
+const char* kRigScene = R"(
+local lens = { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }
+local baseline = frame == 5 and -1 or 0.2 + (moving and 0.01 * frame or 0)
+rig = Rig.Stereo { left = Camera.Pinhole(lens); right = Camera.Pinhole(lens);
+                   baseline = baseline; target = {0, 0, 1} }
+plate = Object.Simple { shape = Shape.Rectangle { size = {0.5, 0.5}; location = {0, 0, 1} } }
+)";
+
+std::vector<std::string> sorted(std::vector<std::string> names) {
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("cli: a rig renders rig.left and rig.right with calibration files written once") {
+  TempFolder dir;
+  const std::string scene = dir.write("rig.lua", kRigScene);
+  const test::CliResult r =
+      runCli("render " + scene + " -o " + dir.file("out") + " --frames 0:1 --spp 1 --backend cpu --downscale 2");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.out.find("calibration: ") != std::string::npos);
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir.file("out"))) files.push_back(e.path().filename().string());
+  CHECK(sorted(files) == std::vector<std::string>{
+                             "rig.dice.xml", "rig.left.yml", "rig.left_0000.exr", "rig.left_0000.tif",
+                             "rig.left_0001.exr", "rig.left_0001.tif", "rig.right.yml", "rig.right_0000.exr",
+                             "rig.right_0000.tif", "rig.right_0001.exr", "rig.right_0001.tif", "rig.yml"});
+  const std::string rigYaml = test::readBytes(dir.file("out/rig.yml"));
+  CHECK(rigYaml.rfind("%YAML:1.0\n---\n", 0) == 0);
+  CHECK(rigYaml.find("camera_name_left: \"rig.left\"") != std::string::npos);
+  // The cameras as rendered: --downscale 2 halves the 32×24 images.
+  CHECK(rigYaml.find("image_width_left: 16\n") != std::string::npos);
+  CHECK(test::readBytes(dir.file("out/rig.right.yml")).find("image_height: 12\n") != std::string::npos);
+}
+
+TEST_CASE("cli: moving cameras get calibration files per frame") {
+  TempFolder dir;
+  const std::string scene = dir.write("rig.lua", kRigScene);
+  const test::CliResult r = runCli("render " + scene + " -o " + dir.file("out") +
+                                   " --frames 2:3 --spp 1 --backend cpu -D moving=true");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  std::vector<std::string> calibration;
+  for (const auto& e : std::filesystem::directory_iterator(dir.file("out"))) {
+    const std::string name = e.path().filename().string();
+    if (name.ends_with(".yml") || name.ends_with(".xml")) calibration.push_back(name);
+  }
+  CHECK(sorted(calibration) == std::vector<std::string>{"rig.left_0002.yml", "rig.left_0003.yml",
+                                                        "rig.right_0002.yml", "rig.right_0003.yml",
+                                                        "rig_0002.dice.xml", "rig_0002.yml",
+                                                        "rig_0003.dice.xml", "rig_0003.yml"});
+  CHECK(test::readBytes(dir.file("out/rig_0002.yml")) != test::readBytes(dir.file("out/rig_0003.yml")));
+}
+
+TEST_CASE("cli: a rig error in one frame stops the run before any file, a failed write leaves none") {
+  TempFolder dir;
+  const std::string scene = dir.write("rig.lua", kRigScene);
+  // Frame 5's negative baseline: exit 2, the scene's line, no output folder.
+  const test::CliResult bad = runCli("render " + scene + " -o " + dir.file("bad") + " --frames 4:5 --spp 1 --backend cpu");
+  CHECK(bad.exitCode == 2);
+  CHECK(bad.err.rfind(scene + ":4: Rig.Stereo: 'baseline' must be > 0 (metres), got -1", 0) == 0);
+  CHECK_FALSE(std::filesystem::exists(dir.file("bad")));
+
+  // A folder in the way of rig.yml: the calibration write fails (exit 3, a run-time failure) and
+  // leaves no calibration file, no temporary file and no image.
+  std::filesystem::create_directories(dir.file("out/rig.yml/x"));
+  const test::CliResult r = runCli("render " + scene + " -o " + dir.file("out") + " --spp 1 --backend cpu");
+  CHECK(r.exitCode == 3);
+  CHECK(r.err.find("rig.yml") != std::string::npos);
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir.file("out"))) files.push_back(e.path().filename().string());
+  CHECK(files == std::vector<std::string>{"rig.yml"});
+}

@@ -137,7 +137,7 @@ TEST_CASE("gpu: selectDevice prefers discrete GPUs and accepts index or name") {
   CHECK_THROWS_WITH(selectDevice({}, "0"), doctest::Contains("mesa-vulkan-drivers"));
 }
 
-TEST_CASE("gpu: Context selects a device by index or name; unknown names are input errors") {
+TEST_CASE("gpu: Context selects a device by index or name, unknown names are input errors") {
   test::TempFolder cache;
   ContextOptions options = testOptions(cache);
   std::vector<DeviceInfo> devices = listDevices();
@@ -323,7 +323,7 @@ TEST_CASE("gpu: Input buffers work through staging copies when they are not mapp
   checkNoValidationMessages(ctx);
 }
 
-TEST_CASE("gpu: the pipeline cache file is written and reloaded; bad files are ignored") {
+TEST_CASE("gpu: the pipeline cache file is written and reloaded, bad files are ignored") {
   test::TempFolder cache;
   ContextOptions options = testOptions(cache);
   fs::path file;

@@ -96,7 +96,7 @@ TEST_CASE("ground truth: rigid translation of a fronto-parallel rectangle, close
     }
 }
 
-TEST_CASE("ground truth: a rotating sphere under distortion; the ray through x + flow meets the same material point") {
+TEST_CASE("ground truth: a rotating sphere under distortion, the ray through x + flow meets the same material point") {
   test::TempFolder dir;
   // The sphere turns 20° per frame about its own vertical axis: disp = (R − I)(P − c). The flow is
   // checked without any formula of ours: the renderer's own ray through the predicted pixel
@@ -229,7 +229,7 @@ TEST_CASE("ground truth: cameras without overlap give an empty disparity mask, n
   }
 }
 
-TEST_CASE("ground truth: disparity with overlap; points hidden from the other camera are masked") {
+TEST_CASE("ground truth: disparity with overlap, points hidden from the other camera are masked") {
   test::TempFolder dir;
   // Converging cameras: both look at (0, 0, 0.5). The post (a thin vertical strip at Z = 0.4 m,
   // x = 0.02) is seen by both, and hides a strip of the wall from the right camera only where it

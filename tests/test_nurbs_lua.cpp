@@ -84,7 +84,7 @@ TEST_CASE("nurbs-lua: a flat plate is exactly planar, corners at ±w/2, ±h/2, u
   CHECK(worst <= 1e-15 * 0.05);  // to rounding: a few ulps of the size
 }
 
-TEST_CASE("nurbs-lua: plate strain scales the material points; degree and spans") {
+TEST_CASE("nurbs-lua: plate strain scales the material points, degree and spans") {
   TempFolder dir;
   const NurbsSurface plain = loadShape(dir, "Nurbs.plate { size = {0.2, 0.1}; degree = {2, 1}; "
                                             "spans = {3, 2} }");

@@ -218,7 +218,7 @@ TEST_CASE("opencv: the stereo calibration set calibrates with findChessboardCorn
   test::expectNoValidationMessages();
 }
 
-TEST_CASE("opencv: findCirclesGrid finds the dots of scenes/circle_grid.lua; the perspective bias") {
+TEST_CASE("opencv: findCirclesGrid finds the dots of scenes/circle_grid.lua, the perspective bias") {
   const PreparedScene ps = prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/circle_grid.lua", {}));
   gpu::Renderer renderer(test::gpuContext());
   RenderOptions options;

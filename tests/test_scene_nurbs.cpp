@@ -171,7 +171,7 @@ TEST_CASE("scene: Shape.Nurbs errors name the line and what is wrong") {
                  3, "Shape.Nurbs: weights[4] must be > 0, got -1");
 }
 
-TEST_CASE("scene: Shape.Nurbs with 10^6 control points is read quickly; over the limit it is "
+TEST_CASE("scene: Shape.Nurbs with 10^6 control points is read quickly, over the limit it is "
           "refused before the points are read") {
   TempFolder dir;
   // 1000 × 1000 bilinear net: accepted (the limit is 2^20 points).

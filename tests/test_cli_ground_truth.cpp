@@ -59,3 +59,23 @@ TEST_CASE("cli: a reference frame outside --frames is bad input: exit code 2, no
     CHECK_FALSE(std::filesystem::exists(dir.file("out")));
   }
 }
+
+TEST_CASE("cli: a rig whose cameras share no view warns and writes an empty disparity mask") {
+  TempFolder dir;
+  // Parallel cameras 2 m apart with a 0.1 m-wide view each at 0.4 m: nothing seen by one is in
+  // the other's image.
+  const std::string scene = dir.write("rig.lua",
+      "rig = Rig.Stereo { left = Camera.Pinhole { resolution = {20, 15}; focalLength = 0.016; pixelSize = {2e-4, 2e-4} };"
+      " right = Camera.Pinhole { resolution = {20, 15}; focalLength = 0.016; pixelSize = {2e-4, 2e-4} };"
+      " baseline = 2; vergence = 0 }\n"
+      "wall = Object.Simple { shape = Shape.Rectangle { size = {10, 1}; location = {0, 0, 0.4} } }\n");
+  const test::CliResult r = runCli("render " + scene + " -o " + dir.file("out") + " --spp 1 --backend cpu");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.err.find("disparity.mask is empty") != std::string::npos);
+  const test::ExrContents exr = test::readExr(dir.file("out/rig.left.exr"));
+  CHECK(exr.spec.get_string_attribute("dicsynth:disparity_camera") == "rig.right");
+  for (float m : exr.floats.at("disparity.mask")) CHECK(m == 0.0f);
+  // fx = 0.016 / 2e-4 = 80 px: disparity −fx·b/Z = −400 px, far outside the 20-px-wide image.
+  for (float x : exr.floats.at("disparity.X")) CHECK(std::abs(x + 400) < 1e-4);
+}

@@ -4,7 +4,6 @@
 // the rows as a JSON array.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 
 #include "cli/commands.h"
@@ -22,17 +21,6 @@ struct BenchCommand {
   BenchmarkOptions options;
 };
 
-void writeText(const std::string& path, const std::string& text) {
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.tempPath(), std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw Error("cannot write '" + file.tempPath() + "'");
-  }
-  file.commit();
-}
-
 int runBench(BenchCommand cmd) {
   if (cmd.options.runs < 1 || cmd.options.cpuRuns < 1) throw InputError("--runs and --cpu-runs must be >= 1");
   if (cmd.options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
@@ -48,8 +36,8 @@ int runBench(BenchCommand cmd) {
 
   const std::vector<BenchmarkRow> rows = runBenchmark(cmd.options);
   const std::string csv = cmd.outputDir + "/bench.csv", svg = cmd.outputDir + "/bench.svg";
-  writeText(csv, benchmarkCsv(rows));
-  writeText(svg, benchmarkSvg(rows));
+  writeTextAtomically(csv, benchmarkCsv(rows));
+  writeTextAtomically(svg, benchmarkSvg(rows));
   if (cmd.json) {
     std::printf("%s", benchmarkJson(rows).c_str());
   } else {

@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "core/error.h"
 #include "gpu/context.h"
@@ -25,14 +24,7 @@ void writeCacheFile(const std::string& path, std::string_view text) {
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw Error("cannot create folder '" + folder.string() + "': " + ec.message());
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.tempPath(), std::ios::binary | std::ios::trunc);
-    out.write(text.data(), std::streamsize(text.size()));
-    out.close();
-    if (!out) throw Error("cannot write '" + file.tempPath() + "'");
-  }
-  file.commit();
+  writeTextAtomically(path, text);
 }
 
 }  // namespace dicsynth::gpu

@@ -69,4 +69,19 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
+void writeText(const AtomicFile& file, std::string_view text) {
+  std::FILE* out = std::fopen(file.tempPath().c_str(), "wb");
+  if (out == nullptr)
+    throw Error("cannot write '" + file.finalPath() + "': cannot open " + file.tempPath() + ": " + errnoText(errno));
+  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size();
+  const bool closed = std::fclose(out) == 0;
+  if (!written || !closed) throw Error("cannot write '" + file.finalPath() + "': write error (disk full?)");
+}
+
+void writeTextAtomically(const std::string& path, std::string_view text) {
+  AtomicFile file(path);
+  writeText(file, text);
+  file.commit();
+}
+
 }  // namespace dicsynth

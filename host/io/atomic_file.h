@@ -1,6 +1,7 @@
 #pragma once
 // Write-then-rename: a file appears under its final name complete or not at all.
 #include <string>
+#include <string_view>
 
 namespace dicsynth {
 
@@ -21,5 +22,13 @@ class AtomicFile {
   std::string final_, temp_;
   bool committed_ = false;
 };
+
+// Writes `text` as the whole content of `file`'s temporary file, without committing: for writers
+// that commit several files together. Throws Error naming the final path when the file cannot be
+// opened or written completely (e.g. a full disk).
+void writeText(const AtomicFile& file, std::string_view text);
+
+// Writes `text` to `path` atomically: writeText, then commit.
+void writeTextAtomically(const std::string& path, std::string_view text);
 
 }  // namespace dicsynth

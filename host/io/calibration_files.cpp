@@ -15,7 +15,6 @@
 #include "io/calibration_files.h"
 
 #include <charconv>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <system_error>
@@ -143,14 +142,6 @@ std::string diceCamera(int index, const Camera& camera, const std::array<double,
 }
 
 // Writes `text` to the (already created) file at `path`.
-void writeText(const std::string& path, const std::string& finalPath, const std::string& text) {
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (file == nullptr) throw Error("cannot write '" + finalPath + "': cannot open " + path);
-  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) throw Error("cannot write '" + finalPath + "': write error (disk full?)");
-}
-
 const Camera& cameraNamed(const std::vector<Camera>& cameras, const std::string& name) {
   for (const Camera& camera : cameras)
     if (camera.name == name) return camera;
@@ -256,7 +247,7 @@ std::vector<std::string> writeCalibrationFiles(const std::string& dir,
   std::vector<std::unique_ptr<AtomicFile>> staged;
   for (const CalibrationFile& file : files) {
     staged.push_back(std::make_unique<AtomicFile>((std::filesystem::path(dir) / file.name).string()));
-    writeText(staged.back()->tempPath(), staged.back()->finalPath(), file.text);
+    writeText(*staged.back(), file.text);
   }
   // Commit: rename all; on a failure take back what this call renamed.
   std::vector<std::string> paths;

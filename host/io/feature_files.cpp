@@ -1,7 +1,6 @@
 #include "io/feature_files.h"
 
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "core/error.h"
@@ -28,17 +27,6 @@ std::string jsonVector(std::initializer_list<double> values) {
   std::string out = "[";
   for (double v : values) out += (out.size() > 1 ? ", " : "") + json::number(v);
   return out + "]";
-}
-
-void writeAtomically(const std::string& path, const std::string& text) {
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.tempPath(), std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw Error(path + ": cannot write the feature file");
-  }
-  file.commit();
 }
 
 std::string csvText(const std::vector<TargetTruth>& targets) {
@@ -101,8 +89,8 @@ FeatureFiles writeFeatureFiles(const std::string& dir, const std::string& stem, 
   const std::vector<TargetTruth> targets = targetFeatureTruth(scene, camera);
   if (targets.empty()) return {};
   FeatureFiles files{dir + "/" + stem + ".features.csv", dir + "/" + stem + ".features.json"};
-  writeAtomically(files.csv, csvText(targets));
-  writeAtomically(files.json, jsonText(scene, camera, frame, targets));
+  writeTextAtomically(files.csv, csvText(targets));
+  writeTextAtomically(files.json, jsonText(scene, camera, frame, targets));
   return files;
 }
 

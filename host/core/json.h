@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <string>
 
+#include "core/exact_number.h"
+
 namespace dicsynth::json {
 
 inline std::string quote(const std::string& s) {
@@ -28,13 +30,8 @@ inline std::string quote(const std::string& s) {
   return out + "\"";
 }
 
-// %.17g round-trips a double; JSON has no NaN/Infinity, so those become null.
-inline std::string number(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+// Exact (core/exact_number.h); JSON has no NaN/Infinity, so those become null.
+inline std::string number(double v) { return std::isfinite(v) ? exactNumber(v) : "null"; }
 
 inline std::string boolean(bool b) { return b ? "true" : "false"; }
 

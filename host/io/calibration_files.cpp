@@ -14,12 +14,12 @@
 // after a calibration in DICe or OpenCV), and the right camera as CAMERA 1 with the stereo R, T.
 #include "io/calibration_files.h"
 
-#include <charconv>
 #include <filesystem>
 #include <memory>
 #include <system_error>
 
 #include "core/error.h"
+#include "core/exact_number.h"
 #include "core/version.h"
 #include "io/atomic_file.h"
 #include "io/opencv_camera.h"
@@ -27,19 +27,10 @@
 namespace dicsynth {
 namespace {
 
-// "%.17g", but locale-independent (std::to_chars): every double reads back exactly. Same format as
-// the EXR header attributes (outputs.cpp).
-std::string number(double value) {
-  char buffer[64];
-  const auto result =
-      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
-  return std::string(buffer, result.ptr);
-}
-
 template <std::size_t N>
 std::string numberList(const std::array<double, N>& values, const char* separator) {
   std::string text;
-  for (std::size_t i = 0; i < N; ++i) text += (i ? separator : "") + number(values[i]);
+  for (std::size_t i = 0; i < N; ++i) text += (i ? separator : "") + exactNumber(values[i]);
   return text;
 }
 
@@ -122,13 +113,13 @@ std::string diceCamera(int index, const Camera& camera, const std::array<double,
   const std::pair<const char*, double> intrinsics[] = {
       {"CX", K[2]}, {"CY", K[5]}, {"FX", K[0]}, {"FY", K[4]}, {"FS", K[1]},
       {"K1", d[0]}, {"K2", d[1]}, {"K3", d[4]}, {"P1", d[2]}, {"P2", d[3]}};
-  for (const auto& [name, value] : intrinsics) xml += xmlParameter(name, "double", number(value));
+  for (const auto& [name, value] : intrinsics) xml += xmlParameter(name, "double", exactNumber(value));
   xml += xmlParameter("LENS_DISTORTION_MODEL", "string",
                       camera.distortion.kind == DistortionKind::Brown ? "OPENCV_LENS_DISTORTION"
                                                                       : "NO_LENS_DISTORTION");
-  xml += xmlParameter("TX", "double", number(T[0]));
-  xml += xmlParameter("TY", "double", number(T[1]));
-  xml += xmlParameter("TZ", "double", number(T[2]));
+  xml += xmlParameter("TX", "double", exactNumber(T[0]));
+  xml += xmlParameter("TY", "double", exactNumber(T[1]));
+  xml += xmlParameter("TZ", "double", exactNumber(T[2]));
   xml += "<ParameterList name=\"rotation_3x3_matrix\">\n";
   for (int row = 0; row < 3; ++row) {
     const std::array<double, 3> values = {R[3 * row], R[3 * row + 1], R[3 * row + 2]};

@@ -1,9 +1,10 @@
 #include "io/feature_files.h"
 
-#include <cstdio>
+#include <cmath>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/exact_number.h"
 #include "core/json.h"
 #include "io/atomic_file.h"
 #include "render/target_features.h"
@@ -15,13 +16,8 @@ const char* kindName(TextureKind kind) {
   return kind == TextureKind::Checkerboard ? "checkerboard" : "circle_grid";
 }
 
-// %.17g (round-trips a double); NaN as "nan" in CSV.
-std::string csvNumber(double v) {
-  if (std::isnan(v)) return "nan";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+// Exact (core/exact_number.h); NaN as "nan" in CSV, whatever its sign bit.
+std::string csvNumber(double v) { return std::isnan(v) ? "nan" : exactNumber(v); }
 
 std::string jsonVector(std::initializer_list<double> values) {
   std::string out = "[";

@@ -37,13 +37,13 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cstring>
 #include <functional>
 #include <filesystem>
 #include <system_error>
 
 #include "core/error.h"
+#include "core/exact_number.h"
 #include "core/version.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
@@ -52,19 +52,12 @@
 namespace dicsynth {
 namespace {
 
-// "%.17g" without the C locale's say: std::to_chars is locale-independent.
-std::string formatNumber(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
-  return std::string(buffer, result.ptr);
-}
-
 template <typename Container>
 std::string formatNumbers(const Container& values) {
   std::string text;
   for (double v : values) {
     if (!text.empty()) text += ' ';
-    text += formatNumber(v);
+    text += exactNumber(v);
   }
   return text;
 }
@@ -140,8 +133,8 @@ void addMetadata(OIIO::ImageSpec& spec, const Camera& camera, const OutputInfo& 
   spec.attribute("dicsynth:image_size",
                  std::to_string(camera.width_px) + " " + std::to_string(camera.height_px));
   spec.attribute("dicsynth:bits_per_pixel", std::to_string(camera.bitsPerPixel));
-  spec.attribute("dicsynth:exposure", formatNumber(camera.exposure));
-  spec.attribute("dicsynth:fill_factor", formatNumber(camera.fillFactor));
+  spec.attribute("dicsynth:exposure", exactNumber(camera.exposure));
+  spec.attribute("dicsynth:fill_factor", exactNumber(camera.fillFactor));
   spec.attribute("Software", std::string("dicsynth ") + kVersion);
   spec.attribute("DateTime", "");  // empty: OIIO omits it (reproducible files)
 

@@ -1,0 +1,16 @@
+#pragma once
+// Numbers in output files: 17 significant digits ("%.17g"), so every double reads back exactly,
+// written by std::to_chars, which unlike printf ignores the C locale (a decimal comma would break
+// every reader).
+#include <charconv>
+#include <string>
+
+namespace dicsynth {
+
+inline std::string exactNumber(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace dicsynth

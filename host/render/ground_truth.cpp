@@ -4,8 +4,8 @@
 #include <limits>
 
 #include "core/parallel.h"
-#include "cpu/trace.h"
 #include "geometry/material_point.h"
+#include "render/image_point.h"
 
 namespace dicsynth {
 namespace {
@@ -45,38 +45,22 @@ std::vector<dvec2> distortionField(const PreparedCamera& pc) {
   return field;
 }
 
-}  // namespace
+// x(m) of the header comment: NaN where the camera has no image position for the point.
+dvec2 seenAt(const ImagePoint& p) { return p.inFront && !p.folded ? p.pixel_px : kNaN2; }
 
-dvec2 projectPoint(const PreparedCamera& camera, dvec3 world_m) {
-  const auto& m = camera.model;
-  const dvec3 pc = camera.rotationCameraFromWorld * world_m + camera.translationCameraFromWorld;
-  if (!(pc.z > 0)) return kNaN2;
-  const dvec2 ideal{pc.x / pc.z, pc.y / pc.z};
-  dvec2 xy = ideal;
-  if (m.distorted) {
-    xy = distort(m.brown, ideal);
-    // Far outside the view a distortion polynomial can fold back: a point there would land on a
-    // pixel whose ray is another direction. Keep only projections the inverse maps back.
-    const dvec2 back = undistort(m.brown, xy);
-    if (!(glm::length(back - ideal) <= 1e-9 * (1 + glm::length(ideal)))) return kNaN2;
-  }
-  return {m.fx * xy.x + m.cx, m.fy * xy.y + m.cy};
-}
+dvec2 projectPoint(const PreparedCamera& camera, dvec3 world_m) { return seenAt(projectToImage(camera, world_m)); }
 
+// Where the point appears in `camera` (projectPoint) and whether the camera sees it.
+struct Sighting {
+  dvec2 pixel_px{0};
+  bool visible = false;
+};
 Sighting sight(const PreparedScene& scene, const PreparedCamera& camera, int object, dvec3 world_m) {
-  Sighting s;
-  s.pixel_px = projectPoint(camera, world_m);
-  const auto& m = camera.model;
-  const Camera& c = camera.camera;
-  if (!(s.pixel_px.x >= -0.5 && s.pixel_px.x <= c.width_px - 0.5 && s.pixel_px.y >= -0.5 &&
-        s.pixel_px.y <= c.height_px - 0.5))
-    return s;
-  cpu::SurfaceHit hit;
-  // d = world − centre: the point itself is at t = 1.
-  if (!cpu::traceNearest(scene, m.centre, world_m - m.centre, hit)) return s;
-  s.visible = hit.object == object && std::abs(hit.t - 1) <= kVisibilityTolerance;
-  return s;
+  const ImagePoint p = projectToImage(camera, world_m);
+  return {seenAt(p), p.inImage && reachesFirst(scene, camera, object, world_m, kVisibilityTolerance)};
 }
+
+}  // namespace
 
 ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result)
     : frame_(frame), scene_(std::move(scene)) {

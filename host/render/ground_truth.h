@@ -78,16 +78,4 @@ class ReferenceFrame {
 DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const PreparedScene& scene,
                          const RenderResult& result, std::size_t camera);
 
-// Image position (px, distorted, OpenCV) of a world point in `camera`; NaN when the point is not in
-// front of the camera or the distortion cannot be inverted at its projection.
-dvec2 projectPoint(const PreparedCamera& camera, dvec3 world_m);
-
-// Where world point `world_m` of object `object` appears in `camera` (projectPoint), and whether it
-// is visible there (see the header comment).
-struct Sighting {
-  dvec2 pixel_px{0};
-  bool visible = false;
-};
-Sighting sight(const PreparedScene& scene, const PreparedCamera& camera, int object, dvec3 world_m);
-
 }  // namespace dicsynth

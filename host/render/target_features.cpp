@@ -2,14 +2,12 @@
 
 #include <cmath>
 
-#include "cpu/trace.h"
+#include "render/image_point.h"
 
 namespace dicsynth {
 
 std::vector<TargetTruth> targetFeatureTruth(const PreparedScene& scene, std::size_t cameraIndex) {
   const PreparedCamera& camera = scene.cameras.at(cameraIndex);
-  const PinholeModel<double>& m = camera.model;
-  const double w = camera.camera.width_px, h = camera.camera.height_px;
   std::vector<TargetTruth> out;
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const PreparedObject& object = scene.objects[o];
@@ -26,28 +24,16 @@ std::vector<TargetTruth> targetFeatureTruth(const PreparedScene& scene, std::siz
       t.target_m = f.target_m;
       const dvec4 world = object.worldFromTarget * dvec4(f.target_m, 1);  // rigid: w = 1
       t.world_m = dvec3(world) / world.w;
-      const dvec3 pc = camera.rotationCameraFromWorld * t.world_m + camera.translationCameraFromWorld;
-      t.depth_m = pc.z;
-      t.inFront = pc.z > 0;
+      const ImagePoint image = projectToImage(camera, t.world_m);
+      t.depth_m = image.depth_m;
+      t.inFront = image.inFront;
       if (t.inFront) {
-        t.pixel_px = projectToPixel(m, t.world_m);
-        // Far outside the image a Brown model can fold back inside: such a projection is not
-        // where the feature is seen. The round trip through the inverse tells (prepare.cpp makes
-        // sure the inverse is unique over the image itself).
-        bool unique = true;
-        if (m.distorted) {
-          const dvec2 distorted{(t.pixel_px.x - m.cx) / m.fx, (t.pixel_px.y - m.cy) / m.fy};
-          const dvec2 ideal{pc.x / pc.z, pc.y / pc.z};
-          unique = glm::length(undistort(m.brown, distorted) - ideal) <= 1e-9 * (1 + glm::length(ideal));
-        }
-        t.inImage = unique && t.pixel_px.x >= -0.5 && t.pixel_px.x <= w - 0.5 && t.pixel_px.y >= -0.5 &&
-                    t.pixel_px.y <= h - 0.5;
-        // Occlusion: the ray from the camera centre towards the feature must first meet this very
-        // target, at the feature (t = 1 along C + t (P − C); 1e-9 is far above double rounding and
-        // far below any gap between two objects that matters: 1 nm at 1 m).
-        cpu::SurfaceHit hit;
-        t.unoccluded = cpu::traceNearest(scene, m.centre, t.world_m - m.centre, hit) && hit.object == int(o) &&
-                       std::abs(hit.t - 1) <= 1e-9;
+        t.pixel_px = image.pixel_px;
+        t.inImage = image.inImage;
+        // Occlusion: the ray from the camera centre must first meet this very target, at the
+        // feature (1e-9 is far above double rounding and far below any gap between two objects
+        // that matters: 1 nm at 1 m).
+        t.unoccluded = reachesFirst(scene, camera, int(o), t.world_m, 1e-9);
       }
       truth.features.push_back(t);
     }

@@ -1,0 +1,37 @@
+#include "render/image_point.h"
+
+#include "cpu/trace.h"
+
+namespace dicsynth {
+
+ImagePoint projectToImage(const PreparedCamera& camera, dvec3 world_m) {
+  ImagePoint p;
+  const auto& m = camera.model;
+  const dvec3 pc = camera.rotationCameraFromWorld * world_m + camera.translationCameraFromWorld;
+  p.depth_m = pc.z;
+  p.inFront = pc.z > 0;
+  if (!p.inFront) return p;
+  p.pixel_px = projectToPixel(m, world_m);
+  if (m.distorted) {
+    // The round trip through the inverse tells a fold-back (prepare.cpp makes sure the inverse is
+    // unique over the image itself).
+    const dvec2 distorted{(p.pixel_px.x - m.cx) / m.fx, (p.pixel_px.y - m.cy) / m.fy};
+    const dvec2 ideal{pc.x / pc.z, pc.y / pc.z};
+    p.folded = !(glm::length(undistort(m.brown, distorted) - ideal) <= 1e-9 * (1 + glm::length(ideal)));
+  }
+  const Camera& c = camera.camera;
+  p.inImage = !p.folded && p.pixel_px.x >= -0.5 && p.pixel_px.x <= c.width_px - 0.5 && p.pixel_px.y >= -0.5 &&
+              p.pixel_px.y <= c.height_px - 0.5;
+  return p;
+}
+
+bool reachesFirst(const PreparedScene& scene, const PreparedCamera& camera, int object, dvec3 world_m,
+                  double relativeTolerance) {
+  const dvec3 centre = camera.model.centre;
+  cpu::SurfaceHit hit;
+  // d = P − C: the point itself is at t = 1.
+  return cpu::traceNearest(scene, centre, world_m - centre, hit) && hit.object == object &&
+         std::abs(hit.t - 1) <= relativeTolerance;
+}
+
+}  // namespace dicsynth

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "cli/commands.h"
 #include "cli/render_args.h"
@@ -91,7 +92,9 @@ int runRender(const RenderCommand& cmd) {
     options.progress = progressPrinter("rendering" + (numbered ? " frame " + std::to_string(frames[fi]) : ""));
     const RenderResult result = useGpu ? renderer->render(prepared, options) : cpu::render(prepared, options);
     if (context) failOnValidationMessages(*context);  // before any file of this frame is written
-    if (fi == 0) reference = std::make_unique<ReferenceFrame>(frames[fi], prepared, result);
+    if (fi == 0) reference = std::make_unique<ReferenceFrame>(frames[fi], std::move(prepared), result);
+    // The reference frame's scene now lives in `reference` (moved: its textures are not copied).
+    const PreparedScene& scene = fi == 0 ? reference->scene() : prepared;
 
     OutputInfo info;
     info.sceneFile = cmd.args.scenePath;
@@ -101,20 +104,21 @@ int runRender(const RenderCommand& cmd) {
     info.backend = result.backend;
     info.precision = result.precision;
     info.device = result.device;
-    for (const auto& o : prepared.objects) info.objectNames.push_back(o.name);
+    for (const auto& o : scene.objects) info.objectNames.push_back(o.name);
     createOutputDir(cmd.outputDir);  // only now: a run that fails earlier leaves nothing behind
     if (fi == 0 || calibrationPerFrame)
-      writeCalibration(cmd.outputDir, prepared, calibrationPerFrame ? outputStem("", true, frames[fi]) : "");
-    for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
-      const Camera& cam = prepared.cameras[c].camera;
+      writeCalibration(cmd.outputDir, scene, calibrationPerFrame ? outputStem("", true, frames[fi]) : "");
+    for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
+      const Camera& cam = scene.cameras[c].camera;
       const CameraImage& image = result.cameras[c];
-      const DerivedTruth truth = deriveTruth(*reference, frames[fi], prepared, result, c);
+      const DerivedTruth truth = deriveTruth(*reference, frames[fi], scene, result, c);
       if (!truth.disparityCamera.empty() && truth.disparityVisibleCount == 0)
         std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
                      truth.disparityCamera.c_str(), cam.name.c_str());
-      const OutputFiles files = writeCameraOutputs(cmd.outputDir, outputStem(cam.name, numbered, frames[fi]),
-                                                   cam, image, digitize(image.radiance, cam), info, &truth);
-      writeFeatureFiles(cmd.outputDir, outputStem(cam.name, numbered, frames[fi]), prepared, c, frames[fi]);
+      const std::string stem = outputStem(cam.name, numbered, frames[fi]);
+      const OutputFiles files =
+          writeCameraOutputs(cmd.outputDir, stem, cam, image, digitize(image.radiance, cam), info, &truth);
+      writeFeatureFiles(cmd.outputDir, stem, scene, c, frames[fi]);
       std::printf("%s, %s: %dx%d, %d spp, %s %s on %s, %.2f s\n", files.image.c_str(),
                   files.groundTruth.c_str(), cam.width_px, cam.height_px, options.samplesPerPixel,
                   result.backend.c_str(), result.precision.c_str(), result.device.c_str(),

@@ -16,7 +16,8 @@ packages=(
   vulkan-validationlayers            # the test suite runs with validation on
   libopenimageio-dev libopenexr-dev  # image and ground-truth files
   libglm-dev libcli11-dev liblua5.4-dev doctest-dev
-  libopencv-calib3d-dev libopencv-video-dev  # tests only: OpenCV calibrates our images, ECC registers them
+  libopencv-calib3d-dev libopencv-features2d-dev libopencv-video-dev  # tests only: OpenCV calibrates
+                                                                      # our images, ECC registers them
 )
 
 backports=false

@@ -116,8 +116,9 @@ int runRender(const RenderCommand& cmd) {
         std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
                      truth.disparityCamera.c_str(), cam.name.c_str());
       const std::string stem = outputStem(cam.name, numbered, frames[fi]);
+      const SensorImage sensed = applySensor(image.radiance, cam, {options.seed, frames[fi], std::uint32_t(c)});
       const OutputFiles files =
-          writeCameraOutputs(cmd.outputDir, stem, cam, image, digitize(image.radiance, cam), info, &truth);
+          writeCameraOutputs(cmd.outputDir, stem, cam, image, sensed.digital, info, &truth, &sensed);
       writeFeatureFiles(cmd.outputDir, stem, scene, c, frames[fi]);
       std::printf("%s, %s: %dx%d, %d spp, %s %s on %s, %.2f s\n", files.image.c_str(),
                   files.groundTruth.c_str(), cam.width_px, cam.height_px, options.samplesPerPixel,

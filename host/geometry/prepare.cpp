@@ -27,6 +27,7 @@ Camera downscaled(Camera c, int k) {
   c.pixelSize_m *= double(k);
   // A new pixel covers k×k old ones; its centre (i + 1/2)k − 1/2 in old pixel coordinates.
   c.principalPoint_px = (c.principalPoint_px + 0.5) / double(k) - 0.5;
+  c.sensor.downscale = k;  // its pixel lengths and positions are converted where it is applied
   return c;
 }
 

@@ -16,6 +16,11 @@
 //   disparity.X/Y    float   position in the rig's other camera minus this one (px)
 //   disparity.mask   float   1 where the other camera sees this pixel's point
 //   distortion.X/Y   float   distorted minus undistorted position of the pixel centre (px)
+// and the sensor's layers (host/sensor/sensor.h), only when the camera has a sensor model:
+//   noiseFree        float   the image without temporal noise (DN), before rounding and clipping
+//   noise            float   the noise added (DN), with Sensor.Emva only:
+//                            TIFF = clamp(round(noiseFree + noise), 0, 2^bits - 1)
+//   defects          uint    0 good, 1 dead, 2 hot, 3 stuck, with DefectivePixels only
 // Background pixels hold NaN in Z, P, N and uv (and in disp, flow, disparity where undefined). OpenEXR stores channels sorted by name, so a reader
 // sees them in the file's order (OIIO: Y, Z, mask, objectId, N.*, P.*, uv.*): find them by name.
 //
@@ -29,6 +34,7 @@
 //   dicsynth:image_size               w h
 //   dicsynth:bits_per_pixel, :exposure, :fill_factor
 //   dicsynth:reference_frame, :disparity_camera   with the derived layers
+//   dicsynth:sensor                   the sensor model's resolved parameters, with its layers
 // Plus OpenEXR's standard worldToCamera (float 4x4, Imath row-vector convention, camera frame
 // x right, y UP, z forward as the OpenEXR standard defines it, i.e. OpenCV's frame with y negated)
 // and PixelAspectRatio = pixelSize.x / pixelSize.y. No DateTime: the same render gives the same file.
@@ -78,7 +84,8 @@ struct ExrChannel {
 };
 
 // The channels of the file: the backend's layers, then the derived ones that `truth` holds.
-std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth* truth) {
+std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth* truth,
+                                    const SensorImage* sensor) {
   std::vector<ExrChannel> ch;
   auto add = [&](std::string name, std::function<float(std::size_t)> f) { ch.push_back({std::move(name), std::move(f), {}}); };
   auto addVec2 = [&](const std::string& layer, const std::vector<dvec2>& v, const char* x, const char* y) {
@@ -107,6 +114,12 @@ std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth
     if (!truth->disparityMask.empty())
       add("disparity.mask", [truth](std::size_t i) { return truth->disparityMask[i]; });
     addVec2("distortion", truth->distortion_px, "X", "Y");
+  }
+  if (sensor) {
+    if (!sensor->noiseFree_DN.empty()) add("noiseFree", [sensor](std::size_t i) { return float(sensor->noiseFree_DN[i]); });
+    if (!sensor->noise_DN.empty()) add("noise", [sensor](std::size_t i) { return float(sensor->noise_DN[i]); });
+    if (!sensor->defects.empty())
+      ch.push_back({"defects", {}, [sensor](std::size_t i) { return std::uint32_t(sensor->defects[i]); }});
   }
   return ch;
 }
@@ -150,21 +163,21 @@ void addMetadata(OIIO::ImageSpec& spec, const Camera& camera, const OutputInfo& 
 }
 
 void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraImage& image,
-                         const DerivedTruth* truth, const OutputInfo& info) {
+                         const DerivedTruth* truth, const SensorImage* sensor, const OutputInfo& info) {
   const std::string& path = file.finalPath();
   auto out = OIIO::ImageOutput::create("openexr");  // by format name, not by the temporary name
   if (!out) throw Error(path + ": OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
   if (!out->supports("channelformats"))
     throw Error(path + ": this OpenImageIO's OpenEXR writer lacks per-channel formats");
 
-  const std::vector<ExrChannel> channels = exrChannels(image, truth);
+  const std::vector<ExrChannel> channels = exrChannels(image, truth, sensor);
   const int channelCount = int(channels.size());
   OIIO::ImageSpec spec(image.width_px, image.height_px, channelCount, OIIO::TypeDesc::FLOAT);
   spec.channelnames.clear();
   spec.channelformats.clear();
   for (const ExrChannel& c : channels) {
     spec.channelnames.push_back(c.name);
-    // objectId: exact 32-bit integers; everything else float32.
+    // objectId, defects: exact 32-bit integers; everything else float32.
     spec.channelformats.push_back(c.idValue ? OIIO::TypeDesc::UINT : OIIO::TypeDesc::FLOAT);
   }
   spec.attribute("compression", "zip");
@@ -173,6 +186,7 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
     spec.attribute("dicsynth:reference_frame", std::to_string(truth->referenceFrame));
     if (!truth->disparityCamera.empty()) spec.attribute("dicsynth:disparity_camera", truth->disparityCamera);
   }
+  if (sensor && !sensor->description.empty()) spec.attribute("dicsynth:sensor", sensor->description);
   if (!out->open(file.tempPath(), spec)) throw Error(path + ": cannot create EXR: " + out->geterror());
 
   // Convert and write in bands of rows: bounded memory for any image size. Every channel is 4
@@ -207,7 +221,7 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
 
 OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, const Camera& camera,
                                const CameraImage& image, const std::vector<std::uint16_t>& digital,
-                               const OutputInfo& info, const DerivedTruth* truth) {
+                               const OutputInfo& info, const DerivedTruth* truth, const SensorImage* sensor) {
   // Consistency of the caller's data: a mismatch is a bug upstream, not a user error.
   const std::size_t n = image.pixelCount();
   DS_CHECK(image.width_px == camera.width_px && image.height_px == camera.height_px && n > 0,
@@ -220,6 +234,10 @@ OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, 
     for (std::size_t size : {truth->displacement_m.size(), truth->flow_px.size(), truth->flowMask.size(),
                              truth->disparity_px.size(), truth->disparityMask.size(), truth->distortion_px.size()})
       DS_CHECK(size == 0 || size == n, "camera " + camera.name + ": a derived layer has the wrong pixel count");
+  }
+  if (sensor) {
+    for (std::size_t size : {sensor->noiseFree_DN.size(), sensor->noise_DN.size(), sensor->defects.size()})
+      DS_CHECK(size == 0 || size == n, "camera " + camera.name + ": a sensor layer has the wrong pixel count");
   }
   DS_CHECK(!stem.empty() && stem.find('/') == std::string::npos, "output stem '" + stem + "'");
 
@@ -236,7 +254,7 @@ OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, 
   AtomicFile exr(files.groundTruth);
   writeGrayTiff(tiff, camera.width_px, camera.height_px, digital, camera.bitsPerPixel,
                 tiffDescription(camera, info));
-  writeGroundTruthExr(exr, camera, image, truth, info);
+  writeGroundTruthExr(exr, camera, image, truth, sensor, info);
   tiff.commit();
   try {
     exr.commit();

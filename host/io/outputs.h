@@ -9,6 +9,7 @@
 #include "render/ground_truth.h"
 #include "render/result.h"
 #include "scene/scene.h"
+#include "sensor/sensor.h"
 
 namespace dicsynth {
 
@@ -32,12 +33,15 @@ struct OutputFiles {
 // EXR channels: Y (radiance), Z, P.X/Y/Z, N.X/Y/Z, uv.U/V (float32), objectId (uint32), mask (float32),
 // plus, from `truth` when given, the layers it holds: disp.X/Y/Z, flow.X/Y, flow.mask, disparity.X/Y,
 // disparity.mask, distortion.X/Y (float32; render/ground_truth.h);
+// and, from `sensor` when given (host/sensor), the layers it holds: noiseFree, noise (float32, DN)
+// and defects (uint32 DefectCode), with the attribute dicsynth:sensor;
 // header attributes dicsynth:* (run facts, camera in OpenCV terms): the list is in outputs.cpp.
 // `dir` must exist (the caller creates it); otherwise, or if it is not writable, throws Error naming
 // it. Both files are written to temporary names first and renamed only when both are complete; if
 // the second rename fails the TIFF is removed again, so no image exists without its ground truth.
 OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, const Camera& camera,
                                const CameraImage& image, const std::vector<std::uint16_t>& digital,
-                               const OutputInfo& info, const DerivedTruth* truth = nullptr);
+                               const OutputInfo& info, const DerivedTruth* truth = nullptr,
+                               const SensorImage* sensor = nullptr);
 
 }  // namespace dicsynth

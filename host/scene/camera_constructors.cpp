@@ -4,6 +4,7 @@
 
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
+#include "scene/sensor_constructors.h"
 
 namespace dicsynth::scene {
 
@@ -103,6 +104,9 @@ The camera frame is OpenCV's: x right, y down, z forward (along the optical axis
   exposure       | number                 | 1                  | > 0; DN = round(clamp(exposure *
                  |                        |                    | radiance, 0, 1) * (2^bits - 1))
   distortion     | Distortion             | none               | Distortion.Brown { ... }
+  sensor         | Sensor                 | none (ideal)       | Sensor.Emva { ... } (README Sensor)
+  postProcessing | {PostProcessor, ...}   | none               | Blur, Vignetting, Dust, Defective-
+                 |                        |                    | Pixels (README Sensor)
   transform      | Transform              | identity           | pose as worldFromCamera; must be
                  |                        |                    | rigid (rotation + translation)
   position       | {x, y, z}, m           | {0, 0, 0}          | camera centre (optical centre)
@@ -123,7 +127,8 @@ Example:
 int cameraPinhole(lua_State* L) {
   Params p(L, "Camera.Pinhole",
            {"resolution", "principalPoint", "focalLength", "pixelSize", "fillFactor",
-            "bitsPerPixel", "exposure", "distortion", "transform", "position", "lookAt", "up"});
+            "bitsPerPixel", "exposure", "distortion", "transform", "position", "lookAt", "up",
+            "sensor", "postProcessing"});
   Camera camera;
   camera.kind = CameraKind::Pinhole;
   camera.where = LuaSandbox::of(L).here(L);
@@ -157,6 +162,7 @@ int cameraPinhole(lua_State* L) {
   if (const Distortion* distortion =
           p.userdata<Distortion>("distortion", "a Distortion (Distortion.Brown)"))
     camera.distortion = *distortion;
+  readCameraSensor(L, p, camera);  // sensor, postProcessing (sensor_constructors.cpp)
 
   // Pose
   const TransformValue* transform =

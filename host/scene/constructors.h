@@ -19,5 +19,7 @@ void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: tran
 void registerTargetConstructors(lua_State* L);  // target_constructors.cpp: Target (after
                                                 //   registerObjectConstructors)
 void registerRigConstructors(lua_State* L);     // rig_constructors.cpp: Rig
+void registerSensorConstructors(lua_State* L);  // sensor_constructors.cpp: Sensor, Blur,
+                                                //   Vignetting, Dust, DefectivePixels
 
 }  // namespace dicsynth::scene

@@ -34,6 +34,7 @@ void registerSceneLanguage(lua_State* L) {
   registerTransformFunctions(L);
   registerTargetConstructors(L);
   registerRigConstructors(L);
+  registerSensorConstructors(L);
 }
 
 namespace {

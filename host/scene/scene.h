@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "geometry/nurbs_surface.h"
+#include "sensor/sensor_model.h"
 #include "shared/kinds.h"
 
 namespace dicsynth {
@@ -41,6 +42,9 @@ struct Camera {
   // The scene gave the pose (transform, position, lookAt or up). Rig.Stereo refuses such a camera:
   // the rig places its cameras, and silently dropping a pose the user wrote would hide a mistake.
   bool poseGiven = false;
+  // Sensor model and post-processors (`sensor`, `postProcessing`; host/sensor). Empty: the plain
+  // digitization above, exactly as without them.
+  SensorModel sensor;
 };
 
 // A shape in its own frame; `location` places that frame's origin in the object's frame.

@@ -1,0 +1,334 @@
+// The sensor and its post-processors in a scene: Sensor.Emva, Blur.Gaussian, Blur.Disk,
+// Vignetting.Cos4, Vignetting.Radial, Dust, DefectivePixels, and the camera keys `sensor` and
+// `postProcessing` that take them (readCameraSensor). What they do: host/sensor, README "Sensor".
+//
+// Example:
+//   camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.016; pixelSize = {5e-6, 5e-6};
+//     bitsPerPixel = 12; exposure = 0.8;
+//     sensor = Sensor.Emva { preset = "machine-vision-cmos"; readNoise_e = 3 };
+//     postProcessing = { Blur.Gaussian { sigma_px = 0.8 }, Vignetting.Cos4 {},
+//                        Dust { center_px = {200, 150}; radius_px = 40; opacity = 0.3 },
+//                        DefectivePixels { dead = 1e-4; hot = 1e-4; stuck = {{10, 20}} } } }
+// The order inside postProcessing does not matter: the pipeline's order is fixed (README).
+#include "scene/sensor_constructors.h"
+
+#include <cmath>
+#include <string>
+
+#include "scene/constructors.h"
+#include "scene/lua_values.h"
+#include "sensor/sensor_presets.h"
+
+namespace dicsynth::scene {
+
+// One element of a camera's postProcessing list.
+struct PostProcessorValue {
+  enum class Kind { Blur, Vignetting, Dust, Defects } kind = Kind::Blur;
+  std::string constructor;  // "Blur.Gaussian", ... for messages
+  Blur blur;
+  Vignetting vignetting;
+  DustBlob dust;
+  DefectivePixels defects;
+};
+
+template <>
+inline constexpr const char* kUserdataName<EmvaSensor> = "Sensor";
+template <>
+inline constexpr const char* kUserdataName<PostProcessorValue> = "PostProcessor";
+
+namespace {
+
+void pushPostProcessor(lua_State* L, PostProcessorValue value) { pushUserdata(L, std::move(value)); }
+
+// Reads an optional boolean (Params has no accessor for booleans).
+std::optional<bool> boolean(lua_State* L, const Params& p, const char* key) {
+  const int type = p.luaType(key);
+  if (type == LUA_TNIL) return std::nullopt;
+  if (type != LUA_TBOOLEAN) p.fail(Params::quote(key) + " must be true or false");
+  lua_pushstring(L, key);
+  lua_rawget(L, 1);
+  const bool value = lua_toboolean(L, -1) != 0;
+  lua_pop(L, 1);
+  return value;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Sensor.Emva: the linear camera model of EMVA 1288 (README "Sensor" has the formulas). Every value
+not given comes from the preset, else from the defaults below (the "machine-vision-cmos" preset's
+values, then the derived ones).
+
+  Parameter           | Unit       | Default                       | Meaning
+  --------------------+------------+-------------------------------+-------------------------------
+  preset              | string     | none                          | a name of sensor_presets.h
+  quantumEfficiency   | e⁻/photon  | preset (0.65)                 | η, in (0, 1]
+  fullWell_e          | e⁻         | preset (10500)                | saturation capacity, > 0
+  readNoise_e         | e⁻ rms     | preset (2.4)                  | temporal dark noise σ_d, >= 0
+  darkCurrent_e_per_s | e⁻/s       | preset (3)                    | >= 0
+  exposureTime_s      | s          | preset (0.01)                 | integration of dark current
+  photonsAtFullScale  | photons    | fullWell_e / η                | photons per pixel at
+                      |            |                               | exposure·radiance = 1
+  gain_DN_per_e       | DN/e⁻      | (2^b - 1 - offset)/fullWell_e | K, overall system gain, > 0
+  darkOffset_DN       | DN         | floor((2^b - 1)/64)           | black level, >= 0
+  shotNoise           | boolean    | true                          | false: no Poisson noise
+------------------------------------------------------------------------------------------------ */
+int sensorEmva(lua_State* L) {
+  Params p(L, "Sensor.Emva",
+           {"preset", "quantumEfficiency", "fullWell_e", "readNoise_e", "darkCurrent_e_per_s", "exposureTime_s",
+            "photonsAtFullScale", "gain_DN_per_e", "darkOffset_DN", "shotNoise"});
+  EmvaSensor s;
+  if (auto preset = p.string("preset")) {
+    if (!findSensorPreset(*preset))
+      p.fail("unknown 'preset' \"" + *preset + "\"; the presets are " + sensorPresetNames());
+    s.preset = *preset;
+  }
+  auto positive = [&](const char* key, std::optional<double>& into) {
+    into = p.number(key);
+    if (into) p.require(*into > 0, key, "> 0", *into);
+  };
+  auto nonNegative = [&](const char* key, std::optional<double>& into) {
+    into = p.number(key);
+    if (into) p.require(*into >= 0, key, ">= 0", *into);
+  };
+  s.quantumEfficiency = p.number("quantumEfficiency");
+  if (s.quantumEfficiency)
+    p.require(*s.quantumEfficiency > 0 && *s.quantumEfficiency <= 1, "quantumEfficiency", "in (0, 1]",
+              *s.quantumEfficiency);
+  positive("fullWell_e", s.fullWell_e);
+  nonNegative("readNoise_e", s.readNoise_e);
+  nonNegative("darkCurrent_e_per_s", s.darkCurrent_e_per_s);
+  nonNegative("exposureTime_s", s.exposureTime_s);
+  positive("photonsAtFullScale", s.photonsAtFullScale);
+  positive("gain_DN_per_e", s.gain_DN_per_e);
+  nonNegative("darkOffset_DN", s.darkOffset_DN);
+  s.shotNoise = boolean(L, p, "shotNoise").value_or(true);
+  pushUserdata(L, std::move(s));
+  return 1;
+}
+
+/* Blur.Gaussian { sigma_px }: Gaussian PSF, sigma_px > 0 (px, required).
+   Blur.Disk { radius_px }: defocus disk (uniform circle of confusion), radius_px > 0 (px, required). */
+int blurGaussian(lua_State* L) {
+  Params p(L, "Blur.Gaussian", {"sigma_px"});
+  PostProcessorValue v{PostProcessorValue::Kind::Blur, p.constructor()};
+  v.blur.kind = BlurKind::Gaussian;
+  v.blur.sigma_px = p.requiredNumber("sigma_px");
+  p.require(v.blur.sigma_px > 0 && v.blur.sigma_px <= 100, "sigma_px", "in (0, 100] (px)", v.blur.sigma_px);
+  pushPostProcessor(L, std::move(v));
+  return 1;
+}
+
+int blurDisk(lua_State* L) {
+  Params p(L, "Blur.Disk", {"radius_px"});
+  PostProcessorValue v{PostProcessorValue::Kind::Blur, p.constructor()};
+  v.blur.kind = BlurKind::Disk;
+  v.blur.radius_px = p.requiredNumber("radius_px");
+  p.require(v.blur.radius_px > 0 && v.blur.radius_px <= 100, "radius_px", "in (0, 100] (px)", v.blur.radius_px);
+  pushPostProcessor(L, std::move(v));
+  return 1;
+}
+
+/* Vignetting.Cos4 {}: the natural cos⁴ fall-off of the camera's lens (no parameters).
+   Vignetting.Radial { coefficients = {a1[, a2[, a3]]} }: factor 1 + a1 ρ² + a2 ρ⁴ + a3 ρ⁶ (ρ = 1
+   at the half-diagonal), clipped at 0. */
+int vignettingCos4(lua_State* L) {
+  Params p(L, "Vignetting.Cos4", {});
+  PostProcessorValue v{PostProcessorValue::Kind::Vignetting, p.constructor()};
+  v.vignetting.kind = VignettingKind::Cos4;
+  pushPostProcessor(L, std::move(v));
+  return 1;
+}
+
+int vignettingRadial(lua_State* L) {
+  Params p(L, "Vignetting.Radial", {"coefficients"});
+  PostProcessorValue v{PostProcessorValue::Kind::Vignetting, p.constructor()};
+  v.vignetting.kind = VignettingKind::Radial;
+  auto c = p.numbers("coefficients", 1, 3, "{a1[, a2[, a3]]}");
+  if (!c) p.fail("missing required 'coefficients' = {a1[, a2[, a3]]}");
+  v.vignetting.coefficients = *c;
+  pushPostProcessor(L, std::move(v));
+  return 1;
+}
+
+/* Dust { center_px = {x, y}; radius_px; opacity }: one soft dark blob (all required);
+   radius_px > 0, opacity in [0, 1]. */
+int dust(lua_State* L) {
+  Params p(L, "Dust", {"center_px", "radius_px", "opacity"});
+  PostProcessorValue v{PostProcessorValue::Kind::Dust, p.constructor()};
+  auto centre = p.vec2("center_px", "{x, y}");
+  if (!centre) p.fail("missing required 'center_px' = {x, y} (px)");
+  v.dust.x_px = centre->x;
+  v.dust.y_px = centre->y;
+  v.dust.radius_px = p.requiredNumber("radius_px");
+  p.require(v.dust.radius_px > 0, "radius_px", "> 0 (px)", v.dust.radius_px);
+  v.dust.opacity = p.requiredNumber("opacity");
+  p.require(v.dust.opacity >= 0 && v.dust.opacity <= 1, "opacity", "in [0, 1]", v.dust.opacity);
+  pushPostProcessor(L, std::move(v));
+  return 1;
+}
+
+// A list of pixels {{x, y}, ...} (integers >= 0), or a fraction (a number in [0, 1]).
+void readDefectKind(lua_State* L, const Params& p, const char* key, double& fraction,
+                    std::vector<PixelPosition>& list) {
+  const int type = p.luaType(key);
+  if (type == LUA_TNIL) return;
+  if (type == LUA_TNUMBER) {
+    fraction = *p.number(key);
+    p.require(fraction >= 0 && fraction <= 1, key, "a fraction in [0, 1] or a list {{x, y}, ...}", fraction);
+    return;
+  }
+  const std::string expected = Params::quote(key) + " must be a fraction in [0, 1] or a list {{x, y}, ...} of pixels";
+  if (type != LUA_TTABLE) p.fail(expected);
+  lua_pushstring(L, key);
+  lua_rawget(L, 1);
+  const int table = lua_gettop(L);
+  const lua_Integer count = lua_Integer(lua_rawlen(L, table));
+  lua_Integer entries = 0;
+  lua_pushnil(L);
+  while (lua_next(L, table) != 0) {
+    lua_pop(L, 1);
+    ++entries;
+  }
+  bool ok = entries == count;
+  for (lua_Integer i = 1; ok && i <= count; ++i) {
+    lua_rawgeti(L, table, i);
+    const int pixel = lua_gettop(L);
+    double xy[2] = {-1, -1};
+    ok = lua_istable(L, pixel) && lua_rawlen(L, pixel) == 2;
+    for (int c = 0; ok && c < 2; ++c) {
+      lua_rawgeti(L, pixel, c + 1);
+      ok = lua_type(L, -1) == LUA_TNUMBER;
+      if (ok) xy[c] = lua_tonumber(L, -1);
+      lua_pop(L, 1);
+      ok = ok && xy[c] == std::floor(xy[c]) && xy[c] >= 0 && xy[c] <= 65535;
+    }
+    lua_pop(L, 1);
+    if (ok) list.push_back({int(xy[0]), int(xy[1])});
+    else {
+      lua_pop(L, 1);
+      p.fail(expected + "; entry " + std::to_string(i) + " is not {x, y} with integers in 0..65535");
+    }
+  }
+  lua_pop(L, 1);
+  if (!ok) p.fail(expected + ", got a table with named or missing entries");
+}
+
+/* DefectivePixels { dead; hot; stuck; seed; hotSignal_DN; stuck_DN } (see README "Sensor"):
+   dead, hot, stuck: each a fraction of the pixels in [0, 1] (drawn from the seed) or a list of
+   pixels {{x, y}, ...}; default 0. seed: integer, default the render's --seed. hotSignal_DN: added
+   to hot pixels (default floor((2^b - 1)/4)); stuck_DN: value of stuck pixels (default 2^b - 1). */
+int defectivePixels(lua_State* L) {
+  Params p(L, "DefectivePixels", {"dead", "hot", "stuck", "seed", "hotSignal_DN", "stuck_DN"});
+  PostProcessorValue v{PostProcessorValue::Kind::Defects, p.constructor()};
+  DefectivePixels& d = v.defects;
+  readDefectKind(L, p, "dead", d.deadFraction, d.dead);
+  readDefectKind(L, p, "hot", d.hotFraction, d.hot);
+  readDefectKind(L, p, "stuck", d.stuckFraction, d.stuck);
+  const double total = d.deadFraction + d.hotFraction + d.stuckFraction;
+  if (total > 1) p.fail("the fractions dead + hot + stuck must not exceed 1, got " + formatNumber(total));
+  if (auto seed = p.integer("seed")) {
+    p.require(*seed >= 0 && *seed <= 0xffffffffLL, "seed", "an integer in 0..4294967295", double(*seed));
+    d.seed = std::uint32_t(*seed);
+  }
+  d.hotSignal_DN = p.number("hotSignal_DN");
+  if (d.hotSignal_DN) p.require(*d.hotSignal_DN >= 0, "hotSignal_DN", ">= 0 (DN)", *d.hotSignal_DN);
+  d.stuck_DN = p.number("stuck_DN");
+  if (d.stuck_DN) p.require(*d.stuck_DN >= 0 && *d.stuck_DN <= 65535, "stuck_DN", "in 0..65535 (DN)", *d.stuck_DN);
+  pushPostProcessor(L, std::move(v));
+  return 1;
+}
+
+int sensorToString(lua_State* L) {
+  const EmvaSensor* s = toUserdata<EmvaSensor>(L, 1);
+  const std::string text = "Sensor.Emva(" + (s ? s->preset : std::string()) + ")";
+  lua_pushlstring(L, text.data(), text.size());
+  return 1;
+}
+
+int postProcessorToString(lua_State* L) {
+  const PostProcessorValue* v = toUserdata<PostProcessorValue>(L, 1);
+  const std::string text = v ? v->constructor : std::string("PostProcessor");
+  lua_pushlstring(L, text.data(), text.size());
+  return 1;
+}
+
+void setGlobalFunction(lua_State* L, const char* name, lua_CFunction f) {
+  lua_pushcfunction(L, f);
+  lua_setglobal(L, name);
+}
+
+}  // namespace
+
+void readCameraSensor(lua_State* L, const Params& p, Camera& camera) {
+  SensorModel& m = camera.sensor;
+  if (const EmvaSensor* s = p.userdata<EmvaSensor>("sensor", "a Sensor (Sensor.Emva { ... })")) m.emva = *s;
+  const int type = p.luaType("postProcessing");
+  if (type == LUA_TNIL) return;
+  const char* expected = "'postProcessing' must be a list {Blur..., Vignetting..., Dust {...}, DefectivePixels {...}}";
+  if (type != LUA_TTABLE) p.fail(expected);
+  lua_pushstring(L, "postProcessing");
+  lua_rawget(L, 1);
+  const int table = lua_gettop(L);
+  const lua_Integer count = lua_Integer(lua_rawlen(L, table));
+  // Collect the values first (copies), so that the Lua stack is balanced before any failure.
+  std::vector<PostProcessorValue> values;
+  bool sequence = true;
+  lua_Integer entries = 0;
+  lua_pushnil(L);
+  while (lua_next(L, table) != 0) {
+    lua_pop(L, 1);
+    ++entries;
+  }
+  sequence = entries == count;
+  std::string bad;
+  for (lua_Integer i = 1; sequence && bad.empty() && i <= count; ++i) {
+    lua_rawgeti(L, table, i);
+    if (const PostProcessorValue* v = toUserdata<PostProcessorValue>(L, -1)) values.push_back(*v);
+    else bad = "entry " + std::to_string(i) + " is a " + typeName(L, -1);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  if (!sequence) p.fail(std::string(expected) + ", got a table with named or missing entries");
+  if (!bad.empty()) p.fail(std::string(expected) + "; " + bad);
+
+  for (const PostProcessorValue& v : values) {
+    auto once = [&](bool already, const char* what) {
+      if (already) p.fail("'postProcessing' has more than one " + std::string(what));
+    };
+    switch (v.kind) {
+      case PostProcessorValue::Kind::Blur:
+        once(m.blur.has_value(), "Blur");
+        m.blur = v.blur;
+        break;
+      case PostProcessorValue::Kind::Vignetting:
+        once(m.vignetting.has_value(), "Vignetting");
+        m.vignetting = v.vignetting;
+        break;
+      case PostProcessorValue::Kind::Dust:
+        m.dust.push_back(v.dust);
+        break;
+      case PostProcessorValue::Kind::Defects:
+        once(m.defects.has_value(), "DefectivePixels");
+        for (const auto* list : {&v.defects.dead, &v.defects.hot, &v.defects.stuck})
+          for (const PixelPosition& px : *list)
+            if (px.x_px >= camera.width_px || px.y_px >= camera.height_px)
+              p.fail("DefectivePixels: pixel {" + std::to_string(px.x_px) + ", " + std::to_string(px.y_px) +
+                     "} is outside the " + std::to_string(camera.width_px) + "x" + std::to_string(camera.height_px) +
+                     " image");
+        m.defects = v.defects;
+        break;
+    }
+  }
+}
+
+void registerSensorConstructors(lua_State* L) {
+  registerUserdataType<EmvaSensor>(L, {{"__tostring", &sensorToString}});
+  registerUserdataType<PostProcessorValue>(L, {{"__tostring", &postProcessorToString}});
+  setConstructorTable(L, "Sensor", {{"Emva", &protectedCall<sensorEmva>}});
+  setConstructorTable(L, "Blur", {{"Gaussian", &protectedCall<blurGaussian>}, {"Disk", &protectedCall<blurDisk>}});
+  setConstructorTable(L, "Vignetting",
+                      {{"Cos4", &protectedCall<vignettingCos4>}, {"Radial", &protectedCall<vignettingRadial>}});
+  setGlobalFunction(L, "Dust", &protectedCall<dust>);
+  setGlobalFunction(L, "DefectivePixels", &protectedCall<defectivePixels>);
+}
+
+}  // namespace dicsynth::scene

@@ -3,7 +3,7 @@
 // GPU backend (fp32), all in one run on one machine. The first row, a camera without a sensor
 // model, is the path every scene without one takes: it must cost what digitize() alone costs.
 //
-//   build/bench_sensor [--scene scenes/figure1.lua] [--spp 4] [--downscale 2] [--repeat 3]
+//   build/bench_sensor [--scene scenes/figure1.lua] [--spp 4] [--downscale 2] [--repeat 5]
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -28,7 +28,7 @@ double seconds(std::chrono::steady_clock::time_point since) {
 
 int main(int argc, char** argv) {
   std::string scenePath = std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua";
-  int spp = 4, downscale = 2, repeat = 3;
+  int spp = 4, downscale = 2, repeat = 5;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--scene")) scenePath = argv[i + 1];
     else if (!std::strcmp(argv[i], "--spp")) spp = std::atoi(argv[i + 1]);

@@ -303,3 +303,52 @@ TEST_CASE("sensor: shotNoise = false and readNoise 0 leave the noise-free image"
     CHECK(image.digital[i] == 1071);  // 1008 + 63
   }
 }
+
+TEST_CASE("sensor: without a dark offset the read noise of dark pixels is clipped at 0, as modelled") {
+  // Offset 0: about half of the dark pixels' values fall below 0 and read 0; the exact
+  // distribution (with the d = 0 end taking the whole lower tail) predicts mean and variance.
+  EmvaSensor sensor;
+  sensor.quantumEfficiency = 0.5;
+  sensor.fullWell_e = 10000;
+  sensor.readNoise_e = 3;
+  sensor.darkCurrent_e_per_s = 0;
+  sensor.gain_DN_per_e = 0.4;
+  sensor.darkOffset_DN = 0;
+  const Camera camera = flatFieldCamera(400, 250, sensor);
+  const ResolvedEmva e = resolve(sensor, camera.bitsPerPixel);
+  for (double meanElectrons : {0.0, 0.5, 5.0}) {
+    CAPTURE(meanElectrons);
+    const std::vector<double> radiance(400 * 250, meanElectrons / (e.quantumEfficiency * e.photonsAtFullScale));
+    const SensorImage image = applySensor(radiance, camera, {8, 1, 2});
+    const Moments exact = exactPixelMoments(e, std::max(meanElectrons, 1e-300), 4095);
+    checkMoments(digitalAsDouble(image), exact.mean, exact.variance, exact.fourthCentral);
+    // Clipping lifts the mean above the linear model's K μ_e.
+    CHECK(exact.mean > 0.4 * meanElectrons + 0.01);
+  }
+}
+
+TEST_CASE("sensor: defective pixels with Sensor.Emva") {
+  EmvaSensor sensor;
+  sensor.preset = "machine-vision-cmos";
+  Camera camera = flatFieldCamera(200, 100, sensor);
+  DefectivePixels d;
+  d.dead = {{0, 0}, {1, 0}, {2, 0}};
+  d.hot = {{3, 0}};
+  d.stuck = {{4, 0}};
+  d.hotSignal_DN = 500;
+  d.stuck_DN = 1234;
+  camera.sensor.defects = d;
+  const ResolvedEmva e = resolve(sensor, 12);
+  const SensorImage image = applySensor(std::vector<double>(200 * 100, 0.5), camera, {4, 0, 0});
+  // Dead: no charge at all, so the noise-free value is the dark offset and the noise the read noise.
+  for (int x = 0; x < 3; ++x) {
+    CHECK(image.noiseFree_DN[std::size_t(x)] == e.darkOffset_DN);
+    CHECK(std::fabs(image.noise_DN[std::size_t(x)]) < 6 * e.gain_DN_per_e * e.readNoise_e);  // 6σ of read noise
+  }
+  const double clean = e.gain_DN_per_e * (0.5 * e.fullWell_e + e.darkElectrons()) + e.darkOffset_DN;
+  CHECK(image.noiseFree_DN[3] == doctest::Approx(clean + 500).epsilon(1e-12));
+  CHECK(image.noiseFree_DN[4] == 1234);
+  CHECK(image.noise_DN[4] == 0);
+  CHECK(image.digital[4] == 1234);
+  CHECK(image.noiseFree_DN[5] == doctest::Approx(clean).epsilon(1e-12));
+}

@@ -102,6 +102,26 @@ TEST_CASE("sensor: defocus disk kernel holds the disk's area") {
   }
 }
 
+TEST_CASE("sensor: defocus blur of one bright pixel is the disk kernel, and of a flat field is flat") {
+  const double radius = 2.5;
+  const std::vector<double> k = diskKernel(radius);
+  const int n = int(std::lround(std::sqrt(double(k.size())))), R = n / 2;
+  const int w = 21, h = 17, cx = 10, cy = 8;
+  std::vector<double> image(std::size_t(w) * h, 0.0);
+  image[std::size_t(cy) * w + cx] = 1.0;
+  const std::vector<double> out = applyBlur(image, w, h, {BlurKind::Disk, 0, radius});
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int i = x - cx + R, j = y - cy + R;
+      const double expected = i >= 0 && i < n && j >= 0 && j < n ? k[std::size_t(j) * n + std::size_t(i)] : 0.0;
+      CHECK(out[std::size_t(y) * w + x] == expected);  // one nonzero term per sum: exact
+    }
+  // A flat field stays flat, borders included (they repeat outward): the weights sum to 1 (to
+  // rounding, ~n² ulps).
+  const std::vector<double> flat = applyBlur(std::vector<double>(std::size_t(w) * h, 0.7), w, h, {BlurKind::Disk, 0, radius});
+  for (double v : flat) CHECK(std::fabs(v - 0.7) < 1e-14);
+}
+
 TEST_CASE("sensor: vignetting factors at known radii") {
   // Cos4: pixel 10 µm, f = 10 mm: a pixel d px from the principal point sees θ = atan(d·1e-3).
   VignettingGeometry g{801, 601, 400, 300, 1e-5, 1e-5, 0.01};

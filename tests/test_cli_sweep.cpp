@@ -76,7 +76,10 @@ TEST_CASE("cli: sweep renders every point into its folder, as render -D does, wi
     row << i << "," << folder << "," << (i / 3 ? "0.75" : "0.25") << "," << (i % 3 == 0 ? "0" : i % 3 == 1 ? "0.02" : "0.040000000000000001")
         << ",1,1,gpu,fp32";
     const std::string manifest = readText(dir.file("out/manifest.csv"));
-    CHECK(manifest.find("\n" + row.str() + ",") != std::string::npos);
+    std::string needle = "\n";
+    needle += row.str();
+    needle += ",";
+    CHECK(manifest.find(needle) != std::string::npos);
   }
   CHECK(manifestWithoutTimes(dir.file("out")).rfind("index,folder,gray,shift,seed,spp,backend,precision,device,files\n", 0) == 0);
   const std::string json = readText(dir.file("out/manifest.json"));
@@ -249,4 +252,25 @@ TEST_CASE("cli: sweep points that switch textures render exactly as render does 
     if (i == 0) first = a.pixels;
     if (i == 2) CHECK(a.pixels != first);  // the textures differ, so the test can tell them apart
   }
+}
+
+TEST_CASE("cli: sweep shows progress on a terminal only") {
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  // Not a terminal (runCli redirects stderr): nothing on stderr (checked in the first test too).
+  CHECK(runCli("sweep " + scene + " -o " + dir.file("quiet") + kFast).err.empty());
+  // A terminal: util-linux `script` runs the command on a pseudo-terminal.
+  if (std::system("command -v script >/dev/null 2>&1") != 0) {
+    MESSAGE("util-linux `script` not found: terminal progress not checked");
+    return;
+  }
+  const std::string log = dir.file("tty.log");
+  const std::string command = "script -qec '" + std::string(DS_BINARY) + " sweep " + scene + " -o " +
+                              dir.file("tty") + kFast + "' /dev/null > " + log + " 2>&1";
+  REQUIRE(std::system(command.c_str()) == 0);
+  const std::string text = readText(log);
+  INFO(text);
+  CHECK(text.find("\rsweep: 1/6 points, ") != std::string::npos);
+  CHECK(text.find("\rsweep: 6/6 points, ") != std::string::npos);
+  CHECK(text.find(" img/s, ETA ") != std::string::npos);
 }

@@ -72,7 +72,11 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
   summary.total = std::int64_t(plan.points.size());
 
   std::string csv = "index,folder";
-  for (const std::string& n : plan.names) csv += "," + csvField(n);
+  // (+= piecewise: GCC 12 warns -Wrestrict, wrongly, on "," + std::string temporaries)
+  for (const std::string& n : plan.names) {
+    csv += ',';
+    csv += csvField(n);
+  }
   csv += ",seed,spp,backend,precision,device,render_seconds,files\n";
   std::string js = "{\n  \"scene\": " + json::quote(scenePath) + ",\n  \"sweep\": " +
                    json::quote(kindName(plan.declaration.kind)) + ",\n  \"parameters\": [";
@@ -95,10 +99,12 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
     csv += std::to_string(p.index) + "," + folderName;
     std::string params;
     for (const auto& [name, value] : p.values) {
-      csv += "," + csvValue(value);
+      csv += ',';
+      csv += csvValue(value);
       params += (params.empty() ? "" : ", ") + json::quote(name) + ": " + value.json();
     }
-    csv += "," + std::to_string(record->seed) + "," + std::to_string(record->samplesPerPixel) + "," +
+    csv += ',';
+    csv += std::to_string(record->seed) + "," + std::to_string(record->samplesPerPixel) + "," +
            csvField(record->backend) + "," + csvField(record->precision) + "," + csvField(record->device) + "," +
            seconds(record->renderSeconds) + "," + csvField(files) + "\n";
     points += std::string(points.empty() ? "" : ",\n") + "    {\"index\": " + std::to_string(p.index) +

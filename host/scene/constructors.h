@@ -18,6 +18,7 @@ void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Shad
 void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...
 void registerTargetConstructors(lua_State* L);  // target_constructors.cpp: Target (after
                                                 //   registerObjectConstructors)
+void registerSweepFunctions(lua_State* L);      // sweep_functions.cpp: linspace, points, random
 void registerRigConstructors(lua_State* L);     // rig_constructors.cpp: Rig
 
 }  // namespace dicsynth::scene

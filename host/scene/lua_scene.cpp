@@ -21,6 +21,7 @@
 #include "scene/lua_sandbox.h"
 #include "scene/lua_values.h"
 #include "scene/scene.h"
+#include "scene/sweep_declaration.h"
 
 namespace dicsynth {
 
@@ -34,6 +35,7 @@ void registerSceneLanguage(lua_State* L) {
   registerTransformFunctions(L);
   registerTargetConstructors(L);
   registerRigConstructors(L);
+  registerSweepFunctions(L);
 }
 
 namespace {
@@ -71,6 +73,8 @@ bool isLuaKeyword(const std::string& name) {
       "repeat",   "return", "then", "true", "until",  "while"};
   return kKeywords.count(name) > 0;
 }
+
+std::string path(lua_State* L) { return LuaSandbox::of(L).scenePath(); }
 
 // _G.__index: serves a define (upvalue 1: name → value) and records the read (upvalue 2).
 int readDefine(lua_State* L) {
@@ -133,14 +137,18 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
   lua_settop(L, values - 1);
 }
 
-void checkDefinesRead(lua_State* L,
-                      const std::vector<std::pair<std::string, std::string>>& defines) {
+void checkDefinesRead(lua_State* L, const std::vector<std::pair<std::string, std::string>>& defines,
+                      const std::vector<std::string>& sweepParameters) {
   lua_getfield(L, LUA_REGISTRYINDEX, kDefinesReadKey);
   for (const auto& define : defines) {
     const std::string& name = define.first;
     const bool read = lua_getfield(L, -1, name.c_str()) != LUA_TNIL;
     lua_pop(L, 1);
-    if (!read) throw InputError("-D " + name + ": the scene never reads '" + name + "'");
+    if (read) continue;
+    if (std::find(sweepParameters.begin(), sweepParameters.end(), name) != sweepParameters.end())
+      throw InputError(path(L) + ": sweep parameter '" + name + "': the scene never reads '" + name +
+                       "' (a typo in the sweep, or a scene that ignores it)");
+    throw InputError("-D " + name + ": the scene never reads '" + name + "'");
   }
   lua_pop(L, 1);
 }
@@ -252,6 +260,11 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
 }  // namespace scene
 
 Scene loadScene(const std::string& path, const SceneParams& params) {
+  return scene::loadSceneInspecting(path, params, nullptr);
+}
+
+Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& params,
+                                 const std::function<void(lua_State*)>& inspect) {
   const std::string source = scene::readSceneFile(path);
   scene::LuaSandbox sandbox(path, {params.maxInstructions, params.maxMemoryBytes});
   lua_State* L = sandbox.state();
@@ -262,7 +275,8 @@ Scene loadScene(const std::string& path, const SceneParams& params) {
 
   sandbox.run(source);
 
-  scene::checkDefinesRead(L, params.defines);
+  scene::checkDefinesRead(L, params.defines, params.sweepParameters);
+  if (inspect) inspect(L);
   Scene scene = scene::collectGlobals(L, path);
   if (scene.cameras.empty())
     throw InputError(path + ": the scene defines no camera (assign Camera.Pinhole{…} to a global)");

@@ -129,6 +129,9 @@ struct Scene {
 struct SceneParams {
   std::vector<std::pair<std::string, std::string>> defines;  // -D name=value (number/bool/string)
   int frame = 0;                                              // global `frame`
+  // Names among `defines` set by a sweep point (dicsynth sweep): messages call them sweep
+  // parameters instead of -D options.
+  std::vector<std::string> sweepParameters;
   // Limits of the scene's Lua code. A real scene runs in milliseconds and needs a few MiB; the
   // limits only turn a runaway scene (endless loop, table growing without end) into a clear
   // "FILE:LINE: scene exceeded the ... limit" error instead of a hang or an exhausted machine.

@@ -1,0 +1,281 @@
+// `dicsynth sweep SCENE.lua -o DIR`: renders every point of a sweep (README "Sweeps") into
+// DIR/point_NNNNN/ with the files `render` writes, records each finished point (point_record.h) and
+// rebuilds DIR/manifest.{csv,json} (manifest.h). One process keeps the device, the pipelines and
+// the resolved precision across its points (RenderSession). Points already complete are skipped;
+// --shard I/N (or a Slurm job array) renders the points with index ≡ I (mod N).
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "cli/commands.h"
+#include "cli/render_args.h"
+#include "cli/render_job.h"
+#include "core/error.h"
+#include "core/exact_number.h"
+#include "core/json.h"
+#include "shared/rng.h"
+#include "sweep/manifest.h"
+#include "sweep/point_record.h"
+#include "sweep/sweep_points.h"
+
+namespace dicsynth::cli {
+namespace {
+namespace fs = std::filesystem;
+
+struct SweepCommand {
+  RenderArgs args;
+  std::string outputDir;
+  std::string backend = "gpu";
+  std::string frames;
+  SweepOptions sweep;
+  std::string shard;  // "I/N"
+  bool seedPerPoint = false;
+  bool mergeOnly = false;
+  bool list = false;
+};
+
+struct Shard {
+  std::int64_t index = 0, count = 1;
+  std::string origin;  // for messages: "--shard 1/4" or "SLURM_ARRAY_TASK_ID=2 ..."
+};
+
+std::optional<std::int64_t> parseInteger(const char* text) {
+  if (text == nullptr || *text == '\0') return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(text, &end, 10);
+  if (errno != 0 || *end != '\0') return std::nullopt;
+  return v;
+}
+
+// --shard I/N, else the Slurm job array's task (0-based from SLURM_ARRAY_TASK_MIN), else 0/1.
+Shard resolveShard(const std::string& option) {
+  Shard s;
+  if (!option.empty()) {
+    const auto slash = option.find('/');
+    const auto i = slash == std::string::npos ? std::nullopt : parseInteger(option.substr(0, slash).c_str());
+    const auto n = slash == std::string::npos ? std::nullopt : parseInteger(option.substr(slash + 1).c_str());
+    if (!i || !n || *n < 1 || *i < 0 || *i >= *n)
+      throw InputError("--shard " + option + ": expected I/N with 0 <= I < N");
+    return {*i, *n, "--shard " + option};
+  }
+  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+  if (id == nullptr || count == nullptr) return s;
+  const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+  const auto i = parseInteger(id), n = parseInteger(count), m = min ? parseInteger(min) : std::optional<std::int64_t>(0);
+  const std::string origin = std::string("SLURM_ARRAY_TASK_ID=") + id + " SLURM_ARRAY_TASK_COUNT=" + count +
+                             " SLURM_ARRAY_TASK_MIN=" + (min ? min : "(unset)");
+  // Arrays may start at 1 (--array=1-8): the shard is the task's offset from the array's first.
+  if (!i || !n || !m || *n < 1 || *i - *m < 0 || *i - *m >= *n)
+    throw InputError(origin + ": cannot shard by these (expected a contiguous array, step 1; or give --shard I/N)");
+  return {*i - *m, *n, origin};
+}
+
+std::string hostName() {
+  char buf[256] = {0};
+  if (gethostname(buf, sizeof buf - 1) != 0) return "";
+  return buf;
+}
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string parametersJson(const SweepPoint& p) {
+  std::string s = "{";
+  for (std::size_t i = 0; i < p.values.size(); ++i)
+    s += (i ? ", " : "") + json::quote(p.values[i].first) + ": " + p.values[i].second.json();
+  return s + "}";
+}
+
+std::string readWholeFile(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) throw InputError(path + ": cannot read the scene file");
+  std::string text;
+  char buf[1 << 16];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+  std::fclose(f);
+  return text;
+}
+
+// Terminal progress: "sweep: 12/50 points, 0.83 img/s, ETA 0:00:42" (stderr, only on a TTY).
+class Progress {
+ public:
+  Progress(std::int64_t total, bool enabled) : total_(total), enabled_(enabled) {}
+  void update(std::int64_t done, std::int64_t rendered, std::int64_t images) {
+    if (!enabled_) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double rate = elapsed > 0 ? double(images) / elapsed : 0;
+    const double perPoint = rendered > 0 ? elapsed / double(rendered) : 0;
+    const auto eta = std::int64_t(perPoint * double(total_ - done));
+    std::fprintf(stderr, "\rsweep: %lld/%lld points, %.2f img/s, ETA %lld:%02lld:%02lld   ", (long long)done,
+                 (long long)total_, rate, (long long)(eta / 3600), (long long)(eta / 60 % 60), (long long)(eta % 60));
+    if (done == total_) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  std::int64_t total_;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+int runSweep(const SweepCommand& cmd) {
+  const auto defines = parseDefines(cmd.args.defines);
+  renderOptions(cmd.args, 0);  // validate the sampling options before any work
+  const bool numbered = !cmd.frames.empty();
+  const std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
+  const SweepPlan plan = planSweep(cmd.args.scenePath, defines, cmd.sweep);
+  const Shard shard = resolveShard(cmd.shard);
+
+  if (cmd.list) {
+    for (const SweepPoint& p : plan.points) {
+      std::printf("%lld %s", (long long)p.index, pointFolderName(p.index).c_str());
+      for (const auto& [name, value] : p.values) std::printf(" %s=%s", name.c_str(), value.defineText().c_str());
+      std::printf("\n");
+    }
+    return kExitOk;
+  }
+
+  // The key of a point: everything that determines its files. The scene enters by its content
+  // (CRC-32), so editing the scene invalidates finished points; assets it loads do not enter.
+  const std::string sceneText = readWholeFile(cmd.args.scenePath);
+  std::string definesText;
+  for (const auto& [n, v] : defines) definesText += n + "=" + v + " ";
+  const std::string commonKey =
+      "scene_crc32=" + std::to_string(sweep::crc32Of(sceneText)) + " spp=" + std::to_string(cmd.args.spp) +
+      " precision=" + cmd.args.precision + " max_error_px=" + exactNumber(cmd.args.maxErrorPx) +
+      " downscale=" + std::to_string(cmd.args.downscale) + " backend=" + cmd.backend + " frames=" + cmd.frames +
+      " defines=" + definesText;
+  auto seedOf = [&](const SweepPoint& p) {
+    return cmd.seedPerPoint ? ds_hash_combine(ds_hash(cmd.args.seed), std::uint32_t(p.index)) : cmd.args.seed;
+  };
+  auto keyOf = [&](const SweepPoint& p) {
+    return commonKey + " seed=" + std::to_string(seedOf(p)) + " parameters=" + parametersJson(p);
+  };
+
+  createOutputDir(cmd.outputDir);
+  if (::access(cmd.outputDir.c_str(), W_OK | X_OK) != 0)
+    throw InputError("-o " + cmd.outputDir + ": the output folder is not writable");
+  if (cmd.mergeOnly) {
+    const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf);
+    std::printf("manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
+                (long long)summary.complete, (long long)summary.total, cmd.outputDir.c_str());
+    return kExitOk;
+  }
+  const fs::path lockDir = fs::path(cmd.outputDir) / ".locks";
+  std::error_code ec;
+  fs::create_directories(lockDir, ec);
+  if (ec) throw InputError("-o " + cmd.outputDir + ": cannot create " + lockDir.string() + ": " + ec.message());
+
+  std::vector<const SweepPoint*> mine;
+  for (const SweepPoint& p : plan.points)
+    if (p.index % shard.count == shard.index) mine.push_back(&p);
+
+  RenderSession session(cmd.args, cmd.backend);
+  Progress progress(std::int64_t(mine.size()), stderrIsTerminal());
+  std::int64_t done = 0, rendered = 0, skipped = 0, busy = 0, images = 0;
+  const std::string host = hostName();
+  for (const SweepPoint* p : mine) {
+    const std::string folder = (fs::path(cmd.outputDir) / pointFolderName(p->index)).string();
+    // One owner per point at a time, whatever the sharding: a second process skips it.
+    sweep::FileLock lock((lockDir / (pointFolderName(p->index) + ".lock")).string(), false);
+    if (!lock.acquired()) {
+      ++busy;
+      progress.update(++done, rendered, images);
+      continue;
+    }
+    const std::string key = keyOf(*p);
+    if (const auto record = sweep::readPointRecord(folder);
+        record && record->index == p->index && sweep::pointFilesIntact(folder, *record, key, true)) {
+      ++skipped;
+      progress.update(++done, rendered, images);
+      continue;
+    }
+    // Not complete: start the point from an empty folder (a killed run may have left part of it).
+    fs::remove_all(folder, ec);
+    RenderJob job;
+    job.outputDir = folder;
+    job.frames = frames;
+    job.numbered = numbered;
+    job.defines = pointDefines(defines, *p);
+    job.sweepParameters = plan.names;
+    job.seed = seedOf(*p);
+    job.verbose = false;
+    try {
+      const RenderJobResult result = runRenderJob(session, job);
+      sweep::PointRecord record;
+      record.index = p->index;
+      record.key = key;
+      record.parametersJson = parametersJson(*p);
+      record.seed = seedOf(*p);
+      record.samplesPerPixel = cmd.args.spp;
+      record.backend = result.backend;
+      record.precision = result.precision;
+      record.device = result.device;
+      record.renderSeconds = result.renderSeconds;
+      record.host = host;
+      record.finishedUtc = utcNow();
+      record.files = sweep::scanPointFiles(folder);
+      sweep::writePointRecord(folder, record);
+    } catch (...) {
+      fs::remove_all(folder, ec);  // nothing half-written stays (and a full disk gets its space back)
+      throw;
+    }
+    ++rendered;
+    images += std::int64_t(frames.size());
+    progress.update(++done, rendered, images);
+  }
+  const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf);
+  std::printf("sweep: %lld points%s: rendered %lld, already complete %lld, in progress elsewhere %lld; "
+              "manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
+              (long long)mine.size(),
+              shard.count > 1 ? (" (shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) + " of " +
+                                 std::to_string(plan.points.size()) + ", by " + shard.origin + ")").c_str()
+                              : "",
+              (long long)rendered, (long long)skipped, (long long)busy, (long long)summary.complete,
+              (long long)summary.total, cmd.outputDir.c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+void addSweepCommand(CLI::App& root, RunFn& run) {
+  auto cmd = std::make_shared<SweepCommand>();
+  CLI::App* sub = root.add_subcommand(
+      "sweep", "Render every point of a parameter sweep into DIR/point_NNNNN/, with DIR/manifest.csv and .json");
+  addRenderArgs(*sub, cmd->args);
+  sub->add_option("-o,--output", cmd->outputDir, "Output folder of the sweep (created if missing)")->required();
+  sub->add_option("--backend", cmd->backend, "gpu (Vulkan) or cpu (double-precision reference)")
+      ->check(CLI::IsMember({"gpu", "cpu"}))
+      ->capture_default_str();
+  sub->add_option("--frames", cmd->frames, "Frames A:B or N of every point (as render --frames)");
+  sub->add_option("--sweep", cmd->sweep.sweeps,
+                  "NAME=A:B:N (N values from A to B), NAME=V1,V2,... or, with --random, NAME=LO:HI; replaces the "
+                  "scene's `sweep`");
+  sub->add_option("--random", cmd->sweep.randomCount, "Random sweep of N points over the --sweep ranges");
+  sub->add_option("--random-seed", cmd->sweep.randomSeed, "Seed of --random")->capture_default_str();
+  sub->add_option("--shard", cmd->shard,
+                  "I/N: render the points whose index mod N is I (default: from SLURM_ARRAY_TASK_ID/COUNT/MIN)");
+  sub->add_flag("--seed-per-point", cmd->seedPerPoint,
+                "Point i renders with seed hash(--seed, i) instead of --seed (independent samples per point)");
+  sub->add_flag("--merge-only", cmd->mergeOnly, "Only rebuild the manifest from the finished points' records");
+  sub->add_flag("--list", cmd->list, "Print the points (index, folder, parameters) and exit");
+  sub->callback([cmd, &run] { run = [cmd] { return runSweep(*cmd); }; });
+}
+
+}  // namespace dicsynth::cli

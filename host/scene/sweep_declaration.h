@@ -1,0 +1,67 @@
+#pragma once
+// A sweep as the scene (global `sweep`) or the command line (--sweep) declares it, before its
+// points are enumerated (host/sweep/sweep_points.h). Three kinds:
+//   Grid:   sweep = { strain = linspace(0, 0.01, 11), noise = {0, 1, 2} }  every combination
+//   Points: sweep = points { {strain = 0, noise = 1}, {strain = 0.01, noise = 0} }  as listed
+//   Random: sweep = random { n = 1000, seed = 7, strain = {0, 0.01} }  uniform in [lo, hi)
+// The scene functions linspace, points and random are registered by registerSweepFunctions
+// (sweep_functions.cpp, which documents them).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/scene.h"
+
+struct lua_State;
+
+namespace dicsynth {
+
+// One value of a sweep parameter: a number, a boolean or a string, set as a Lua global.
+struct SweepValue {
+  enum class Kind { Number, Boolean, String };
+  Kind kind = Kind::Number;
+  double number = 0;
+  bool boolean = false;
+  std::string text;
+
+  static SweepValue ofNumber(double v) { return {Kind::Number, v, false, {}}; }
+  // The text a -D define would carry to give the scene this value (numbers exact, %.17g).
+  std::string defineText() const;
+  std::string json() const;  // 0.01, true, "abc"
+  bool operator==(const SweepValue&) const = default;
+};
+
+using SweepAssignment = std::vector<std::pair<std::string, SweepValue>>;  // sorted by name
+
+struct SweepRange {
+  std::string name;
+  double lo = 0, hi = 0;  // uniform in [lo, hi)
+};
+
+struct SweepDeclaration {
+  enum class Kind { None, Grid, Points, Random };
+  Kind kind = Kind::None;
+  std::string origin;  // "SCENE:LINE" or "--sweep", for messages
+  std::vector<std::pair<std::string, std::vector<SweepValue>>> grid;  // Grid: sorted by name
+  std::vector<SweepAssignment> points;                               // Points: each sorted by name
+  std::vector<SweepRange> ranges;                                    // Random: sorted by name
+  std::int64_t count = 0;                                            // Random: n
+  std::uint32_t seed = 1;                                            // Random: seed
+};
+
+// Runs the scene once with `params` (the sweep's parameters unset: the scene's defaults apply)
+// and returns its global `sweep` (Kind::None when the scene has none). Throws InputError
+// ("SCENE:LINE: ...") for a malformed declaration or any scene error.
+SweepDeclaration loadSweepDeclaration(const std::string& path, const SceneParams& params);
+
+namespace scene {
+// loadScene, calling `inspect` on the Lua state after the chunk ran (defines checked).
+Scene loadSceneInspecting(const std::string& path, const SceneParams& params,
+                          const std::function<void(lua_State*)>& inspect);
+// Reads the global `sweep` of a state whose scene has run (sweep_functions.cpp).
+SweepDeclaration readSweepGlobal(lua_State* L);
+}  // namespace scene
+
+}  // namespace dicsynth

@@ -1,0 +1,40 @@
+#pragma once
+// The sweep manifest: DIR/manifest.csv and DIR/manifest.json, rebuilt from the per-point records
+// (point_record.h) of every complete point, in index order, under an exclusive lock
+// (flock on DIR/.manifest.lock), so shards finishing at the same time cannot interleave. Because
+// it is built from the records alone, the manifest of a sharded run equals that of a single
+// process, except for the per-run column render_seconds.
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "sweep/sweep_points.h"
+
+namespace dicsynth::sweep {
+
+struct ManifestSummary {
+  std::int64_t complete = 0, total = 0;
+};
+
+// `keyOf` gives each point's key (a record with another key is not complete).
+// Throws Error naming a file that cannot be written.
+ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
+                              const std::function<std::string(const SweepPoint&)>& keyOf);
+
+// An exclusive advisory lock (flock) on a file, held while the object lives.
+class FileLock {
+ public:
+  // blocking: wait for the lock; else acquired() tells whether it was free. Throws Error when the
+  // lock file cannot be created.
+  FileLock(const std::string& path, bool blocking);
+  ~FileLock();
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+  bool acquired() const { return acquired_; }
+
+ private:
+  int fd_ = -1;
+  bool acquired_ = false;
+};
+
+}  // namespace dicsynth::sweep

@@ -1,0 +1,199 @@
+#include "sweep/sweep_points.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+#include "shared/rng.h"
+
+namespace dicsynth {
+namespace {
+
+// Same bound as the scene functions (sweep_functions.cpp): points live in memory.
+constexpr std::int64_t kMaxPoints = 10'000'000;
+
+bool isIdentifier(const std::string& name) {
+  auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+  if (name.empty() || !letter(name[0])) return false;
+  return std::all_of(name.begin(), name.end(), [&](char c) { return letter(c) || (c >= '0' && c <= '9'); });
+}
+
+std::optional<double> parseNumber(const std::string& text) {
+  double v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+SweepValue parseValue(const std::string& text) {
+  if (auto n = parseNumber(text)) return SweepValue::ofNumber(*n);
+  if (text == "true" || text == "false") return {SweepValue::Kind::Boolean, 0, text == "true", {}};
+  return {SweepValue::Kind::String, 0, false, text};
+}
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (;;) {
+    const auto end = text.find(sep, start);
+    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return parts;
+    start = end + 1;
+  }
+}
+
+}  // namespace
+
+double sweepUniform(std::uint32_t seed, std::int64_t index, const std::string& name) {
+  // The name enters as a hash of its bytes, so adding a parameter changes no other one's draws.
+  uint nameKey = ds_hash(uint(name.size()) ^ 0x6a09e667u);
+  for (unsigned char c : name) nameKey = ds_hash_combine(nameKey, c);
+  const auto i = std::uint64_t(index);
+  uint h = ds_hash(seed ^ 0x9e3779b9u);
+  h = ds_hash_combine(h, uint(i & 0xffffffffu));
+  h = ds_hash_combine(h, uint(i >> 32));
+  h = ds_hash_combine(h, nameKey);
+  const uint a = ds_hash_combine(h, 1u), b = ds_hash_combine(h, 2u);
+  // 26 + 27 = 53 bits: every double in [0, 1) on the 2^-53 grid is equally likely.
+  return (double(a >> 6) * 134217728.0 + double(b >> 5)) * 0x1p-53;
+}
+
+SweepDeclaration parseSweepOptions(const SweepOptions& options) {
+  SweepDeclaration d;
+  if (options.sweeps.empty()) {
+    if (options.randomCount) throw InputError("--random: give the ranges with --sweep NAME=LO:HI");
+    return d;
+  }
+  d.origin = "--sweep";
+  d.kind = options.randomCount ? SweepDeclaration::Kind::Random : SweepDeclaration::Kind::Grid;
+  if (options.randomCount) {
+    if (*options.randomCount < 1 || *options.randomCount > kMaxPoints)
+      throw InputError("--random " + std::to_string(*options.randomCount) + ": the number of points must be in 1.." +
+                       std::to_string(kMaxPoints));
+    d.count = *options.randomCount;
+    d.seed = options.randomSeed;
+  }
+  for (const std::string& entry : options.sweeps) {
+    const std::string option = "--sweep " + entry + ": ";
+    const auto eq = entry.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError(option + "expected NAME=A:B:N, NAME=V1,V2,... or NAME=LO:HI");
+    const std::string name = entry.substr(0, eq), spec = entry.substr(eq + 1);
+    const auto colons = split(spec, ':');
+    if (d.kind == SweepDeclaration::Kind::Random) {
+      const auto lo = colons.size() == 2 ? parseNumber(colons[0]) : std::nullopt;
+      const auto hi = colons.size() == 2 ? parseNumber(colons[1]) : std::nullopt;
+      if (!lo || !hi) throw InputError(option + "with --random, expected NAME=LO:HI (numbers)");
+      if (!(*lo < *hi)) throw InputError(option + "empty range (LO must be < HI)");
+      d.ranges.push_back({name, *lo, *hi});
+      continue;
+    }
+    std::vector<SweepValue> values;
+    if (colons.size() == 3) {
+      const auto a = parseNumber(colons[0]), b = parseNumber(colons[1]);
+      long long n = 0;
+      const auto r = std::from_chars(colons[2].data(), colons[2].data() + colons[2].size(), n);
+      if (!a || !b || r.ec != std::errc() || r.ptr != colons[2].data() + colons[2].size())
+        throw InputError(option + "expected A:B:N (numbers A, B and an integer N)");
+      if (n < 1) throw InputError(option + "N = " + std::to_string(n) + " gives an empty range (N must be >= 1)");
+      if (n > kMaxPoints) throw InputError(option + "N is more than " + std::to_string(kMaxPoints));
+      // Same values as the scene's linspace (sweep_functions.cpp).
+      for (long long i = 0; i < n; ++i)
+        values.push_back(SweepValue::ofNumber(n == 1 ? *a : i == n - 1 ? *b : *a + double(i) * (*b - *a) / double(n - 1)));
+    } else if (colons.size() == 1) {
+      for (const std::string& v : split(spec, ',')) {
+        if (v.empty()) throw InputError(option + "empty value in the list (write V1,V2,...)");
+        values.push_back(parseValue(v));
+      }
+    } else {
+      throw InputError(option + "expected A:B:N or V1,V2,... (LO:HI needs --random COUNT)");
+    }
+    d.grid.emplace_back(name, std::move(values));
+  }
+  std::sort(d.grid.begin(), d.grid.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::sort(d.ranges.begin(), d.ranges.end(), [](const auto& x, const auto& y) { return x.name < y.name; });
+  return d;
+}
+
+std::vector<SweepPoint> enumerateSweep(const SweepDeclaration& d) {
+  std::vector<SweepPoint> points;
+  switch (d.kind) {
+    case SweepDeclaration::Kind::None: break;
+    case SweepDeclaration::Kind::Grid: {
+      std::int64_t total = 1;
+      for (const auto& [name, values] : d.grid) {
+        if (values.empty()) throw InputError(d.origin + ": sweep parameter '" + name + "' has no value");
+        if (total > kMaxPoints / std::int64_t(values.size()))
+          throw InputError(d.origin + ": the grid has more than " + std::to_string(kMaxPoints) + " points");
+        total *= std::int64_t(values.size());
+      }
+      points.reserve(std::size_t(total));
+      for (std::int64_t i = 0; i < total; ++i) {
+        SweepPoint p{i, {}};
+        p.values.resize(d.grid.size());
+        std::int64_t rest = i;
+        for (std::size_t k = d.grid.size(); k-- > 0;) {  // the last name varies fastest
+          const auto& values = d.grid[k].second;
+          p.values[k] = {d.grid[k].first, values[std::size_t(rest % std::int64_t(values.size()))]};
+          rest /= std::int64_t(values.size());
+        }
+        points.push_back(std::move(p));
+      }
+      break;
+    }
+    case SweepDeclaration::Kind::Points:
+      for (std::size_t i = 0; i < d.points.size(); ++i) points.push_back({std::int64_t(i), d.points[i]});
+      break;
+    case SweepDeclaration::Kind::Random:
+      points.reserve(std::size_t(d.count));
+      for (std::int64_t i = 0; i < d.count; ++i) {
+        SweepPoint p{i, {}};
+        for (const SweepRange& r : d.ranges) {
+          double x = r.lo + (r.hi - r.lo) * sweepUniform(d.seed, i, r.name);
+          if (x >= r.hi) x = std::nextafter(r.hi, r.lo);  // rounding must not reach the open end
+          p.values.emplace_back(r.name, SweepValue::ofNumber(x));
+        }
+        points.push_back(std::move(p));
+      }
+      break;
+  }
+  return points;
+}
+
+SweepPlan planSweep(const std::string& scenePath, const std::vector<std::pair<std::string, std::string>>& defines,
+                    const SweepOptions& options) {
+  SweepPlan plan;
+  plan.declaration = parseSweepOptions(options);
+  if (plan.declaration.kind == SweepDeclaration::Kind::None) {
+    plan.declaration = loadSweepDeclaration(scenePath, SceneParams{defines, 0});
+    if (plan.declaration.kind == SweepDeclaration::Kind::None)
+      throw InputError(scenePath + ": the scene declares no sweep (global `sweep`) and no --sweep option is given");
+  }
+  plan.points = enumerateSweep(plan.declaration);
+  if (plan.points.empty()) throw InputError(plan.declaration.origin + ": the sweep has no point");
+  for (const auto& [name, value] : plan.points.front().values) plan.names.push_back(name);
+  for (const std::string& name : plan.names) {
+    const std::string what = plan.declaration.origin + ": sweep parameter '" + name + "': ";
+    if (!isIdentifier(name)) throw InputError(what + "not a Lua identifier (letters, digits and _, not starting with a digit)");
+    if (name == "frame") throw InputError(what + "'frame' is reserved (use --frames)");
+    for (const auto& define : defines)
+      if (define.first == name) throw InputError(what + "also given by -D " + name + "; give it in one place");
+  }
+  return plan;
+}
+
+std::string pointFolderName(std::int64_t index) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "point_%05lld", static_cast<long long>(index));
+  return buf;
+}
+
+std::vector<std::pair<std::string, std::string>> pointDefines(
+    const std::vector<std::pair<std::string, std::string>>& defines, const SweepPoint& point) {
+  auto out = defines;
+  for (const auto& [name, value] : point.values) out.emplace_back(name, value.defineText());
+  return out;
+}
+
+}  // namespace dicsynth

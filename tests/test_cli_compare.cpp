@@ -157,3 +157,42 @@ TEST_CASE("cli: compare's bad options give one line, exit code 2 and no report")
   }
   CHECK_FALSE(std::filesystem::exists(report));
 }
+
+TEST_CASE("cli: compare over a sweep has a JUnit case per point and camera") {
+  // The scene declares its sweep (2 × 1 grid); --points compares each point, --sweep replaces it.
+  TempFolder dir;
+  copyScenes(dir);
+  const std::string scene =
+      dir.write("scenes/swept.lua", test::readBytes(kScenes + "rectangle.lua") + "sweep = { shift = {0, 0.002} }\n");
+  const std::string report = dir.file("report.xml");
+  test::CliResult r = runCli("compare " + scene + kFast + " --precision fp64 --points --junit " + report);
+  INFO(r.out << r.err);
+  CHECK(r.exitCode == 0);
+  std::vector<Case> cases = readReport(report);
+  REQUIRE(cases.size() == 2);
+  CHECK(cases[0].classname == "swept.point_00000");
+  CHECK(cases[1].classname == "swept.point_00001");
+  CHECK(cases[1].suite == scene + " point_00001 (shift=0.002)");
+  for (const Case& c : cases) CHECK((c.name == "camera" && c.outcome == "pass"));
+  CHECK(r.out.find("compare: 2 sweep points, 2 test cases: 2 passed") != std::string::npos);
+  // The point's values reach the scene: with --json each point reports its parameters.
+  r = runCli("compare " + scene + kFast + " --precision fp64 --sweep shift=0:0.001:3 --json");
+  CHECK(r.exitCode == 0);
+  CHECK(r.out.find("\"point\": 2, \"parameters\": {\"shift\": 0.001}") != std::string::npos);
+  // A parameter the scene never reads: every point is an error case naming it.
+  r = runCli("compare " + scene + kFast + " --precision fp64 --sweep nonsense=1,2 --junit " + report);
+  CHECK(r.exitCode == 2);
+  cases = readReport(report);
+  REQUIRE(cases.size() == 2);
+  for (const Case& c : cases) CHECK((c.outcome == "error" && c.message.find("'nonsense'") != std::string::npos));
+  // Bad input before anything renders: a sweep over a folder, --points on a scene without one.
+  for (const auto& [args, prefix] : std::vector<std::pair<std::string, std::string>>{
+           {dir.file("scenes") + " --points", dir.file("scenes") + ": a sweep"},
+           {kScenes + "triangle.lua --points", kScenes + "triangle.lua: the scene declares no sweep"},
+       }) {
+    const test::CliResult bad = runCli("compare " + args + kFast);
+    INFO(args << "\n" << bad.err);
+    CHECK(bad.exitCode == 2);
+    CHECK(bad.err.rfind(prefix, 0) == 0);
+  }
+}

@@ -1,6 +1,6 @@
-// `dicsynth compare SCENE.lua|FOLDER`: renders each scene (every *.lua of a folder, sorted) on the
-// CPU reference and on the GPU with the same samples, prints the differences per camera, optionally
-// writes them as a JUnit report (one test case per scene × camera), and exits with the worst
+// `dicsynth compare SCENE.lua|FOLDER`: renders each scene (every *.lua of a folder, sorted, or every
+// point of a scene's sweep) on the CPU reference and on the GPU with the same samples, prints the differences per camera, optionally
+// writes them as a JUnit report (one test case per scene (× point) × camera), and exits with the worst
 // outcome: 0 all within tolerance, 1 a difference over it, 2 bad input, 3 a run-time failure.
 // One Vulkan device and renderer serve every scene.
 #include <algorithm>
@@ -31,6 +31,7 @@ struct CompareCommand {
   bool json = false;
   std::string junitPath;
   double toleranceScale = 1;
+  CompareSweepArgs sweep;
 };
 
 // The outcome of one item (scene or sweep point): its JUnit suite and exit code.
@@ -185,7 +186,7 @@ int runCompare(const CompareCommand& cmd) {
                             cmd.toleranceScale));
   const RenderOptions base = renderOptions(cmd.args, cmd.frame);
   const auto defines = parseDefines(cmd.args.defines);
-  const std::vector<CompareItem> items = compareItems(cmd.args.scenePath, defines);
+  const std::vector<CompareItem> items = compareItems(cmd.args.scenePath, defines, cmd.sweep);
   // Checked before any rendering: a report that cannot be written must not cost the whole run.
   if (!cmd.junitPath.empty()) {
     const std::filesystem::path folder = std::filesystem::path(cmd.junitPath).parent_path();
@@ -241,6 +242,7 @@ void addCompareCommand(CLI::App& root, RunFn& run) {
   sub->add_option("--tolerance-scale", cmd->toleranceScale,
                   "Multiply every tolerance by this factor in (0, 1] (stricter checks)")
       ->capture_default_str();
+  addCompareSweepArgs(*sub, cmd->sweep);
   sub->callback([cmd, &run] { run = [cmd] { return runCompare(*cmd); }; });
 }
 

@@ -143,7 +143,7 @@ wait_job() {
     sleep 2
   done
   scontrol -o show job "$job" | while read -r line; do
-    echo "  $(grep -oE '(JobId|ArrayTaskId|JobName|JobState|ExitCode|RunTime)=[^ ]+' <<<"$line" | tr '\n' ' ')"
+    echo "  $(grep -oE '\b(JobId|ArrayTaskId|JobName|JobState|ExitCode|RunTime)=[^ ]+' <<<"$line" | tr '\n' ' ')"
   done
 }
 
@@ -236,4 +236,24 @@ for f in $listed; do
 done
 ((files > 0)) || fail "no files listed in the manifest"
 log "manifest.csv and manifest.json identical apart from render_seconds; $files files identical byte for byte"
+
+# --- a lost point: the merge job fails, resubmitting the array renders only that point ----------
+lost=$(printf "point_%05d" $((expected - 1)))  # the last point
+rm -rf "${SLURM_OUT:?}/$lost"
+merge=$(sbatch --parsable --output="$SLURM_OUT/slurm/merge-%j.out" "$ROOT/scripts/slurm/sweep-merge.sbatch" \
+  "$SCENE" "$SLURM_OUT" "${SWEEP_ARGS[@]}")
+wait_job "$merge" 300
+scontrol -o show job "$merge" | grep -q 'JobState=FAILED' || fail "the merge job did not fail with $lost missing"
+grep -q "1 of $expected points missing" "$SLURM_OUT/slurm/merge-$merge.out" || fail "merge log does not name the gap"
+log "with $lost removed the merge job failed: $(grep missing "$SLURM_OUT/slurm/merge-$merge.out")"
+read -r array merge < <("$ROOT/scripts/slurm/submit-sweep.sh" "$SHARDS" "$SCENE" "$SLURM_OUT" "${SWEEP_ARGS[@]}")
+wait_job "$array" 1200
+check_job_ok "$array"
+wait_job "$merge" 300
+check_job_ok "$merge"
+rendered=$(grep -h '^sweep:' "$SLURM_OUT"/slurm/sweep-"${array}"_*.out | grep -oE 'rendered [0-9]+' | awk '{ s += $2 } END { print s }')
+((rendered == 1)) || fail "the resubmitted array rendered $rendered points, expected only the lost one"
+compare_manifests "$SLURM_OUT" "$SINGLE_OUT" >/dev/null || fail "manifests differ after the resubmission"
+cmp -s "$SLURM_OUT/$lost/camera.tif" "$SINGLE_OUT/$lost/camera.tif" || fail "$lost re-rendered differently"
+log "resubmitted array rendered only $lost (1 point); manifest complete and identical again"
 log "PASS: $expected points in $SHARDS shards on a single-node Slurm ($(sinfo -V)), merged manifest complete"

@@ -54,14 +54,20 @@ fi
 
 WORK=$(mktemp -d /tmp/dicsynth-slurm.XXXXXX)
 chmod 755 "$WORK"   # jobs run as root here, but munged insists on sane directory permissions
-PIDS=()
 cleanup() {
   local rc=$?
   log "stopping daemons"
+  local pids=() pidfile pid
   for pidfile in "$WORK"/slurmd.pid "$WORK"/slurmctld.pid "$WORK"/munged.pid; do
-    [[ -s $pidfile ]] && kill "$(cat "$pidfile")" 2>/dev/null || true
+    [[ -s $pidfile ]] && pids+=("$(cat "$pidfile")")
   done
-  sleep 1
+  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+  for _ in $(seq 20); do  # up to 10 s for them to exit before their folder goes
+    local alive=0
+    for pid in "${pids[@]}"; do kill -0 "$pid" 2>/dev/null && alive=1; done
+    ((alive)) || break
+    sleep 0.5
+  done
   if ((rc != 0)); then
     for f in "$WORK"/*.log; do [[ -f $f ]] && { echo "---- $f (tail)"; tail -n 20 "$f"; }; done
   fi
@@ -72,7 +78,7 @@ trap cleanup EXIT
 
 # --- munge: own key and socket, so a munged already running on the host is left alone ---------
 mkdir -p "$WORK/munge"
-chmod 700 "$WORK/munge"
+chmod 755 "$WORK/munge"  # munged wants its socket's folder searchable by all (the key stays 0400)
 dd if=/dev/urandom of="$WORK/munge/munge.key" bs=1024 count=1 status=none
 chmod 400 "$WORK/munge/munge.key"
 MUNGE_SOCKET=$WORK/munge/munge.socket
@@ -155,6 +161,7 @@ check_job_ok() {
 }
 
 if ((TRIVIAL)); then
+  # shellcheck disable=SC2016  # expanded by the job, not here
   job=$(sbatch --parsable --array=0-$((SHARDS - 1)) --output="$WORK/out/echo-%A_%a.out" \
     --wrap 'echo "task $SLURM_ARRAY_TASK_ID of $SLURM_ARRAY_TASK_COUNT (min $SLURM_ARRAY_TASK_MIN) on $(hostname)"')
   log "submitted echo array $job"

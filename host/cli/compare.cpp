@@ -104,8 +104,9 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Renders and compares one item; appends its text or JSON to stdout.
-ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, RenderOptions options,
+// Renders and compares one item; appends its text or JSON to stdout. `several`: progress lines
+// name the item.
+ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool several, RenderOptions options,
                         gpu::Context& context, gpu::Renderer& renderer) {
   const auto t0 = std::chrono::steady_clock::now();
   ItemOutcome out;
@@ -113,7 +114,7 @@ ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, Rend
   out.suite.timestamp = junit::timestampNow();
   const Scene scene = loadScene(item.scenePath, {item.defines, cmd.frame});
   const PreparedScene prepared = prepareScene(scene, {cmd.args.downscale});
-  const std::string prefix = item.point ? item.label + ": " : "";
+  const std::string prefix = several ? item.label + ": " : "";
   options.progress = progressPrinter(prefix + "cpu reference");
   const RenderResult cpu = cpu::render(prepared, options);
   options.progress = progressPrinter(prefix + "gpu " + std::string(toString(options.precision)));
@@ -206,7 +207,7 @@ int runCompare(const CompareCommand& cmd) {
   for (const CompareItem& item : items) {
     ItemOutcome outcome;
     try {
-      outcome = compareItem(cmd, item, options, context, renderer);
+      outcome = compareItem(cmd, item, items.size() > 1, options, context, renderer);
     } catch (const InputError& e) {
       outcome = erroredItem(item, e.what(), true);
     } catch (const std::exception& e) {

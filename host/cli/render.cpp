@@ -32,6 +32,7 @@ int runRender(const RenderCommand& cmd) {
   std::rotate(frames.begin(), ref, ref + 1);
   RenderSession session(cmd.args, cmd.backend);
   RenderJob job;
+  job.sceneFile = cmd.args.scenePath;
   job.outputDir = cmd.outputDir;
   job.frames = frames;
   job.numbered = numbered;

@@ -5,11 +5,9 @@
 
 #include "core/error.h"
 #include "cpu/reference_renderer.h"
-#include "geometry/prepared_scene.h"
 #include "io/calibration_files.h"
 #include "io/feature_files.h"
 #include "io/outputs.h"
-#include "render/ground_truth.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth::cli {
@@ -29,6 +27,79 @@ void writeCalibration(const std::string& dir, const PreparedScene& prepared, con
   for (const std::string& path : writeCalibrationFiles(dir, calibrationFiles(prepared, suffix)))
     list += (list.empty() ? "" : ", ") + path;
   if (verbose) std::printf("calibration: %s\n", list.c_str());
+}
+
+// Every frame's scene is evaluated first, so a scene error stops the run before any image exists.
+std::vector<Scene> loadScenes(const RenderSession& session, const RenderJob& job) {
+  std::vector<Scene> scenes;
+  for (int f : job.frames) {
+    SceneParams params{job.defines, f};
+    params.sweepParameters = job.sweepParameters;
+    scenes.push_back(loadScene(session.args().scenePath, params));
+  }
+  return scenes;
+}
+
+RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Scene& sceneOfFrame, int frame,
+                          RenderJobResult& summary) {
+  const RenderArgs& args = session.args();
+  RenderedFrame out;
+  out.frame = frame;
+  out.scene = prepareScene(sceneOfFrame, {args.downscale, &session.textures()});
+  RenderOptions options = renderOptions(args, frame);
+  if (job.seed) options.seed = *job.seed;
+  options.precision = session.precision();  // resolved after the first frame is prepared (its errors first)
+  if (!job.progressLabel.empty())
+    options.progress = progressPrinter(job.progressLabel + (job.numbered ? " frame " + std::to_string(frame) : ""));
+  gpu::Renderer* renderer = session.renderer();
+  out.result = renderer ? renderer->render(out.scene, options) : cpu::render(out.scene, options);
+  if (session.context()) failOnValidationMessages(*session.context());  // before any file of this frame is written
+  out.options = options;
+  summary.renderSeconds += out.result.renderSeconds;
+  summary.backend = out.result.backend;
+  summary.precision = out.result.precision;
+  summary.device = out.result.device;
+  return out;
+}
+
+// Writes one frame's files. `reference` is created from the first frame written (moved from it).
+void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool calibrationPerFrame,
+                std::unique_ptr<ReferenceFrame>& reference) {
+  const int frame = rendered.frame;
+  const RenderResult& result = rendered.result;
+  const RenderOptions& options = rendered.options;
+  if (first) reference = std::make_unique<ReferenceFrame>(frame, std::move(rendered.scene), result);
+  // The reference frame's scene now lives in `reference` (moved: its textures are not copied).
+  const PreparedScene& scene = first ? reference->scene() : rendered.scene;
+
+  OutputInfo info;
+  info.sceneFile = job.sceneFile;
+  info.frame = frame;
+  info.seed = options.seed;
+  info.samplesPerPixel = options.samplesPerPixel;
+  info.backend = result.backend;
+  info.precision = result.precision;
+  info.device = result.device;
+  for (const auto& o : scene.objects) info.objectNames.push_back(o.name);
+  createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
+  if (first || calibrationPerFrame)
+    writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "", job.verbose);
+  for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
+    const Camera& cam = scene.cameras[c].camera;
+    const CameraImage& image = result.cameras[c];
+    const DerivedTruth truth = deriveTruth(*reference, frame, scene, result, c);
+    if (!truth.disparityCamera.empty() && truth.disparityVisibleCount == 0)
+      std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
+                   truth.disparityCamera.c_str(), cam.name.c_str());
+    const std::string stem = outputStem(cam.name, job.numbered, frame);
+    const OutputFiles files =
+        writeCameraOutputs(job.outputDir, stem, cam, image, digitize(image.radiance, cam), info, &truth);
+    writeFeatureFiles(job.outputDir, stem, scene, c, frame);
+    if (job.verbose)
+      std::printf("%s, %s: %dx%d, %d spp, %s %s on %s, %.2f s\n", files.image.c_str(), files.groundTruth.c_str(),
+                  cam.width_px, cam.height_px, options.samplesPerPixel, result.backend.c_str(),
+                  result.precision.c_str(), result.device.c_str(), result.renderSeconds);
+  }
 }
 
 }  // namespace
@@ -54,73 +125,35 @@ Precision RenderSession::precision() {
 }
 
 RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
-  const RenderArgs& args = session.args();
-  renderOptions(args, 0);  // validate the sampling options before any work
-
-  // Every frame's scene is evaluated first, so a scene error stops the run before any image exists.
-  std::vector<Scene> scenes;
-  for (int f : job.frames) {
-    SceneParams params{job.defines, f};
-    params.sweepParameters = job.sweepParameters;
-    scenes.push_back(loadScene(args.scenePath, params));
-  }
+  renderOptions(session.args(), 0);  // validate the sampling options before any work
+  const std::vector<Scene> scenes = loadScenes(session, job);
   // Calibration files: once and unnumbered when every frame has the same cameras, else per frame.
   const bool calibrationPerFrame = !sameCalibration(scenes);
-
   session.startDevice();
-  gpu::Renderer* renderer = session.renderer();
-  gpu::Context* context = session.context();
+  RenderJobResult summary;
   std::unique_ptr<ReferenceFrame> reference;
-  RenderJobResult out;
-
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
-    const int frame = job.frames[fi];
-    PreparedScene prepared = prepareScene(scenes[fi], {args.downscale});
-    RenderOptions options = renderOptions(args, frame);
-    if (job.seed) options.seed = *job.seed;
-    options.precision = session.precision();  // resolved after the first frame is prepared (its errors first)
-    if (!job.progressLabel.empty())
-      options.progress = progressPrinter(job.progressLabel + (job.numbered ? " frame " + std::to_string(frame) : ""));
-    const RenderResult result = renderer ? renderer->render(prepared, options) : cpu::render(prepared, options);
-    if (context) failOnValidationMessages(*context);  // before any file of this frame is written
-    out.renderSeconds += result.renderSeconds;
-    out.backend = result.backend;
-    out.precision = result.precision;
-    out.device = result.device;
-    if (fi == 0) reference = std::make_unique<ReferenceFrame>(frame, std::move(prepared), result);
-    // The reference frame's scene now lives in `reference` (moved: its textures are not copied).
-    const PreparedScene& scene = fi == 0 ? reference->scene() : prepared;
-
-    OutputInfo info;
-    info.sceneFile = args.scenePath;
-    info.frame = frame;
-    info.seed = options.seed;
-    info.samplesPerPixel = options.samplesPerPixel;
-    info.backend = result.backend;
-    info.precision = result.precision;
-    info.device = result.device;
-    for (const auto& o : scene.objects) info.objectNames.push_back(o.name);
-    createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
-    if (fi == 0 || calibrationPerFrame)
-      writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "", job.verbose);
-    for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
-      const Camera& cam = scene.cameras[c].camera;
-      const CameraImage& image = result.cameras[c];
-      const DerivedTruth truth = deriveTruth(*reference, frame, scene, result, c);
-      if (!truth.disparityCamera.empty() && truth.disparityVisibleCount == 0)
-        std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
-                     truth.disparityCamera.c_str(), cam.name.c_str());
-      const std::string stem = outputStem(cam.name, job.numbered, frame);
-      const OutputFiles files =
-          writeCameraOutputs(job.outputDir, stem, cam, image, digitize(image.radiance, cam), info, &truth);
-      writeFeatureFiles(job.outputDir, stem, scene, c, frame);
-      if (job.verbose)
-        std::printf("%s, %s: %dx%d, %d spp, %s %s on %s, %.2f s\n", files.image.c_str(), files.groundTruth.c_str(),
-                    cam.width_px, cam.height_px, options.samplesPerPixel, result.backend.c_str(),
-                    result.precision.c_str(), result.device.c_str(), result.renderSeconds);
-    }
+    RenderedFrame rendered = renderFrame(session, job, scenes[fi], job.frames[fi], summary);
+    writeFrame(job, rendered, fi == 0, calibrationPerFrame, reference);
   }
+  return summary;
+}
+
+RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
+  renderOptions(session.args(), 0);
+  const std::vector<Scene> scenes = loadScenes(session, job);
+  RenderedJob out;
+  out.calibrationPerFrame = !sameCalibration(scenes);
+  session.startDevice();
+  for (std::size_t fi = 0; fi < job.frames.size(); ++fi)
+    out.frames.push_back(renderFrame(session, job, scenes[fi], job.frames[fi], out.summary));
   return out;
+}
+
+void writeRenderedJob(RenderedJob rendered, const RenderJob& job) {
+  std::unique_ptr<ReferenceFrame> reference;
+  for (std::size_t fi = 0; fi < rendered.frames.size(); ++fi)
+    writeFrame(job, rendered.frames[fi], fi == 0, rendered.calibrationPerFrame, reference);
 }
 
 }  // namespace dicsynth::cli

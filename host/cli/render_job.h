@@ -1,8 +1,10 @@
 #pragma once
 // The work of `dicsynth render` for one scene evaluation: every frame's scene is loaded, prepared,
 // rendered, its ground truth derived, and the sensor images, ground truth, calibration and feature
-// files written into one folder. `render` runs it once; `sweep` runs it once per point, keeping the
-// RenderSession (Vulkan device, pipelines, resolved precision) alive across points.
+// files written into one folder. `render` runs it once (runRenderJob: render a frame, write it,
+// next frame); `sweep` runs it once per point, keeping the RenderSession (Vulkan device, pipelines,
+// resolved precision, prepared textures) alive across points, and writes a point's files
+// (writeRenderedJob) on a worker thread while the next point renders.
 #include <memory>
 #include <optional>
 #include <string>
@@ -10,13 +12,17 @@
 #include <vector>
 
 #include "cli/render_args.h"
+#include "geometry/prepared_scene.h"
+#include "geometry/texture_cache.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
+#include "render/ground_truth.h"
+#include "render/result.h"
 
 namespace dicsynth::cli {
 
-// What outlives one job: created lazily by the first job (after its scenes loaded without error,
-// so a scene error never pays for a device start), then reused.
+// What outlives one job: the device is created lazily by the first job (after its scenes loaded
+// without error, so a scene error never pays for a device start), then reused.
 class RenderSession {
  public:
   RenderSession(RenderArgs args, std::string backend) : args_(std::move(args)), backend_(std::move(backend)) {}
@@ -27,6 +33,7 @@ class RenderSession {
   // The precision of every job: resolved once, on the first call (after the first prepare).
   Precision precision();
   const RenderArgs& args() const { return args_; }
+  TextureCache& textures() { return textures_; }
 
  private:
   RenderArgs args_;
@@ -34,9 +41,11 @@ class RenderSession {
   std::unique_ptr<gpu::Context> context_;
   std::unique_ptr<gpu::Renderer> renderer_;
   std::optional<Precision> precision_;
+  TextureCache textures_;
 };
 
 struct RenderJob {
+  std::string sceneFile;          // recorded in the files' metadata
   std::string outputDir;
   std::vector<int> frames;        // the reference frame first (runRender rotates it there)
   bool numbered = false;          // --frames given: files carry _<frame>
@@ -52,9 +61,29 @@ struct RenderJobResult {
   std::string backend, precision, device;
 };
 
-// Runs the job. Throws InputError for scene errors (before any file is written), Error for
-// device and I/O failures.
+// One rendered frame, not yet written.
+struct RenderedFrame {
+  int frame = 0;
+  PreparedScene scene;
+  RenderResult result;
+  RenderOptions options;
+};
+
+// Every frame of a job rendered, not yet written (sweep: written on a worker thread).
+struct RenderedJob {
+  bool calibrationPerFrame = false;
+  std::vector<RenderedFrame> frames;  // the reference frame first
+  RenderJobResult summary;
+};
+
+// Runs the job: frame by frame, render then write. Throws InputError for scene errors (before any
+// file is written), Error for device and I/O failures.
 RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job);
+
+// The two halves for overlapping: renderJob uses the session (device) and touches no file;
+// writeRenderedJob uses no session state, so it may run on another thread.
+RenderedJob renderJob(RenderSession& session, const RenderJob& job);
+void writeRenderedJob(RenderedJob rendered, const RenderJob& job);
 
 // Creates `dir` (and parents); throws InputError naming it when that fails.
 void createOutputDir(const std::string& dir);

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <optional>
 
@@ -190,11 +191,22 @@ int runSweep(const SweepCommand& cmd) {
   Progress progress(std::int64_t(mine.size()), stderrIsTerminal());
   std::int64_t done = 0, rendered = 0, skipped = 0, busy = 0, images = 0;
   const std::string host = hostName();
+  // The files of point i are written (sensor, truth, files, record) on a worker thread while the
+  // main thread evaluates, prepares and renders point i+1: at most one point waits to be written,
+  // so memory does not grow with the number of points.
+  std::future<void> writing;
+  auto finishWriting = [&] {
+    if (!writing.valid()) return;
+    writing.get();  // rethrows the worker's error
+    ++rendered;
+    images += std::int64_t(frames.size());
+    progress.update(++done, rendered, images);
+  };
   for (const SweepPoint* p : mine) {
     const std::string folder = (fs::path(cmd.outputDir) / pointFolderName(p->index)).string();
     // One owner per point at a time, whatever the sharding: a second process skips it.
-    sweep::FileLock lock((lockDir / (pointFolderName(p->index) + ".lock")).string(), false);
-    if (!lock.acquired()) {
+    auto lock = std::make_shared<sweep::FileLock>((lockDir / (pointFolderName(p->index) + ".lock")).string(), false);
+    if (!lock->acquired()) {
       ++busy;
       progress.update(++done, rendered, images);
       continue;
@@ -206,40 +218,52 @@ int runSweep(const SweepCommand& cmd) {
       progress.update(++done, rendered, images);
       continue;
     }
-    // Not complete: start the point from an empty folder (a killed run may have left part of it).
-    fs::remove_all(folder, ec);
-    RenderJob job;
-    job.outputDir = folder;
-    job.frames = frames;
-    job.numbered = numbered;
-    job.defines = pointDefines(defines, *p);
-    job.sweepParameters = plan.names;
-    job.seed = seedOf(*p);
-    job.verbose = false;
+    auto job = std::make_shared<RenderJob>();
+    job->sceneFile = cmd.args.scenePath;
+    job->outputDir = folder;
+    job->frames = frames;
+    job->numbered = numbered;
+    job->defines = pointDefines(defines, *p);
+    job->sweepParameters = plan.names;
+    job->seed = seedOf(*p);
+    job->verbose = false;
+    RenderedJob result;
     try {
-      const RenderJobResult result = runRenderJob(session, job);
-      sweep::PointRecord record;
-      record.index = p->index;
-      record.key = key;
-      record.parametersJson = parametersJson(*p);
-      record.seed = seedOf(*p);
-      record.samplesPerPixel = cmd.args.spp;
-      record.backend = result.backend;
-      record.precision = result.precision;
-      record.device = result.device;
-      record.renderSeconds = result.renderSeconds;
-      record.host = host;
-      record.finishedUtc = utcNow();
-      record.files = sweep::scanPointFiles(folder);
-      sweep::writePointRecord(folder, record);
+      result = renderJob(session, *job);
     } catch (...) {
-      fs::remove_all(folder, ec);  // nothing half-written stays (and a full disk gets its space back)
+      if (writing.valid()) writing.wait();  // the previous point still completes
+      finishWriting();
       throw;
     }
-    ++rendered;
-    images += std::int64_t(frames.size());
-    progress.update(++done, rendered, images);
+    finishWriting();
+    // Not complete: the point starts from an empty folder (a killed run may have left part of it).
+    std::error_code ec;
+    fs::remove_all(folder, ec);
+    auto record = std::make_shared<sweep::PointRecord>();
+    record->index = p->index;
+    record->key = key;
+    record->parametersJson = parametersJson(*p);
+    record->seed = seedOf(*p);
+    record->samplesPerPixel = cmd.args.spp;
+    record->backend = result.summary.backend;
+    record->precision = result.summary.precision;
+    record->device = result.summary.device;
+    record->renderSeconds = result.summary.renderSeconds;
+    record->host = host;
+    writing = std::async(std::launch::async, [job, record, lock, folder, r = std::move(result)]() mutable {
+      try {
+        writeRenderedJob(std::move(r), *job);
+        record->files = sweep::scanPointFiles(folder);
+        record->finishedUtc = utcNow();
+        sweep::writePointRecord(folder, *record);  // last: the point is complete from here on
+      } catch (...) {
+        std::error_code ignored;
+        fs::remove_all(folder, ignored);  // nothing half-written stays (and a full disk gets its space back)
+        throw;
+      }
+    });
   }
+  finishWriting();
   const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf);
   std::printf("sweep: %lld points%s: rendered %lld, already complete %lld, in progress elsewhere %lld; "
               "manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",

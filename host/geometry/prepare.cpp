@@ -9,6 +9,7 @@
 #include "geometry/homography.h"
 #include "geometry/prepared_scene.h"
 #include "io/image_io.h"
+#include "geometry/texture_cache.h"
 #include "texture/bspline.h"
 
 namespace dicsynth {
@@ -131,8 +132,14 @@ void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, cons
                                    " to infinity (it lies on the homography's singular plane)");
 }
 
-int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::map<std::string, int>& byPath) {
+int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::map<std::string, int>& byPath,
+                TextureCache* cache) {
   if (auto it = byPath.find(t.path); it != byPath.end()) return it->second;
+  if (cache)
+    if (auto cached = cache->find(t.path)) {
+      textures.push_back(std::move(*cached));
+      return byPath[t.path] = int(textures.size()) - 1;
+    }
   GrayImage image;
   try {
     image = readGrayImage(t.path);
@@ -145,6 +152,7 @@ int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::m
   pt.height = image.height;
   pt.coefficients = std::move(image.pixels);
   bsplinePrefilter(pt.coefficients, pt.width, pt.height);
+  if (cache) cache->insert(pt);
   textures.push_back(std::move(pt));
   return byPath[t.path] = int(textures.size()) - 1;
 }
@@ -199,7 +207,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     anyLambert |= o.shader == ShaderKind::Lambert;
     o.textureKind = so.texture.kind;
     if (so.texture.kind == TextureKind::File) {
-      o.textureIndex = loadTexture(so.texture, ps.textures, texturesByPath);
+      o.textureIndex = loadTexture(so.texture, ps.textures, texturesByPath, options.textureCache);
     } else {
       o.textureValue = so.texture.value;
     }

@@ -16,6 +16,8 @@
 
 namespace dicsynth {
 
+class TextureCache;  // geometry/texture_cache.h
+
 struct PreparedCamera {
   Camera camera;               // the scene's camera (after --downscale)
   PinholeModel<double> model;  // intrinsics in px, distortion, pose
@@ -91,6 +93,8 @@ struct PrepareOptions {
   // Integer factor dividing the resolution while keeping the field of view: pixel size × k,
   // principal point c' = (c + 1/2)/k − 1/2 (OpenCV pixel centres). For previews and fast tests.
   int downscale = 1;
+  // Optional (geometry/texture_cache.h): file textures prepared by earlier calls are reused.
+  TextureCache* textureCache = nullptr;
 };
 
 // Throws InputError (with the scene's file:line) for what only shows up now: unreadable textures,

@@ -1,0 +1,60 @@
+#pragma once
+// File textures prepared once per process: a sweep renders the same texture at every point, and
+// reading plus B-spline prefiltering a 4096×2048 texture costs about a second on this machine
+// (bench/RESULTS.md, "Sweeps"). An entry is keyed by the path and checked against the file's size
+// and modification time, so a texture edited during a run is read again.
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "geometry/prepared_scene.h"
+
+namespace dicsynth {
+
+class TextureCache {
+ public:
+  // The prepared texture of `path` when cached and the file is unchanged.
+  std::optional<PreparedTexture> find(const std::string& path) const {
+    const auto stamp = stampOf(path);
+    std::lock_guard lock(mutex_);
+    const auto it = entries_.find(path);
+    if (!stamp || it == entries_.end() || it->second.stamp != *stamp) return std::nullopt;
+    return it->second.texture;
+  }
+  void insert(const PreparedTexture& texture) {
+    const auto stamp = stampOf(texture.path);
+    if (!stamp) return;
+    std::lock_guard lock(mutex_);
+    entries_[texture.path] = {*stamp, texture};
+  }
+  std::size_t size() const {
+    std::lock_guard lock(mutex_);
+    return entries_.size();
+  }
+
+ private:
+  struct Stamp {
+    std::uintmax_t bytes = 0;
+    std::filesystem::file_time_type modified;
+    bool operator==(const Stamp&) const = default;
+  };
+  struct Entry {
+    Stamp stamp;
+    PreparedTexture texture;
+  };
+  static std::optional<Stamp> stampOf(const std::string& path) {
+    std::error_code ec;
+    Stamp s{std::filesystem::file_size(path, ec), {}};
+    if (ec) return std::nullopt;
+    s.modified = std::filesystem::last_write_time(path, ec);
+    if (ec) return std::nullopt;
+    return s;
+  }
+  mutable std::mutex mutex_;  // a sweep prepares on a worker thread
+  std::map<std::string, Entry> entries_;
+};
+
+}  // namespace dicsynth

@@ -1,0 +1,214 @@
+// `dicsynth sweep` end to end: folders, manifest, equality with `render -D` of each point, resume
+// after damage, shards (concurrent, and by Slurm's variables), bad input, and a full disk (a small
+// tmpfs; needs root to mount).
+#include <doctest/doctest.h>
+#include <sys/mount.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/image_io.h"
+#include "run_cli.h"
+
+using namespace dicsynth;
+using test::runCli;
+using test::TempFolder;
+
+namespace {
+
+// A tiny scene: a plate whose x offset and gray level are the sweep's parameters (defaults 0).
+const std::string kScene =
+    "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+    "shift = shift or 0\n"
+    "gray = gray or 0.5\n"
+    "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {shift, 0, 0.5} };\n"
+    "  shader = Shader.Constant { color = gray } }\n"
+    "sweep = { shift = linspace(0, 0.04, 3), gray = {0.25, 0.75} }\n";
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// manifest.csv without its per-run column render_seconds (second to last).
+std::string manifestWithoutTimes(const std::string& dir) {
+  std::istringstream in(readText(dir + "/manifest.csv"));
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    // Files are the last field, quoted when several; render_seconds the field before it.
+    const auto filesStart = line.rfind(",\"") != std::string::npos ? line.rfind(",\"") : line.rfind(',');
+    const auto timeStart = line.rfind(',', filesStart - 1);
+    out += line.substr(0, timeStart) + line.substr(filesStart) + "\n";
+  }
+  return out;
+}
+
+const std::string kFast = " --spp 1 --precision fp32";
+
+}  // namespace
+
+TEST_CASE("cli: sweep renders every point into its folder, as render -D does, with a manifest") {
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  const test::CliResult r = runCli("sweep " + scene + " -o " + dir.file("out") + kFast);
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.err.empty());  // stderr is not a terminal: no progress
+  CHECK(r.out.find("rendered 6, already complete 0") != std::string::npos);
+  // Grid order: gray (first name) slowest, shift fastest.
+  const double grays[2] = {0.25, 0.75}, shifts[3] = {0, 0.02, 0.04};
+  std::string expectedCsv = "index,folder,gray,shift,seed,spp,backend,precision,device,render_seconds,files\n";
+  for (int i = 0; i < 6; ++i) {
+    char folder[32];
+    std::snprintf(folder, sizeof folder, "point_%05d", i);
+    const std::string pointDir = dir.file("out/") + folder;
+    for (const char* f : {"/cam.tif", "/cam.exr", "/cam.yml", "/point.json"})
+      CHECK(std::filesystem::exists(pointDir + f));
+    // The point's image equals render's with the point's values as -D.
+    const std::string single = dir.file("single") + std::to_string(i);
+    char defines[128];
+    std::snprintf(defines, sizeof defines, " -D gray=%.17g -D shift=%.17g", grays[i / 3], shifts[i % 3]);
+    REQUIRE(runCli("render " + scene + " -o " + single + kFast + defines).exitCode == 0);
+    const GrayImage a = readGrayImage(pointDir + "/cam.tif"), b = readGrayImage(single + "/cam.tif");
+    CHECK(a.pixels == b.pixels);
+    std::ostringstream row;
+    row << i << "," << folder << "," << (i / 3 ? "0.75" : "0.25") << "," << (i % 3 == 0 ? "0" : i % 3 == 1 ? "0.02" : "0.040000000000000001")
+        << ",1,1,gpu,fp32";
+    const std::string manifest = readText(dir.file("out/manifest.csv"));
+    CHECK(manifest.find("\n" + row.str() + ",") != std::string::npos);
+  }
+  CHECK(manifestWithoutTimes(dir.file("out")).rfind("index,folder,gray,shift,seed,spp,backend,precision,device,files\n", 0) == 0);
+  const std::string json = readText(dir.file("out/manifest.json"));
+  CHECK(json.find("\"points_total\": 6") != std::string::npos);
+  CHECK(json.find("\"points_complete\": 6") != std::string::npos);
+  CHECK(json.find("{\"index\": 5, \"folder\": \"point_00005\", \"parameters\": {\"gray\": 0.75, \"shift\": 0.040000000000000001}") !=
+        std::string::npos);
+  // --list prints the same points without rendering.
+  const test::CliResult list = runCli("sweep " + scene + " -o " + dir.file("unused") + " --list");
+  CHECK(list.out.find("4 point_00004 gray=0.75 shift=0.02\n") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("unused")));
+}
+
+TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered again") {
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  const std::string out = dir.file("out");
+  REQUIRE(runCli("sweep " + scene + " -o " + out + kFast).exitCode == 0);
+  const std::string before = manifestWithoutTimes(out);
+  // Point 1: a file damaged in place (same size); point 2: its record gone (as if killed before
+  // writing it); point 3: a file missing.
+  {
+    std::string tif = readText(out + "/point_00001/cam.tif");
+    tif[tif.size() / 2] ^= 0x55;
+    std::ofstream(out + "/point_00001/cam.tif", std::ios::binary) << tif;
+  }
+  std::filesystem::remove(out + "/point_00002/point.json");
+  std::filesystem::remove(out + "/point_00003/cam.exr");
+  const std::string point0Record = readText(out + "/point_00000/point.json");
+  const test::CliResult r = runCli("sweep " + scene + " -o " + out + kFast);
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.out.find("rendered 3, already complete 3") != std::string::npos);
+  CHECK(readText(out + "/point_00000/point.json") == point0Record);  // untouched
+  CHECK(manifestWithoutTimes(out) == before);
+  // Another spp is another sweep: every point is rendered again.
+  const test::CliResult other = runCli("sweep " + scene + " -o " + out + " --spp 2 --precision fp32");
+  CHECK(other.out.find("rendered 6, already complete 0") != std::string::npos);
+}
+
+TEST_CASE("cli: sweep shards write one folder safely and merge to the single-process manifest") {
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  REQUIRE(runCli("sweep " + scene + " -o " + dir.file("single") + kFast).exitCode == 0);
+  // Three shards at once into one folder (each process merges the manifest at its end).
+  const std::string shards = dir.file("shards");
+  std::string command;
+  for (int i = 0; i < 3; ++i)
+    command += std::string(DS_BINARY) + " sweep " + scene + " -o " + shards + kFast + " --shard " + std::to_string(i) +
+               "/3 > " + dir.file("log" + std::to_string(i)) + " 2>&1 & ";
+  REQUIRE(std::system((command + "wait").c_str()) == 0);
+  for (int i = 0; i < 3; ++i) CHECK(readText(dir.file("log" + std::to_string(i))).find("rendered 2,") != std::string::npos);
+  // The last process to merge saw every point.
+  CHECK(manifestWithoutTimes(shards) == manifestWithoutTimes(dir.file("single")));
+  // Two processes over the same points: each point is rendered once in all (the other skips it or
+  // finds it complete), and the result is the same manifest.
+  const std::string twice = dir.file("twice");
+  command = std::string(DS_BINARY) + " sweep " + scene + " -o " + twice + kFast + " > " + dir.file("t0") + " 2>&1 & " +
+            std::string(DS_BINARY) + " sweep " + scene + " -o " + twice + kFast + " > " + dir.file("t1") + " 2>&1 & wait";
+  REQUIRE(std::system(command.c_str()) == 0);
+  CHECK(manifestWithoutTimes(twice) == manifestWithoutTimes(dir.file("single")));
+  // A Slurm job array numbered from 1: task 2 of 3 is shard 1/3.
+  const int rc = std::system(("SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=3 SLURM_ARRAY_TASK_MIN=1 " +
+                              std::string(DS_BINARY) + " sweep " + scene + " -o " + dir.file("array") + kFast + " > " +
+                              dir.file("array.log") + " 2>&1").c_str());
+  CHECK(rc == 0);
+  const std::string log = readText(dir.file("array.log"));
+  INFO(log);
+  CHECK(log.find("(shard 1/3 of 6, by SLURM_ARRAY_TASK_ID=2") != std::string::npos);
+  CHECK(std::filesystem::exists(dir.file("array/point_00001/point.json")));
+  CHECK(std::filesystem::exists(dir.file("array/point_00004/point.json")));
+  CHECK_FALSE(std::filesystem::exists(dir.file("array/point_00000")));
+}
+
+TEST_CASE("cli: sweep bad input: one line, exit code 2") {
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  auto bad = [&](const std::string& args, const std::string& expected) {
+    const test::CliResult r = runCli("sweep " + args);
+    INFO(args << "\n" << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err == expected + "\n");
+  };
+  bad(scene + " -o " + dir.file("o1") + " --sweep typo=1,2",
+      scene + ": sweep parameter 'typo': the scene never reads 'typo' (a typo in the sweep, or a scene that ignores it)");
+  CHECK_FALSE(std::filesystem::exists(dir.file("o1/point_00000/point.json")));
+  bad(scene + " -o " + dir.file("o2") + " --sweep shift=0:1:0",
+      "--sweep shift=0:1:0: N = 0 gives an empty range (N must be >= 1)");
+  const std::string randomZero = dir.write("random.lua", kScene + "sweep = random { n = 0, shift = {0, 1} }\n");
+  bad(randomZero + " -o " + dir.file("o3"),
+      randomZero + ":7: random: 'n' must be >= 1 (a sweep needs at least one point), got 0");
+  dir.write("afile", "x");
+  bad(scene + " -o " + dir.file("afile/sub"), "-o " + dir.file("afile/sub") + ": cannot create the output folder: Not a directory");
+  bad(scene + " -o " + dir.file("o4") + " --shard 3/3", "--shard 3/3: expected I/N with 0 <= I < N");
+}
+
+TEST_CASE("cli: sweep on a full disk stops with a clean error and resumes afterwards") {
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  const std::string mnt = dir.file("mnt");
+  std::filesystem::create_directories(mnt);
+  // One point's files need about 12 KiB here (page-granular on tmpfs: 5 files + record); 40 KiB
+  // holds a few points but not six.
+  if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=40k") != 0) {
+    MESSAGE("cannot mount a tmpfs (not root?): full-disk test skipped");
+    return;
+  }
+  struct Unmount {
+    std::string path;
+    ~Unmount() { ::umount(path.c_str()); }
+  } unmount{mnt};
+  const test::CliResult full = runCli("sweep " + scene + " -o " + mnt + "/out" + kFast);
+  INFO(full.err);
+  CHECK(full.exitCode == 3);
+  // One line naming the file that could not be written (the writer's own wording).
+  CHECK(full.err.rfind("dicsynth: error: ", 0) == 0);
+  CHECK(full.err.find(mnt + "/out/point_0000") != std::string::npos);
+  CHECK(full.err.find('\n') == full.err.size() - 1);
+  int complete = 0;
+  for (int i = 0; i < 6; ++i) {
+    const std::string p = mnt + "/out/point_0000" + std::to_string(i);
+    if (std::filesystem::exists(p + "/point.json")) ++complete;
+    else CHECK_FALSE(std::filesystem::exists(p));  // the failed point's files are removed
+  }
+  CHECK(complete >= 1);
+  CHECK(complete < 6);
+  // More room: the rerun renders only what is missing.
+  REQUIRE(::mount("tmpfs", mnt.c_str(), "tmpfs", MS_REMOUNT, "size=4m") == 0);
+  const test::CliResult resumed = runCli("sweep " + scene + " -o " + mnt + "/out" + kFast);
+  INFO(resumed.err);
+  CHECK(resumed.exitCode == 0);
+  CHECK(resumed.out.find("rendered " + std::to_string(6 - complete) + ", already complete " + std::to_string(complete)) !=
+        std::string::npos);
+  CHECK(resumed.out.find("manifest: 6 of 6 points complete") != std::string::npos);
+}

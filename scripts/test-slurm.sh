@@ -253,14 +253,20 @@ wait_job "$merge" 300
 scontrol -o show job "$merge" | grep -q 'JobState=FAILED' || fail "the merge job did not fail with $lost missing"
 grep -q "1 of $expected points missing" "$SLURM_OUT/slurm/merge-$merge.out" || fail "merge log does not name the gap"
 log "with $lost removed the merge job failed: $(grep missing "$SLURM_OUT/slurm/merge-$merge.out")"
-read -r array merge < <("$ROOT/scripts/slurm/submit-sweep.sh" "$SHARDS" "$SCENE" "$SLURM_OUT" "${SWEEP_ARGS[@]}")
+# Resubmitted by hand (README's sbatch commands), as an array numbered from 1: the shards then come
+# from SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN.
+array=$(sbatch --parsable --array="1-$SHARDS" --output="$SLURM_OUT/slurm/sweep-%A_%a.out" \
+  "$ROOT/scripts/slurm/sweep-array.sbatch" "$SCENE" "$SLURM_OUT" "${SWEEP_ARGS[@]}")
+merge=$(sbatch --parsable --dependency="afterok:$array" --output="$SLURM_OUT/slurm/merge-%j.out" \
+  "$ROOT/scripts/slurm/sweep-merge.sbatch" "$SCENE" "$SLURM_OUT" "${SWEEP_ARGS[@]}")
 wait_job "$array" 1200
 check_job_ok "$array"
 wait_job "$merge" 300
 check_job_ok "$merge"
+grep -q "SLURM_ARRAY_TASK_MIN=1" "$SLURM_OUT/slurm/sweep-${array}_1.out" || fail "array 1-$SHARDS: task 1's log"
 rendered=$(grep -h '^sweep:' "$SLURM_OUT"/slurm/sweep-"${array}"_*.out | grep -oE 'rendered [0-9]+' | awk '{ s += $2 } END { print s }')
 ((rendered == 1)) || fail "the resubmitted array rendered $rendered points, expected only the lost one"
 compare_manifests "$SLURM_OUT" "$SINGLE_OUT" >/dev/null || fail "manifests differ after the resubmission"
 cmp -s "$SLURM_OUT/$lost/camera.tif" "$SINGLE_OUT/$lost/camera.tif" || fail "$lost re-rendered differently"
-log "resubmitted array rendered only $lost (1 point); manifest complete and identical again"
+log "resubmitted array (--array=1-$SHARDS) rendered only $lost (1 point); manifest complete and identical again"
 log "PASS: $expected points in $SHARDS shards on a single-node Slurm ($(sinfo -V)), merged manifest complete"

@@ -1,6 +1,7 @@
 #include "gpu/renderer.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 
 #include "gpu/buffer.h"
@@ -21,16 +22,30 @@ Buffer inputBuffer(Context& context, const std::vector<T>& values) {
   return buffer;
 }
 
+// The buffer of `binding` holding `values`: the cached one when its bytes are identical.
+template <class T>
+Buffer& cachedInput(Context& context, Renderer::InputCache& cache, int binding, const std::vector<T>& values) {
+  const std::size_t bytes = values.size() * sizeof(T);
+  const auto* data = reinterpret_cast<const unsigned char*>(values.data());
+  Renderer::CachedInput& slot = cache[binding];
+  if (slot.buffer && slot.bytes.size() == bytes && std::equal(slot.bytes.begin(), slot.bytes.end(), data))
+    return *slot.buffer;
+  slot.buffer.reset();  // free the old buffer before allocating its successor
+  slot.buffer = std::make_unique<Buffer>(inputBuffer(context, values));
+  slot.bytes.assign(data, data + bytes);
+  return *slot.buffer;
+}
+
 template <class Layout>
 void renderAll(Context& context, const ComputePipeline& pipeline, const PreparedScene& scene,
-               const RenderOptions& options, int tileSize, RenderResult& result) {
+               const RenderOptions& options, int tileSize, Renderer::InputCache& cache, RenderResult& result) {
   const PackedScene<Layout> packed = packScene<Layout>(scene);
-  Buffer textures = inputBuffer(context, packed.textures);
-  Buffer texels = inputBuffer(context, packed.texels);
-  Buffer nurbsNodes = inputBuffer(context, packed.nurbsNodes);
-  Buffer nurbsSubPatches = inputBuffer(context, packed.nurbsSubPatches);
-  Buffer nurbsPatches = inputBuffer(context, packed.nurbsPatches);
-  Buffer nurbsPoints = inputBuffer(context, packed.nurbsPoints);
+  Buffer& textures = cachedInput(context, cache, DS_BINDING_TEXTURES, packed.textures);
+  Buffer& texels = cachedInput(context, cache, DS_BINDING_TEXELS, packed.texels);
+  Buffer& nurbsNodes = cachedInput(context, cache, DS_BINDING_NURBS_NODES, packed.nurbsNodes);
+  Buffer& nurbsSubPatches = cachedInput(context, cache, DS_BINDING_NURBS_SUBPATCHES, packed.nurbsSubPatches);
+  Buffer& nurbsPatches = cachedInput(context, cache, DS_BINDING_NURBS_PATCHES, packed.nurbsPatches);
+  Buffer& nurbsPoints = cachedInput(context, cache, DS_BINDING_NURBS_POINTS, packed.nurbsPoints);
   const std::size_t tilePixels = std::size_t(tileSize) * std::size_t(tileSize);
   Buffer pixels(context, tilePixels * sizeof(typename Layout::GpuPixel), BufferUse::Readback);
   Buffer* bindings[DS_BINDING_COUNT];
@@ -134,9 +149,9 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   result.device = context_.info().name;
   const auto start = std::chrono::steady_clock::now();
   switch (options.precision) {
-    case Precision::Fp32: renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result); break;
-    case Precision::Df64: renderAll<Df64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result); break;
-    case Precision::Fp64: renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, result); break;
+    case Precision::Fp32: renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, inputs_, result); break;
+    case Precision::Df64: renderAll<Df64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, inputs_, result); break;
+    case Precision::Fp64: renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, inputs_, result); break;
   }
   result.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -4,8 +4,10 @@
 #include <map>
 #include <memory>
 #include <tuple>
+#include <vector>
 
 #include "geometry/prepared_scene.h"
+#include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu/context.h"
 #include "render/options.h"
@@ -39,6 +41,20 @@ class Renderer {
  private:
   Context& context_;
   std::map<std::tuple<Precision, SceneFeatures, bool>, std::unique_ptr<ComputePipeline>> pipelines_;
+
+ public:
+  // The scene-wide input buffers (textures, texels, NURBS) of the last render, with the bytes they
+  // hold: a render whose packed bytes are identical (a sweep point that changes no texture or
+  // NURBS) reuses the buffer instead of creating and uploading it again. Compared byte by byte,
+  // not by hash, so a change can never be missed; costs one host copy of those buffers.
+  struct CachedInput {
+    std::vector<unsigned char> bytes;
+    std::unique_ptr<Buffer> buffer;
+  };
+  using InputCache = std::map<int, CachedInput>;  // by binding
+
+ private:
+  InputCache inputs_;
 };
 
 }  // namespace dicsynth::gpu

@@ -1,16 +1,25 @@
-// `dicsynth compare SCENE.lua`: renders on the CPU reference and on the GPU with the same samples,
-// prints the differences per camera and exits 1 when one exceeds the precision's tolerance.
+// `dicsynth compare SCENE.lua|FOLDER`: renders each scene (every *.lua of a folder, sorted, or every
+// point of a scene's sweep) on the CPU reference and on the GPU with the same samples, prints the differences per camera, optionally
+// writes them as a JUnit report (one test case per scene (× point) × camera), and exits with the worst
+// outcome: 0 all within tolerance, 1 a difference over it, 2 bad input, 3 a run-time failure.
+// One Vulkan device and renderer serve every scene.
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/compare_items.h"
 #include "cli/render_args.h"
+#include "core/error.h"
 #include "core/json.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
+#include "io/junit.h"
 #include "render/compare.h"
 
 namespace dicsynth::cli {
@@ -20,14 +29,29 @@ struct CompareCommand {
   RenderArgs args;
   int frame = 0;
   bool json = false;
+  std::string junitPath;
+  double toleranceScale = 1;
+  CompareSweepArgs sweep;
 };
 
-std::string toJson(const std::string& scene, const RenderResult& cpu, const RenderResult& gpu, int spp,
+// The outcome of one item (scene or sweep point): its JUnit suite and exit code.
+struct ItemOutcome {
+  junit::TestSuite suite;
+  int exitCode = kExitOk;
+};
+
+std::string toJson(const CompareItem& item, const RenderResult& cpu, const RenderResult& gpu, int spp,
                    const Tolerances& t, const std::vector<CameraDifference>& diffs, bool pass) {
   using namespace json;
   std::ostringstream o;
-  o << "{\"scene\": " << quote(scene) << ", \"precision\": " << quote(gpu.precision)
-    << ", \"device\": " << quote(gpu.device) << ", \"spp\": " << spp
+  o << "{\"scene\": " << quote(item.scenePath);
+  if (item.point) {
+    o << ", \"point\": " << item.point->index << ", \"parameters\": {";
+    for (std::size_t i = 0; i < item.point->parameters.size(); ++i)
+      o << (i ? ", " : "") << quote(item.point->parameters[i].first) << ": " << item.point->parameters[i].second;
+    o << "}";
+  }
+  o << ", \"precision\": " << quote(gpu.precision) << ", \"device\": " << quote(gpu.device) << ", \"spp\": " << spp
     << ", \"cpu_seconds\": " << number(cpu.renderSeconds) << ", \"gpu_seconds\": " << number(gpu.renderSeconds)
     << ", \"tolerances\": {\"radiance\": " << number(t.radiance) << ", \"position_m\": " << number(t.position_m)
     << ", \"uv\": " << number(t.uv) << ", \"epsilon\": " << number(t.epsilon) << ", \"k\": " << number(t.k)
@@ -49,50 +73,159 @@ std::string toJson(const std::string& scene, const RenderResult& cpu, const Rend
   return o.str();
 }
 
-int runCompare(const CompareCommand& cmd) {
-  RenderOptions options = renderOptions(cmd.args, cmd.frame);
-  const Scene scene = loadScene(cmd.args.scenePath, {parseDefines(cmd.args.defines), cmd.frame});
+std::string format(const char* fmt, auto... values) {
+  char buf[1024];
+  std::snprintf(buf, sizeof buf, fmt, values...);
+  return buf;
+}
+
+// The text block of one camera (stdout and the JUnit failure's details).
+std::string cameraText(const CameraDifference& d, const Tolerances& tol) {
+  return format(
+      "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, over tolerance %.3g: %zu px (%zu off edges);"
+      " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px (%zu off edges); max |duv| %.3g,"
+      " max |dP| %.3g m, max |dZ| %.3g m; worst error/bound %.3g, over bound: %zu px\n",
+      d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff, tol.radiance,
+      d.radianceOutliers, d.radianceOutliersOffEdge, d.pixelsDiffering, d.objectIdMismatches,
+      d.objectIdMismatchesOffEdge, d.maxUvDiff, d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxGeometryRatio,
+      d.geometryOutliers);
+}
+
+std::string tolerancesText(const std::string& precision, const Tolerances& tol) {
+  if (tol.epsilon > 0)
+    return format("tolerances (%s): radiance %.3g; P and uv per pixel, %g eps D / max(cos, sqrt eps) (README);"
+                  " outliers off edges <= %.3g of the pixels\n",
+                  precision.c_str(), tol.radiance, tol.k, tol.outlierFraction);
+  return format("tolerances (%s): radiance %.3g, P %.3g m, uv %.3g, no outliers\n", precision.c_str(), tol.radiance,
+                tol.position_m, tol.uv);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Renders and compares one item; appends its text or JSON to stdout. `several`: progress lines
+// name the item.
+ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool several, RenderOptions options,
+                        gpu::Context& context, gpu::Renderer& renderer) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ItemOutcome out;
+  out.suite.name = item.label;
+  out.suite.timestamp = junit::timestampNow();
+  const Scene scene = loadScene(item.scenePath, {item.defines, cmd.frame});
   const PreparedScene prepared = prepareScene(scene, {cmd.args.downscale});
+  const std::string prefix = several ? item.label + ": " : "";
+  options.progress = progressPrinter(prefix + "cpu reference");
+  const RenderResult cpu = cpu::render(prepared, options);
+  options.progress = progressPrinter(prefix + "gpu " + std::string(toString(options.precision)));
+  const RenderResult gpu = renderer.render(prepared, options);
+  failOnValidationMessages(context);
+
+  const Tolerances tol = scaledTolerances(tolerancesFor(options.precision), cmd.toleranceScale);
+  const auto diffs = compareResults(prepared, cpu, gpu, tol);
+  bool pass = true;
+  for (const auto& d : diffs) pass &= withinTolerance(d, tol);
+  out.exitCode = pass ? kExitOk : kExitCompareFailed;
+
+  std::string text = format("%s: cpu %.2f s, gpu %s on %s %.2f s, %d spp\n", item.label.c_str(), cpu.renderSeconds,
+                            gpu.precision.c_str(), gpu.device.c_str(), gpu.renderSeconds, options.samplesPerPixel);
+  for (const auto& d : diffs) text += cameraText(d, tol);
+  text += tolerancesText(gpu.precision, tol);
+  if (cmd.json)
+    std::printf("%s\n", toJson(item, cpu, gpu, options.samplesPerPixel, tol, diffs, pass).c_str());
+  else
+    std::fputs(text.c_str(), stdout);
+  std::fflush(stdout);
+
+  // JUnit: one case per camera; the item's time (load, both renders, comparison) shared among them.
+  auto& props = out.suite.properties;
+  props = {{"scene", item.scenePath}, {"precision", gpu.precision}, {"device", gpu.device},
+           {"spp", std::to_string(options.samplesPerPixel)}, {"seed", std::to_string(options.seed)},
+           {"frame", std::to_string(cmd.frame)}, {"downscale", std::to_string(cmd.args.downscale)},
+           {"cpu_seconds", format("%.3f", cpu.renderSeconds)}, {"gpu_seconds", format("%.3f", gpu.renderSeconds)},
+           {"tolerance_scale", format("%g", cmd.toleranceScale)}};
+  if (item.point) {
+    props.push_back({"point", std::to_string(item.point->index)});
+    for (const auto& [name, value] : item.point->parameters) props.push_back({"parameter." + name, value});
+  }
+  const double seconds = secondsSince(t0) / double(std::max<std::size_t>(1, diffs.size()));
+  for (const auto& d : diffs) {
+    junit::TestCase c{item.classname, d.camera, seconds};
+    if (!withinTolerance(d, tol)) {
+      c.outcome = junit::Outcome::Failed;
+      c.type = "ToleranceExceeded";
+      c.message = d.camera + " (" + gpu.precision + "): " + describeExcess(d, tol);
+      c.details = cameraText(d, tol) + tolerancesText(gpu.precision, tol);
+    }
+    out.suite.cases.push_back(std::move(c));
+  }
+  out.suite.systemOut = text;
+  return out;
+}
+
+// An item that could not be rendered: its error on stderr (as main.cpp prints it) and as one JUnit
+// error case, so CI shows it instead of a silently missing scene.
+ItemOutcome erroredItem(const CompareItem& item, const std::string& message, bool inputError) {
+  std::fprintf(stderr, "%s%s\n", inputError ? "" : "dicsynth: error: ", message.c_str());
+  ItemOutcome out;
+  out.exitCode = inputError ? kExitBadInput : kExitFailure;
+  out.suite.name = item.label;
+  out.suite.timestamp = junit::timestampNow();
+  out.suite.properties = {{"scene", item.scenePath}};
+  junit::TestCase c{item.classname, "render"};
+  c.outcome = junit::Outcome::Error;
+  c.type = inputError ? "InputError" : "Error";
+  c.message = message;
+  c.details = message;
+  out.suite.cases.push_back(std::move(c));
+  return out;
+}
+
+int runCompare(const CompareCommand& cmd) {
+  if (!(cmd.toleranceScale > 0 && cmd.toleranceScale <= 1))
+    throw InputError(format("--tolerance-scale %g: expected a factor in (0, 1] (tolerances may only be tightened)",
+                            cmd.toleranceScale));
+  const RenderOptions base = renderOptions(cmd.args, cmd.frame);
+  const auto defines = parseDefines(cmd.args.defines);
+  const std::vector<CompareItem> items = compareItems(cmd.args.scenePath, defines, cmd.sweep);
+  // Checked before any rendering: a report that cannot be written must not cost the whole run.
+  if (!cmd.junitPath.empty()) {
+    const std::filesystem::path folder = std::filesystem::path(cmd.junitPath).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder))
+      throw InputError("--junit " + cmd.junitPath + ": folder '" + folder.string() + "' does not exist");
+  }
   gpu::ContextOptions co;
   co.device = cmd.args.device;
   gpu::Context context(co);
   gpu::Renderer renderer(context);
+  RenderOptions options = base;
   options.precision = resolvePrecision(cmd.args, context, renderer);
 
-  options.progress = progressPrinter("cpu reference");
-  const RenderResult cpu = cpu::render(prepared, options);
-  options.progress = progressPrinter("gpu " + std::string(toString(options.precision)));
-  const RenderResult gpu = renderer.render(prepared, options);
-
-  failOnValidationMessages(context);
-  const Tolerances tol = tolerancesFor(options.precision);
-  const auto diffs = compareResults(prepared, cpu, gpu, tol);
-  bool pass = true;
-  for (const auto& d : diffs) pass &= withinTolerance(d, tol);
-  if (cmd.json) {
-    std::printf("%s\n", toJson(cmd.args.scenePath, cpu, gpu, options.samplesPerPixel, tol, diffs, pass).c_str());
-  } else {
-    std::printf("%s: cpu %.2f s, gpu %s on %s %.2f s, %d spp\n", cmd.args.scenePath.c_str(), cpu.renderSeconds,
-                gpu.precision.c_str(), gpu.device.c_str(), gpu.renderSeconds, options.samplesPerPixel);
-    for (const auto& d : diffs) {
-      std::printf(
-          "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, over tolerance %.3g: %zu px (%zu off edges);"
-          " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px (%zu off edges); max |duv| %.3g,"
-          " max |dP| %.3g m, max |dZ| %.3g m; worst error/bound %.3g, over bound: %zu px\n",
-          d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff,
-          tol.radiance, d.radianceOutliers, d.radianceOutliersOffEdge, d.pixelsDiffering, d.objectIdMismatches,
-          d.objectIdMismatchesOffEdge, d.maxUvDiff,
-          d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxGeometryRatio, d.geometryOutliers);
+  junit::Report report{"dicsynth compare"};
+  int exitCode = kExitOk;
+  std::size_t passed = 0, failed = 0, errors = 0;
+  for (const CompareItem& item : items) {
+    ItemOutcome outcome;
+    try {
+      outcome = compareItem(cmd, item, items.size() > 1, options, context, renderer);
+    } catch (const InputError& e) {
+      outcome = erroredItem(item, e.what(), true);
+    } catch (const std::exception& e) {
+      outcome = erroredItem(item, e.what(), false);
     }
-    if (tol.epsilon > 0)
-      std::printf("tolerances (%s): radiance %.3g; P and uv per pixel, %g eps D / max(cos, sqrt eps) (README);"
-                  " outliers off edges <= %.3g of the pixels\n",
-                  gpu.precision.c_str(), tol.radiance, tol.k, tol.outlierFraction);
-    else
-      std::printf("tolerances (%s): radiance %.3g, P %.3g m, uv %.3g, no outliers\n", gpu.precision.c_str(),
-                  tol.radiance, tol.position_m, tol.uv);
+    for (const auto& c : outcome.suite.cases) {
+      passed += c.outcome == junit::Outcome::Passed;
+      failed += c.outcome == junit::Outcome::Failed;
+      errors += c.outcome == junit::Outcome::Error;
+    }
+    exitCode = std::max(exitCode, outcome.exitCode);  // 3 > 2 > 1 > 0: the worst outcome wins
+    report.suites.push_back(std::move(outcome.suite));
   }
-  return pass ? kExitOk : kExitCompareFailed;
+  if (!cmd.junitPath.empty()) junit::writeReport(cmd.junitPath, report);
+  if (items.size() > 1 && !cmd.json)
+    std::printf("compare: %zu %s, %zu test cases: %zu passed, %zu failed, %zu errors\n", items.size(),
+                items.front().point ? "sweep points" : "scenes", passed + failed + errors, passed, failed, errors);
+  return exitCode;
 }
 
 }  // namespace
@@ -100,10 +233,17 @@ int runCompare(const CompareCommand& cmd) {
 void addCompareCommand(CLI::App& root, RunFn& run) {
   auto cmd = std::make_shared<CompareCommand>();
   CLI::App* sub = root.add_subcommand(
-      "compare", "Render on the CPU reference and the GPU with the same samples and compare (exit 1 if over tolerance)");
+      "compare",
+      "Render on the CPU reference and the GPU with the same samples and compare (exit 1 if over tolerance); "
+      "SCENE may be a folder (every *.lua in it)");
   addRenderArgs(*sub, cmd->args);
   sub->add_option("--frame", cmd->frame, "Value of the scene global `frame`")->capture_default_str();
-  sub->add_flag("--json", cmd->json, "Print one JSON object instead of text");
+  sub->add_flag("--json", cmd->json, "Print one JSON object per scene (or sweep point), one per line");
+  sub->add_option("--junit", cmd->junitPath, "Also write a JUnit XML report (one test case per scene x camera)");
+  sub->add_option("--tolerance-scale", cmd->toleranceScale,
+                  "Multiply every tolerance by this factor in (0, 1] (stricter checks)")
+      ->capture_default_str();
+  addCompareSweepArgs(*sub, cmd->sweep);
   sub->callback([cmd, &run] { run = [cmd] { return runCompare(*cmd); }; });
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "core/error.h"
 #include "cpu/trace.h"
@@ -209,6 +210,48 @@ bool withinTolerance(const CameraDifference& d, const Tolerances& t) {
     return d.radianceOutliers == 0 && d.geometryOutliers == 0 && d.objectIdMismatches == 0;
   return double(d.radianceOutliersOffEdge) <= allowed && double(d.geometryOutliers) <= allowed &&
          double(d.objectIdMismatchesOffEdge) <= allowed;
+}
+
+Tolerances scaledTolerances(const Tolerances& t, double factor) {
+  DS_CHECK(factor > 0 && factor <= 1, "tolerance scale outside (0, 1]");
+  Tolerances s = t;
+  s.radiance *= factor;
+  s.position_m *= factor;
+  s.uv *= factor;
+  s.k *= factor;
+  s.outlierFraction *= factor;
+  return s;
+}
+
+std::string describeExcess(const CameraDifference& d, const Tolerances& t) {
+  if (withinTolerance(d, t)) return "";
+  std::ostringstream o;
+  o.precision(3);
+  const bool strict = t.outlierFraction == 0;  // then every pixel counts, edge or not
+  const double allowed = strict ? 0.0 : std::floor(t.outlierFraction * double(d.pixels));
+  const std::size_t radiance = strict ? d.radianceOutliers : d.radianceOutliersOffEdge;
+  const std::size_t objects = strict ? d.objectIdMismatches : d.objectIdMismatchesOffEdge;
+  const char* where = strict ? "" : " off edges";
+  const auto separator = [&] { if (o.tellp() > 0) o << "; "; };
+  if (double(radiance) > allowed) {
+    o << "radiance: " << radiance << " px over the bound" << where << " (max |diff| " << d.maxRadianceDiff
+      << " of full scale, tolerance " << t.radiance << (t.epsilon > 0 ? " + texture slope x uv bound" : "")
+      << "; allowed " << allowed << " px)";
+  }
+  if (double(d.geometryOutliers) > allowed) {
+    separator();
+    o << "geometry: " << d.geometryOutliers << " px with P or uv over the bound (worst error/bound "
+      << d.maxGeometryRatio << ", max |dP| " << d.maxPositionDiff_m << " m, max |duv| " << d.maxUvDiff;
+    if (t.epsilon == 0) o << "; tolerance P " << t.position_m << " m, uv " << t.uv;
+    else o << "; bound " << t.k << " eps D / c with eps " << t.epsilon;
+    o << "; allowed " << allowed << " px)";
+  }
+  if (double(objects) > allowed) {
+    separator();
+    o << "object ids: " << objects << " pixel-centre rays hit a different object" << where << " (allowed "
+      << allowed << " px)";
+  }
+  return o.str();
 }
 
 }  // namespace dicsynth

@@ -64,4 +64,14 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
 
 bool withinTolerance(const CameraDifference& d, const Tolerances& t);
 
+// The tolerances multiplied by `factor` in (0, 1] (`compare --tolerance-scale`): the radiance and
+// absolute bounds, k (so the conditioned bounds) and the outlier fraction. Stricter only: the
+// documented tolerances are derived bounds, and loosening them would hide bugs.
+Tolerances scaledTolerances(const Tolerances& t, double factor);
+
+// One line naming each measure over its tolerance, with the measured value and the allowed one,
+// e.g. "radiance: 12 px over 1e-3 of full scale off edges (max 2.3e-3; allowed 0 px)". Empty when
+// the camera passes.
+std::string describeExcess(const CameraDifference& d, const Tolerances& t);
+
 }  // namespace dicsynth

@@ -15,6 +15,8 @@
 #include "core/math.h"
 #include "geometry/nurbs_surface.h"
 #include "shared/kinds.h"
+#include "texture/analytic_speckle.h"
+#include "texture/bspline.h"
 
 namespace dicsynth {
 
@@ -87,6 +89,8 @@ struct Texture {
   double value = 1;      // Constant
   std::string path;      // File: resolved path (relative paths resolve against the scene's folder)
   TargetPattern target;  // Checkerboard, CircleGrid
+  Interpolation interpolation = Interpolation::Cubic;  // File
+  AnalyticSpeckle speckle;  // Speckle (texture/analytic_speckle.h)
 };
 
 struct Object {

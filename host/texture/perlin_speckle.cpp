@@ -39,18 +39,13 @@ void validate(const SpeckleParams& p) {
 
 double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
-// Corner ramp g·(dx, dy) with g one of 8 directions picked by the hash.
+// Corner ramp g·(dx, dy), g = (2U₁ − 1, 2U₂ − 1) with U from the hash (24-bit, exact).
 double ramp(std::uint32_t h, double dx, double dy) {
-  switch (h & 7u) {
-    case 0: return dx + dy;
-    case 1: return -dx + dy;
-    case 2: return dx - dy;
-    case 3: return -dx - dy;
-    case 4: return dx;
-    case 5: return -dx;
-    case 6: return dy;
-    default: return -dy;
-  }
+  const double gx = 2.0 * ds_unit(ds_hash_combine(h, 0u)) - 1.0;
+  const double gy = 2.0 * ds_unit(ds_hash_combine(h, 1u)) - 1.0;
+  const double a = gx * dx;  // separate statements: no FMA contraction
+  const double b = gy * dy;
+  return a + b;
 }
 
 double octaveNoise(std::uint32_t stream, double x, double y) {

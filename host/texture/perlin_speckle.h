@@ -5,8 +5,9 @@
 // construction below is dicsynth's own and documented here and in README).
 //
 // Noise. Gradient noise on a square lattice of spacing c px (--perlin-cell): at lattice point
-// (i, j) of octave o a gradient g chosen by the counter hash among the 8 directions (±1, ±1),
-// (±1, 0), (0, ±1) (no transcendental functions, so bit-identical everywhere); inside a lattice
+// (i, j) of octave o a gradient g = (2U₁ − 1, 2U₂ − 1), U from the counter hash (uniform in the
+// square: no transcendental functions, so bit-identical everywhere; continuous, so no two pixel
+// centres tie, which a set of 8 axis-aligned directions causes along whole rows); inside a lattice
 // square with local coordinates (fx, fy) ∈ [0, 1)² the noise is the bilinear blend, with the fade
 // φ(t) = 6t⁵ − 15t⁴ + 10t³ (C², Perlin 2002), of the four corner ramps g·(fx − a, fy − b). Octaves:
 // n(x) = Σ_{o < O} 2^-o noise_o(2^o x / c).

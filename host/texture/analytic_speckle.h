@@ -67,8 +67,9 @@ inline std::uint32_t speckleCellHash(std::uint32_t seed, int i, int j) {
 
 inline int speckleDiskCount(const AnalyticSpeckle& s, std::uint32_t cellHash) {
   const std::uint32_t bits = ds_hash_combine(cellHash, DS_DIM_SPECKLE_COUNT);
+  // N = #{k : bits ≥ cdf[k]}; cdf is non-decreasing, so that is the first k with bits < cdf[k].
   int n = 0;
-  for (int k = 0; k < kSpeckleMaxPerCell; ++k) n += bits >= s.cdf[std::size_t(k)] ? 1 : 0;
+  while (n < kSpeckleMaxPerCell && bits >= s.cdf[std::size_t(n)]) ++n;
   return n;
 }
 

@@ -141,12 +141,18 @@ bool ds_speckle_covered(hreal2 uv, hreal2 cellsPerUv, uint seed, uvec4 cdf[4]) {
   const hreal fx = h_sub(x, wx), fy = h_sub(y, wy);
   const hreal quarter = h(real(0.25));
   const uint stream = ds_hash(seed ^ 0x2c1b3c6du);  // kSpeckleCellStream
-  for (int dj = -1; dj <= 1; ++dj) {
-    for (int di = -1; di <= 1; ++di) {
+  // The own cell first (the likeliest to cover: an early exit), then its 8 neighbours; the
+  // decision (covered by any) does not depend on the order.
+  const ivec2 order[9] = ivec2[9](ivec2(0, 0), ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(-1, 0),
+                                  ivec2(1, 0), ivec2(-1, 1), ivec2(0, 1), ivec2(1, 1));
+  for (int c = 0; c < 9; ++c) {
+    {
+      const int di = order[c].x, dj = order[c].y;
       const uint cell = ds_hash_combine(ds_hash_combine(stream, uint(i + di)), uint(j + dj));
       const uint bits = ds_hash_combine(cell, DS_DIM_SPECKLE_COUNT);
+      // N = #{k : bits ≥ cdf[k]}; cdf is non-decreasing, so that is the first k with bits < cdf[k].
       int n = 0;
-      for (int k = 0; k < 16; ++k) n += bits >= cdf[k >> 2][k & 3] ? 1 : 0;
+      while (n < 16 && bits >= cdf[n >> 2][n & 3]) ++n;
       const uint disks = ds_hash_combine(cell, DS_DIM_SPECKLE_DISK);
       for (int k = 0; k < n; ++k) {
         const uint d = ds_hash_combine(disks, uint(k));

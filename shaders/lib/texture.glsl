@@ -146,27 +146,25 @@ bool ds_speckle_covered(hreal2 uv, hreal2 cellsPerUv, uint seed, uvec4 cdf[4]) {
   const ivec2 order[9] = ivec2[9](ivec2(0, 0), ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(-1, 0),
                                   ivec2(1, 0), ivec2(-1, 1), ivec2(0, 1), ivec2(1, 1));
   for (int c = 0; c < 9; ++c) {
-    {
-      const int di = order[c].x, dj = order[c].y;
-      const uint cell = ds_hash_combine(ds_hash_combine(stream, uint(i + di)), uint(j + dj));
-      const uint bits = ds_hash_combine(cell, DS_DIM_SPECKLE_COUNT);
-      // N = #{k : bits ≥ cdf[k]}; cdf is non-decreasing, so that is the first k with bits < cdf[k].
-      int n = 0;
-      while (n < 16 && bits >= cdf[n >> 2][n & 3]) ++n;
-      const uint disks = ds_hash_combine(cell, DS_DIM_SPECKLE_DISK);
-      for (int k = 0; k < n; ++k) {
-        const uint d = ds_hash_combine(disks, uint(k));
-        const hreal cx = h(ds_unit(ds_hash_combine(d, DS_DIM_SPECKLE_X)));  // 24 bits: exact
-        const hreal cy = h(ds_unit(ds_hash_combine(d, DS_DIM_SPECKLE_Y)));
-        DS_PRECISE const hreal ox = h_sub(fx, h(real(di)));
-        DS_PRECISE const hreal oy = h_sub(fy, h(real(dj)));
-        DS_PRECISE const hreal dx = h_sub(ox, cx);
-        DS_PRECISE const hreal dy = h_sub(oy, cy);
-        DS_PRECISE const hreal dx2 = h_mul(dx, dx);
-        DS_PRECISE const hreal dy2 = h_mul(dy, dy);
-        DS_PRECISE const hreal d2 = h_add(dx2, dy2);
-        if (h_le(d2, quarter)) return true;
-      }
+    const int di = order[c].x, dj = order[c].y;
+    const uint cell = ds_hash_combine(ds_hash_combine(stream, uint(i + di)), uint(j + dj));
+    const uint bits = ds_hash_combine(cell, DS_DIM_SPECKLE_COUNT);
+    // N = #{k : bits ≥ cdf[k]}; cdf is non-decreasing, so that is the first k with bits < cdf[k].
+    int n = 0;
+    while (n < 16 && bits >= cdf[n >> 2][n & 3]) ++n;
+    const uint disks = ds_hash_combine(cell, DS_DIM_SPECKLE_DISK);
+    for (int k = 0; k < n; ++k) {
+      const uint d = ds_hash_combine(disks, uint(k));
+      const hreal cx = h(ds_unit(ds_hash_combine(d, DS_DIM_SPECKLE_X)));  // 24 bits: exact
+      const hreal cy = h(ds_unit(ds_hash_combine(d, DS_DIM_SPECKLE_Y)));
+      DS_PRECISE const hreal ox = h_sub(fx, h(real(di)));
+      DS_PRECISE const hreal oy = h_sub(fy, h(real(dj)));
+      DS_PRECISE const hreal dx = h_sub(ox, cx);
+      DS_PRECISE const hreal dy = h_sub(oy, cy);
+      DS_PRECISE const hreal dx2 = h_mul(dx, dx);
+      DS_PRECISE const hreal dy2 = h_mul(dy, dy);
+      DS_PRECISE const hreal d2 = h_add(dx2, dy2);
+      if (h_le(d2, quarter)) return true;
     }
   }
   return false;

@@ -1,20 +1,31 @@
-// dicsynth speckle: writes a speckle texture (black disks on white) as a gray TIFF.
+// dicsynth speckle: writes a speckle texture (black disks on white, or thresholded Perlin noise)
+// as a gray TIFF.
 //
-//   dicsynth speckle -o FILE.tif --size W H [--radius PX] [--density F] [--seed N]
-//                    [--supersampling S] [--bits 8|16]
+//   dicsynth speckle -o FILE.tif --size W H [--radius PX | --diameter PX] [--radius-spread F]
+//                    [--density F | --count-density N] [--edge-width PX] [--pattern disks|perlin]
+//                    [--perlin-cell PX] [--octaves N] [--seed N] [--supersampling S] [--bits 8|16]
 //
-//   option            default  meaning
-//   -o, --output      -        the TIFF to write (.tif/.tiff); its folder must exist
-//   --size W H        -        image size in pixels
-//   --radius PX       3        disk radius in pixels (> 0)
-//   --density F       0.5      expected fraction of the area covered by disks, in (0, 1)
-//   --seed N          1        32-bit seed: the same parameters give the same pixels everywhere
-//   --supersampling S 4        S x S samples per pixel (1..8) for anti-aliasing
-//   --bits 8|16       16       bits per pixel; value = round(fraction uncovered · (2^bits − 1))
+//   option             default  meaning
+//   -o, --output       -        the TIFF to write (.tif/.tiff); its folder must exist
+//   --size W H         -        image size in pixels
+//   --radius PX        3        disk radius in pixels (> 0); mean radius with --radius-spread
+//   --diameter PX      -        disk diameter in pixels (instead of --radius)
+//   --radius-spread F  0        radii uniform in [r(1 − F), r(1 + F)], F in [0, 1)
+//   --density F        0.5      expected fraction of the area dark, in (0, 1)
+//   --count-density N  -        disks per px² (instead of --density; coverage 1 − exp(−N A_eff))
+//   --edge-width PX    0        width of the smooth step across an edge (0: hard edges); disks:
+//                               at most the smallest diameter
+//   --pattern P        disks    disks (Boolean model) or perlin (thresholded gradient noise)
+//   --perlin-cell PX   8        perlin: lattice spacing of the first octave (>= 1)
+//   --octaves N        1        perlin: octaves summed, 1..8
+//   --seed N           1        32-bit seed: the same parameters give the same pixels everywhere
+//   --supersampling S  4        S x S samples per pixel (1..8) for anti-aliasing
+//   --bits 8|16        16       bits per pixel; value = round(fraction uncovered · (2^bits − 1))
 //
 // Example (the texture of the paper's Figure 1):
 //   dicsynth speckle -o speckle.tif --size 4096 2048 --radius 3 --density 0.5 --seed 1
-// Bad parameters exit with code 2 before any file is created. The model: host/texture/speckle.cpp.
+// Bad parameters exit with code 2 before any file is created. The models: host/texture/speckle.cpp
+// (disks, size distribution, soft edges) and host/texture/perlin_speckle.h.
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -37,6 +48,8 @@ struct SpeckleOptions {
   std::vector<int> size;
   SpeckleParams params;
   int bits = 16;
+  double diameter = 0;  // > 0: given instead of the radius
+  std::string pattern = "disks";
 };
 
 std::string shortest(double v) {
@@ -53,6 +66,18 @@ bool hasTiffExtension(const std::string& path) {
   return ext == ".tif" || ext == ".tiff";
 }
 
+// The options beyond the original ones, when not at their defaults (for the file's description).
+std::string extras(const SpeckleOptions& o) {
+  const SpeckleParams& p = o.params;
+  std::string s;
+  if (p.pattern == SpecklePattern::Perlin)
+    s += " --pattern perlin --perlin-cell " + shortest(p.perlinCell_px) + " --octaves " + std::to_string(p.perlinOctaves);
+  if (p.radiusSpread != 0) s += " --radius-spread " + shortest(p.radiusSpread);
+  if (p.disksPerPx2 != 0) s += " --count-density " + shortest(p.disksPerPx2);
+  if (p.edgeWidth_px != 0) s += " --edge-width " + shortest(p.edgeWidth_px);
+  return s;
+}
+
 int runSpeckle(SpeckleOptions options) {
   // Validate everything before any work or file: bad input never leaves a file behind.
   if (options.bits != 8 && options.bits != 16)
@@ -62,6 +87,15 @@ int runSpeckle(SpeckleOptions options) {
   SpeckleParams& p = options.params;
   p.width_px = options.size.at(0);
   p.height_px = options.size.at(1);
+  if (options.diameter != 0) {
+    if (!(options.diameter > 0) || !std::isfinite(options.diameter))
+      throw InputError("speckle: --diameter must be a finite number > 0 px (got " + shortest(options.diameter) + ")");
+    p.radius_px = options.diameter / 2;
+  }
+  if (options.pattern == "perlin")
+    p.pattern = SpecklePattern::Perlin;
+  else if (options.pattern != "disks")
+    throw InputError("speckle: --pattern must be disks or perlin (got " + options.pattern + ")");
   const GrayImage image = generateSpeckle(p);  // validates the rest (InputError)
 
   const double maxValue = double((1u << options.bits) - 1u);
@@ -77,8 +111,9 @@ int runSpeckle(SpeckleOptions options) {
       std::string("dicsynth ") + kVersion + ": speckle --size " + std::to_string(p.width_px) + " " +
       std::to_string(p.height_px) + " --radius " + shortest(p.radius_px) + " --density " +
       shortest(p.density) + " --seed " + std::to_string(p.seed) + " --supersampling " +
-      std::to_string(p.supersampling) + " --bits " + std::to_string(options.bits) +
-      " (black disks on white; value = fraction of the pixel covered by no disk)";
+      std::to_string(p.supersampling) + " --bits " + std::to_string(options.bits) + extras(options) +
+      (p.pattern == SpecklePattern::Perlin ? " (thresholded Perlin noise; value = 1 − mean darkness of the samples)"
+                                           : " (black disks on white; value = fraction of the pixel covered by no disk)");
   writeGrayTiff(options.output, p.width_px, p.height_px, values, options.bits, description);
 
   const double coverage = 1.0 - sum / double(image.pixels.size());
@@ -94,9 +129,22 @@ void addSpeckleCommand(CLI::App& root, RunFn& run) {
   auto* sub = root.add_subcommand("speckle", "Write a speckle texture (black disks on white) as a TIFF");
   sub->add_option("-o,--output", options->output, "TIFF file to write (.tif/.tiff)")->required();
   sub->add_option("--size", options->size, "Image size in pixels: W H")->required()->expected(2);
-  sub->add_option("--radius", options->params.radius_px, "Disk radius in pixels")->capture_default_str();
-  sub->add_option("--density", options->params.density, "Expected covered area fraction, in (0, 1)")
+  auto* radius = sub->add_option("--radius", options->params.radius_px, "Disk radius in pixels")->capture_default_str();
+  sub->add_option("--diameter", options->diameter, "Disk diameter in pixels (instead of --radius)")->excludes(radius);
+  sub->add_option("--radius-spread", options->params.radiusSpread,
+                  "Radii uniform in [r(1-F), r(1+F)], F in [0, 1)")
       ->capture_default_str();
+  auto* density = sub->add_option("--density", options->params.density, "Expected dark area fraction, in (0, 1)")
+                      ->capture_default_str();
+  sub->add_option("--count-density", options->params.disksPerPx2, "Disks per px² (instead of --density)")
+      ->excludes(density);
+  sub->add_option("--edge-width", options->params.edgeWidth_px, "Width in px of the smooth step across edges (0: hard)")
+      ->capture_default_str();
+  sub->add_option("--pattern", options->pattern, "disks (Boolean model) or perlin (thresholded gradient noise)")
+      ->capture_default_str();
+  sub->add_option("--perlin-cell", options->params.perlinCell_px, "Perlin: lattice spacing in px (>= 1)")
+      ->capture_default_str();
+  sub->add_option("--octaves", options->params.perlinOctaves, "Perlin: octaves, 1..8")->capture_default_str();
   sub->add_option("--seed", options->params.seed, "Seed (32-bit unsigned)")->capture_default_str();
   sub->add_option("--supersampling", options->params.supersampling, "Samples per pixel along each axis (1..8)")
       ->capture_default_str();

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "geometry/homography.h"
+#include "texture/analytic_speckle.h"
 #include "texture/bspline.h"
 #include "texture/target_texture.h"
 
@@ -61,11 +62,12 @@ double textureValue(const PreparedScene& scene, const PreparedObject& obj, dvec2
     case TextureKind::Constant: return obj.textureValue;
     case TextureKind::Checkerboard:
     case TextureKind::CircleGrid: return targetTextureValue(obj.targetTexture, uv);
+    case TextureKind::Speckle: return speckleTextureValue(obj.speckleTexture, uv);
     case TextureKind::File: break;
   }
   const PreparedTexture& tex = scene.textures[std::size_t(obj.textureIndex)];
   return bsplineLookup(tex.coefficients.data(), tex.width, tex.height, std::clamp(uv.x, 0.0, 1.0),
-                       std::clamp(uv.y, 0.0, 1.0));
+                       std::clamp(uv.y, 0.0, 1.0), tex.interpolation);
 }
 
 }  // namespace

@@ -133,13 +133,15 @@ void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, cons
                                    " to infinity (it lies on the homography's singular plane)");
 }
 
+// One prepared texture per (file, interpolation): the coefficients depend on the kernel.
 int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::map<std::string, int>& byPath,
                 TextureCache* cache) {
-  if (auto it = byPath.find(t.path); it != byPath.end()) return it->second;
+  const std::string key = std::to_string(int(t.interpolation)) + ":" + t.path;
+  if (auto it = byPath.find(key); it != byPath.end()) return it->second;
   if (cache)
-    if (auto cached = cache->find(t.path)) {
+    if (auto cached = cache->find(t.path, t.interpolation)) {
       textures.push_back(std::move(*cached));
-      return byPath[t.path] = int(textures.size()) - 1;
+      return byPath[key] = int(textures.size()) - 1;
     }
   GrayImage image;
   try {
@@ -151,11 +153,12 @@ int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::m
   pt.path = t.path;
   pt.width = image.width;
   pt.height = image.height;
+  pt.interpolation = t.interpolation;
   pt.coefficients = std::move(image.pixels);
-  bsplinePrefilter(pt.coefficients, pt.width, pt.height);
+  bsplinePrefilter(pt.coefficients, pt.width, pt.height, t.interpolation);
   if (cache) cache->insert(pt);
   textures.push_back(std::move(pt));
-  return byPath[t.path] = int(textures.size()) - 1;
+  return byPath[key] = int(textures.size()) - 1;
 }
 
 }  // namespace
@@ -212,6 +215,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     } else {
       o.textureValue = so.texture.value;
     }
+    if (so.texture.kind == TextureKind::Speckle) o.speckleTexture = so.texture.speckle;
     o.worldFromObject = glm::translate(dmat4(1.0), so.shape.location_m) * so.transform *
                         glm::translate(dmat4(1.0), o.shapeOffset_m);
     o.objectFromWorld = isAffine(o.worldFromObject) ? glm::affineInverse(o.worldFromObject)
@@ -234,8 +238,11 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   ps.features.lights = anyLambert && !ps.lights.empty();
   for (const PreparedCamera& c : ps.cameras) ps.features.distortion |= c.model.distorted;
   ps.features.fileTextures = !ps.textures.empty();
+  for (const PreparedTexture& t : ps.textures)
+    ps.features.quinticTextures |= t.interpolation == Interpolation::Quintic;
   for (const PreparedObject& o : ps.objects) {
     ps.features.shapeKinds |= 1u << o.geometry.kind;
+    ps.features.speckleTextures |= o.textureKind == TextureKind::Speckle;
     if (o.nurbs)
       for (const BezierPatch& p : o.nurbs->patches)
         ps.features.nurbsDegree = std::max({ps.features.nurbsDegree, p.degreeU, p.degreeV});

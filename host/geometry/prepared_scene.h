@@ -13,6 +13,8 @@
 #include "geometry/shapes.h"
 #include "geometry/targets.h"
 #include "scene/scene.h"
+#include "texture/analytic_speckle.h"
+#include "texture/bspline.h"
 
 namespace dicsynth {
 
@@ -37,6 +39,7 @@ struct PreparedObject {
   int textureIndex = -1;      // into PreparedScene::textures (File), else -1
   double textureValue = 1;    // Constant: the texture value
   TargetTexture targetTexture;  // Checkerboard, CircleGrid: the pattern in (u, v)
+  AnalyticSpeckle speckleTexture;  // Speckle: the Boolean model in (u, v)
   // A calibration target's layout and features (geometry/targets.h); null for other objects.
   std::shared_ptr<const TargetLayout> target;
   dmat4 worldFromTarget{1.0};   // the target frame in the world (targets only; rigid)
@@ -56,7 +59,8 @@ struct PreparedLight {
 struct PreparedTexture {
   std::string path;
   int width = 0, height = 0;
-  std::vector<double> coefficients;  // cubic B-spline coefficients (texture/bspline.h), row-major
+  Interpolation interpolation = Interpolation::Cubic;
+  std::vector<double> coefficients;  // B-spline coefficients for that kernel (texture/bspline.h), row-major
 };
 
 // Features the scene uses; the GPU switches the others off with specialization constants.
@@ -66,8 +70,10 @@ struct SceneFeatures {
   bool fileTextures = false;  // some object has a Texture.File: B-spline lookups
   std::uint32_t shapeKinds = 0;  // bit k set: some object has shape kind k (DS_SHAPE_*)
   int nurbsDegree = 0;           // highest degree of any NURBS patch (GPU raises all to it), 0: none
+  bool speckleTextures = false;  // some object has a Texture.Speckle: analytic disk tests
+  bool quinticTextures = false;  // some Texture.File uses quintic interpolation: 6×6 lookups
 
-  static SceneFeatures all(int nurbsDegree) { return {true, true, true, ~0u, nurbsDegree}; }
+  static SceneFeatures all(int nurbsDegree) { return {true, true, true, ~0u, nurbsDegree, true, true}; }
   auto operator<=>(const SceneFeatures&) const = default;
 };
 

@@ -1,14 +1,16 @@
 #pragma once
 // File textures prepared once per process: a sweep renders the same texture at every point, and
 // reading plus B-spline prefiltering a 4096×2048 texture costs about a second on this machine
-// (bench/RESULTS.md, "Sweeps"). An entry is keyed by the path and checked against the file's size
-// and modification time, so a texture edited during a run is read again.
+// (bench/RESULTS.md, "Sweeps"). An entry is keyed by the path and the interpolation (the prefiltered
+// coefficients depend on the kernel) and checked against the file's size and modification time, so a
+// texture edited during a run is read again.
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "geometry/prepared_scene.h"
 
@@ -16,11 +18,11 @@ namespace dicsynth {
 
 class TextureCache {
  public:
-  // The prepared texture of `path` when cached and the file is unchanged.
-  std::optional<PreparedTexture> find(const std::string& path) const {
+  // The prepared texture of `path` with `interpolation` when cached and the file is unchanged.
+  std::optional<PreparedTexture> find(const std::string& path, Interpolation interpolation) const {
     const auto stamp = stampOf(path);
     std::lock_guard lock(mutex_);
-    const auto it = entries_.find(path);
+    const auto it = entries_.find({path, interpolation});
     if (!stamp || it == entries_.end() || it->second.stamp != *stamp) return std::nullopt;
     return it->second.texture;
   }
@@ -28,7 +30,7 @@ class TextureCache {
     const auto stamp = stampOf(texture.path);
     if (!stamp) return;
     std::lock_guard lock(mutex_);
-    entries_[texture.path] = {*stamp, texture};
+    entries_[{texture.path, texture.interpolation}] = {*stamp, texture};
   }
   std::size_t size() const {
     std::lock_guard lock(mutex_);
@@ -54,7 +56,7 @@ class TextureCache {
     return s;
   }
   mutable std::mutex mutex_;  // a sweep prepares on a worker thread
-  std::map<std::string, Entry> entries_;
+  std::map<std::pair<std::string, Interpolation>, Entry> entries_;
 };
 
 }  // namespace dicsynth

@@ -70,6 +70,12 @@ typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
   g.target0 = h4<Layout>(t.origin_uv.x, t.origin_uv.y, t.cell_uv.x, t.cell_uv.y);
   g.target1 = h4<Layout>(t.radiusSquared_cells, t.dark, t.light);
   g.targetInfo = {t.cols, t.rows, t.asymmetric ? 1 : 0, 0};
+  const AnalyticSpeckle& sp = o.speckleTexture;
+  g.speckleInfo = {int(sp.seed), 0, 0, 0};  // the seed's bits (uint(int) in the shader)
+  g.speckle0 = h4<Layout>(sp.cellsPerUv.x, sp.cellsPerUv.y, sp.dark, sp.light);
+  for (int q = 0; q < 4; ++q)
+    g.speckleCdf[q] = {sp.cdf[std::size_t(4 * q)], sp.cdf[std::size_t(4 * q + 1)], sp.cdf[std::size_t(4 * q + 2)],
+                       sp.cdf[std::size_t(4 * q + 3)]};
   return g;
 }
 
@@ -144,7 +150,7 @@ PackedScene<Layout> packScene(const PreparedScene& scene) {
     // The shader indexes texels with 32-bit ints.
     if (p.texels.size() + t.coefficients.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
       throw InputError(t.path + ": textures too large in total for the GPU backend");
-    p.textures.push_back({{t.width, t.height, int(p.texels.size()), 0}});
+    p.textures.push_back({{t.width, t.height, int(p.texels.size()), int(t.interpolation)}});
     for (double c : t.coefficients) p.texels.push_back(typename Layout::real(c));
   }
   return p;

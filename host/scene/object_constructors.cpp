@@ -1,4 +1,5 @@
-// Shader.Constant, Shader.Lambert, Texture.Constant, Texture.File, Object.Simple, Light.Point.
+// Shader.Constant, Shader.Lambert, Texture.Constant, Texture.File, Texture.Speckle, Object.Simple,
+// Light.Point.
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -64,18 +65,21 @@ int textureConstant(lua_State* L) {
 /* ------------------------------------------------------------------------------------------------
 Texture.File: an image (e.g. a speckle pattern) glued on the surface's (u, v) parameters.
 
-  Parameter | Value   | Default  | Meaning
-  ----------+---------+----------+-------------------------------------------------------------
-  fileName  | string  | required | image file; a relative path is relative to the scene file's
-            |         |          | folder, not to the working directory
+  Parameter     | Value   | Default  | Meaning
+  --------------+---------+----------+---------------------------------------------------------
+  fileName      | string  | required | image file; a relative path is relative to the scene
+                |         |          | file's folder, not to the working directory
+  interpolation | string  | "cubic"  | "cubic": interpolating cubic B-spline (4×4 texels);
+                |         |          | "quintic": interpolating quintic B-spline (6×6 texels),
+                |         |          | less interpolation bias (texture/bspline.h, README)
 
 The file must exist and be readable when the constructor runs (the error names the line); it is
 decoded later, when the scene is prepared.
 
-Example:  Texture.File { fileName = "speckle.tif" }
+Example:  Texture.File { fileName = "speckle.tif"; interpolation = "quintic" }
 ------------------------------------------------------------------------------------------------ */
 int textureFile(lua_State* L) {
-  Params p(L, "Texture.File", {"fileName"});
+  Params p(L, "Texture.File", {"fileName", "interpolation"});
   const LuaSandbox& sandbox = LuaSandbox::of(L);
   Texture texture;
   texture.kind = TextureKind::File;
@@ -83,6 +87,13 @@ int textureFile(lua_State* L) {
   const std::optional<std::string> fileName = p.string("fileName");
   if (!fileName) p.fail("missing required 'fileName'");
   if (fileName->empty()) p.fail("'fileName' must not be empty");
+  const std::string interpolation = p.string("interpolation").value_or("cubic");
+  if (interpolation == "cubic")
+    texture.interpolation = Interpolation::Cubic;
+  else if (interpolation == "quintic")
+    texture.interpolation = Interpolation::Quintic;
+  else
+    p.fail("'interpolation' must be \"cubic\" or \"quintic\", got \"" + interpolation + "\"");
 
   // Resolve against the scene's folder, then check the file can be read.
   const std::filesystem::path given(*fileName);
@@ -96,6 +107,42 @@ int textureFile(lua_State* L) {
   std::FILE* file = std::fopen(texture.path.c_str(), "rb");
   if (file == nullptr) p.fail("cannot read " + name + ": " + std::strerror(errno));
   std::fclose(file);
+  pushUserdata(L, std::move(texture));
+  return 1;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Texture.Speckle: an analytic speckle in (u, v): dark disks of one radius from a seeded Boolean
+(Poisson) model on a light background, decided exactly per sample; no image, no interpolation.
+Model and formulas: host/texture/analytic_speckle.h.
+
+  Parameter | Value   | Default | Meaning
+  ----------+---------+---------+------------------------------------------------------------
+  radius    | number  | 0.005   | disk radius in u units (fraction of the surface's u range),
+            |         |         | > 0; on a w-wide rectangle a radius of ρ metres is ρ / w
+  density   | number  | 0.5     | expected fraction of the area covered, in (0, 0.95]
+  aspect    | number  | 1       | the surface's v length / u length (e.g. h / w of a
+            |         |         | rectangle), so that disks are round on the surface
+  seed      | integer | 1       | 0 … 2^32 − 1; the same seed gives the same disks everywhere
+  dark      | number  | 0       | texture value inside the disks, >= 0
+  light     | number  | 1       | texture value outside, >= 0
+
+Example:  Texture.Speckle { radius = 0.004; density = 0.5; aspect = 0.5; seed = 7 }
+------------------------------------------------------------------------------------------------ */
+int textureSpeckle(lua_State* L) {
+  Params p(L, "Texture.Speckle", {"radius", "density", "aspect", "seed", "dark", "light"});
+  Texture texture;
+  texture.kind = TextureKind::Speckle;
+  texture.where = LuaSandbox::of(L).here(L);
+  const long long seed = p.integer("seed").value_or(1);
+  p.require(seed >= 0 && seed <= 0xffffffffLL, "seed", "an integer in 0 .. 2^32 - 1", double(seed));
+  try {
+    texture.speckle = makeAnalyticSpeckle(p.number("radius", 0.005), p.number("density", 0.5),
+                                          p.number("aspect", 1.0), std::uint32_t(seed), p.number("dark", 0.0),
+                                          p.number("light", 1.0));
+  } catch (const InputError& e) {
+    p.fail(e.what());
+  }
   pushUserdata(L, std::move(texture));
   return 1;
 }
@@ -137,7 +184,7 @@ int objectSimple(lua_State* L) {
     object.shader.where = object.where;
   }
   if (const Texture* texture =
-          p.userdata<Texture>("texture", "a Texture (Texture.Constant, Texture.File)")) {
+          p.userdata<Texture>("texture", "a Texture (Texture.Constant, Texture.File, Texture.Speckle)")) {
     object.texture = *texture;
   } else {
     object.texture.where = object.where;
@@ -203,8 +250,9 @@ int shaderToString(lua_State* L) {
 
 int textureToString(lua_State* L) {
   const Texture* texture = toUserdata<Texture>(L, 1);
-  lua_pushstring(
-      L, texture && texture->kind == TextureKind::File ? "Texture.File" : "Texture.Constant");
+  lua_pushstring(L, texture && texture->kind == TextureKind::File      ? "Texture.File"
+                    : texture && texture->kind == TextureKind::Speckle ? "Texture.Speckle"
+                                                                       : "Texture.Constant");
   return 1;
 }
 
@@ -234,7 +282,9 @@ void registerObjectConstructors(lua_State* L) {
                        {"Lambert", &protectedCall<shader<ShaderKind::Lambert>>}});
   setConstructorTable(
       L, "Texture",
-      {{"Constant", &protectedCall<textureConstant>}, {"File", &protectedCall<textureFile>}});
+      {{"Constant", &protectedCall<textureConstant>},
+       {"File", &protectedCall<textureFile>},
+       {"Speckle", &protectedCall<textureSpeckle>}});
   setConstructorTable(L, "Object", {{"Simple", &protectedCall<objectSimple>}});
   setConstructorTable(L, "Light", {{"Point", &protectedCall<lightPoint>}});
 }

@@ -16,6 +16,8 @@
 #include "geometry/nurbs_surface.h"
 #include "sensor/sensor_model.h"
 #include "shared/kinds.h"
+#include "texture/analytic_speckle.h"
+#include "texture/bspline.h"
 
 namespace dicsynth {
 
@@ -91,6 +93,8 @@ struct Texture {
   double value = 1;      // Constant
   std::string path;      // File: resolved path (relative paths resolve against the scene's folder)
   TargetPattern target;  // Checkerboard, CircleGrid
+  Interpolation interpolation = Interpolation::Cubic;  // File
+  AnalyticSpeckle speckle;  // Speckle (texture/analytic_speckle.h)
 };
 
 struct Object {

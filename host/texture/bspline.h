@@ -1,12 +1,15 @@
 #pragma once
-// Texture interpolation: interpolating cubic B-spline ("bicubic" in dicsynth's documentation).
+// Texture interpolation: interpolating B-splines of degree 3 ("cubic", the default) and degree 5
+// ("quintic"), selected per Texture.File by `interpolation`.
 //
-// Kernel. The texture is the spline f(x, y) = Σ c[j][i] β³(x − i) β³(y − j) with the cubic B-spline
-// β³. Its coefficients c are computed once, in double, so that f passes exactly through every texel
-// value (prefilter below). Properties that matter for metrology: C² continuity (no kinks that a DIC
-// sub-pixel interpolator could lock onto) and exact reproduction of polynomials up to degree 3 away
-// from the borders (tests/test_texture.cpp checks both). Catmull–Rom/Keys (a = −1/2) kernels are
-// only C¹ and exact up to degree 2.
+// Kernel. The texture is the spline f(x, y) = Σ c[j][i] βⁿ(x − i) βⁿ(y − j) with the centred
+// B-spline βⁿ of degree n (n + 1 taps per axis: 4 for cubic, 6 for quintic),
+//   βⁿ(x) = (1/n!) Σ_{k=0}^{n+1} (−1)^k C(n+1, k) (x + (n+1)/2 − k)₊ⁿ.
+// Its coefficients c are computed once, in double, so that f passes exactly through every texel
+// value (prefilter below). Cubic: C² continuous, exact on polynomials up to degree 3; quintic: C⁴,
+// exact up to degree 5, and a frequency response much closer to the ideal low-pass (less
+// interpolation bias on a sub-pixel shift: tests/test_texture_bias.cpp, README). Catmull–Rom/Keys
+// (a = −1/2) kernels are only C¹ and exact up to degree 2.
 //
 // Coordinates. Texel (i, j) is centred at u = (i + 1/2)/W, v = (j + 1/2)/H; (u, v) = (0, 0) is the
 // top-left corner of the image, v grows downwards (row 0 first). So x = u W − 1/2, y = v H − 1/2.
@@ -15,16 +18,24 @@
 // mirrored about its edges), both in the prefilter and in the lookup, so interpolation stays exact
 // at texel centres right up to the edge.
 //
-// shaders/lib/texture.glsl evaluates the same sum with the same weights and index rule.
+// shaders/lib/texture.glsl evaluates the same sums with the same weights and index rule.
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 namespace dicsynth {
 
+enum class Interpolation : int { Cubic = 0, Quintic = 1 };  // values stored in GpuTexture::info.w
+
 // Prefilters `values` (W × H, row-major) in place into B-spline coefficients: along each row, then
-// each column, solve the tridiagonal system (1/6) c[k−1] + (4/6) c[k] + (1/6) c[k+1] = f[k] with the
-// mirrored ends c[−1] = c[0], c[N] = c[N−1] (Thomas algorithm; strictly diagonally dominant, stable).
-void bsplinePrefilter(std::vector<double>& values, int width, int height);
+// each column, solve the banded system Σ_m βⁿ(m) c[k − m] = f[k] (mirrored ends c[−1] = c[0],
+// c[−2] = c[1], c[N] = c[N−1], …). Cubic: (1/6)(c[k−1] + 4 c[k] + c[k+1]) = f[k] (tridiagonal,
+// one pole z = √3 − 2); quintic: (1/120)(c[k−2] + 26 c[k−1] + 66 c[k] + 26 c[k+1] + c[k+2]) = f[k]
+// (pentadiagonal, poles z = (w ± √(w² − 4))/2 with w = −13 ± √105: z₁ ≈ −0.43058, z₂ ≈ −0.04310).
+// Both systems are strictly diagonally dominant (4 > 2, 66 > 54), so elimination without pivoting
+// is stable; the solve is exact up to rounding, no truncated recursive filter.
+void bsplinePrefilter(std::vector<double>& values, int width, int height,
+                      Interpolation kind = Interpolation::Cubic);
 
 // Half-sample symmetric index into [0, n).
 inline int mirrorIndex(int k, int n) {
@@ -44,22 +55,48 @@ void bsplineWeights(Real f, Real w[4]) {
   w[3] = f3 / 6;
 }
 
-// Interpolated value at (u, v) from prefiltered coefficients.
+// Quintic B-spline weights β⁵(f − k) of the six texels at offsets k = −2 … 3 from floor(x):
+// the pieces of β⁵ (truncated-power formula above) expanded on f ∈ [0, 1), in Horner form.
+// They sum to 1 (the coefficients of each power cancel; at f = 0 they are 1, 26, 66, 26, 1, 0 /120).
+template <class Real>
+void quinticWeights(Real f, Real w[6]) {
+  const Real g = 1 - f;
+  const Real g5 = g * g * g * g * g, f5 = f * f * f * f * f;
+  w[0] = g5 / 120;
+  w[1] = (26 + f * (-50 + f * (20 + f * (20 + f * (-20 + f * 5))))) / 120;
+  w[2] = (66 + f * f * (-60 + f * f * (30 + f * -10))) / 120;
+  w[3] = (26 + f * (50 + f * (20 + f * (-20 + f * (-20 + f * 10))))) / 120;
+  w[4] = (1 + f * (5 + f * (10 + f * (10 + f * (5 + f * -5))))) / 120;
+  w[5] = f5 / 120;
+}
+
+// Interpolated value at (u, v) from prefiltered coefficients, for the kernel they were made for.
 template <class Real, class Coefficient>
-Real bsplineLookup(const Coefficient* coefficients, int width, int height, Real u, Real v) {
+Real bsplineLookup(const Coefficient* coefficients, int width, int height, Real u, Real v,
+                   Interpolation kind = Interpolation::Cubic) {
   const Real x = u * Real(width) - Real(0.5), y = v * Real(height) - Real(0.5);
   const Real fx = std::floor(x), fy = std::floor(y);
   const int ix = int(fx), iy = int(fy);
-  Real wx[4], wy[4];
-  bsplineWeights(x - fx, wx);
-  bsplineWeights(y - fy, wy);
+  Real wx[6], wy[6];
+  int taps, first;  // taps per axis, offset of the first tap from floor(x)
+  if (kind == Interpolation::Quintic) {
+    quinticWeights(x - fx, wx);
+    quinticWeights(y - fy, wy);
+    taps = 6;
+    first = -2;
+  } else {
+    bsplineWeights(x - fx, wx);
+    bsplineWeights(y - fy, wy);
+    taps = 4;
+    first = -1;
+  }
   Real sum = 0;
-  for (int j = 0; j < 4; ++j) {
-    const int row = mirrorIndex(iy + j - 1, height);
+  for (int j = 0; j < taps; ++j) {
+    const int row = mirrorIndex(iy + j + first, height);
     Real rowSum = 0;
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < taps; ++i)
       rowSum += wx[i] * Real(coefficients[std::size_t(row) * std::size_t(width) +
-                                          std::size_t(mirrorIndex(ix + i - 1, width))]);
+                                          std::size_t(mirrorIndex(ix + i + first, width))]);
     sum += wy[j] * rowSum;
   }
   return sum;

@@ -21,7 +21,23 @@
 // log1p is not correctly rounded in every libm; the disk count could differ between libms only if
 // λ·A_ext fell within an ulp of a half-integer.) ds_unit has 24 bits: centres lie on a grid of A_ext-width / 2^24
 // (2.4e-4 px for 4096 px), far below the sample spacing.
+//
+// Extensions (all off by default, and then the output is bit for bit the original's):
+// - Size distribution (--radius-spread s): disk k's radius is r(1 + s(2U − 1)), U = ds_unit of
+//   ds_hash_combine(h, 2): uniform in [r(1 − s), r(1 + s)], E[R²] = r²(1 + s²/3). Centres keep
+//   their hash dims 0 and 1, so a seed's centres do not move when s changes.
+// - Soft edges (--edge-width w): disk k darkens a point at distance d from its centre by
+//   D(d) = 1 − S((d − (r_k − w/2)) / w), S(t) = 3t² − 2t³ clamped to [0, 1] (smoothstep): fully dark
+//   inside r_k − w/2, half dark at r_k, clear beyond r_k + w/2. A sample's value is
+//   Π_k (1 − D_k) (for hard disks, 1 outside every disk and 0 inside any: the union). For a
+//   Poisson process Campbell's formula gives E Π (1 − D_k) = exp(−λ A_eff) with
+//   A_eff = E ∫ D = 2π ∫ ρ D(ρ) dρ = π(E[R²] + w²/20) (∫₀¹(1 − S) = 1/2, ∫₀¹ t(1 − S) = 3/20), so
+//   choosing λ = −ln(1 − density)/A_eff keeps the mean darkness at `density`.
+// - Intensity (--count-density λ): disks per px² given directly; coverage 1 − exp(−λ A_eff).
+// The border extension becomes the disk's reach r(1 + s) + w/2.
 #include "texture/speckle.h"
+
+#include "texture/perlin_speckle.h"
 
 #include <algorithm>
 #include <bit>
@@ -47,6 +63,8 @@ std::string str(double v) {
   return buffer;
 }
 
+double reach(const SpeckleParams& p) { return p.radius_px * (1.0 + p.radiusSpread) + 0.5 * p.edgeWidth_px; }
+
 void validate(const SpeckleParams& p) {
   if (p.width_px < 1 || p.height_px < 1 || p.width_px > kMaxSide_px || p.height_px > kMaxSide_px)
     throw InputError("speckle: size must be 1.." + std::to_string(kMaxSide_px) + " px per side (got " +
@@ -58,13 +76,21 @@ void validate(const SpeckleParams& p) {
   if (p.supersampling < 1 || p.supersampling > 8)
     throw InputError("speckle: supersampling must be in 1..8 (got " + std::to_string(p.supersampling) +
                      ")");
+  if (!(p.radiusSpread >= 0 && p.radiusSpread < 1))
+    throw InputError("speckle: radius spread must be in [0, 1) (got " + str(p.radiusSpread) + ")");
+  if (!(p.disksPerPx2 >= 0) || !std::isfinite(p.disksPerPx2))
+    throw InputError("speckle: count density must be a finite number >= 0 disks/px² (got " + str(p.disksPerPx2) +
+                     ")");
+  const double smallestDiameter = 2.0 * p.radius_px * (1.0 - p.radiusSpread);
+  if (!(p.edgeWidth_px >= 0 && p.edgeWidth_px <= smallestDiameter))
+    throw InputError("speckle: edge width must be in [0, " + str(smallestDiameter) +
+                     "] px (the smallest disk diameter) (got " + str(p.edgeWidth_px) + ")");
 }
 
 // Marks, in each pixel's bit mask, the samples covered by the disk centred at (cx, cy).
 template <typename Mask>
-void rasterizeDisk(double cx, double cy, const SpeckleParams& p, const std::vector<double>& offsets,
+void rasterizeDisk(double cx, double cy, double r, const SpeckleParams& p, const std::vector<double>& offsets,
                    std::vector<Mask>& masks) {
-  const double r = p.radius_px;
   const double r2 = r * r;
   const int S = p.supersampling;
   // Pixels whose square meets the disk's bounding box.
@@ -94,9 +120,84 @@ void rasterizeDisk(double cx, double cy, const SpeckleParams& p, const std::vect
   }
 }
 
+// Disk k of the stream: centre in the image frame and radius.
+struct Disk {
+  double x, y, r;
+};
+Disk disk(const SpeckleParams& p, std::uint32_t stream, std::uint32_t k, double extWidth, double extHeight) {
+  const double ext = reach(p);
+  const std::uint32_t h = ds_hash_combine(stream, k);
+  const double ux = ds_unit(ds_hash_combine(h, 0u));
+  const double uy = ds_unit(ds_hash_combine(h, 1u));
+  const double sx = ux * extWidth;  // separate statements: no FMA contraction
+  const double sy = uy * extHeight;
+  double r = p.radius_px;
+  if (p.radiusSpread > 0) {
+    const double u = ds_unit(ds_hash_combine(h, 2u));
+    const double centred = 2.0 * u - 1.0;  // exact (24-bit u)
+    const double relative = p.radiusSpread * centred;
+    r = p.radius_px * (1.0 + relative);
+  }
+  return {sx - ext, sy - ext, r};
+}
+
+// Soft edges: every sample's Π (1 − D_k) over the disks within reach, found through a grid of
+// square bins of side 2·reach (a sample's disks lie in its bin and the 8 around it).
+GrayImage generateSoft(const SpeckleParams& p, std::uint32_t diskCount) {
+  const double ext = reach(p), w = p.edgeWidth_px;
+  const double extWidth = double(p.width_px) + 2.0 * ext, extHeight = double(p.height_px) + 2.0 * ext;
+  const double bin = 2.0 * ext;
+  const int binsX = int(std::ceil(extWidth / bin)) + 1, binsY = int(std::ceil(extHeight / bin)) + 1;
+  std::vector<Disk> disks(diskCount);
+  std::vector<std::uint32_t> start(std::size_t(binsX) * std::size_t(binsY) + 1, 0);
+  auto binOf = [&](double x, double y) {
+    const int bx = std::clamp(int(std::floor((x + ext) / bin)), 0, binsX - 1);
+    const int by = std::clamp(int(std::floor((y + ext) / bin)), 0, binsY - 1);
+    return std::size_t(by) * std::size_t(binsX) + std::size_t(bx);
+  };
+  const std::uint32_t stream = ds_hash(p.seed ^ kSpeckleStream);
+  for (std::uint32_t k = 0; k < diskCount; ++k) {
+    disks[k] = disk(p, stream, k, extWidth, extHeight);
+    ++start[binOf(disks[k].x, disks[k].y) + 1];
+  }
+  for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+  std::vector<std::uint32_t> order(diskCount), fill(start.begin(), start.end() - 1);
+  for (std::uint32_t k = 0; k < diskCount; ++k) order[fill[binOf(disks[k].x, disks[k].y)]++] = k;
+
+  const int S = p.supersampling;
+  GrayImage image;
+  image.width = p.width_px;
+  image.height = p.height_px;
+  image.pixels.resize(std::size_t(p.width_px) * std::size_t(p.height_px));
+  for (int y = 0; y < p.height_px; ++y)
+    for (int x = 0; x < p.width_px; ++x) {
+      double sum = 0;
+      for (int j = 0; j < S; ++j)
+        for (int i = 0; i < S; ++i) {
+          const double sx = double(x) + (double(i) + 0.5) / double(S), sy = double(y) + (double(j) + 0.5) / double(S);
+          const int bx = int(std::floor((sx + ext) / bin)), by = int(std::floor((sy + ext) / bin));
+          double clear = 1;
+          for (int ny = std::max(0, by - 1); ny <= std::min(binsY - 1, by + 1); ++ny)
+            for (int nx = std::max(0, bx - 1); nx <= std::min(binsX - 1, bx + 1); ++nx) {
+              const std::size_t b = std::size_t(ny) * std::size_t(binsX) + std::size_t(nx);
+              for (std::uint32_t e = start[b]; e < start[b + 1]; ++e) {
+                const Disk& d = disks[order[e]];
+                const double t = (std::hypot(sx - d.x, sy - d.y) - (d.r - 0.5 * w)) / w;
+                if (t >= 1) continue;
+                const double c = std::max(t, 0.0);
+                clear *= c * c * (3.0 - 2.0 * c);  // 1 − D = S(t)
+              }
+            }
+          sum += clear;
+        }
+      image.pixels[std::size_t(y) * std::size_t(p.width_px) + std::size_t(x)] = sum / double(S * S);
+    }
+  return image;
+}
+
 template <typename Mask>
 GrayImage generate(const SpeckleParams& p, std::uint32_t diskCount) {
-  const double r = p.radius_px;
+  const double r = reach(p);
   const double extWidth = double(p.width_px) + 2.0 * r;
   const double extHeight = double(p.height_px) + 2.0 * r;
   const int S = p.supersampling;
@@ -107,12 +208,8 @@ GrayImage generate(const SpeckleParams& p, std::uint32_t diskCount) {
   std::vector<Mask> masks(std::size_t(p.width_px) * std::size_t(p.height_px), Mask(0));
   const std::uint32_t stream = ds_hash(p.seed ^ kSpeckleStream);
   for (std::uint32_t k = 0; k < diskCount; ++k) {
-    const std::uint32_t h = ds_hash_combine(stream, k);
-    const double ux = ds_unit(ds_hash_combine(h, 0u));
-    const double uy = ds_unit(ds_hash_combine(h, 1u));
-    const double sx = ux * extWidth;  // separate statements: no FMA contraction
-    const double sy = uy * extHeight;
-    rasterizeDisk(sx - r, sy - r, p, offsets, masks);
+    const Disk d = disk(p, stream, k, extWidth, extHeight);
+    rasterizeDisk(d.x, d.y, d.r, p, offsets, masks);
   }
 
   // Value = fraction of the samples inside no disk.
@@ -128,17 +225,30 @@ GrayImage generate(const SpeckleParams& p, std::uint32_t diskCount) {
 
 }  // namespace
 
+double speckleEffectiveArea(const SpeckleParams& p) {
+  const double r = p.radius_px, s = p.radiusSpread, w = p.edgeWidth_px;
+  if (s == 0 && w == 0) return kPi * r * r;  // the original expression, rounding included
+  return kPi * (r * r * (1.0 + s * s / 3.0) + w * w / 20.0);
+}
+
+double speckleIntensity(const SpeckleParams& p) {
+  if (p.disksPerPx2 > 0) return p.disksPerPx2;
+  return -std::log1p(-p.density) / speckleEffectiveArea(p);
+}
+
 GrayImage generateSpeckle(const SpeckleParams& params) {
+  if (params.pattern == SpecklePattern::Perlin) return generatePerlinSpeckle(params);
   validate(params);
-  const double r = params.radius_px;
+  const double r = reach(params);
   const double extArea = (double(params.width_px) + 2.0 * r) * (double(params.height_px) + 2.0 * r);
-  const double lambda = -std::log1p(-params.density) / (kPi * r * r);  // disks per px²
+  const double lambda = speckleIntensity(params);  // disks per px²
   const double expectedCount = lambda * extArea;
   const double diskCount = std::floor(expectedCount + 0.5);
   if (diskCount > kMaxDisks)
     throw InputError("speckle: " + str(diskCount) + " disks needed, at most " + str(kMaxDisks) +
                      ": the radius is too small for this size and density");
   const auto n = std::uint32_t(diskCount);
+  if (params.edgeWidth_px > 0) return generateSoft(params, n);
   // The smallest mask type that holds S² bits.
   const int samples = params.supersampling * params.supersampling;
   if (samples <= 16) return generate<std::uint16_t>(params, n);

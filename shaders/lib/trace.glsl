@@ -113,12 +113,7 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
 real ds_shade(SurfaceHit hit) {
   const real4 shading = objects[hit.object].shading;
   const ivec4 kinds = objects[hit.object].kinds;
-  real texture = shading.y;
-  if (HAS_FILE_TEXTURES && kinds.z >= 0) texture = ds_texture_lookup(kinds.z, hit.uv);
-  const int textureKind = objects[hit.object].extra.y;
-  if (textureKind == DS_TEXTURE_CHECKERBOARD || textureKind == DS_TEXTURE_CIRCLE_GRID)
-    texture = ds_target_texture(hit.object, hit.uv);
-  const real reflectance = shading.x * texture;
+  const real reflectance = shading.x * ds_object_texture(hit.object, hit.uv);
   if (kinds.y == DS_SHADER_CONSTANT) return reflectance;
   // Lambert: L = (ρ/π) Σ I cosθ / r² over visible lights on the viewer's side (host/cpu/trace.cpp).
   real sum = 0.0;

@@ -31,7 +31,10 @@ struct GpuObject {
   hreal4 target0;            // origin_uv.xy, cell_uv.xy
   hreal4 target1;            // radiusSquared_cells, dark, light, 0
   ivec4 targetInfo;          // cols, rows, asymmetric (0/1), 0
-  ivec4 pad;                 // size a multiple of 32 bytes in fp64 (no hidden padding)
+  // Texture.Speckle (host/texture/analytic_speckle.h); speckleInfo pairs targetInfo (32 bytes):
+  ivec4 speckleInfo;         // seed (bits), 0, 0, 0
+  hreal4 speckle0;           // cells per u, cells per v, dark, light
+  uvec4 speckleCdf[4];       // Poisson inversion thresholds cdf[0..15]
 };
 
 struct GpuLight {
@@ -39,7 +42,8 @@ struct GpuLight {
 };
 
 struct GpuTexture {
-  ivec4 info;  // width, height, offset of the first coefficient in the texel buffer, 0
+  ivec4 info;  // width, height, offset of the first coefficient in the texel buffer,
+               // interpolation (0: cubic, 1: quintic B-spline; host/texture/bspline.h)
 };
 
 // NURBS (host/geometry/nurbs_bvh.h): every NURBS object's BVH nodes, sub-patches, Bézier patches

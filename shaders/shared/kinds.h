@@ -18,6 +18,7 @@
 #define DS_TEXTURE_FILE 1
 #define DS_TEXTURE_CHECKERBOARD 2  // calibration targets, drawn analytically (texture/target_texture.h)
 #define DS_TEXTURE_CIRCLE_GRID 3
+#define DS_TEXTURE_SPECKLE 4  // analytic Boolean-model speckle in (u, v) (texture/analytic_speckle.h)
 
 #define DS_LIGHT_POINT 0
 
@@ -42,6 +43,7 @@ enum class TextureKind : int {
   File = DS_TEXTURE_FILE,
   Checkerboard = DS_TEXTURE_CHECKERBOARD,
   CircleGrid = DS_TEXTURE_CIRCLE_GRID,
+  Speckle = DS_TEXTURE_SPECKLE,
 };
 enum class LightKind : int { Point = DS_LIGHT_POINT };
 enum class CameraKind : int { Pinhole = DS_CAMERA_PINHOLE };

@@ -29,6 +29,11 @@ DS_FN uint ds_hash_combine(uint h, uint value) { return ds_hash(h ^ value); }
 // Random dimensions of one camera sample.
 #define DS_DIM_PIXEL_X 0u
 #define DS_DIM_PIXEL_Y 1u
+// Texture.Speckle (host/texture/analytic_speckle.h): disk count of a cell, disks, centre x, y.
+#define DS_DIM_SPECKLE_COUNT 10u
+#define DS_DIM_SPECKLE_DISK 11u
+#define DS_DIM_SPECKLE_X 12u
+#define DS_DIM_SPECKLE_Y 13u
 
 DS_FN uint ds_sample_bits(uint seed, uint frame, uint camera, uint px, uint py, uint sampleIndex, uint dim) {
   uint h = ds_hash(seed ^ 0x9e3779b9u);

@@ -64,8 +64,12 @@ struct SceneFeatures {
   bool fileTextures = false;  // some object has a Texture.File: B-spline lookups
   std::uint32_t shapeKinds = 0;  // bit k set: some object has shape kind k (DS_SHAPE_*)
   int nurbsDegree = 0;           // highest degree of any NURBS patch (GPU raises all to it), 0: none
+  // Bit k set: some camera has kind k (DS_CAMERA_*). The pinhole is the GPU's default branch, so
+  // only the other bits switch code on.
+  std::uint32_t cameraKinds = 0;
+  bool rationalDistortion = false;  // some camera has Distortion.Rational: k4..k6, s1..s4 terms
 
-  static SceneFeatures all(int nurbsDegree) { return {true, true, true, ~0u, nurbsDegree}; }
+  static SceneFeatures all(int nurbsDegree) { return {true, true, true, ~0u, nurbsDegree, ~0u, true}; }
   auto operator<=>(const SceneFeatures&) const = default;
 };
 

@@ -5,6 +5,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "camera/sampling.h"
@@ -19,6 +21,8 @@
 #include "render/image_point.h"
 #include "render/target_features.h"
 #include "cpu/trace.h"
+#include "exr_test_util.h"
+#include "run_cli.h"
 #include "scene_test_util.h"
 
 using namespace dicsynth;
@@ -375,4 +379,37 @@ TEST_CASE("camera models: the camera specialization constants change nothing but
     }
   }
   test::expectNoValidationMessages();
+}
+
+TEST_CASE("camera models: a thin-lens stereo rig end to end (EXR header, rig and DICe files)") {
+  // Rig.Stereo accepts thin-lens cameras (their chief rays are pinholes with optical centres);
+  // the EXR header names the model and its parameters, the rig file and the DICe file carry the
+  // rational coefficients in OpenCV's order and under DICe's names.
+  test::TempFolder dir;
+  const std::string scene = dir.write(
+      "rig.lua",
+      "local lens = { resolution = {32, 24}; pixelSize = {2e-5, 2e-5}; focalLength = 0.025; fNumber = 4;\n"
+      "  focusDistance = 0.4; distortion = Distortion.Rational { radial = {-0.1, 0, 0, 0.02}; thinPrism = {1e-3, 0, 0, 0} } }\n"
+      "rig = Rig.Stereo { left = Camera.ThinLens(lens); right = Camera.ThinLens(lens); baseline = 0.1; target = {0, 0, 0.4} }\n"
+      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.2}; location = {0, 0, 0.4} } }\n");
+  const std::string out = dir.file("out");
+  const test::CliResult r = test::runCli("render " + scene + " -o " + out + " --backend cpu --spp 1");
+  REQUIRE_MESSAGE(r.exitCode == 0, r.err);
+  const test::ExrContents exr = test::readExr(out + "/rig.left.exr");
+  CHECK(exr.spec.get_string_attribute("dicsynth:camera_model") == "thin_lens");
+  CHECK(exr.spec.get_string_attribute("dicsynth:aperture_m") == "0.0062500000000000003");
+  CHECK(exr.spec.get_string_attribute("dicsynth:focus_distance_m") == "0.40000000000000002");
+  CHECK(exr.spec.get_string_attribute("dicsynth:distortion_coefficients") ==
+        "-0.10000000000000001 0 0 0 0 0.02 0 0 0.001 0 0 0");
+  // Disparity of the chief rays: every pixel of the left image sees the plate, and the right camera
+  // sees most of them.
+  REQUIRE(exr.floats.count("disparity.mask"));
+  double seen = 0;
+  for (float v : exr.floats.at("disparity.mask")) seen += v;
+  CHECK(seen > 0.5 * 32 * 24);
+  std::ifstream dice(out + "/rig.dice.xml");
+  const std::string xml((std::istreambuf_iterator<char>(dice)), std::istreambuf_iterator<char>());
+  CHECK(xml.find("name=\"K4\" type=\"double\" value=\"0.02\"") != std::string::npos);
+  CHECK(xml.find("name=\"S1\" type=\"double\" value=\"0.001\"") != std::string::npos);
+  CHECK(xml.find("OPENCV_LENS_DISTORTION") != std::string::npos);
 }

@@ -350,7 +350,7 @@ TEST_CASE("camera orthographic: the flow of a translation is m dX / pixelSize at
 }
 
 TEST_CASE("camera models: the camera specialization constants change nothing but rounding") {
-  // A Brown-distorted pinhole scene (Figure 1), the telecentric scene and the thin-lens scene, with
+  // A Brown-distorted pinhole scene (Figure 1) and the thin-lens scene, with
   // the thin-lens, orthographic and rational-distortion code compiled in, render as with it
   // specialized out: the same branches run, and the rational terms with zero coefficients are exact
   // no-ops in the arithmetic (k4..k6 = s1..s4 = 0: a division by 1, additions of 0). The driver's
@@ -359,7 +359,7 @@ TEST_CASE("camera models: the camera specialization constants change nothing but
   // held to its own CPU-vs-GPU tolerance, and the thin-lens scene (whose features are all on
   // already, but for the orthographic bit) must not change at all.
   gpu::Renderer renderer(test::gpuContext());
-  for (const char* name : {"figure1.lua", "thin_lens.lua", "telecentric.lua"}) {
+  for (const char* name : {"figure1.lua", "thin_lens.lua"}) {
     const PreparedScene scene = prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/" + name, {}), {8});
     PreparedScene compiledIn = scene;
     compiledIn.features.cameraKinds = ~0u;

@@ -36,8 +36,10 @@ void main() {
   const GpuCamera cam = cameras[cameraIndex];
   const ivec2 pixel = params.tile.xy + local;
   const hreal2 centre = h(real2(pixel));  // integers: exact in every variant
-  const hreal3 origin = ds_camera_centre(cam);
   const bool distorted = HAS_DISTORTION && cam.flags.x != 0;
+  // Camera.ThinLens: each sample draws its own lens point (ds_lens_sample); the ground-truth ray is
+  // the chief ray (lens centre). Compiled out unless the scene has a thin-lens camera.
+  const bool thinLens = DS_HAS_CAMERA(DS_CAMERA_THIN_LENS) && cam.flags.y == DS_CAMERA_THIN_LENS;
 
   GpuPixel outPixel;
   outPixel.positionDepth = h(real4(0.0));
@@ -45,11 +47,11 @@ void main() {
   outPixel.normal = real4(0.0);
 
   // Ground truth: the ray through the exact pixel centre.
-  hreal3 d;
+  hreal3 origin, d;
   SurfaceHit hit;
   hreal2 uv = h2(h(real(0.0)), h(real(0.0)));
   real objectId = 0.0;
-  if (ds_camera_ray(cam, centre, distorted, d) && ds_trace_nearest(origin, d, hit)) {
+  if (ds_camera_ray(cam, centre, distorted, real2(0.0), origin, d) && ds_trace_nearest(origin, d, hit)) {
     outPixel.positionDepth = h4_31(hit.position, hit.t);
     outPixel.normal = real4(hit.normal, 0.0);
     uv = hit.uv;
@@ -66,7 +68,10 @@ void main() {
     for (int cellX = 0; cellX < strata.x; ++cellX, ++s) {
       const hreal2 offset = ds_sample_offset(strata, ivec2(cellX, cellY), side, params.random.x, params.random.y,
                                              uint(cameraIndex), uint(pixel.x), uint(pixel.y), uint(s));
-      if (ds_camera_ray(cam, h_add(centre, offset), distorted, d) && ds_trace_nearest(origin, d, hit))
+      const real2 lens = thinLens ? ds_lens_sample(params.random.x, params.random.y, uint(cameraIndex),
+                                                   uint(pixel.x), uint(pixel.y), uint(s))
+                                  : real2(0.0);
+      if (ds_camera_ray(cam, h_add(centre, offset), distorted, lens, origin, d) && ds_trace_nearest(origin, d, hit))
         sum = h_add(sum, h(ds_shade(hit)));
     }
   }

@@ -72,6 +72,7 @@ std::vector<double> matValues(const cv::Mat& m) {
 
 template <std::size_t N>
 std::vector<double> values(const std::array<double, N>& a) { return {a.begin(), a.end()}; }
+std::vector<double> values(const std::vector<double>& a) { return a; }
 
 cv::Matx33d matx33(const std::array<double, 9>& a) { return cv::Matx33d(a.data()); }
 cv::Vec3d vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }

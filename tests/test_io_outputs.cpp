@@ -278,5 +278,5 @@ TEST_CASE("io: cameraFromWorld rejects a non-rigid pose") {
   plain.worldFromCamera = glm::translate(dmat4(1.0), dvec3(1, 2, 3));
   const OpenCvCamera cv = toOpenCv(plain);
   CHECK(cv.t == std::array<double, 3>{-1, -2, -3});
-  CHECK(cv.distortion == std::array<double, 5>{0, 0, 0, 0, 0});
+  CHECK(cv.distortion == std::vector<double>{0, 0, 0, 0, 0});
 }

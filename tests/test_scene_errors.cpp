@@ -162,7 +162,7 @@ TEST_CASE("scene: camera pose errors") {
   checkError(dir, cam + "up = {0, 0, 1} }\n", 1,
              "Camera.Pinhole: 'up' needs 'lookAt' (it orients the viewing direction)");
   checkError(dir, cam + "distortion = Shape.Sphere { radius = 1 } }\n", 1,
-             "Camera.Pinhole: 'distortion' must be a Distortion (Distortion.Brown), got Shape");
+             "Camera.Pinhole: 'distortion' must be a Distortion (Distortion.Brown, Distortion.Rational), got Shape");
 }
 
 TEST_CASE("scene: a missing texture file names the line, the given and the resolved path") {

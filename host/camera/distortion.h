@@ -1,9 +1,14 @@
 #pragma once
-// Brown–Conrady lens distortion exactly as OpenCV defines it, on normalized image coordinates
-// (x', y') = (X/Z, Y/Z) of the camera frame (DESIGN.md §3):
-//   r² = x'² + y'²,  ρ = 1 + k1 r² + k2 r⁴ + k3 r⁶
-//   x'' = x' ρ + 2 p1 x' y' + p2 (r² + 2 x'²)
-//   y'' = y' ρ + p1 (r² + 2 y'²) + 2 p2 x' y'
+// Lens distortion exactly as OpenCV defines it (cv::projectPoints, calib3d's "distortion_coefficients"),
+// on normalized image coordinates (x', y') (X/Z, Y/Z for a perspective camera; camera/pinhole.h):
+//   r² = x'² + y'²,  ρ = (1 + k1 r² + k2 r⁴ + k3 r⁶) / (1 + k4 r² + k5 r⁴ + k6 r⁶)
+//   x'' = x' ρ + 2 p1 x' y' + p2 (r² + 2 x'²) + s1 r² + s2 r⁴
+//   y'' = y' ρ + p1 (r² + 2 y'²) + 2 p2 x' y' + s3 r² + s4 r⁴
+// Distortion.Brown is the case k4 = k5 = k6 = s1..s4 = 0 (OpenCV's 5 coefficients k1 k2 p1 p2 k3);
+// Distortion.Rational sets any of them (OpenCV's 8 coefficients add k4 k5 k6 = CALIB_RATIONAL_MODEL,
+// 12 add s1 s2 s3 s4 = CALIB_THIN_PRISM_MODEL). With those zero the extra terms are exact no-ops
+// (a division by 1, additions of 0), so a Brown model gives bit-identical results either way.
+// OpenCV's 14-coefficient tilted-sensor model (τx, τy) is not offered.
 // distort() maps ideal → distorted. Ray generation needs the inverse (distorted pixel → ideal ray),
 // which has no closed form: undistort() runs Newton's method with the analytic Jacobian.
 // shaders/lib/camera.glsl implements the same iteration, with the same start and stopping rule.
@@ -15,33 +20,52 @@
 
 namespace dicsynth {
 
+// The first five members keep the order of the original Brown struct, so {k1, k2, k3, p1, p2}
+// still initializes a Brown model.
 template <class Real>
-struct BrownCoefficients {
-  Real k1 = 0, k2 = 0, k3 = 0, p1 = 0, p2 = 0;
+struct DistortionCoefficients {
+  Real k1 = 0, k2 = 0, k3 = 0, p1 = 0, p2 = 0;  // Brown: radial numerator, tangential
+  Real k4 = 0, k5 = 0, k6 = 0;                  // rational: radial denominator
+  Real s1 = 0, s2 = 0, s3 = 0, s4 = 0;          // thin prism
 };
+template <class Real>
+using BrownCoefficients = DistortionCoefficients<Real>;
 
 template <class Real>
-glm::vec<2, Real> distort(const BrownCoefficients<Real>& c, glm::vec<2, Real> p) {
+glm::vec<2, Real> distort(const DistortionCoefficients<Real>& c, glm::vec<2, Real> p) {
   const Real x = p.x, y = p.y;
   const Real r2 = x * x + y * y;
-  const Real rho = 1 + r2 * (c.k1 + r2 * (c.k2 + r2 * c.k3));
-  return {x * rho + 2 * c.p1 * x * y + c.p2 * (r2 + 2 * x * x),
-          y * rho + c.p1 * (r2 + 2 * y * y) + 2 * c.p2 * x * y};
+  const Real rho = (1 + r2 * (c.k1 + r2 * (c.k2 + r2 * c.k3))) / (1 + r2 * (c.k4 + r2 * (c.k5 + r2 * c.k6)));
+  return {x * rho + 2 * c.p1 * x * y + c.p2 * (r2 + 2 * x * x) + r2 * (c.s1 + r2 * c.s2),
+          y * rho + c.p1 * (r2 + 2 * y * y) + 2 * c.p2 * x * y + r2 * (c.s3 + r2 * c.s4)};
 }
 
 // Jacobian ∂(x'', y'')/∂(x', y'), column-major (glm): J[0] = ∂/∂x', J[1] = ∂/∂y'.
-// With ρ' = dρ/d(r²) = k1 + 2 k2 r² + 3 k3 r⁴ and ∂(r²)/∂x' = 2x':
-//   ∂x''/∂x' = ρ + 2x'² ρ' + 2 p1 y' + 6 p2 x'      ∂x''/∂y' = 2x'y' ρ' + 2 p1 x' + 2 p2 y'
-//   ∂y''/∂x' = 2x'y' ρ' + 2 p1 x' + 2 p2 y'         ∂y''/∂y' = ρ + 2y'² ρ' + 6 p1 y' + 2 p2 x'
+// ρ = N/D with N = 1 + k1 r² + k2 r⁴ + k3 r⁶, D = 1 + k4 r² + k5 r⁴ + k6 r⁶; with ' = d/d(r²):
+// ρ' = (N' D − N D') / D², N' = k1 + 2 k2 r² + 3 k3 r⁴, D' = k4 + 2 k5 r² + 3 k6 r⁴; ∂(r²)/∂x' = 2x'.
+// The thin-prism terms s1 r² + s2 r⁴ (in x'') and s3 r² + s4 r⁴ (in y'') have d/d(r²) = tx = s1 + 2 s2 r²
+// and ty = s3 + 2 s4 r². With c = 2x'y' ρ' + 2 p1 x' + 2 p2 y':
+//   ∂x''/∂x' = ρ + 2x'² ρ' + 2 p1 y' + 6 p2 x' + 2x' tx      ∂x''/∂y' = c + 2y' tx
+//   ∂y''/∂x' = c + 2x' ty                                     ∂y''/∂y' = ρ + 2y'² ρ' + 6 p1 y' + 2 p2 x' + 2y' ty
+// Brown's Jacobian is symmetric; the thin-prism terms break the symmetry (∂x''/∂y' ≠ ∂y''/∂x'), so
+// the Newton step below (and its GLSL twin) uses the general 2×2 inverse.
+// With D = 1, D' = 0 (Brown) ρ' = N' exactly, and tx = ty = 0 add exact zeros.
 template <class Real>
-glm::mat<2, 2, Real> distortJacobian(const BrownCoefficients<Real>& c, glm::vec<2, Real> p) {
+glm::mat<2, 2, Real> distortJacobian(const DistortionCoefficients<Real>& c, glm::vec<2, Real> p) {
   const Real x = p.x, y = p.y;
   const Real r2 = x * x + y * y;
-  const Real rho = 1 + r2 * (c.k1 + r2 * (c.k2 + r2 * c.k3));
-  const Real drho = c.k1 + r2 * (2 * c.k2 + r2 * 3 * c.k3);
+  const Real num = 1 + r2 * (c.k1 + r2 * (c.k2 + r2 * c.k3));
+  const Real den = 1 + r2 * (c.k4 + r2 * (c.k5 + r2 * c.k6));
+  const Real rho = num / den;
+  const Real dnum = c.k1 + r2 * (2 * c.k2 + r2 * 3 * c.k3);
+  const Real dden = c.k4 + r2 * (2 * c.k5 + r2 * 3 * c.k6);
+  const Real drho = (dnum * den - num * dden) / (den * den);
+  const Real tx = c.s1 + 2 * c.s2 * r2, ty = c.s3 + 2 * c.s4 * r2;
   const Real cross = 2 * x * y * drho + 2 * c.p1 * x + 2 * c.p2 * y;
-  return glm::mat<2, 2, Real>(rho + 2 * x * x * drho + 2 * c.p1 * y + 6 * c.p2 * x, cross,  // column 0
-                              cross, rho + 2 * y * y * drho + 6 * c.p1 * y + 2 * c.p2 * x);  // column 1
+  return glm::mat<2, 2, Real>(rho + 2 * x * x * drho + 2 * c.p1 * y + 6 * c.p2 * x + 2 * x * tx,  // ∂x''/∂x'
+                              cross + 2 * x * ty,                                                  // ∂y''/∂x'
+                              cross + 2 * y * tx,                                                  // ∂x''/∂y'
+                              rho + 2 * y * y * drho + 6 * c.p1 * y + 2 * c.p2 * x + 2 * y * ty);  // ∂y''/∂y'
 }
 
 // Newton stops once a step is below this (normalized units). Near the root a step is the rounding
@@ -58,7 +82,7 @@ inline constexpr int kUndistortMaxIterations = 20;
 // (exact when there is no distortion). Returns NaN when Newton does not converge within
 // kUndistortMaxIterations or the Jacobian is singular (distortion not invertible there).
 template <class Real>
-glm::vec<2, Real> undistort(const BrownCoefficients<Real>& c, glm::vec<2, Real> target) {
+glm::vec<2, Real> undistort(const DistortionCoefficients<Real>& c, glm::vec<2, Real> target) {
   glm::vec<2, Real> p = target;
   for (int i = 0; i < kUndistortMaxIterations; ++i) {
     const glm::vec<2, Real> f = distort(c, p) - target;

@@ -19,14 +19,16 @@ void renderCamera(const PreparedScene& scene, std::size_t cameraIndex, const Ren
   const Strata strata = strataFor(options.samplesPerPixel);
   const double side = std::sqrt(pc.camera.fillFactor);
   const auto width = std::size_t(pc.camera.width_px);
+  const bool thinLens = model.kind == CameraKind::ThinLens;
 
   parallelFor(std::size_t(pc.camera.height_px), [&](std::size_t y) {
     for (std::size_t x = 0; x < width; ++x) {
       const std::size_t i = y * width + x;
       const dvec2 centre{double(x), double(y)};
       SurfaceHit hit;
-      // Ground truth: the ray through the exact pixel centre.
-      if (traceNearest(scene, model.centre, worldRayDirection(model, centre), hit)) {
+      // Ground truth: the ray through the exact pixel centre (a thin lens's chief ray).
+      const CameraRay<double> chief = worldRay(model, centre);
+      if (traceNearest(scene, chief.origin, chief.direction, hit)) {
         image.depth_m[i] = hit.t;  // camera-frame z of the direction is 1 (camera/pinhole.h)
         image.position_m[i] = hit.position;
         image.normal[i] = hit.normal;
@@ -37,8 +39,11 @@ void renderCamera(const PreparedScene& scene, std::size_t cameraIndex, const Ren
       for (int s = 0; s < options.samplesPerPixel; ++s) {
         const dvec2 offset = sampleOffset<double>(strata, side, options.seed, uint(options.frame),
                                                   uint(cameraIndex), uint(x), uint(y), uint(s));
-        if (traceNearest(scene, model.centre, worldRayDirection(model, centre + offset), hit))
-          sum += shade(scene, hit);
+        const dvec2 lens = thinLens ? lensSample<double>(options.seed, uint(options.frame), uint(cameraIndex),
+                                                          uint(x), uint(y), uint(s))
+                                    : dvec2(0);
+        const CameraRay<double> ray = worldRay(model, centre + offset, lens);
+        if (traceNearest(scene, ray.origin, ray.direction, hit)) sum += shade(scene, hit);
       }
       image.radiance[i] = sum / double(options.samplesPerPixel);
     }

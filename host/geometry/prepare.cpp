@@ -45,7 +45,8 @@ void checkDistortionInvertible(const PreparedCamera& pc) {
     const double err_px = std::max(std::abs(back.x - target.x) * m.fx, std::abs(back.y - target.y) * m.fy);
     if (!(err_px < 1e-9)) {
       std::ostringstream msg;
-      msg << "Distortion.Brown of camera '" << pc.camera.name
+      msg << (pc.camera.distortion.kind == DistortionKind::Rational ? "Distortion.Rational" : "Distortion.Brown")
+          << " of camera '" << pc.camera.name
           << "' cannot be inverted at image position (" << x << ", " << y
           << ") px: the distortion folds over inside the image (check the coefficients)";
       throw InputError(pc.camera.where, msg.str());
@@ -165,12 +166,25 @@ int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::m
 
 PinholeModel<double> pinholeModel(const Camera& c) {
   PinholeModel<double> m;
-  m.fx = c.focalLength_m / c.pixelSize_m.x;
-  m.fy = c.focalLength_m / c.pixelSize_m.y;
+  m.kind = c.kind;
+  // Distance from the lens to the sensor (the chief ray's pinhole focal length), or for a
+  // telecentric lens the magnification: fx = it / pixel size (camera/pinhole.h).
+  double scale = c.focalLength_m;
+  if (c.kind == CameraKind::ThinLens) {
+    const double f = c.focalLength_m, u = c.focusDistance_m;
+    scale = f * u / (u - f);  // image distance v: 1/f = 1/u + 1/v (the constructor checks u > f)
+    m.lensRadius = 0.5 * c.aperture_m;
+    m.lensRadiusOverFocus = m.lensRadius / u;
+  } else if (c.kind == CameraKind::Orthographic) {
+    scale = c.magnification;
+  }
+  m.fx = scale / c.pixelSize_m.x;
+  m.fy = scale / c.pixelSize_m.y;
   m.cx = c.principalPoint_px.x;
   m.cy = c.principalPoint_px.y;
-  m.distorted = c.distortion.kind == DistortionKind::Brown;
-  m.brown = {c.distortion.k1, c.distortion.k2, c.distortion.k3, c.distortion.p1, c.distortion.p2};
+  const Distortion& d = c.distortion;
+  m.distorted = d.kind != DistortionKind::None;
+  m.brown = {d.k1, d.k2, d.k3, d.p1, d.p2, d.k4, d.k5, d.k6, d.s1, d.s2, d.s3, d.s4};
   m.worldFromCamera = dmat3(c.worldFromCamera);
   m.centre = dvec3(c.worldFromCamera[3]);
   return m;
@@ -236,7 +250,11 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   }
 
   ps.features.lights = anyLambert && !ps.lights.empty();
-  for (const PreparedCamera& c : ps.cameras) ps.features.distortion |= c.model.distorted;
+  for (const PreparedCamera& c : ps.cameras) {
+    ps.features.distortion |= c.model.distorted;
+    ps.features.rationalDistortion |= c.camera.distortion.kind == DistortionKind::Rational;
+    ps.features.cameraKinds |= 1u << int(c.camera.kind);
+  }
   ps.features.fileTextures = !ps.textures.empty();
   for (const PreparedTexture& t : ps.textures)
     ps.features.quinticTextures |= t.interpolation == Interpolation::Quintic;

@@ -72,8 +72,14 @@ struct SceneFeatures {
   int nurbsDegree = 0;           // highest degree of any NURBS patch (GPU raises all to it), 0: none
   bool speckleTextures = false;  // some object has a Texture.Speckle: analytic disk tests
   bool quinticTextures = false;  // some Texture.File uses quintic interpolation: 6×6 lookups
+  // Bit k set: some camera has kind k (DS_CAMERA_*). The pinhole is the GPU's default branch, so
+  // only the other bits switch code on.
+  std::uint32_t cameraKinds = 0;
+  bool rationalDistortion = false;  // some camera has Distortion.Rational: k4..k6, s1..s4 terms
 
-  static SceneFeatures all(int nurbsDegree) { return {true, true, true, ~0u, nurbsDegree, true, true}; }
+  static SceneFeatures all(int nurbsDegree) {
+    return {true, true, true, ~0u, nurbsDegree, true, true, ~0u, true};
+  }
   auto operator<=>(const SceneFeatures&) const = default;
 };
 

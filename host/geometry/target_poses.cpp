@@ -19,14 +19,16 @@ std::string poseViolation(const TargetLayout& layout, const dmat4& worldFromTarg
   // The printed side faces −z of the target frame: the camera must lie on that side.
   const dvec3 normal = dvec3(worldFromTarget[2]);
   const dvec3 origin = dvec3(worldFromTarget[3]);
-  if (!(glm::dot(normal, m.centre - origin) < 0)) return "camera '" + camera.name + "' sees the target's back";
+  // (The chief ray that sees the target's origin starts at chiefRayOrigin: the camera centre, or for a
+  // telecentric camera the origin's foot on the plane Z = 0.)
+  if (!(glm::dot(normal, chiefRayOrigin(m, origin) - origin) < 0)) return "camera '" + camera.name + "' sees the target's back";
   const double lo_x = margin_px - 0.5, hi_x = camera.width_px - 0.5 - margin_px;
   const double lo_y = margin_px - 0.5, hi_y = camera.height_px - 0.5 - margin_px;
   for (const TargetFeature& f : layout.features) {
     const dvec3 world = dvec3(worldFromTarget * dvec4(f.target_m, 1));
     const dvec3 pc = cameraFromWorld * (world - m.centre);
     if (!(pc.z > 0)) return "a feature is behind camera '" + camera.name + "'";
-    const dvec2 ideal{pc.x / pc.z, pc.y / pc.z};
+    const dvec2 ideal = normalizedFromCamera(m, pc);
     dvec2 xy = ideal;
     if (m.distorted) {
       // Far outside the image a Brown model can fold back into it; such a point is not seen
@@ -65,14 +67,19 @@ std::vector<dmat4> generateTargetPoses(const TargetLayout& layout, const std::ve
   // The cameras' common view: mean centre, mean viewing direction, mean image-right direction.
   dvec3 base{0}, forward{0}, right{0};
   double tanHalfX = INFINITY, tanHalfY = INFINITY;  // of the narrowest camera (ideal pinhole)
+  // Telecentric cameras see a field of constant size: half its width and height (m), narrowest.
+  double orthoHalfX = INFINITY, orthoHalfY = INFINITY;
   for (const Camera& c : cameras) {
     const PinholeModel<double> m = pinholeModel(c);
     base += m.centre / double(cameras.size());
     forward += m.worldFromCamera[2];
     right += m.worldFromCamera[0];
-    tanHalfX = std::min(tanHalfX, 0.5 * c.width_px / m.fx);
-    tanHalfY = std::min(tanHalfY, 0.5 * c.height_px / m.fy);
+    double& halfX = c.kind == CameraKind::Orthographic ? orthoHalfX : tanHalfX;
+    double& halfY = c.kind == CameraKind::Orthographic ? orthoHalfY : tanHalfY;
+    halfX = std::min(halfX, 0.5 * c.width_px / m.fx);
+    halfY = std::min(halfY, 0.5 * c.height_px / m.fy);
   }
+  const bool anyOrtho = !std::isinf(orthoHalfX);
   forward = glm::normalize(forward);
   right = glm::normalize(right - glm::dot(right, forward) * forward);
   const dvec3 down = glm::cross(forward, right);  // z × x = y: image-down
@@ -86,8 +93,9 @@ std::vector<dmat4> generateTargetPoses(const TargetLayout& layout, const std::ve
       const double distance = uniform(rng, o.distance_m.x, o.distance_m.y);
       // Anywhere in the narrowest view, so that the poses reach the image's corners, where
       // the distortion is strongest (the rejection below keeps the features inside).
-      const double offsetX = uniform(rng, -1, 1) * distance * tanHalfX;
-      const double offsetY = uniform(rng, -1, 1) * distance * tanHalfY;
+      const double ux = uniform(rng, -1, 1), uy = uniform(rng, -1, 1);
+      const double offsetX = anyOrtho ? ux * std::min(distance * tanHalfX, orthoHalfX) : ux * distance * tanHalfX;
+      const double offsetY = anyOrtho ? uy * std::min(distance * tanHalfY, orthoHalfY) : uy * distance * tanHalfY;
       const double tilt = uniform(rng, 0, o.maxTilt_rad);
       const double tiltAzimuth = uniform(rng, 0, 2 * kPi);
       const double roll = uniform(rng, -o.maxRoll_rad, o.maxRoll_rad);

@@ -42,6 +42,8 @@ using hreal4 = df64x4;
   static_assert(offsetof(ns::GpuCamera, intrinsics) == 3 * H4);                            \
   static_assert(offsetof(ns::GpuCamera, size) == 6 * H4);                                  \
   static_assert(offsetof(ns::GpuCamera, flags) == 6 * H4 + 16);                            \
+  static_assert(offsetof(ns::GpuCamera, rational0) == 6 * H4 + 32);                        \
+  static_assert(offsetof(ns::GpuCamera, lens) == 8 * H4 + 32);                             \
   static_assert(sizeof(ns::GpuObject) == OBJECT);                                          \
   static_assert(offsetof(ns::GpuObject, shape0) == 4 * H4);                                \
   static_assert(offsetof(ns::GpuObject, shading) == 9 * H4);                               \
@@ -58,9 +60,9 @@ using hreal4 = df64x4;
   static_assert(sizeof(ns::GpuNurbsNode) == 48 && sizeof(ns::GpuNurbsSubPatch) == 32);     \
   static_assert(sizeof(ns::GpuNurbsPatch) == H4 + 32);
 // Sizes: std430 rounds a struct up to its alignment (32 with a dvec4 member, else 16).
-DS_CHECK_LAYOUT(fp32, 16, 16, 6 * 16 + 32, 12 * 16 + 16 + 128, 3 * 16)
-DS_CHECK_LAYOUT(fp64, 32, 32, 6 * 32 + 32, 12 * 32 + 32 + 128, 3 * 32)
-DS_CHECK_LAYOUT(df64, 16, 32, 6 * 32 + 32, 12 * 32 + 16 + 128, 2 * 32 + 16)
+DS_CHECK_LAYOUT(fp32, 16, 16, 9 * 16 + 32, 12 * 16 + 16 + 128, 3 * 16)
+DS_CHECK_LAYOUT(fp64, 32, 32, 9 * 32 + 32, 12 * 32 + 32 + 128, 3 * 32)
+DS_CHECK_LAYOUT(df64, 16, 32, 9 * 32 + 32, 12 * 32 + 16 + 128, 2 * 32 + 16)
 #undef DS_CHECK_LAYOUT
 
 }  // namespace dicsynth::gpu

@@ -36,7 +36,10 @@ typename Layout::GpuCamera packCamera(const PreparedCamera& pc, int spp, dvec3 o
   g.brown1 = h4<Layout>(m.brown.p2, std::sqrt(pc.camera.fillFactor));
   const Strata strata = strataFor(spp);
   g.size = {pc.camera.width_px, pc.camera.height_px, strata.x, strata.y};
-  g.flags = {m.distorted ? 1 : 0, 0, 0, 0};
+  g.flags = {m.distorted ? 1 : 0, int(m.kind), 0, 0};
+  g.rational0 = h4<Layout>(m.brown.k4, m.brown.k5, m.brown.k6, m.brown.s1);
+  g.rational1 = h4<Layout>(m.brown.s2, m.brown.s3, m.brown.s4);
+  g.lens = h4<Layout>(m.lensRadius, m.lensRadiusOverFocus);
   return g;
 }
 

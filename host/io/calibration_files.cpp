@@ -27,10 +27,10 @@
 namespace dicsynth {
 namespace {
 
-template <std::size_t N>
-std::string numberList(const std::array<double, N>& values, const char* separator) {
+template <class Container>
+std::string numberList(const Container& values, const char* separator) {
   std::string text;
-  for (std::size_t i = 0; i < N; ++i) text += (i ? separator : "") + exactNumber(values[i]);
+  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? separator : "") + exactNumber(values[i]);
   return text;
 }
 
@@ -40,11 +40,12 @@ std::string yamlHeader(const std::string& what) {
   return "%YAML:1.0\n---\n"
          "# dicsynth " + std::string(kVersion) + ": exact calibration of " + what + ".\n"
          "# OpenCV conventions: pixel (0, 0) is the centre of the top-left pixel; distortion\n"
-         "# coefficients k1 k2 p1 p2 k3; lengths in metres.\n";
+         "# coefficients k1 k2 p1 p2 k3 (OpenCV's order; 8 add k4 k5 k6, 12 add s1 s2 s3 s4);\n"
+         "# lengths in metres.\n";
 }
 
-template <std::size_t N>
-std::string yamlMatrix(const std::string& key, int rows, int cols, const std::array<double, N>& data) {
+template <class Container>
+std::string yamlMatrix(const std::string& key, int rows, int cols, const Container& data) {
   return key + ": !!opencv-matrix\n   rows: " + std::to_string(rows) + "\n   cols: " +
          std::to_string(cols) + "\n   dt: d\n   data: [ " + numberList(data, ", ") + " ]\n";
 }
@@ -68,13 +69,32 @@ std::string yamlString(const std::string& key, const std::string& value) {
   return key + ": \"" + quoted + "\"\n";
 }
 
+// What OpenCV's pinhole model cannot say (README "Calibration files"). ThinLens: the camera matrix is
+// its chief ray's pinhole (exact for projections and the ground truth); the blur (aperture, focus)
+// is extra. Orthographic: OpenCV has no telecentric camera; the matrix holds px per metre of object
+// and the distortion acts on metric coordinates (camera/pinhole.h): only dicsynth's model reads it.
+std::string yamlLens(const Camera& camera, const std::string& side) {
+  switch (camera.kind) {
+    case CameraKind::Pinhole: return "";
+    case CameraKind::ThinLens:
+      return yamlString("camera_model" + side, "thin_lens") + "focal_length_m" + side + ": " +
+             exactNumber(camera.focalLength_m) + "\naperture_m" + side + ": " + exactNumber(camera.aperture_m) +
+             "\nfocus_distance_m" + side + ": " + exactNumber(camera.focusDistance_m) + "\n";
+    case CameraKind::Orthographic:
+      return yamlString("camera_model" + side, "orthographic") + "magnification" + side + ": " +
+             exactNumber(camera.magnification) + "\n";
+  }
+  return "";
+}
+
 // The intrinsics of one camera; `side` ("", "_left", "_right") ends every key.
 std::string yamlIntrinsics(const Camera& camera, const OpenCvCamera& cv, const std::string& side) {
   return yamlString("camera_name" + side, camera.name) +
          "image_width" + side + ": " + std::to_string(camera.width_px) + "\n" +
          "image_height" + side + ": " + std::to_string(camera.height_px) + "\n" +
          yamlMatrix("camera_matrix" + side, 3, 3, cv.cameraMatrix) +
-         yamlMatrix("distortion_coefficients" + side, 5, 1, cv.distortion);
+         yamlMatrix("distortion_coefficients" + side, int(cv.distortion.size()), 1, cv.distortion) +
+         yamlLens(camera, side);
 }
 
 // ---- DICe XML -----------------------------------------------------------------------------------
@@ -114,8 +134,11 @@ std::string diceCamera(int index, const Camera& camera, const std::array<double,
       {"CX", K[2]}, {"CY", K[5]}, {"FX", K[0]}, {"FY", K[4]}, {"FS", K[1]},
       {"K1", d[0]}, {"K2", d[1]}, {"K3", d[4]}, {"P1", d[2]}, {"P2", d[3]}};
   for (const auto& [name, value] : intrinsics) xml += xmlParameter(name, "double", exactNumber(value));
+  // OpenCV's rational and thin-prism terms, under DICe's names for them.
+  const char* more[] = {"K4", "K5", "K6", "S1", "S2", "S3", "S4"};
+  for (std::size_t i = 5; i < d.size(); ++i) xml += xmlParameter(more[i - 5], "double", exactNumber(d[i]));
   xml += xmlParameter("LENS_DISTORTION_MODEL", "string",
-                      camera.distortion.kind == DistortionKind::Brown ? "OPENCV_LENS_DISTORTION"
+                      camera.distortion.kind != DistortionKind::None ? "OPENCV_LENS_DISTORTION"
                                                                       : "NO_LENS_DISTORTION");
   xml += xmlParameter("TX", "double", exactNumber(T[0]));
   xml += xmlParameter("TY", "double", exactNumber(T[1]));

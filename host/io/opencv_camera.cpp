@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "geometry/prepared_scene.h"
 
 namespace dicsynth {
 
@@ -32,13 +33,15 @@ dmat4 cameraFromWorld(const Camera& camera) {
 
 OpenCvCamera toOpenCv(const Camera& camera) {
   OpenCvCamera cv;
-  const double fx = camera.focalLength_m / camera.pixelSize_m.x;
-  const double fy = camera.focalLength_m / camera.pixelSize_m.y;
-  cv.cameraMatrix = {fx, 0, camera.principalPoint_px.x, 0, fy, camera.principalPoint_px.y, 0, 0, 1};
+  const PinholeModel<double> m = pinholeModel(camera);  // the fx, fy every renderer uses
+  cv.cameraMatrix = {m.fx, 0, m.cx, 0, m.fy, m.cy, 0, 0, 1};
 
-  if (camera.distortion.kind == DistortionKind::Brown) {
-    const Distortion& d = camera.distortion;
-    cv.distortion = {d.k1, d.k2, d.p1, d.p2, d.k3};
+  const Distortion& d = camera.distortion;
+  if (d.kind == DistortionKind::Brown) cv.distortion = {d.k1, d.k2, d.p1, d.p2, d.k3};
+  if (d.kind == DistortionKind::Rational) {
+    cv.distortion = {d.k1, d.k2, d.p1, d.p2, d.k3, d.k4, d.k5, d.k6};
+    if (d.s1 != 0 || d.s2 != 0 || d.s3 != 0 || d.s4 != 0)
+      cv.distortion.insert(cv.distortion.end(), {d.s1, d.s2, d.s3, d.s4});
   }
 
   const dmat4 pose = cameraFromWorld(camera);

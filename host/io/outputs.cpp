@@ -141,6 +141,20 @@ void addMetadata(OIIO::ImageSpec& spec, const Camera& camera, const OutputInfo& 
   spec.attribute("dicsynth:objects", objects);
   spec.attribute("dicsynth:camera_matrix", formatNumbers(cv.cameraMatrix));
   spec.attribute("dicsynth:distortion_coefficients", formatNumbers(cv.distortion));
+  // The camera kind and what OpenCV's matrix cannot say (README "Outputs"; camera/pinhole.h).
+  switch (camera.kind) {
+    case CameraKind::Pinhole: spec.attribute("dicsynth:camera_model", "pinhole"); break;
+    case CameraKind::ThinLens:
+      spec.attribute("dicsynth:camera_model", "thin_lens");
+      spec.attribute("dicsynth:focal_length_m", exactNumber(camera.focalLength_m));
+      spec.attribute("dicsynth:aperture_m", exactNumber(camera.aperture_m));
+      spec.attribute("dicsynth:focus_distance_m", exactNumber(camera.focusDistance_m));
+      break;
+    case CameraKind::Orthographic:
+      spec.attribute("dicsynth:camera_model", "orthographic");
+      spec.attribute("dicsynth:magnification", exactNumber(camera.magnification));
+      break;
+  }
   spec.attribute("dicsynth:R", formatNumbers(cv.R));
   spec.attribute("dicsynth:t", formatNumbers(cv.t));
   spec.attribute("dicsynth:image_size",

@@ -101,7 +101,8 @@ double uvSlope(const PreparedScene& scene, const PinholeModel<double>& m, dvec2 
   double g = 0;
   for (const dvec2 offset : {dvec2(1e-3, 0), dvec2(0, 1e-3)}) {
     cpu::SurfaceHit h;
-    if (!cpu::traceNearest(scene, m.centre, worldRayDirection(m, pixel + offset), h) || h.object != at.object)
+    const CameraRay<double> ray = worldRay(m, pixel + offset);  // the chief ray (ground truth's)
+    if (!cpu::traceNearest(scene, ray.origin, ray.direction, h) || h.object != at.object)
       continue;
     const double dp = glm::length(h.position - at.position);
     if (dp > 0) g = std::max(g, uvDiff(h.uv, at.uv) / dp);
@@ -171,13 +172,18 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
         d.maxDepthDiff_m = worst(d.maxDepthDiff_m, std::abs(a.depth_m[i] - b.depth_m[i]));
         double boundP = tol.position_m, boundUv = tol.uv;
         if (tol.epsilon > 0) {
-          const dvec3 toHit = a.position_m[i] - model.centre;
+          // The chief ray starts at the camera centre, or (Orthographic) at the point's foot on the
+          // plane Z = 0, |foot − centre| from the camera-relative origin: that offset's rounding
+          // enters like a distance (D below).
+          const dvec3 rayOrigin = chiefRayOrigin(model, a.position_m[i]);
+          const dvec3 toHit = a.position_m[i] - rayOrigin;
           const double distance = glm::length(toHit);
           const int kind = scene.objects[obj].geometry.kind;
           const bool curved = kind == DS_SHAPE_SPHERE || kind == DS_SHAPE_NURBS;
           const double cosTheta = std::max(std::abs(glm::dot(a.normal[i], toHit)) / distance,
                                            curved ? std::sqrt(tol.epsilon) : tol.epsilon);
-          const double D = distance + glm::length(model.centre - objectOrigins[obj]);
+          const double D = distance + glm::length(rayOrigin - model.centre) +
+                           glm::length(model.centre - objectOrigins[obj]);
           cpu::SurfaceHit hit;
           hit.position = a.position_m[i];
           hit.uv = a.uv[i];

@@ -22,7 +22,8 @@ bool uvJacobian(const PreparedScene& scene, const PinholeModel<double>& m, dvec2
   for (int k = 0; k < 2; ++k) {
     cpu::SurfaceHit hit;
     const dvec2 offset = k == 0 ? dvec2(h, 0) : dvec2(0, h);
-    if (!cpu::traceNearest(scene, m.centre, worldRayDirection(m, pixel + offset), hit) || hit.object != object)
+    const CameraRay<double> ray = worldRay(m, pixel + offset);  // the chief ray (ground truth's)
+    if (!cpu::traceNearest(scene, ray.origin, ray.direction, hit) || hit.object != object)
       return false;
     J[k] = dvec2(periodicDiff(hit.uv.x, uv.x), periodicDiff(hit.uv.y, uv.y)) / h;
   }

@@ -16,7 +16,7 @@ ImagePoint projectToImage(const PreparedCamera& camera, dvec3 world_m) {
     // The round trip through the inverse tells a fold-back (prepare.cpp makes sure the inverse is
     // unique over the image itself).
     const dvec2 distorted{(p.pixel_px.x - m.cx) / m.fx, (p.pixel_px.y - m.cy) / m.fy};
-    const dvec2 ideal{pc.x / pc.z, pc.y / pc.z};
+    const dvec2 ideal = normalizedFromCamera(m, pc);
     p.folded = !(glm::length(undistort(m.brown, distorted) - ideal) <= 1e-9 * (1 + glm::length(ideal)));
   }
   const Camera& c = camera.camera;
@@ -27,10 +27,11 @@ ImagePoint projectToImage(const PreparedCamera& camera, dvec3 world_m) {
 
 bool reachesFirst(const PreparedScene& scene, const PreparedCamera& camera, int object, dvec3 world_m,
                   double relativeTolerance) {
-  const dvec3 centre = camera.model.centre;
+  // The chief ray: from the camera centre (Pinhole, ThinLens) or from the point's foot on the plane
+  // Z = 0 (Orthographic). d = P − origin: the point itself is at t = 1.
+  const dvec3 origin = chiefRayOrigin(camera.model, world_m);
   cpu::SurfaceHit hit;
-  // d = P − C: the point itself is at t = 1.
-  return cpu::traceNearest(scene, centre, world_m - centre, hit) && hit.object == object &&
+  return cpu::traceNearest(scene, origin, world_m - origin, hit) && hit.object == object &&
          std::abs(hit.t - 1) <= relativeTolerance;
 }
 

@@ -1,6 +1,8 @@
-// Camera.Pinhole and Distortion.Brown.
+// Camera.Pinhole, Camera.ThinLens, Camera.Orthographic; Distortion.Brown, Distortion.Rational.
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <vector>
 
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
@@ -41,6 +43,54 @@ int distortionBrown(lua_State* L) {
     distortion.p2 = tangential->y;
   }
   pushUserdata(L, distortion);
+  return 1;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Distortion.Rational: OpenCV's full lens model (cv::projectPoints with 8 or 12 coefficients,
+CALIB_RATIONAL_MODEL | CALIB_THIN_PRISM_MODEL) on the camera's normalized coordinates:
+  ρ = (1 + k1 r² + k2 r⁴ + k3 r⁶) / (1 + k4 r² + k5 r⁴ + k6 r⁶)
+  x'' = x' ρ + 2 p1 x'y' + p2 (r² + 2x'²) + s1 r² + s2 r⁴
+  y'' = y' ρ + p1 (r² + 2y'²) + 2 p2 x'y' + s3 r² + s4 r⁴
+OpenCV's vector is (k1, k2, p1, p2, k3, k4, k5, k6, s1, s2, s3, s4); the tilted-sensor terms
+(τx, τy, 14 coefficients) are not offered.
+
+  Parameter   | Value                              | Default      | Meaning
+  ------------+------------------------------------+--------------+---------------------------------
+  radial      | {k1[, ..., k6]} (unitless)         | all 0        | k1..k3 numerator, k4..k6
+              |                                    |              | denominator; missing ones 0
+  tangential  | {p1, p2} (unitless)                | {0, 0}       | tangential, exactly 2
+  thinPrism   | {s1, s2, s3, s4} (unitless)        | {0, 0, 0, 0} | thin prism, exactly 4
+
+The denominator must stay positive over the image (checked where the distortion is inverted).
+Example:
+  distortion = Distortion.Rational { radial = {0.1, -0.05, 0, 0.08, -0.02, 0.001};
+                                     thinPrism = {1e-3, 0, -5e-4, 0} }
+------------------------------------------------------------------------------------------------ */
+int distortionRational(lua_State* L) {
+  Params p(L, "Distortion.Rational", {"radial", "tangential", "thinPrism"});
+  Distortion d;
+  d.kind = DistortionKind::Rational;
+  if (auto radial = p.numbers("radial", 1, 6, "{k1[, k2[, ..., k6]]}")) {
+    radial->resize(6, 0.0);
+    d.k1 = (*radial)[0];
+    d.k2 = (*radial)[1];
+    d.k3 = (*radial)[2];
+    d.k4 = (*radial)[3];
+    d.k5 = (*radial)[4];
+    d.k6 = (*radial)[5];
+  }
+  if (auto tangential = p.vec2("tangential", "{p1, p2}")) {
+    d.p1 = tangential->x;
+    d.p2 = tangential->y;
+  }
+  if (auto prism = p.numbers("thinPrism", 4, 4, "{s1, s2, s3, s4}")) {
+    d.s1 = (*prism)[0];
+    d.s2 = (*prism)[1];
+    d.s3 = (*prism)[2];
+    d.s4 = (*prism)[3];
+  }
+  pushUserdata(L, d);
   return 1;
 }
 
@@ -90,6 +140,8 @@ dmat4 lookAtPose(const Params& p, const dvec3& position, const dvec3& lookAt, co
 Camera.Pinhole: an ideal pinhole camera with a rectangular sensor of square-grid pixels.
 Pixel coordinates are OpenCV's: the centre of the top-left pixel is (0, 0), x right, y down.
 The camera frame is OpenCV's: x right, y down, z forward (along the optical axis).
+Every camera kind shares the parameters of this table except focalLength (kCommonCameraKeys,
+readCommonCamera below); the models are defined in host/camera/pinhole.h.
 
   Parameter      | Value                  | Default            | Meaning
   ---------------+------------------------+--------------------+----------------------------------
@@ -103,7 +155,7 @@ The camera frame is OpenCV's: x right, y down, z forward (along the optical axis
   bitsPerPixel   | integer                | 8                  | 1..16
   exposure       | number                 | 1                  | > 0; DN = round(clamp(exposure *
                  |                        |                    | radiance, 0, 1) * (2^bits - 1))
-  distortion     | Distortion             | none               | Distortion.Brown { ... }
+  distortion     | Distortion             | none               | Distortion.Brown or .Rational
   sensor         | Sensor                 | none (ideal)       | Sensor.Emva { ... } (README Sensor)
   postProcessing | {PostProcessor, ...}   | none               | Blur, Vignetting, Dust, Defective-
                  |                        |                    | Pixels (README Sensor)
@@ -124,13 +176,22 @@ Example:
                           pixelSize = {4.4e-6, 4.4e-6}; bitsPerPixel = 10;
                           position = {-0.1, 0, 0}; lookAt = {0, 0, 0.5} }
 ------------------------------------------------------------------------------------------------ */
-int cameraPinhole(lua_State* L) {
-  Params p(L, "Camera.Pinhole",
-           {"resolution", "principalPoint", "focalLength", "pixelSize", "fillFactor",
-            "bitsPerPixel", "exposure", "distortion", "transform", "position", "lookAt", "up",
-            "sensor", "postProcessing"});
+
+// The keys every Camera.* constructor reads through readCommonCamera.
+const std::vector<const char*> kCommonCameraKeys = {
+    "resolution", "principalPoint", "pixelSize", "fillFactor", "bitsPerPixel", "exposure",
+    "distortion", "transform", "position", "lookAt", "up", "sensor", "postProcessing"};
+
+std::vector<const char*> cameraKeys(std::initializer_list<const char*> own) {
+  std::vector<const char*> keys = kCommonCameraKeys;
+  keys.insert(keys.end(), own.begin(), own.end());
+  return keys;
+}
+
+// Sensor, distortion and pose: the parameters every camera kind shares (table above).
+Camera readCommonCamera(lua_State* L, const Params& p, CameraKind kind) {
   Camera camera;
-  camera.kind = CameraKind::Pinhole;
+  camera.kind = kind;
   camera.where = LuaSandbox::of(L).here(L);
 
   // Sensor
@@ -143,8 +204,6 @@ int cameraPinhole(lua_State* L) {
   camera.height_px = static_cast<int>(resolution->y);
   camera.principalPoint_px = p.vec2("principalPoint", "{cx, cy}")
                                  .value_or(dvec2(camera.width_px - 1, camera.height_px - 1) / 2.0);
-  camera.focalLength_m = p.requiredNumber("focalLength");
-  p.require(camera.focalLength_m > 0, "focalLength", "> 0 (metres)", camera.focalLength_m);
   auto pixelSize = p.vec2("pixelSize", "{sx, sy}");
   if (!pixelSize) p.fail("missing required 'pixelSize' = {sx, sy} (metres)");
   for (double s : {pixelSize->x, pixelSize->y})
@@ -160,7 +219,7 @@ int cameraPinhole(lua_State* L) {
   camera.exposure = p.number("exposure", 1.0);
   p.require(camera.exposure > 0, "exposure", "> 0", camera.exposure);
   if (const Distortion* distortion =
-          p.userdata<Distortion>("distortion", "a Distortion (Distortion.Brown)"))
+          p.userdata<Distortion>("distortion", "a Distortion (Distortion.Brown, Distortion.Rational)"))
     camera.distortion = *distortion;
   readCameraSensor(L, p, camera);  // sensor, postProcessing (sensor_constructors.cpp)
 
@@ -181,19 +240,105 @@ int cameraPinhole(lua_State* L) {
     camera.worldFromCamera = lookAt ? lookAtPose(p, position, *lookAt, up.value_or(dvec3(0, -1, 0)))
                                     : glm::translate(dmat4(1.0), position);
   }
+  return camera;
+}
+
+int cameraPinhole(lua_State* L) {
+  Params p(L, "Camera.Pinhole", cameraKeys({"focalLength"}));
+  Camera camera = readCommonCamera(L, p, CameraKind::Pinhole);
+  camera.focalLength_m = p.requiredNumber("focalLength");
+  p.require(camera.focalLength_m > 0, "focalLength", "> 0 (metres)", camera.focalLength_m);
+  pushUserdata(L, std::move(camera));
+  return 1;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Camera.ThinLens: a thin lens with a finite aperture: depth of field. The parameters of
+Camera.Pinhole (except that focalLength is the lens's focal length f), plus:
+
+  Parameter      | Value        | Default  | Meaning
+  ---------------+--------------+----------+------------------------------------------------------
+  focalLength    | number, m    | required | the lens's focal length f, > 0
+  focusDistance  | number, m    | required | object distance u in focus, from the lens along the
+                 |              |          | optical axis; > focalLength
+  fNumber        | number       | -        | N: aperture diameter A = f / N; > 0
+  aperture       | number, m    | -        | aperture diameter A, > 0 (exactly one of the two)
+
+The sensor sits at the image distance v = f u / (u - f) (1/f = 1/u + 1/v), so the image of the
+plane in focus is sharp and the chief ray (through the lens centre) is the pinhole of focal length
+v: fx = v / pixelSize.x. Each sample traces a ray from its own point of the lens disk (uniform,
+deterministic, the same on both renderers) through the chief ray's point on the plane in focus; a
+point at depth d is spread over a disk of diameter c = A v |1/u - 1/d| on the sensor. Projections,
+ground truth and feature files use the chief ray (host/camera/pinhole.h).
+
+Example:
+  cam = Camera.ThinLens { resolution = {800, 600}; pixelSize = {5e-6, 5e-6}; focalLength = 0.05;
+                          fNumber = 2.8; focusDistance = 0.5 }
+------------------------------------------------------------------------------------------------ */
+int cameraThinLens(lua_State* L) {
+  Params p(L, "Camera.ThinLens", cameraKeys({"focalLength", "focusDistance", "fNumber", "aperture"}));
+  Camera camera = readCommonCamera(L, p, CameraKind::ThinLens);
+  camera.focalLength_m = p.requiredNumber("focalLength");
+  p.require(camera.focalLength_m > 0, "focalLength", "> 0 (metres)", camera.focalLength_m);
+  camera.focusDistance_m = p.requiredNumber("focusDistance");
+  p.require(camera.focusDistance_m > camera.focalLength_m, "focusDistance",
+            "> focalLength (metres; a lens cannot focus closer than its focal length)",
+            camera.focusDistance_m);
+  const std::optional<double> fNumber = p.number("fNumber"), aperture = p.number("aperture");
+  if (fNumber.has_value() == aperture.has_value())
+    p.fail("give exactly one of 'fNumber' (f / aperture diameter) and 'aperture' (diameter, metres)");
+  if (fNumber) {
+    p.require(*fNumber > 0, "fNumber", "> 0", *fNumber);
+    camera.aperture_m = camera.focalLength_m / *fNumber;
+  } else {
+    p.require(*aperture > 0, "aperture", "> 0 (diameter, metres)", *aperture);
+    camera.aperture_m = *aperture;
+  }
+  pushUserdata(L, std::move(camera));
+  return 1;
+}
+
+/* ------------------------------------------------------------------------------------------------
+Camera.Orthographic: a telecentric lens (parallel projection), for high-magnification set-ups.
+The parameters of Camera.Pinhole except focalLength, plus:
+
+  Parameter      | Value      | Default  | Meaning
+  ---------------+------------+----------+--------------------------------------------------------
+  magnification  | number     | required | image size / object size, > 0 (dimensionless)
+
+A point at (X, Y, Z) of the camera frame appears at x = cx + m X'' / sx, y = cy + m Y'' / sy where
+(X'', Y'') = distort(X, Y): the normalized coordinates of a telecentric camera are the metric X, Y
+(so distortion coefficients carry units: k1 in m⁻², k2 in m⁻⁴, ...). Rays run parallel to the
+optical axis from the plane Z = 0 of the camera frame (the camera's `position`), so only what lies
+in front of that plane is seen and the depth Z is the distance along the axis from it.
+
+Example:
+  cam = Camera.Orthographic { resolution = {640, 480}; pixelSize = {5e-6, 5e-6};
+                              magnification = 0.5; position = {0, 0, -0.1} }
+------------------------------------------------------------------------------------------------ */
+int cameraOrthographic(lua_State* L) {
+  Params p(L, "Camera.Orthographic", cameraKeys({"magnification"}));
+  Camera camera = readCommonCamera(L, p, CameraKind::Orthographic);
+  camera.magnification = p.requiredNumber("magnification");
+  p.require(camera.magnification > 0, "magnification", "> 0 (image size / object size)",
+            camera.magnification);
   pushUserdata(L, std::move(camera));
   return 1;
 }
 
 int cameraToString(lua_State* L) {
   const Camera* camera = toUserdata<Camera>(L, 1);
-  lua_pushfstring(L, "Camera.Pinhole(%dx%d)", camera ? camera->width_px : 0,
-                  camera ? camera->height_px : 0);
+  const char* kind = "Camera.Pinhole";
+  if (camera && camera->kind == CameraKind::ThinLens) kind = "Camera.ThinLens";
+  if (camera && camera->kind == CameraKind::Orthographic) kind = "Camera.Orthographic";
+  lua_pushfstring(L, "%s(%dx%d)", kind, camera ? camera->width_px : 0, camera ? camera->height_px : 0);
   return 1;
 }
 
 int distortionToString(lua_State* L) {
-  lua_pushliteral(L, "Distortion.Brown");
+  const Distortion* d = toUserdata<Distortion>(L, 1);
+  if (d && d->kind == DistortionKind::Rational) lua_pushliteral(L, "Distortion.Rational");
+  else lua_pushliteral(L, "Distortion.Brown");
   return 1;
 }
 
@@ -202,8 +347,11 @@ int distortionToString(lua_State* L) {
 void registerCameraConstructors(lua_State* L) {
   registerUserdataType<Camera>(L, {{"__tostring", &cameraToString}});
   registerUserdataType<Distortion>(L, {{"__tostring", &distortionToString}});
-  setConstructorTable(L, "Camera", {{"Pinhole", &protectedCall<cameraPinhole>}});
-  setConstructorTable(L, "Distortion", {{"Brown", &protectedCall<distortionBrown>}});
+  setConstructorTable(L, "Camera", {{"Pinhole", &protectedCall<cameraPinhole>},
+                                     {"ThinLens", &protectedCall<cameraThinLens>},
+                                     {"Orthographic", &protectedCall<cameraOrthographic>}});
+  setConstructorTable(L, "Distortion", {{"Brown", &protectedCall<distortionBrown>},
+                                         {"Rational", &protectedCall<distortionRational>}});
 }
 
 }  // namespace dicsynth::scene

@@ -90,7 +90,7 @@ Params::Pushed::Pushed(lua_State* L, const char* key) : L_(L) {
   lua_rawget(L, 1);
 }
 
-Params::Params(lua_State* L, std::string constructor, std::initializer_list<const char*> keys)
+Params::Params(lua_State* L, std::string constructor, const std::vector<const char*>& keys)
     : L_(L), constructor_(std::move(constructor)) {
   std::string validKeys;
   for (const char* key : keys) validKeys += (validKeys.empty() ? "" : ", ") + std::string(key);

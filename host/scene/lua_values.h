@@ -147,7 +147,7 @@ std::string typeName(lua_State* L, int index);
 class Params {
  public:
   // Checks that the arguments are one table (or nothing) whose keys are all in `keys`.
-  Params(lua_State* L, std::string constructor, std::initializer_list<const char*> keys);
+  Params(lua_State* L, std::string constructor, const std::vector<const char*>& keys);
 
   const std::string& constructor() const { return constructor_; }
   bool has(const char* key) const;

@@ -88,6 +88,11 @@ int rigStereo(lua_State* L) {
   auto camera = [&](const char* key) {
     const Camera* given = p.userdata<Camera>(key, "a Camera (Camera.Pinhole { ... })");
     if (given == nullptr) p.fail(std::string("missing required '") + key + "' = Camera.Pinhole { ... }");
+    if (given->kind == CameraKind::Orthographic)
+      p.fail(Params::quote(key) +
+             " is a Camera.Orthographic: Rig.Stereo places perspective cameras (Pinhole, ThinLens) by "
+             "their optical centres, which a telecentric camera lacks; give each telecentric camera "
+             "its own transform instead");
     if (given->poseGiven)
       p.fail(Params::quote(key) +
              " has a pose of its own (transform, position, lookAt or up): the rig places its "

@@ -21,11 +21,15 @@
 
 namespace dicsynth {
 
-// OpenCV's Brown–Conrady model on normalized coordinates (DESIGN.md §3); maps ideal → distorted.
+// OpenCV's lens distortion on normalized coordinates (DESIGN.md §3, camera/distortion.h); maps
+// ideal → distorted. Brown: k1 k2 k3 p1 p2. Rational: also k4 k5 k6 (radial denominator) and the
+// thin-prism s1..s4.
 struct Distortion {
   DistortionKind kind = DistortionKind::None;
   double k1 = 0, k2 = 0, k3 = 0;  // radial
   double p1 = 0, p2 = 0;          // tangential (OpenCV order; photogrammetry tools swap them)
+  double k4 = 0, k5 = 0, k6 = 0;  // Rational: radial denominator
+  double s1 = 0, s2 = 0, s3 = 0, s4 = 0;  // Rational: thin prism
 };
 
 struct Camera {
@@ -34,8 +38,11 @@ struct Camera {
   CameraKind kind = CameraKind::Pinhole;
   int width_px = 0, height_px = 0;
   dvec2 principalPoint_px{0, 0};  // OpenCV pixel frame: centre of the top-left pixel is (0, 0)
-  double focalLength_m = 0;
+  double focalLength_m = 0;   // Pinhole: pinhole distance; ThinLens: the lens's focal length f
   dvec2 pixelSize_m{0, 0};
+  double aperture_m = 0;       // ThinLens: aperture diameter A (from `aperture` or f/`fNumber`)
+  double focusDistance_m = 0;  // ThinLens: object distance u in focus, along the axis from the lens
+  double magnification = 0;    // Orthographic: image size / object size
   double fillFactor = 1;   // area fraction of the pixel that is sensitive, (0, 1]
   int bitsPerPixel = 8;    // 1..16
   double exposure = 1;     // digital number = round(clamp(exposure * radiance, 0, 1) * (2^bits - 1))

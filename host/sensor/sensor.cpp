@@ -41,10 +41,17 @@ std::vector<double> opticalImage(const std::vector<double>& radiance, const Came
     r = applyBlur(r, w, h, b);
   }
   if (m.vignetting || !m.dust.empty()) {
+    // cos⁴ is measured from the sensor: the chief ray's angle is set by the distance from the lens centre
+    // to the sensor, the pinhole distance, which for a thin lens is the image distance v = f u / (u − f)
+    // (camera/pinhole.h). Orthographic cameras are refused at scene load (no fall-off to model).
+    const double sensorDistance_m =
+        camera.kind == CameraKind::ThinLens
+            ? camera.focalLength_m * camera.focusDistance_m / (camera.focusDistance_m - camera.focalLength_m)
+            : camera.focalLength_m;
     const VignettingGeometry g{w, h, camera.principalPoint_px.x, camera.principalPoint_px.y,
-                               camera.pixelSize_m.x, camera.pixelSize_m.y, camera.focalLength_m};
+                               camera.pixelSize_m.x, camera.pixelSize_m.y, sensorDistance_m};
     if (m.vignetting && m.vignetting->kind == VignettingKind::Cos4)
-      DS_CHECK(camera.focalLength_m > 0, "camera " + camera.name + ": Vignetting.Cos4 needs a focal length");
+      DS_CHECK(sensorDistance_m > 0, "camera " + camera.name + ": Vignetting.Cos4 needs a focal length");
     std::vector<DustBlob> dust = m.dust;
     for (DustBlob& d : dust) {  // scene pixels → rendered pixels, as the principal point
       d.x_px = (d.x_px + 0.5) / k - 0.5;

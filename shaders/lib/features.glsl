@@ -16,4 +16,8 @@ layout(constant_id = DS_SPEC_SHAPE_KINDS) const uint SHAPE_KINDS = 0xffffffffu;
 // Every NURBS patch of the scene arrives raised to this degree in u and v (host/gpu/pack.cpp), so
 // the patch loops have constant bounds: unrolled, the control points stay in registers.
 layout(constant_id = DS_SPEC_NURBS_DEGREE) const int NURBS_DEGREE = 3;
+// Camera kinds present (bit k: DS_CAMERA_* k) and OpenCV's rational/thin-prism distortion terms: a
+// scene of pinhole cameras with Brown (or no) distortion compiles neither lens sampling nor them.
+layout(constant_id = DS_SPEC_CAMERA_KINDS) const uint CAMERA_KINDS = 0xffffffffu;
+layout(constant_id = DS_SPEC_HAS_RATIONAL_DISTORTION) const bool HAS_RATIONAL_DISTORTION = true;
 #endif

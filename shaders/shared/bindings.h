@@ -30,6 +30,8 @@
 #define DS_SPEC_NURBS_DEGREE 4  // the degree (both directions) every Bézier patch is raised to
 #define DS_SPEC_HAS_SPECKLE_TEXTURES 8  // some object has a Texture.Speckle (analytic disks)
 #define DS_SPEC_HAS_QUINTIC_TEXTURES 9  // some Texture.File interpolates with the quintic B-spline
+#define DS_SPEC_CAMERA_KINDS 5  // bit k set: some camera has camera kind k (DS_CAMERA_*)
+#define DS_SPEC_HAS_RATIONAL_DISTORTION 6  // bool: some camera has Distortion.Rational (k4..k6, s1..s4)
 
 // Arithmetic switches of shaders/lib/df64.glsl (any shader that includes it).
 #define DS_SPEC_DF64_FMA 16  // bool: TwoProd by fma(a, b, -p); only where the self-test proved fma exact

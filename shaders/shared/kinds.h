@@ -23,9 +23,12 @@
 #define DS_LIGHT_POINT 0
 
 #define DS_CAMERA_PINHOLE 0
+#define DS_CAMERA_THIN_LENS 1      // pinhole chief ray + a lens disk sampled per sample (host/camera/pinhole.h)
+#define DS_CAMERA_ORTHOGRAPHIC 2   // telecentric: rays parallel to the optical axis
 
 #define DS_DISTORTION_NONE 0
 #define DS_DISTORTION_BROWN 1
+#define DS_DISTORTION_RATIONAL 2  // OpenCV's full model: rational radial k1..k6, p1 p2, thin prism s1..s4
 
 #ifdef __cplusplus
 namespace dicsynth {
@@ -46,8 +49,16 @@ enum class TextureKind : int {
   Speckle = DS_TEXTURE_SPECKLE,
 };
 enum class LightKind : int { Point = DS_LIGHT_POINT };
-enum class CameraKind : int { Pinhole = DS_CAMERA_PINHOLE };
-enum class DistortionKind : int { None = DS_DISTORTION_NONE, Brown = DS_DISTORTION_BROWN };
+enum class CameraKind : int {
+  Pinhole = DS_CAMERA_PINHOLE,
+  ThinLens = DS_CAMERA_THIN_LENS,
+  Orthographic = DS_CAMERA_ORTHOGRAPHIC,
+};
+enum class DistortionKind : int {
+  None = DS_DISTORTION_NONE,
+  Brown = DS_DISTORTION_BROWN,
+  Rational = DS_DISTORTION_RATIONAL,
+};
 }  // namespace dicsynth
 #endif
 

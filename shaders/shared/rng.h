@@ -34,6 +34,7 @@ DS_FN uint ds_hash_combine(uint h, uint value) { return ds_hash(h ^ value); }
 #define DS_DIM_SPECKLE_DISK 11u
 #define DS_DIM_SPECKLE_X 12u
 #define DS_DIM_SPECKLE_Y 13u
+#define DS_DIM_LENS 2u  // Camera.ThinLens: the sample's point on the lens disk (ds_lens_lattice)
 
 DS_FN uint ds_sample_bits(uint seed, uint frame, uint camera, uint px, uint py, uint sampleIndex, uint dim) {
   uint h = ds_hash(seed ^ 0x9e3779b9u);
@@ -43,6 +44,28 @@ DS_FN uint ds_sample_bits(uint seed, uint frame, uint camera, uint px, uint py, 
   h = ds_hash_combine(h, py);
   h = ds_hash_combine(h, sampleIndex);
   return ds_hash_combine(h, dim);
+}
+
+// A point uniformly distributed over the unit disk, for the lens of Camera.ThinLens, drawn by
+// rejection from a lattice so that no transcendental function is needed (GLSL has none in double)
+// and every backend gets the very same point: 32 hash bits give two 15-bit integers ux, uy; the
+// lattice point is (ix, iy) = (2ux − 32767, 2uy − 32767) (odd integers, cell centres of a 32768²
+// grid over the square [−32768, 32768]²), accepted when ix² + iy² < 32768² (integer arithmetic: the
+// sums stay below 2^31, so the test is exact everywhere). Rejected candidates draw again from
+// ds_hash_combine(bits, try). The disk point is (ix, iy) / 32768, exact in float and double.
+// Acceptance is π/4 per try; after DS_LENS_MAX_TRIES rejections ((1 − π/4)^32 ≈ 4e-22) the lattice
+// point next to the centre, (1, 1), is used. Returns (ux << 16) | uy.
+#define DS_LENS_MAX_TRIES 32u
+DS_FN uint ds_lens_lattice(uint seed, uint frame, uint camera, uint px, uint py, uint sampleIndex) {
+  uint bits = ds_sample_bits(seed, frame, camera, px, py, sampleIndex, DS_DIM_LENS);
+  for (uint k = 0u; k < DS_LENS_MAX_TRIES; ++k) {
+    const uint ux = bits >> 17u, uy = (bits >> 1u) & 0x7fffu;
+    const uint ax = 2u * ux >= 32767u ? 2u * ux - 32767u : 32767u - 2u * ux;  // |ix|
+    const uint ay = 2u * uy >= 32767u ? 2u * uy - 32767u : 32767u - 2u * uy;  // |iy|
+    if (ax * ax + ay * ay < 0x40000000u) return (ux << 16u) | uy;
+    bits = ds_hash_combine(bits, k + 1u);
+  }
+  return (16384u << 16u) | 16384u;
 }
 
 #ifdef __cplusplus

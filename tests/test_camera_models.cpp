@@ -256,12 +256,19 @@ TEST_CASE("camera models: constructor errors name file:line") {
                        "closer than its focal length), got 0.04");
   test::checkBodyError(dir, "c = Camera.ThinLens { " + base + "focalLength = 0.05; focusDistance = 1; fNumber = 0 }\n",
                        2, "Camera.ThinLens: 'fNumber' must be > 0, got 0");
+  // cos⁴ vignetting models the chief ray's angle at the sensor; a telecentric lens has none.
+  test::checkBodyError(dir,
+                       "c = Camera.Orthographic { " + base +
+                           "magnification = 1; postProcessing = { Vignetting.Cos4 {} } }\n",
+                       2,
+                       "Camera.Orthographic: Vignetting.Cos4: a telecentric (orthographic) camera's chief rays are "
+                       "parallel to the axis, so it has no cos⁴ fall-off; use Vignetting.Radial");
   test::checkBodyError(dir, "c = Camera.Orthographic { " + base + "magnification = -1 }\n", 2,
                        "Camera.Orthographic: 'magnification' must be > 0 (image size / object size), got -1");
   test::checkBodyError(dir, "c = Camera.Orthographic { " + base + "focalLength = 0.01; magnification = 1 }\n", 2,
                        "Camera.Orthographic: unknown key 'focalLength'; valid keys: resolution, principalPoint, "
                        "pixelSize, fillFactor, bitsPerPixel, exposure, distortion, transform, position, lookAt, "
-                       "up, magnification");
+                       "up, sensor, postProcessing, magnification");
   test::checkBodyError(dir, "c = Camera.Orthographic { " + base + "}\n", 2,
                        "Camera.Orthographic: missing required 'magnification'");
   test::checkBodyError(dir, "d = Distortion.Rational { thinPrism = {1, 2, 3} }\n", 2,

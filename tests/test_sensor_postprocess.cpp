@@ -164,6 +164,20 @@ TEST_CASE("sensor: the pipeline applies vignetting and dust to the radiance") {
   CHECK(image.defects.empty());
 }
 
+TEST_CASE("sensor: cos4 vignetting of a thin lens is measured from the image distance") {
+  // A thin lens of f = 8 mm focused at u = 0.4 m puts the sensor at v = f u / (u - f) = 8.163 mm
+  // (camera/pinhole.h): the chief ray of a pixel r px off-axis leaves at tan θ = r · 10 µm / v.
+  Camera camera = idealCamera(101, 81);
+  camera.kind = CameraKind::ThinLens;
+  camera.focalLength_m = 0.008;
+  camera.focusDistance_m = 0.4;
+  camera.sensor.vignetting = Vignetting{VignettingKind::Cos4, {}};
+  const double v = 0.008 * 0.4 / (0.4 - 0.008);
+  const SensorImage image = applySensor(std::vector<double>(101 * 81, 0.5), camera, {1, 0, 0});
+  const double t2 = (40.0 * 40 + 30.0 * 30) * 1e-10 / (v * v);  // pixel (90, 70): 40, 30 px off
+  CHECK(image.noiseFree_DN[70 * 101 + 90] == doctest::Approx(0.5 * 65535 / ((1 + t2) * (1 + t2))).epsilon(1e-14));
+}
+
 TEST_CASE("sensor: --downscale converts the post-processors' pixel values") {
   // Scene pixel positions map as the principal point does, (x + ½)/k - ½; lengths divide by k.
   Camera camera = idealCamera(50, 30);

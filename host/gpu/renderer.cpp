@@ -107,6 +107,8 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
                                             {DS_SPEC_HAS_FILE_TEXTURES, used.fileTextures ? 1u : 0u},
                                             {DS_SPEC_SHAPE_KINDS, used.shapeKinds},
                                             {DS_SPEC_NURBS_DEGREE, std::uint32_t(std::max(used.nurbsDegree, 1))},
+                                            {DS_SPEC_SHADER_KINDS, used.shaderKinds},
+                                            {DS_SPEC_LIGHT_KINDS, used.lightKinds},
                                             {DS_SPEC_DF64_FMA, df64Fma ? 1u : 0u}};
     std::span<const std::uint32_t> spirv = spirv::render_fp32;
     if (precision == Precision::Fp64) spirv = spirv::render_fp64;

@@ -13,11 +13,15 @@ void registerCameraConstructors(lua_State* L);  // camera_constructors.cpp: Came
 void registerShapeConstructors(lua_State* L);   // shape_constructors.cpp: Shape
 void registerNurbsConstructors(lua_State* L);   // nurbs_constructors.cpp: Shape.Nurbs, Nurbs
                                                 //   (after registerShapeConstructors)
-void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Shader, Texture,
-                                                //   Object, Light
+void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Texture, Object
+void registerShadingConstructors(lua_State* L); // shading_constructors.cpp: Shader, Light
 void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...
 void registerTargetConstructors(lua_State* L);  // target_constructors.cpp: Target (after
                                                 //   registerObjectConstructors)
 void registerRigConstructors(lua_State* L);     // rig_constructors.cpp: Rig
+
+// What a 'shader' parameter must be, for error messages.
+inline constexpr const char* kShaderExpected =
+    "a Shader (Shader.Constant, Shader.Lambert, Shader.Phong, Shader.BlinnPhong, Shader.GGX)";
 
 }  // namespace dicsynth::scene

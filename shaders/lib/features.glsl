@@ -14,4 +14,11 @@ layout(constant_id = DS_SPEC_SHAPE_KINDS) const uint SHAPE_KINDS = 0xffffffffu;
 // Every NURBS patch of the scene arrives raised to this degree in u and v (host/gpu/pack.cpp), so
 // the patch loops have constant bounds: unrolled, the control points stay in registers.
 layout(constant_id = DS_SPEC_NURBS_DEGREE) const int NURBS_DEGREE = 3;
+// Shader and light kinds present (lib/shading.glsl): a Lambert-only scene compiles no specular code.
+layout(constant_id = DS_SPEC_SHADER_KINDS) const uint SHADER_KINDS = 0xffffffffu;
+layout(constant_id = DS_SPEC_LIGHT_KINDS) const uint LIGHT_KINDS = 0xffffffffu;
+#define DS_HAS_SHADER(kind) ((SHADER_KINDS & (1u << (kind))) != 0u)
+#define DS_HAS_LIGHT(kind) ((LIGHT_KINDS & (1u << (kind))) != 0u)
+// One bit test (an || of specialization-constant expressions trips glslc's optimizer, shaderc 2023).
+#define HAS_SPECULAR ((SHADER_KINDS & ((1u << DS_SHADER_PHONG) | (1u << DS_SHADER_BLINN_PHONG) | (1u << DS_SHADER_GGX))) != 0u)
 #endif

@@ -28,6 +28,8 @@
 #define DS_SPEC_HAS_FILE_TEXTURES 2
 #define DS_SPEC_SHAPE_KINDS 3  // bit k set: some object has shape kind k
 #define DS_SPEC_NURBS_DEGREE 4  // the degree (both directions) every Bézier patch is raised to
+#define DS_SPEC_SHADER_KINDS 11  // bit k set: some object has shader kind k (DS_SHADER_*)
+#define DS_SPEC_LIGHT_KINDS 12   // bit k set: the scene has a light of kind k (DS_LIGHT_*)
 
 // Arithmetic switches of shaders/lib/df64.glsl (any shader that includes it).
 #define DS_SPEC_DF64_FMA 16  // bool: TwoProd by fma(a, b, -p); only where the self-test proved fma exact

@@ -13,6 +13,9 @@
 
 #define DS_SHADER_CONSTANT 0
 #define DS_SHADER_LAMBERT 1
+#define DS_SHADER_PHONG 2
+#define DS_SHADER_BLINN_PHONG 3
+#define DS_SHADER_GGX 4
 
 #define DS_TEXTURE_CONSTANT 0
 #define DS_TEXTURE_FILE 1
@@ -20,6 +23,8 @@
 #define DS_TEXTURE_CIRCLE_GRID 3
 
 #define DS_LIGHT_POINT 0
+#define DS_LIGHT_AMBIENT 1
+#define DS_LIGHT_SPOT 2
 
 #define DS_CAMERA_PINHOLE 0
 
@@ -36,14 +41,20 @@ enum class ShapeKind : int {
   Rectangle = DS_SHAPE_RECTANGLE,
   Nurbs = DS_SHAPE_NURBS,
 };
-enum class ShaderKind : int { Constant = DS_SHADER_CONSTANT, Lambert = DS_SHADER_LAMBERT };
+enum class ShaderKind : int {
+  Constant = DS_SHADER_CONSTANT,
+  Lambert = DS_SHADER_LAMBERT,
+  Phong = DS_SHADER_PHONG,
+  BlinnPhong = DS_SHADER_BLINN_PHONG,
+  Ggx = DS_SHADER_GGX,
+};
 enum class TextureKind : int {
   Constant = DS_TEXTURE_CONSTANT,
   File = DS_TEXTURE_FILE,
   Checkerboard = DS_TEXTURE_CHECKERBOARD,
   CircleGrid = DS_TEXTURE_CIRCLE_GRID,
 };
-enum class LightKind : int { Point = DS_LIGHT_POINT };
+enum class LightKind : int { Point = DS_LIGHT_POINT, Ambient = DS_LIGHT_AMBIENT, Spot = DS_LIGHT_SPOT };
 enum class CameraKind : int { Pinhole = DS_CAMERA_PINHOLE };
 enum class DistortionKind : int { None = DS_DISTORTION_NONE, Brown = DS_DISTORTION_BROWN };
 }  // namespace dicsynth

@@ -18,7 +18,8 @@ double specularBrdf(const PreparedObject& obj, dvec3 n, dvec3 wi, dvec3 wo) {
       const double cosI = glm::dot(n, wi), cosO = glm::dot(n, wo);
       if (!(cosI > 0) || !(cosO > 0)) return 0;
       const dvec3 half = glm::normalize(wi + wo);
-      return ggxD(obj.roughness, glm::dot(n, half)) * schlickFresnel(obj.f0, glm::dot(wo, half)) *
+      const dvec3 nxh = glm::cross(n, half);
+      return ggxD(obj.roughness, glm::dot(n, half), glm::dot(nxh, nxh)) * schlickFresnel(obj.f0, glm::dot(wo, half)) *
              ggxVisibility(obj.roughness, cosI, cosO);
     }
   }

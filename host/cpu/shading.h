@@ -13,6 +13,9 @@
 //   BlinnPhong:  f_spec = ks · (n + 8)/(8π) · max(0, N·H)^n     H = (ωi + ωo)/|ωi + ωo|
 //   GGX:         f_spec = D(N·H) · F(V·H) · G₂(ωi, ωo) / (4 cosθi cosθo), Cook-Torrance with
 //       D  = α² / (π ((N·H)² (α² − 1) + 1)²)              Trowbridge-Reitz (GGX), ∫ D cosθh dω = 1
+//          = α² / (π (|N×H|² + (N·H)² α²)²)               as evaluated: near the peak (N·H ≈ 1) the
+//            first form cancels, 1 − (N·H)² losing the ~1e-16 absolute error of N·H against a value
+//            ~α², so D would err by 4/α² ulps; |N×H|² keeps its relative precision.
 //       F  = F0 + (1 − F0)(1 − V·H)⁵                      Schlick
 //       G₂ = 1 / (1 + Λ(ωi) + Λ(ωo)),  Λ = (√(1 + α² tan²θ) − 1)/2   Smith, height-correlated
 //     evaluated as D · F · V with V = G₂/(4 cosθi cosθo) = ½ / (cosθo √(cos²θi(1−α²)+α²) +
@@ -46,9 +49,10 @@ inline double phongLobe(double ks, int n, double cosMirrorView) {
 inline double blinnPhongLobe(double ks, int n, double cosNormalHalf) {
   return ks * (n + 8) / (8 * kPi) * std::pow(std::max(cosNormalHalf, 0.0), n);
 }
-inline double ggxD(double alpha, double cosNormalHalf) {
+// D from cos θh and sin² θh (= |N×H|², given separately for precision, above).
+inline double ggxD(double alpha, double cosNormalHalf, double sin2NormalHalf) {
   const double a2 = alpha * alpha, c = cosNormalHalf;
-  const double q = c * c * (a2 - 1) + 1;
+  const double q = sin2NormalHalf + c * c * a2;
   return c > 0 ? a2 / (kPi * q * q) : 0.0;
 }
 inline double schlickFresnel(double f0, double cosViewHalf) {

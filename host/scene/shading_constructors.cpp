@@ -11,7 +11,11 @@ namespace dicsynth::scene {
 namespace {
 
 constexpr int kMaxShininess = 10000;  // x^n by repeated squaring: ≤ 28 products (cpu/shading.h)
-constexpr double kMinRoughness = 1e-3;  // GGX's D peaks at 1/(πα²): 3e5 at 1e-3, a mirror for DIC
+// GGX's D peaks at 1/(πα²) with a relative slope 4/α² in cos θh: below α = 0.01 a highlight is a
+// near-mirror image of the light, hundreds of times full scale, whose rounding-level differences
+// (the hit position's 1e-15 relative between backends, through that slope) exceed the fp64 GPU
+// variant's 1e-9 of full scale (measured: 3.5e-8 at α = 0.001). Polished metals are α ≈ 0.01-0.05.
+constexpr double kMinRoughness = 0.01;
 
 // A colour parameter: gray number or {r, g, b}, each >= 0.
 dvec3 readColor(const Params& p, const char* key, dvec3 fallback) {
@@ -108,7 +112,7 @@ height-correlated Smith masking-shadowing G₂ (formulas: host/cpu/shading.h). T
   Parameter | Value                     | Default    | Meaning
   ----------+---------------------------+------------+------------------------------------------
   color     | {r, g, b} or gray number  | 0          | diffuse albedo ρ (luminance), × texture
-  roughness | number in [0.001, 1]      | 0.3        | α (the "perceptual roughness" squared)
+  roughness | number in [0.01, 1]       | 0.3        | α (the "perceptual roughness" squared)
   f0        | number or {r, g, b}, each | 0.56       | Fresnel reflectance at normal incidence
             | in [0, 1]                 |            | (luminance): steel 0.56, aluminium 0.91
 
@@ -121,7 +125,7 @@ int shaderGgx(lua_State* L) {
   shader.where = LuaSandbox::of(L).here(L);
   shader.color = readColor(p, "color", dvec3(0));
   shader.roughness = p.number("roughness", 0.3);
-  p.require(shader.roughness >= kMinRoughness && shader.roughness <= 1, "roughness", "in [0.001, 1]",
+  p.require(shader.roughness >= kMinRoughness && shader.roughness <= 1, "roughness", "in [0.01, 1]",
             shader.roughness);
   shader.f0 = readGray(p, "f0", 0.56, 0, 1, "in [0, 1]");
   pushUserdata(L, std::move(shader));

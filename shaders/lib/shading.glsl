@@ -44,9 +44,10 @@ real ds_specular_brdf(int shader, real4 material, real3 n, real3 wi, real3 wo) {
     if (!(cosI > real(0.0)) || !(cosO > real(0.0))) return real(0.0);
     const real3 halfway = normalize(wi + wo);
     const real a2 = material.y * material.y;
-    // D: Trowbridge-Reitz
+    // D: Trowbridge-Reitz, q = |N×H|² + (N·H)² α² (no cancellation near the peak)
     const real cosH = dot(n, halfway);
-    const real q = cosH * cosH * (a2 - real(1.0)) + real(1.0);
+    const real3 nxh = cross(n, halfway);
+    const real q = dot(nxh, nxh) + cosH * cosH * a2;
     const real d = cosH > real(0.0) ? a2 / (DS_PI * q * q) : real(0.0);
     // F: Schlick
     const real m = real(1.0) - clamp(dot(wo, halfway), real(0.0), real(1.0));

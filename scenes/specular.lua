@@ -4,7 +4,7 @@
 -- light's mirror image falls, exactly where DIC correlation fails on real specimens.
 -- Formulas and parameters: host/cpu/shading.h and README "Shading".
 -- Render: build/dicsynth render scenes/specular.lua -o out
-camera = Camera.Pinhole { resolution = {640, 480}; focalLength = 0.016; pixelSize = {7.4e-6, 7.4e-6};
+camera = Camera.Pinhole { resolution = {640, 480}; focalLength = 0.008; pixelSize = {7.4e-6, 7.4e-6};
   bitsPerPixel = 12; exposure = 1.5; position = {0, -0.05, 0}; lookAt = {0, 0, 0.6}; };
 plate = Object.Simple {
   shape = Shape.Rectangle { size = {0.5, 0.4}; location = {0, 0, 0.65}; };

@@ -25,7 +25,7 @@ struct GpuObject {
   hreal4 shape3;              // Triangle: uv0.xy, uv1.xy
   hreal4 shape4;              // Triangle: uv2.xy
   real4 shading;             // albedo, constant texture value, 0, 0
-  real4 material;            // shading/shading.h: Phong, BlinnPhong: specular ks, shininess n;
+  real4 material;            // cpu/shading.h: Phong, BlinnPhong: specular ks, shininess n;
                              // GGX: 0, roughness α, F0 (normal-incidence Fresnel reflectance); 0
   ivec4 kinds;               // shape kind, shader kind, texture index (-1: constant), objectId
   ivec4 extra;               // Nurbs: root node in the NURBS node buffer; texture kind, 0, 0

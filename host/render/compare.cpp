@@ -150,8 +150,9 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
   const double inf = std::numeric_limits<double>::infinity();
   const auto worst = [&](double m, double v) { return std::isnan(v) ? inf : std::max(m, v); };
   std::vector<dvec3> objectOrigins;
-  std::vector<double> slopes;
+  std::vector<double> slopes, reflectances;
   for (const auto& o : scene.objects) {
+    reflectances.push_back(tol.epsilon > 0 && hasSpecularOrSpotTerms(scene, o) ? reflectanceMax(scene, o) : 0.0);
     const dvec4 h = o.worldFromObject * dvec4(0, 0, 0, 1);
     objectOrigins.push_back(dvec3(h) / h.w);
     slopes.push_back(tol.epsilon > 0 ? textureSlope(scene, o) : 0.0);
@@ -217,6 +218,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
             in.normalSlope = normalSlope(scene, model, dvec2(double(i % width), double(i / width)), hit);
             in.epsilon = 0x1p-24;  // lib/real.glsl: shading runs in float in fp32 and df64
             in.k = tol.k;
+            in.reflectanceMax = reflectances[obj];
             boundRadiance += specularRadianceBound(scene, scene.objects[obj], in) * cam.exposure;
           }
         }

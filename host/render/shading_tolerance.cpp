@@ -8,15 +8,6 @@ namespace {
 
 bool isSpecular(ShaderKind k) { return k == ShaderKind::Phong || k == ShaderKind::BlinnPhong || k == ShaderKind::Ggx; }
 
-// Largest diffuse reflectance albedo × texture: a B-spline is a convex combination of its
-// coefficients; other textures take values in [0, 1] or their own constants.
-double reflectanceMax(const PreparedScene& scene, const PreparedObject& o) {
-  double t = std::max({1.0, o.textureValue, o.targetTexture.light, o.targetTexture.dark});
-  if (o.textureKind == TextureKind::File && o.textureIndex >= 0)
-    for (double c : scene.textures[std::size_t(o.textureIndex)].coefficients) t = std::max(t, std::abs(c));
-  return o.albedo * t;
-}
-
 // Largest f_spec · cosθi over light directions, and the largest relative slope of that product
 // per unit change of the lobe's cosines (shading_tolerance.h).
 void lobe(const PreparedObject& o, double cosView, double& maxValue, double& slope) {
@@ -42,6 +33,15 @@ void lobe(const PreparedObject& o, double cosView, double& maxValue, double& slo
 
 }  // namespace
 
+// A B-spline is a convex combination of its coefficients; other textures take values in [0, 1]
+// or their own constants.
+double reflectanceMax(const PreparedScene& scene, const PreparedObject& o) {
+  double t = std::max({1.0, o.textureValue, o.targetTexture.light, o.targetTexture.dark});
+  if (o.textureKind == TextureKind::File && o.textureIndex >= 0)
+    for (double c : scene.textures[std::size_t(o.textureIndex)].coefficients) t = std::max(t, std::abs(c));
+  return o.albedo * t;
+}
+
 bool hasSpecularOrSpotTerms(const PreparedScene& scene, const PreparedObject& o) {
   if (o.shader == ShaderKind::Constant) return false;
   if (isSpecular(o.shader)) return true;
@@ -55,7 +55,7 @@ double specularRadianceBound(const PreparedScene& scene, const PreparedObject& o
   lobe(o, in.cosView, maxValue, slope);
   const double own = in.k * in.epsilon;
   const double normalError = own + in.normalSlope * in.positionBound_m;
-  const double diffuseMax = reflectanceMax(scene, o) / kPi;
+  const double diffuseMax = in.reflectanceMax / kPi;
   double bound = 0;
   for (const PreparedLight& l : scene.lights) {
     if (l.kind == LightKind::Ambient) continue;

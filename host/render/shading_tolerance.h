@@ -26,7 +26,11 @@ struct ShadingErrorInputs {
   double normalSlope = 0;      // |∂n/∂P| (1/m), 0 on flat surfaces
   double epsilon = 0;          // unit roundoff of the shading arithmetic
   double k = 0;                // roundoff steps allowed per quantity (compare.cpp's k)
+  double reflectanceMax = 1;   // largest albedo × texture of the object (reflectanceMax below)
 };
+
+// Largest diffuse reflectance albedo × texture of o (scans a file texture: compute once per object).
+double reflectanceMax(const PreparedScene& scene, const PreparedObject& o);
 
 // Radiance bound (scene units, before exposure) of the specular and spot terms; 0 for
 // Constant objects and scenes without spot lights or specular shaders.

@@ -87,7 +87,7 @@ TEST_CASE("scene: wrong types, missing and non-finite values") {
       dir,
       "o = Object.Simple { shape = Shape.Sphere { radius = 1 };\n"
       "  shader = Shape.Sphere { radius = 2 } }\n",
-      1, "Object.Simple: 'shader' must be a Shader (Shader.Constant, Shader.Lambert), got Shape");
+      1, "Object.Simple: 'shader' must be a Shader (Shader.Constant, Shader.Lambert, Shader.Phong, Shader.BlinnPhong, Shader.GGX), got Shape");
   checkError(dir, "o = Object.Simple { shape = 1 }\n", 1,
              "Object.Simple: 'shape' must be a Shape (Shape.Sphere, Shape.Box, Shape.Rectangle, "
              "Shape.Plane, Shape.Triangle, Shape.Nurbs, Nurbs.plate, Nurbs.cylinderSegment, "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "cpu/shading.h"
 #include "geometry/homography.h"
 #include "texture/analytic_speckle.h"
 #include "texture/bspline.h"
@@ -35,6 +36,7 @@ bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit)
   if (glm::dot(hit.normal, d) > 0) hit.normal = -hit.normal;
   hit.uv = best.uv;
   hit.object = bestObject;
+  hit.rayDirection = d;
   return true;
 }
 
@@ -75,23 +77,7 @@ double textureValue(const PreparedScene& scene, const PreparedObject& obj, dvec2
 double shade(const PreparedScene& scene, const SurfaceHit& hit) {
   const PreparedObject& obj = scene.objects[std::size_t(hit.object)];
   const double reflectance = obj.albedo * textureValue(scene, obj, hit.uv);
-  switch (obj.shader) {
-    case ShaderKind::Constant: return reflectance;
-    case ShaderKind::Lambert: {
-      // Lambertian BRDF ρ/π lit by point lights of intensity I at distance r:
-      // L = Σ (ρ/π) I cosθ / r², for lights on the viewer's side of the surface and not occluded.
-      double sum = 0;
-      for (const PreparedLight& light : scene.lights) {
-        const dvec3 toLight = light.position_m - hit.position;
-        const double r2 = glm::dot(toLight, toLight);
-        const double cosTheta = glm::dot(hit.normal, toLight) / std::sqrt(r2);
-        if (!(cosTheta > 0) || occluded(scene, hit, light.position_m)) continue;
-        sum += light.intensity * cosTheta / r2;
-      }
-      return reflectance * sum / kPi;
-    }
-  }
-  return 0;
+  return shadeSurface(scene, hit, reflectance);  // cpu/shading.cpp
 }
 
 }  // namespace dicsynth::cpu

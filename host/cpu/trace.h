@@ -11,6 +11,7 @@ struct SurfaceHit {
   dvec3 normal{0};      // world, unit, facing the ray's origin
   dvec2 uv{0};
   int object = -1;      // index into PreparedScene::objects
+  dvec3 rayDirection{0};  // world direction of the ray that found the hit (not normalized)
 };
 
 // Nearest hit along o + t d, t > 0, over all objects, compared by world t.

@@ -195,7 +195,18 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   PreparedScene ps;
   ps.file = scene.file;
   for (const Camera& c : scene.cameras) ps.cameras.push_back(prepareCamera(c, options.downscale));
-  for (const Light& l : scene.lights) ps.lights.push_back({l.position_m, l.intensity});
+  for (const Light& l : scene.lights) {
+    PreparedLight pl;
+    pl.kind = l.kind;
+    pl.position_m = l.position_m;
+    pl.intensity = l.intensity;
+    if (l.kind == LightKind::Spot) {
+      pl.direction = glm::normalize(l.direction);
+      pl.cosOuter = std::cos(l.outerAngle_rad);
+      pl.cosInner = std::cos(l.innerAngle_rad);
+    }
+    ps.lights.push_back(pl);
+  }
   for (const StereoRig& r : scene.rigs) {
     PreparedRig pr;
     pr.name = r.name;
@@ -208,7 +219,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   }
 
   std::map<std::string, int> texturesByPath;
-  bool anyLambert = false;
+  bool anyLit = false;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const Object& so = scene.objects[i];
     PreparedObject o;
@@ -222,7 +233,11 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     }
     o.shader = so.shader.kind;
     o.albedo = luminance(so.shader.color);
-    anyLambert |= o.shader == ShaderKind::Lambert;
+    o.specular = so.shader.specular;
+    o.shininess = so.shader.shininess;
+    o.roughness = so.shader.roughness;
+    o.f0 = so.shader.f0;
+    anyLit |= o.shader != ShaderKind::Constant;
     o.textureKind = so.texture.kind;
     if (so.texture.kind == TextureKind::File) {
       o.textureIndex = loadTexture(so.texture, ps.textures, texturesByPath, options.textureCache);
@@ -245,11 +260,13 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     }
     for (const PreparedCamera& c : ps.cameras)
       checkFinite(o, so, c.model.centre, "camera '" + c.camera.name + "'");
-    for (const Light& l : scene.lights) checkFinite(o, so, l.position_m, "light '" + l.name + "'");
+    for (const Light& l : scene.lights)
+      if (l.kind != LightKind::Ambient) checkFinite(o, so, l.position_m, "light '" + l.name + "'");
     ps.objects.push_back(std::move(o));
   }
 
-  ps.features.lights = anyLambert && !ps.lights.empty();
+  ps.features.lights = anyLit && !ps.lights.empty();
+  for (const PreparedLight& l : ps.lights) ps.features.lightKinds |= 1u << int(l.kind);
   for (const PreparedCamera& c : ps.cameras) {
     ps.features.distortion |= c.model.distorted;
     ps.features.rationalDistortion |= c.camera.distortion.kind == DistortionKind::Rational;
@@ -261,6 +278,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   for (const PreparedObject& o : ps.objects) {
     ps.features.shapeKinds |= 1u << o.geometry.kind;
     ps.features.speckleTextures |= o.textureKind == TextureKind::Speckle;
+    ps.features.shaderKinds |= 1u << int(o.shader);
     if (o.nurbs)
       for (const BezierPatch& p : o.nurbs->patches)
         ps.features.nurbsDegree = std::max({ps.features.nurbsDegree, p.degreeU, p.degreeV});

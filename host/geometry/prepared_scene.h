@@ -35,6 +35,11 @@ struct PreparedObject {
   std::shared_ptr<const NurbsSurface> surface; // the scene's surface (Nurbs only; scene shape frame)
   ShaderKind shader = ShaderKind::Constant;
   double albedo = 1;          // luminance of the shader colour
+  // Specular parameters (cpu/shading.h): Phong, BlinnPhong: ks, n; GGX: α, F0.
+  double specular = 0;
+  int shininess = 1;
+  double roughness = 0;
+  double f0 = 0;
   TextureKind textureKind = TextureKind::Constant;
   int textureIndex = -1;      // into PreparedScene::textures (File), else -1
   double textureValue = 1;    // Constant: the texture value
@@ -52,8 +57,11 @@ struct PreparedObject {
 };
 
 struct PreparedLight {
+  LightKind kind = LightKind::Point;
   dvec3 position_m{0};
-  double intensity = 1;
+  double intensity = 1;      // Point, Spot: intensity; Ambient: incident radiance
+  dvec3 direction{0, 0, 1};  // Spot: unit axis
+  double cosOuter = -1, cosInner = -1;  // Spot: cosines of the outer and inner half-angles
 };
 
 struct PreparedTexture {
@@ -65,7 +73,7 @@ struct PreparedTexture {
 
 // Features the scene uses; the GPU switches the others off with specialization constants.
 struct SceneFeatures {
-  bool lights = false;        // some Lambert object and at least one light: shading loop + shadow rays
+  bool lights = false;        // some lit (non-Constant) object and at least one light: shading loop + shadow rays
   bool distortion = false;    // some camera has lens distortion: Newton inversion per ray
   bool fileTextures = false;  // some object has a Texture.File: B-spline lookups
   std::uint32_t shapeKinds = 0;  // bit k set: some object has shape kind k (DS_SHAPE_*)
@@ -76,9 +84,11 @@ struct SceneFeatures {
   // only the other bits switch code on.
   std::uint32_t cameraKinds = 0;
   bool rationalDistortion = false;  // some camera has Distortion.Rational: k4..k6, s1..s4 terms
+  std::uint32_t shaderKinds = 0;  // bit k set: some object has shader kind k (DS_SHADER_*)
+  std::uint32_t lightKinds = 0;   // bit k set: some light has kind k (DS_LIGHT_*), 0 without lights
 
   static SceneFeatures all(int nurbsDegree) {
-    return {true, true, true, ~0u, nurbsDegree, true, true, ~0u, true};
+    return {true, true, true, ~0u, nurbsDegree, true, true, ~0u, true, ~0u, ~0u};
   }
   auto operator<=>(const SceneFeatures&) const = default;
 };

@@ -47,12 +47,14 @@ using hreal4 = df64x4;
   static_assert(sizeof(ns::GpuObject) == OBJECT);                                          \
   static_assert(offsetof(ns::GpuObject, shape0) == 4 * H4);                                \
   static_assert(offsetof(ns::GpuObject, shading) == 9 * H4);                               \
-  static_assert(offsetof(ns::GpuObject, kinds) == 9 * H4 + R4);                            \
-  static_assert(offsetof(ns::GpuObject, target0) == 9 * H4 + R4 + 32);                      \
-  static_assert(offsetof(ns::GpuObject, targetInfo) == 11 * H4 + R4 + 32);                  \
-  static_assert(offsetof(ns::GpuObject, speckle0) == 11 * H4 + R4 + 64);                    \
-  static_assert(offsetof(ns::GpuObject, speckleCdf) == 12 * H4 + R4 + 64);                  \
-  static_assert(sizeof(ns::GpuLight) == R4);                                               \
+  static_assert(offsetof(ns::GpuObject, material) == 9 * H4 + R4);                         \
+  static_assert(offsetof(ns::GpuObject, kinds) == 9 * H4 + 2 * R4);                        \
+  static_assert(offsetof(ns::GpuObject, target0) == 9 * H4 + 2 * R4 + 32);                  \
+  static_assert(offsetof(ns::GpuObject, targetInfo) == 11 * H4 + 2 * R4 + 32);              \
+  static_assert(offsetof(ns::GpuObject, speckle0) == 11 * H4 + 2 * R4 + 64);                \
+  static_assert(offsetof(ns::GpuObject, speckleCdf) == 12 * H4 + 2 * R4 + 64);              \
+  static_assert(sizeof(ns::GpuLight) == 3 * R4 + 32);                                      \
+  static_assert(offsetof(ns::GpuLight, info) == 3 * R4);                                   \
   static_assert(sizeof(ns::GpuTexture) == 16);                                             \
   static_assert(sizeof(ns::GpuPixel) == PIXEL);                                            \
   static_assert(offsetof(ns::GpuPixel, normal) == 2 * H4);                                 \
@@ -60,9 +62,9 @@ using hreal4 = df64x4;
   static_assert(sizeof(ns::GpuNurbsNode) == 48 && sizeof(ns::GpuNurbsSubPatch) == 32);     \
   static_assert(sizeof(ns::GpuNurbsPatch) == H4 + 32);
 // Sizes: std430 rounds a struct up to its alignment (32 with a dvec4 member, else 16).
-DS_CHECK_LAYOUT(fp32, 16, 16, 9 * 16 + 32, 12 * 16 + 16 + 128, 3 * 16)
-DS_CHECK_LAYOUT(fp64, 32, 32, 9 * 32 + 32, 12 * 32 + 32 + 128, 3 * 32)
-DS_CHECK_LAYOUT(df64, 16, 32, 9 * 32 + 32, 12 * 32 + 16 + 128, 2 * 32 + 16)
+DS_CHECK_LAYOUT(fp32, 16, 16, 9 * 16 + 32, 12 * 16 + 2 * 16 + 128, 3 * 16)
+DS_CHECK_LAYOUT(fp64, 32, 32, 9 * 32 + 32, 12 * 32 + 2 * 32 + 128, 3 * 32)
+DS_CHECK_LAYOUT(df64, 16, 32, 9 * 32 + 32, 12 * 32 + 2 * 16 + 128, 2 * 32 + 16)
 #undef DS_CHECK_LAYOUT
 
 }  // namespace dicsynth::gpu

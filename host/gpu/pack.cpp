@@ -68,6 +68,13 @@ typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
     default: DS_CHECK(false, "unknown shape kind " + std::to_string(s.kind));
   }
   g.shading = r4<Layout>(o.albedo, o.textureValue);
+  switch (o.shader) {  // lib/shading.glsl reads these per shader kind
+    case ShaderKind::Constant:
+    case ShaderKind::Lambert: break;
+    case ShaderKind::Phong:
+    case ShaderKind::BlinnPhong: g.material = r4<Layout>(o.specular, double(o.shininess)); break;
+    case ShaderKind::Ggx: g.material = r4<Layout>(0, o.roughness, o.f0); break;
+  }
   g.kinds = {s.kind, int(o.shader), o.textureIndex, int(o.id)};
   const TargetTexture& t = o.targetTexture;
   g.target0 = h4<Layout>(t.origin_uv.x, t.origin_uv.y, t.cell_uv.x, t.cell_uv.y);
@@ -171,7 +178,12 @@ PackedFrame<Layout> packFrame(const PreparedScene& scene, const PackedScene<Layo
   }
   for (const auto& l : scene.lights) {
     const dvec3 position = l.position_m - f.origin_m;
-    f.lights.push_back({r4<Layout>(position.x, position.y, position.z, l.intensity)});
+    typename Layout::GpuLight g{};
+    g.positionIntensity = r4<Layout>(position.x, position.y, position.z, l.intensity);
+    g.direction = r4<Layout>(l.direction.x, l.direction.y, l.direction.z);
+    g.cone = r4<Layout>(l.cosOuter, l.cosInner);
+    g.info = {int(l.kind), 0, 0, 0};
+    f.lights.push_back(g);
   }
   return f;
 }

@@ -126,6 +126,8 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
                                             {DS_SPEC_HAS_QUINTIC_TEXTURES, used.quinticTextures ? 1u : 0u},
                                             {DS_SPEC_CAMERA_KINDS, used.cameraKinds},
                                             {DS_SPEC_HAS_RATIONAL_DISTORTION, used.rationalDistortion ? 1u : 0u},
+                                            {DS_SPEC_SHADER_KINDS, used.shaderKinds},
+                                            {DS_SPEC_LIGHT_KINDS, used.lightKinds},
                                             {DS_SPEC_DF64_FMA, df64Fma ? 1u : 0u}};
     std::span<const std::uint32_t> spirv = spirv::render_fp32;
     if (precision == Precision::Fp64) spirv = spirv::render_fp64;

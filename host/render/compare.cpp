@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "cpu/trace.h"
+#include "render/shading_tolerance.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth {
@@ -84,11 +85,16 @@ double textureSlope(const PreparedScene& scene, const PreparedObject& o) {
 }
 
 // Upper bound of the shading factor multiplying albedo × texture at a point (1 for Constant;
-// Σ I / (π r²) for Lambert, cos θ and shadows dropped).
+// Σ I / (π r²) over point and spot lights plus Σ L_a over ambient ones for lit shaders, cos θ,
+// spot cones and shadows dropped; cpu/shading.h).
 double shadingFactor(const PreparedScene& scene, const PreparedObject& o, dvec3 p) {
   if (o.shader == ShaderKind::Constant) return 1;
   double sum = 0;
   for (const auto& l : scene.lights) {
+    if (l.kind == LightKind::Ambient) {
+      sum += l.intensity;
+      continue;
+    }
     const dvec3 d = l.position_m - p;
     sum += l.intensity / (kPi * glm::dot(d, d));
   }
@@ -106,6 +112,20 @@ double uvSlope(const PreparedScene& scene, const PinholeModel<double>& m, dvec2 
       continue;
     const double dp = glm::length(h.position - at.position);
     if (dp > 0) g = std::max(g, uvDiff(h.uv, at.uv) / dp);
+  }
+  return g;
+}
+
+// |∂n/∂P| at a pixel centre (the surface's curvature as the shading sees it), from the same two
+// offset reference rays as uvSlope; 0 on flat surfaces.
+double normalSlope(const PreparedScene& scene, const PinholeModel<double>& m, dvec2 pixel, const cpu::SurfaceHit& at) {
+  double g = 0;
+  for (const dvec2 offset : {dvec2(1e-3, 0), dvec2(0, 1e-3)}) {
+    cpu::SurfaceHit h;
+    if (!cpu::traceNearest(scene, m.centre, worldRayDirection(m, pixel + offset), h) || h.object != at.object)
+      continue;
+    const double dp = glm::length(h.position - at.position);
+    if (dp > 0) g = std::max(g, glm::length(h.normal - at.normal) / dp);
   }
   return g;
 }
@@ -132,8 +152,9 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
   const double inf = std::numeric_limits<double>::infinity();
   const auto worst = [&](double m, double v) { return std::isnan(v) ? inf : std::max(m, v); };
   std::vector<dvec3> objectOrigins;
-  std::vector<double> slopes;
+  std::vector<double> slopes, reflectances;
   for (const auto& o : scene.objects) {
+    reflectances.push_back(tol.epsilon > 0 && hasSpecularOrSpotTerms(scene, o) ? reflectanceMax(scene, o) : 0.0);
     const dvec4 h = o.worldFromObject * dvec4(0, 0, 0, 1);
     objectOrigins.push_back(dvec3(h) / h.w);
     slopes.push_back(tol.epsilon > 0 ? textureSlope(scene, o) : 0.0);
@@ -194,6 +215,19 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
                     (std::max(1.0, g * glm::length(a.position_m[i] - objectOrigins[obj])) + g * D / cosTheta);
           boundRadiance += slopes[obj] * shadingFactor(scene, scene.objects[obj], a.position_m[i]) * boundUv *
                            cam.exposure;
+          // Specular lobes and spot cones, shaded in float (render/shading_tolerance.h).
+          if (hasSpecularOrSpotTerms(scene, scene.objects[obj])) {
+            hit.normal = a.normal[i];
+            ShadingErrorInputs in;
+            in.position = a.position_m[i];
+            in.cosView = cosTheta;
+            in.positionBound_m = boundP;
+            in.normalSlope = normalSlope(scene, model, dvec2(double(i % width), double(i / width)), hit);
+            in.epsilon = 0x1p-24;  // lib/real.glsl: shading runs in float in fp32 and df64
+            in.k = tol.k;
+            in.reflectanceMax = reflectances[obj];
+            boundRadiance += specularRadianceBound(scene, scene.objects[obj], in) * cam.exposure;
+          }
         }
         const double ratio = std::max(dp / boundP, duv / boundUv);
         d.maxGeometryRatio = worst(d.maxGeometryRatio, ratio);

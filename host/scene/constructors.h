@@ -13,8 +13,8 @@ void registerCameraConstructors(lua_State* L);  // camera_constructors.cpp: Came
 void registerShapeConstructors(lua_State* L);   // shape_constructors.cpp: Shape
 void registerNurbsConstructors(lua_State* L);   // nurbs_constructors.cpp: Shape.Nurbs, Nurbs
                                                 //   (after registerShapeConstructors)
-void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Shader, Texture,
-                                                //   Object, Light
+void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Texture, Object
+void registerShadingConstructors(lua_State* L); // shading_constructors.cpp: Shader, Light
 void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...
 void registerTargetConstructors(lua_State* L);  // target_constructors.cpp: Target (after
                                                 //   registerObjectConstructors)
@@ -22,5 +22,9 @@ void registerSweepFunctions(lua_State* L);      // sweep_functions.cpp: linspace
 void registerRigConstructors(lua_State* L);     // rig_constructors.cpp: Rig
 void registerSensorConstructors(lua_State* L);  // sensor_constructors.cpp: Sensor, Blur,
                                                 //   Vignetting, Dust, DefectivePixels
+
+// What a 'shader' parameter must be, for error messages.
+inline constexpr const char* kShaderExpected =
+    "a Shader (Shader.Constant, Shader.Lambert, Shader.Phong, Shader.BlinnPhong, Shader.GGX)";
 
 }  // namespace dicsynth::scene

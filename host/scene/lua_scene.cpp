@@ -32,6 +32,7 @@ void registerSceneLanguage(lua_State* L) {
   registerShapeConstructors(L);
   registerNurbsConstructors(L);
   registerObjectConstructors(L);
+  registerShadingConstructors(L);
   registerTransformFunctions(L);
   registerTargetConstructors(L);
   registerRigConstructors(L);

@@ -1,5 +1,5 @@
-// Shader.Constant, Shader.Lambert, Texture.Constant, Texture.File, Texture.Speckle, Object.Simple,
-// Light.Point.
+// Texture.Constant, Texture.File, Texture.Speckle, Object.Simple (Shader.* and Light.*:
+// shading_constructors.cpp).
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -12,35 +12,6 @@
 namespace dicsynth::scene {
 
 namespace {
-
-// A colour parameter: gray number or {r, g, b}, each >= 0; white by default.
-dvec3 readColor(const Params& p, const char* key) {
-  const dvec3 color = p.color(key).value_or(dvec3(1));
-  for (double c : {color.x, color.y, color.z}) p.require(c >= 0, key, ">= 0", c);
-  return color;
-}
-
-/* ------------------------------------------------------------------------------------------------
-Shader.Constant: the surface shows its colour times the texture, lit or not (no lights needed).
-Shader.Lambert:  an ideal diffuse surface lit by the scene's lights; color is the albedo.
-
-  Parameter | Value                     | Default    | Meaning
-  ----------+---------------------------+------------+---------------------------------------
-  color     | {r, g, b} or gray number  | {1, 1, 1}  | linear RGB, each >= 0; the grayscale
-            |                           |            | sensor sees its Rec. 709 luminance
-
-Example:  Shader.Constant { color = {.2, .8, 1} }      Shader.Lambert { color = 0.7 }
------------------------------------------------------------------------------------------------- */
-template <ShaderKind Kind>
-int shader(lua_State* L) {
-  Params p(L, Kind == ShaderKind::Constant ? "Shader.Constant" : "Shader.Lambert", {"color"});
-  Shader shader;
-  shader.kind = Kind;
-  shader.where = LuaSandbox::of(L).here(L);
-  shader.color = readColor(p, "color");
-  pushUserdata(L, std::move(shader));
-  return 1;
-}
 
 /* ------------------------------------------------------------------------------------------------
 Texture.Constant: the same value everywhere.
@@ -178,7 +149,7 @@ int objectSimple(lua_State* L) {
   if (!shape) p.fail("missing required 'shape'");
   object.shape = *shape;
   if (const Shader* shader =
-          p.userdata<Shader>("shader", "a Shader (Shader.Constant, Shader.Lambert)")) {
+          p.userdata<Shader>("shader", kShaderExpected)) {
     object.shader = *shader;
   } else {
     object.shader.where = object.where;
@@ -209,45 +180,6 @@ int objectSimple(lua_State* L) {
   return 1;
 }
 
-/* ------------------------------------------------------------------------------------------------
-Light.Point: an isotropic point light. Only lights assigned to global variables are used.
-
-  Parameter | Value                    | Default  | Meaning
-  ----------+--------------------------+----------+-----------------------------------------------
-  position  | {x, y, z}, m             | required | where the light is
-  intensity | number or {r, g, b}      | 1        | radiant intensity (radiance units * m²), > 0;
-            |                          |          | RGB is reduced to its Rec. 709 luminance
-
-Example:  lamp = Light.Point { position = {0.2, -0.3, 0}; intensity = 0.05 }
------------------------------------------------------------------------------------------------- */
-int lightPoint(lua_State* L) {
-  Params p(L, "Light.Point", {"position", "intensity"});
-  Light light;
-  light.kind = LightKind::Point;
-  light.where = LuaSandbox::of(L).here(L);
-  const std::optional<dvec3> position = p.vec3("position");
-  if (!position) p.fail("missing required 'position' = {x, y, z} (metres)");
-  light.position_m = *position;
-  if (p.luaType("intensity") == LUA_TTABLE) {
-    const dvec3 rgb = *p.color("intensity");
-    for (double c : {rgb.x, rgb.y, rgb.z}) p.require(c >= 0, "intensity", ">= 0 in r, g and b", c);
-    light.intensity = luminance(rgb);
-    p.require(light.intensity > 0, "intensity", "> 0 (its luminance)", light.intensity);
-  } else {
-    light.intensity = p.number("intensity", 1.0);
-    p.require(light.intensity > 0, "intensity", "> 0", light.intensity);
-  }
-  pushUserdata(L, std::move(light));
-  return 1;
-}
-
-int shaderToString(lua_State* L) {
-  const Shader* shader = toUserdata<Shader>(L, 1);
-  lua_pushstring(
-      L, shader && shader->kind == ShaderKind::Lambert ? "Shader.Lambert" : "Shader.Constant");
-  return 1;
-}
-
 int textureToString(lua_State* L) {
   const Texture* texture = toUserdata<Texture>(L, 1);
   lua_pushstring(L, texture && texture->kind == TextureKind::File      ? "Texture.File"
@@ -265,28 +197,17 @@ int objectToString(lua_State* L) {
   return 1;
 }
 
-int lightToString(lua_State* L) {
-  lua_pushliteral(L, "Light.Point");
-  return 1;
-}
-
 }  // namespace
 
 void registerObjectConstructors(lua_State* L) {
-  registerUserdataType<Shader>(L, {{"__tostring", &shaderToString}});
   registerUserdataType<Texture>(L, {{"__tostring", &textureToString}});
   registerUserdataType<Object>(L, {{"__tostring", &objectToString}});
-  registerUserdataType<Light>(L, {{"__tostring", &lightToString}});
-  setConstructorTable(L, "Shader",
-                      {{"Constant", &protectedCall<shader<ShaderKind::Constant>>},
-                       {"Lambert", &protectedCall<shader<ShaderKind::Lambert>>}});
   setConstructorTable(
       L, "Texture",
       {{"Constant", &protectedCall<textureConstant>},
        {"File", &protectedCall<textureFile>},
        {"Speckle", &protectedCall<textureSpeckle>}});
   setConstructorTable(L, "Object", {{"Simple", &protectedCall<objectSimple>}});
-  setConstructorTable(L, "Light", {{"Point", &protectedCall<lightPoint>}});
 }
 
 }  // namespace dicsynth::scene

@@ -79,6 +79,11 @@ struct Shader {
   ShaderKind kind = ShaderKind::Constant;
   SourceLoc where;
   dvec3 color{1, 1, 1};  // linear RGB; the renderer uses its luminance (grayscale sensor)
+  // Specular parameters (host/cpu/shading.h has the formulas; shading_constructors.cpp the docs).
+  double specular = 0;   // Phong, BlinnPhong: ks, the specular lobe's weight
+  int shininess = 1;     // Phong, BlinnPhong: exponent n (an integer, shading.h says why)
+  double roughness = 0;  // GGX: α (Trowbridge-Reitz width; α = perceptual roughness²)
+  double f0 = 0;         // GGX: Fresnel reflectance at normal incidence (Schlick)
 };
 
 // The printed pattern of a calibration target (Target.Checkerboard, Target.CircleGrid); its layout,
@@ -120,7 +125,11 @@ struct Light {
   SourceLoc where;
   LightKind kind = LightKind::Point;
   dvec3 position_m{0, 0, 0};
-  double intensity = 1;  // radiant intensity (radiance units · m²); luminance if given as RGB
+  // Point, Spot: radiant intensity (radiance units · m²); Ambient: incident radiance, the same
+  // from every direction (radiance units). Luminance if given as RGB.
+  double intensity = 1;
+  dvec3 direction{0, 0, 1};  // Spot: unit axis of the cone (world)
+  double innerAngle_rad = 0, outerAngle_rad = 0;  // Spot: full intensity within inner, none beyond outer
 };
 
 // Two cameras of the scene that form a stereo pair (Rig.Stereo). The rig's cameras are part of

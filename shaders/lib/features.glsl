@@ -20,4 +20,11 @@ layout(constant_id = DS_SPEC_NURBS_DEGREE) const int NURBS_DEGREE = 3;
 // scene of pinhole cameras with Brown (or no) distortion compiles neither lens sampling nor them.
 layout(constant_id = DS_SPEC_CAMERA_KINDS) const uint CAMERA_KINDS = 0xffffffffu;
 layout(constant_id = DS_SPEC_HAS_RATIONAL_DISTORTION) const bool HAS_RATIONAL_DISTORTION = true;
+// Shader and light kinds present (lib/shading.glsl): a Lambert-only scene compiles no specular code.
+layout(constant_id = DS_SPEC_SHADER_KINDS) const uint SHADER_KINDS = 0xffffffffu;
+layout(constant_id = DS_SPEC_LIGHT_KINDS) const uint LIGHT_KINDS = 0xffffffffu;
+#define DS_HAS_SHADER(kind) ((SHADER_KINDS & (1u << (kind))) != 0u)
+#define DS_HAS_LIGHT(kind) ((LIGHT_KINDS & (1u << (kind))) != 0u)
+// One bit test (an || of specialization-constant expressions trips glslc's optimizer, shaderc 2023).
+#define HAS_SPECULAR ((SHADER_KINDS & ((1u << DS_SHADER_PHONG) | (1u << DS_SHADER_BLINN_PHONG) | (1u << DS_SHADER_GGX))) != 0u)
 #endif

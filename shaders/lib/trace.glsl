@@ -17,6 +17,7 @@ struct SurfaceHit {
   hreal2 uv;
   int object;
   ShapeHit shape;  // what the search found (NURBS shadow rays leave from this root)
+  real3 rayDirection;  // world direction of the ray that found the hit (not normalized)
 };
 
 // World ray o + t d in the object frame: o' + s d', s = t / (1 + t w). False at infinity.
@@ -88,6 +89,7 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   hit.position = h_add(o, h_mul(d, hit.t));
   hit.normal = normalize(ds_world_normal(bestObject, normal, h_real(point)));
   if (dot(hit.normal, h_real(d)) > 0.0) hit.normal = -hit.normal;
+  hit.rayDirection = h_real(d);
   return true;
 }
 
@@ -110,26 +112,12 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
   return false;
 }
 
+#include "lib/shading.glsl"
+
 real ds_shade(SurfaceHit hit) {
   const real4 shading = objects[hit.object].shading;
-  const ivec4 kinds = objects[hit.object].kinds;
   const real reflectance = shading.x * ds_object_texture(hit.object, hit.uv);
-  if (kinds.y == DS_SHADER_CONSTANT) return reflectance;
-  // Lambert: L = (ρ/π) Σ I cosθ / r² over visible lights on the viewer's side (host/cpu/trace.cpp).
-  real sum = 0.0;
-  if (HAS_LIGHTS) {
-    const real3 p = h_real(hit.position);
-    const int lightCount = params.counts.w;
-    for (int l = 0; l < lightCount; ++l) {
-      const real4 light = lights[l].positionIntensity;
-      const real3 toLight = light.xyz - p;
-      const real r2 = dot(toLight, toLight);
-      const real cosTheta = dot(hit.normal, toLight) / sqrt(r2);
-      if (!(cosTheta > 0.0) || ds_occluded(hit, light.xyz)) continue;
-      sum += light.w * cosTheta / r2;
-    }
-  }
-  return reflectance * sum / DS_PI;
+  return ds_shade_surface(hit, reflectance);  // lib/shading.glsl
 }
 
 #endif

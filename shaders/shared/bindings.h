@@ -32,6 +32,8 @@
 #define DS_SPEC_HAS_QUINTIC_TEXTURES 9  // some Texture.File interpolates with the quintic B-spline
 #define DS_SPEC_CAMERA_KINDS 5  // bit k set: some camera has camera kind k (DS_CAMERA_*)
 #define DS_SPEC_HAS_RATIONAL_DISTORTION 6  // bool: some camera has Distortion.Rational (k4..k6, s1..s4)
+#define DS_SPEC_SHADER_KINDS 11  // bit k set: some object has shader kind k (DS_SHADER_*)
+#define DS_SPEC_LIGHT_KINDS 12   // bit k set: the scene has a light of kind k (DS_LIGHT_*)
 
 // Arithmetic switches of shaders/lib/df64.glsl (any shader that includes it).
 #define DS_SPEC_DF64_FMA 16  // bool: TwoProd by fma(a, b, -p); only where the self-test proved fma exact

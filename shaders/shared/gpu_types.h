@@ -29,6 +29,8 @@ struct GpuObject {
   hreal4 shape3;              // Triangle: uv0.xy, uv1.xy
   hreal4 shape4;              // Triangle: uv2.xy
   real4 shading;             // albedo, constant texture value, 0, 0
+  real4 material;            // cpu/shading.h: Phong, BlinnPhong: specular ks, shininess n;
+                             // GGX: 0, roughness α, F0 (normal-incidence Fresnel reflectance); 0
   ivec4 kinds;               // shape kind, shader kind, texture index (-1: constant), objectId
   ivec4 extra;               // Nurbs: root node in the NURBS node buffer; texture kind, 0, 0
   // Checkerboard and CircleGrid textures (host/texture/target_texture.h):
@@ -42,7 +44,11 @@ struct GpuObject {
 };
 
 struct GpuLight {
-  real4 positionIntensity;  // xyz (m), intensity
+  real4 positionIntensity;  // xyz (m), intensity (Point, Spot: W/sr-like; Ambient: radiance)
+  real4 direction;          // Spot: unit axis xyz (world), 0
+  real4 cone;               // Spot: cos(outer angle), cos(inner angle), 0, 0
+  ivec4 info;               // kind (DS_LIGHT_*), 0, 0, 0
+  ivec4 pad;                // size a multiple of 32 bytes in fp64 (ivec4 members come in pairs)
 };
 
 struct GpuTexture {

@@ -13,6 +13,9 @@
 
 #define DS_SHADER_CONSTANT 0
 #define DS_SHADER_LAMBERT 1
+#define DS_SHADER_PHONG 2
+#define DS_SHADER_BLINN_PHONG 3
+#define DS_SHADER_GGX 4
 
 #define DS_TEXTURE_CONSTANT 0
 #define DS_TEXTURE_FILE 1
@@ -21,6 +24,8 @@
 #define DS_TEXTURE_SPECKLE 4  // analytic Boolean-model speckle in (u, v) (texture/analytic_speckle.h)
 
 #define DS_LIGHT_POINT 0
+#define DS_LIGHT_AMBIENT 1
+#define DS_LIGHT_SPOT 2
 
 #define DS_CAMERA_PINHOLE 0
 #define DS_CAMERA_THIN_LENS 1      // pinhole chief ray + a lens disk sampled per sample (host/camera/pinhole.h)
@@ -40,7 +45,13 @@ enum class ShapeKind : int {
   Rectangle = DS_SHAPE_RECTANGLE,
   Nurbs = DS_SHAPE_NURBS,
 };
-enum class ShaderKind : int { Constant = DS_SHADER_CONSTANT, Lambert = DS_SHADER_LAMBERT };
+enum class ShaderKind : int {
+  Constant = DS_SHADER_CONSTANT,
+  Lambert = DS_SHADER_LAMBERT,
+  Phong = DS_SHADER_PHONG,
+  BlinnPhong = DS_SHADER_BLINN_PHONG,
+  Ggx = DS_SHADER_GGX,
+};
 enum class TextureKind : int {
   Constant = DS_TEXTURE_CONSTANT,
   File = DS_TEXTURE_FILE,
@@ -48,7 +59,7 @@ enum class TextureKind : int {
   CircleGrid = DS_TEXTURE_CIRCLE_GRID,
   Speckle = DS_TEXTURE_SPECKLE,
 };
-enum class LightKind : int { Point = DS_LIGHT_POINT };
+enum class LightKind : int { Point = DS_LIGHT_POINT, Ambient = DS_LIGHT_AMBIENT, Spot = DS_LIGHT_SPOT };
 enum class CameraKind : int {
   Pinhole = DS_CAMERA_PINHOLE,
   ThinLens = DS_CAMERA_THIN_LENS,

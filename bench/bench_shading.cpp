@@ -1,0 +1,77 @@
+// Reflectance cost (issue 5): Figure 1 (1600x1200, 16 spp) rendered on the GPU with its sphere as
+// Shader.Lambert, Shader.Phong and Shader.GGX under one point light (one shadow ray per sample),
+// and the Lambert scene with the shader- and light-kind specialization constants set to "every
+// kind" (the specular, spot and ambient code compiled in but never taken) against the Lambert
+// scene specialized to its kinds. All in one run, best of --repeat; prints markdown rows for
+// bench/RESULTS.md.
+//
+//   build/bench_shading [--spp 16] [--downscale 1] [--repeat 1]
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "geometry/prepared_scene.h"
+#include "gpu/context.h"
+#include "gpu/renderer.h"
+
+using namespace dicsynth;
+
+namespace {
+
+Scene figure1With(ShaderKind kind) {
+  Scene s = loadScene(std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua", {});
+  Shader& shader = s.objects.at(0).shader;
+  shader.kind = kind;
+  shader.specular = 0.2;  // Phong: a clear coat
+  shader.shininess = 40;
+  shader.roughness = 0.3;  // GGX: rough steel with speckle paint (color stays the diffuse part)
+  shader.f0 = 0.56;
+  Light lamp;
+  lamp.name = "lamp";
+  lamp.kind = LightKind::Point;
+  lamp.position_m = {-0.2, -0.2, 0.1};
+  lamp.intensity = 0.1;
+  s.lights.push_back(lamp);
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int spp = 16, downscale = 1, repeat = 1;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--spp")) spp = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--downscale")) downscale = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--repeat")) repeat = std::atoi(argv[i + 1]);
+    else { std::fprintf(stderr, "unknown option %s\n", argv[i]); return 2; }
+  }
+  const PreparedScene lambert = prepareScene(figure1With(ShaderKind::Lambert), {downscale});
+  const PreparedScene phong = prepareScene(figure1With(ShaderKind::Phong), {downscale});
+  const PreparedScene ggx = prepareScene(figure1With(ShaderKind::Ggx), {downscale});
+  PreparedScene lambertAllKinds = lambert;  // same data, every shader and light kind compiled in
+  lambertAllKinds.features.shaderKinds = ~0u;
+  lambertAllKinds.features.lightKinds = ~0u;
+
+  gpu::Context context;
+  gpu::Renderer renderer(context);
+  std::printf("Figure 1 + one point light, %dx%d, %d spp, device %s\n", lambert.cameras[0].camera.width_px,
+              lambert.cameras[0].camera.height_px, spp, context.info().name.c_str());
+  RenderOptions options;
+  options.samplesPerPixel = spp;
+  // Rounds interleave the variants (best of --repeat per variant), so a change in the shared
+  // machine's load during the run hits every variant alike rather than the last ones.
+  const PreparedScene* variants[] = {&lambert, &phong, &ggx, &lambertAllKinds};
+  std::printf("\n| precision | Lambert | Phong | GGX | Lambert, every shader/light kind compiled in |\n|---|---|---|---|---|\n");
+  for (Precision p : {Precision::Fp32, Precision::Fp64}) {
+    if (p == Precision::Fp64 && !context.info().shaderFloat64) continue;
+    options.precision = p;
+    double best[4] = {1e300, 1e300, 1e300, 1e300};
+    for (const PreparedScene* v : variants) renderer.pipeline(p, v->features, true);  // not render time
+    for (int k = 0; k < repeat; ++k)
+      for (int v = 0; v < 4; ++v) best[v] = std::min(best[v], renderer.render(*variants[v], options).renderSeconds);
+    std::printf("| %s | %.2f s | %.2f s (%.2fx) | %.2f s (%.2fx) | %.2f s (%.2fx) |\n", toString(p), best[0], best[1],
+                best[1] / best[0], best[2], best[2] / best[0], best[3], best[3] / best[0]);
+  }
+  return 0;
+}

@@ -1,0 +1,74 @@
+#include "render/shading_tolerance.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dicsynth {
+namespace {
+
+bool isSpecular(ShaderKind k) { return k == ShaderKind::Phong || k == ShaderKind::BlinnPhong || k == ShaderKind::Ggx; }
+
+// Largest f_spec · cosθi over light directions, and the largest relative slope of that product
+// per unit change of the lobe's cosines (shading_tolerance.h).
+void lobe(const PreparedObject& o, double cosView, double& maxValue, double& slope) {
+  switch (o.shader) {
+    case ShaderKind::Phong:
+      maxValue = o.specular * (o.shininess + 2) / (2 * kPi);
+      slope = o.shininess;
+      return;
+    case ShaderKind::BlinnPhong:
+      maxValue = o.specular * (o.shininess + 8) / (8 * kPi);
+      slope = o.shininess;
+      return;
+    case ShaderKind::Ggx: {
+      // D ≤ 1/(πα²), F ≤ 1, G₂/(4 cosθi cosθo) · cosθi ≤ 1/(4 cosθo).
+      const double a2 = o.roughness * o.roughness;
+      maxValue = 1 / (kPi * a2 * 4 * cosView);
+      slope = 4 / a2 + 5 + 2 / cosView;
+      return;
+    }
+    default: maxValue = slope = 0;
+  }
+}
+
+}  // namespace
+
+// A B-spline is a convex combination of its coefficients; other textures take values in [0, 1]
+// or their own constants.
+double reflectanceMax(const PreparedScene& scene, const PreparedObject& o) {
+  double t = std::max({1.0, o.textureValue, o.targetTexture.light, o.targetTexture.dark});
+  if (o.textureKind == TextureKind::File && o.textureIndex >= 0)
+    for (double c : scene.textures[std::size_t(o.textureIndex)].coefficients) t = std::max(t, std::abs(c));
+  return o.albedo * t;
+}
+
+bool hasSpecularOrSpotTerms(const PreparedScene& scene, const PreparedObject& o) {
+  if (o.shader == ShaderKind::Constant) return false;
+  if (isSpecular(o.shader)) return true;
+  return std::any_of(scene.lights.begin(), scene.lights.end(),
+                     [](const PreparedLight& l) { return l.kind == LightKind::Spot; });
+}
+
+double specularRadianceBound(const PreparedScene& scene, const PreparedObject& o, const ShadingErrorInputs& in) {
+  if (!hasSpecularOrSpotTerms(scene, o)) return 0;
+  double maxValue = 0, slope = 0;
+  lobe(o, in.cosView, maxValue, slope);
+  const double own = in.k * in.epsilon;
+  const double normalError = own + in.normalSlope * in.positionBound_m;
+  const double diffuseMax = in.reflectanceMax / kPi;
+  double bound = 0;
+  for (const PreparedLight& l : scene.lights) {
+    if (l.kind == LightKind::Ambient) continue;
+    const dvec3 toLight = l.position_m - in.position;
+    const double r2 = glm::dot(toLight, toLight), r = std::sqrt(r2);
+    const double directionError = own + in.positionBound_m / r;
+    const double cosError = 4 * normalError + 3 * directionError;
+    double perLight = maxValue * slope * cosError;
+    if (l.kind == LightKind::Spot)
+      perLight += (diffuseMax + maxValue) * 1.5 * directionError / (l.cosInner - l.cosOuter);
+    bound += l.intensity / r2 * perLight;
+  }
+  return bound;
+}
+
+}  // namespace dicsynth

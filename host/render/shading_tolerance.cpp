@@ -37,6 +37,8 @@ void lobe(const PreparedObject& o, double cosView, double& maxValue, double& slo
 // or their own constants.
 double reflectanceMax(const PreparedScene& scene, const PreparedObject& o) {
   double t = std::max({1.0, o.textureValue, o.targetTexture.light, o.targetTexture.dark});
+  if (o.textureKind == TextureKind::Speckle)
+    t = std::max({t, std::abs(o.speckleTexture.light), std::abs(o.speckleTexture.dark)});
   if (o.textureKind == TextureKind::File && o.textureIndex >= 0)
     for (double c : scene.textures[std::size_t(o.textureIndex)].coefficients) t = std::max(t, std::abs(c));
   return o.albedo * t;

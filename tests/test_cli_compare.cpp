@@ -184,7 +184,9 @@ TEST_CASE("cli: compare over a sweep has a JUnit case per point and camera") {
   CHECK(r.exitCode == 2);
   cases = readReport(report);
   REQUIRE(cases.size() == 2);
-  for (const Case& c : cases) CHECK((c.outcome == "error" && c.message.find("'nonsense'") != std::string::npos));
+  // Named as a sweep parameter (the value came from --sweep, not from -D).
+  for (const Case& c : cases)
+    CHECK((c.outcome == "error" && c.message.find("sweep parameter 'nonsense'") != std::string::npos));
   // Bad input before anything renders: a sweep over a folder, --points on a scene without one.
   for (const auto& [args, prefix] : std::vector<std::pair<std::string, std::string>>{
            {dir.file("scenes") + " --points", dir.file("scenes") + ": a sweep"},

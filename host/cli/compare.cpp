@@ -112,7 +112,9 @@ ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool
   ItemOutcome out;
   out.suite.name = item.label;
   out.suite.timestamp = junit::timestampNow();
-  const Scene scene = loadScene(item.scenePath, {item.defines, cmd.frame});
+  SceneParams params{item.defines, cmd.frame};
+  params.sweepParameters = item.sweepParameters;
+  const Scene scene = loadScene(item.scenePath, params);
   const PreparedScene prepared = prepareScene(scene, {cmd.args.downscale});
   const std::string prefix = several ? item.label + ": " : "";
   options.progress = progressPrinter(prefix + "cpu reference");

@@ -37,7 +37,7 @@ std::vector<CompareItem> compareItems(const std::string& path,
       }
       const std::string folder = pointFolderName(p.index);
       items.push_back({path + " " + folder + " (" + values + ")", stem + "." + folder, path, pointDefines(defines, p),
-                       point});
+                       point, plan.names});
     }
     return items;
   }

@@ -24,6 +24,7 @@ struct CompareItem {
   std::string scenePath;
   std::vector<std::pair<std::string, std::string>> defines;  // -D defines (and the point's values)
   std::optional<ComparePoint> point;
+  std::vector<std::string> sweepParameters;  // which defines are the point's (named so in scene errors)
 };
 
 // Which sweep `compare` goes over: none (the scene as it is), or every point of the scene's `sweep`

@@ -18,6 +18,8 @@
 #include <functional>
 #include <string>
 
+#include "bench_args.h"
+
 #include "cpu/reference_renderer.h"
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
@@ -39,13 +41,10 @@ double best(const std::function<double()>& run) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int spp = 16, downscale = 2;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--spp")) spp = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--downscale")) downscale = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--repeat")) repeat = std::atoi(argv[i + 1]);
-    else { std::fprintf(stderr, "unknown option %s\n", argv[i]); return 2; }
-  }
+  bench::BenchArgs args{16, 2, repeat, ""};
+  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  const int spp = args.spp, downscale = args.downscale;
+  repeat = args.repeat;
   const std::string dir = std::string(DS_SOURCE_DIR) + "/scenes/";
   gpu::Context ctx;
   gpu::Renderer renderer(ctx);

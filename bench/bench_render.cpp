@@ -12,6 +12,8 @@
 #include <cstring>
 #include <string>
 
+#include "bench_args.h"
+
 #include "core/parallel.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/prepared_scene.h"
@@ -35,15 +37,10 @@ double cameraRays(const PreparedScene& s, int spp) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scenePath = std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua";
-  int spp = 16, downscale = 1, repeat = 1;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--scene")) scenePath = argv[i + 1];
-    else if (!std::strcmp(argv[i], "--spp")) spp = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--downscale")) downscale = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--repeat")) repeat = std::atoi(argv[i + 1]);
-    else { std::fprintf(stderr, "unknown option %s\n", argv[i]); return 2; }
-  }
+  bench::BenchArgs args{16, 1, 1, std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua"};
+  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  const std::string& scenePath = args.scenePath;
+  const int spp = args.spp, downscale = args.downscale, repeat = args.repeat;
   const PreparedScene scene = prepareScene(loadScene(scenePath, {}), {downscale});
   const double rays = cameraRays(scene, spp);
   RenderOptions options;

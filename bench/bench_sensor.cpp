@@ -10,6 +10,8 @@
 #include <functional>
 #include <string>
 
+#include "bench_args.h"
+
 #include "core/parallel.h"
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
@@ -27,15 +29,10 @@ double seconds(std::chrono::steady_clock::time_point since) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scenePath = std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua";
-  int spp = 4, downscale = 2, repeat = 5;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--scene")) scenePath = argv[i + 1];
-    else if (!std::strcmp(argv[i], "--spp")) spp = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--downscale")) downscale = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--repeat")) repeat = std::atoi(argv[i + 1]);
-    else { std::fprintf(stderr, "unknown option %s\n", argv[i]); return 2; }
-  }
+  bench::BenchArgs args{4, 2, 5, std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua"};
+  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  const std::string& scenePath = args.scenePath;
+  const int spp = args.spp, downscale = args.downscale, repeat = args.repeat;
   const PreparedScene scene = prepareScene(loadScene(scenePath, {}), {downscale});
   RenderOptions options;
   options.samplesPerPixel = spp;

@@ -11,6 +11,8 @@
 #include <cstring>
 #include <string>
 
+#include "bench_args.h"
+
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
@@ -39,13 +41,9 @@ Scene figure1With(ShaderKind kind) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int spp = 16, downscale = 1, repeat = 1;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--spp")) spp = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--downscale")) downscale = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--repeat")) repeat = std::atoi(argv[i + 1]);
-    else { std::fprintf(stderr, "unknown option %s\n", argv[i]); return 2; }
-  }
+  bench::BenchArgs args{16, 1, 1, ""};
+  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  const int spp = args.spp, downscale = args.downscale, repeat = args.repeat;
   const PreparedScene lambert = prepareScene(figure1With(ShaderKind::Lambert), {downscale});
   const PreparedScene phong = prepareScene(figure1With(ShaderKind::Phong), {downscale});
   const PreparedScene ggx = prepareScene(figure1With(ShaderKind::Ggx), {downscale});

@@ -10,6 +10,8 @@
 #include <cstring>
 #include <string>
 
+#include "bench_args.h"
+
 #include "cpu/reference_renderer.h"
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
@@ -18,13 +20,9 @@
 using namespace dicsynth;
 
 int main(int argc, char** argv) {
-  int spp = 4, downscale = 1, repeat = 3;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--spp")) spp = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--downscale")) downscale = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--repeat")) repeat = std::atoi(argv[i + 1]);
-    else { std::fprintf(stderr, "unknown option %s\n", argv[i]); return 2; }
-  }
+  bench::BenchArgs args{4, 1, 3, ""};
+  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  const int spp = args.spp, downscale = args.downscale, repeat = args.repeat;
   const std::string path = std::string(DS_SOURCE_DIR) + "/scenes/analytic_speckle.lua";
   gpu::Context context;
   gpu::Renderer renderer(context);

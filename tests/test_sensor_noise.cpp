@@ -195,6 +195,19 @@ Camera flatFieldCamera(int width, int height, const EmvaSensor& sensor) {
   return camera;
 }
 
+// The flat-field tests' sensor: η = 0.5, full well 10000 e⁻, read noise 3 e⁻, no dark current,
+// gain 0.4 DN/e⁻, the given dark offset.
+EmvaSensor flatFieldSensor(double darkOffset_DN) {
+  EmvaSensor sensor;
+  sensor.quantumEfficiency = 0.5;
+  sensor.fullWell_e = 10000;
+  sensor.readNoise_e = 3;
+  sensor.darkCurrent_e_per_s = 0;
+  sensor.gain_DN_per_e = 0.4;
+  sensor.darkOffset_DN = darkOffset_DN;
+  return sensor;
+}
+
 std::vector<double> digitalAsDouble(const SensorImage& image) {
   return std::vector<double>(image.digital.begin(), image.digital.end());
 }
@@ -202,13 +215,7 @@ std::vector<double> digitalAsDouble(const SensorImage& image) {
 }  // namespace
 
 TEST_CASE("sensor: flat fields match the EMVA model, from the Poisson regime to saturation") {
-  EmvaSensor sensor;
-  sensor.quantumEfficiency = 0.5;
-  sensor.fullWell_e = 10000;
-  sensor.readNoise_e = 3;
-  sensor.darkCurrent_e_per_s = 0;
-  sensor.gain_DN_per_e = 0.4;
-  sensor.darkOffset_DN = 100;
+  const EmvaSensor sensor = flatFieldSensor(100);
   const Camera camera = flatFieldCamera(500, 400, sensor);
   const ResolvedEmva e = resolve(sensor, camera.bitsPerPixel);
   REQUIRE(e.photonsAtFullScale == 20000);  // fullWell / η: exposure·radiance = 1 fills the well
@@ -307,13 +314,7 @@ TEST_CASE("sensor: shotNoise = false and readNoise 0 leave the noise-free image"
 TEST_CASE("sensor: without a dark offset the read noise of dark pixels is clipped at 0, as modelled") {
   // Offset 0: about half of the dark pixels' values fall below 0 and read 0; the exact
   // distribution (with the d = 0 end taking the whole lower tail) predicts mean and variance.
-  EmvaSensor sensor;
-  sensor.quantumEfficiency = 0.5;
-  sensor.fullWell_e = 10000;
-  sensor.readNoise_e = 3;
-  sensor.darkCurrent_e_per_s = 0;
-  sensor.gain_DN_per_e = 0.4;
-  sensor.darkOffset_DN = 0;
+  const EmvaSensor sensor = flatFieldSensor(0);
   const Camera camera = flatFieldCamera(400, 250, sensor);
   const ResolvedEmva e = resolve(sensor, camera.bitsPerPixel);
   for (double meanElectrons : {0.0, 0.5, 5.0}) {

@@ -101,31 +101,25 @@ double shadingFactor(const PreparedScene& scene, const PreparedObject& o, dvec3 
   return sum;
 }
 
-// |∂uv/∂P| at a pixel centre: two reference rays offset by 1e-3 px (tiny, so no seam or aliasing
-// in between, large enough for a relative precision of 1e-10 in double).
-double uvSlope(const PreparedScene& scene, const PinholeModel<double>& m, dvec2 pixel, const cpu::SurfaceHit& at) {
-  double g = 0;
+// |∂uv/∂P| and |∂n/∂P| (the surface's curvature as the shading sees it; 0 on flat surfaces) at a
+// pixel centre: two reference rays offset by 1e-3 px (tiny, so no seam or aliasing in between, large
+// enough for a relative precision of 1e-10 in double), along the chief ray as the ground truth.
+struct Slopes {
+  double uv = 0, normal = 0;
+};
+Slopes offsetSlopes(const PreparedScene& scene, const PinholeModel<double>& m, dvec2 pixel,
+                    const cpu::SurfaceHit& at) {
+  Slopes g;
   for (const dvec2 offset : {dvec2(1e-3, 0), dvec2(0, 1e-3)}) {
     cpu::SurfaceHit h;
-    const CameraRay<double> ray = worldRay(m, pixel + offset);  // the chief ray (ground truth's)
+    const CameraRay<double> ray = worldRay(m, pixel + offset);
     if (!cpu::traceNearest(scene, ray.origin, ray.direction, h) || h.object != at.object)
       continue;
     const double dp = glm::length(h.position - at.position);
-    if (dp > 0) g = std::max(g, uvDiff(h.uv, at.uv) / dp);
-  }
-  return g;
-}
-
-// |∂n/∂P| at a pixel centre (the surface's curvature as the shading sees it), from the same two
-// offset reference rays as uvSlope; 0 on flat surfaces.
-double normalSlope(const PreparedScene& scene, const PinholeModel<double>& m, dvec2 pixel, const cpu::SurfaceHit& at) {
-  double g = 0;
-  for (const dvec2 offset : {dvec2(1e-3, 0), dvec2(0, 1e-3)}) {
-    cpu::SurfaceHit h;
-    if (!cpu::traceNearest(scene, m.centre, worldRayDirection(m, pixel + offset), h) || h.object != at.object)
-      continue;
-    const double dp = glm::length(h.position - at.position);
-    if (dp > 0) g = std::max(g, glm::length(h.normal - at.normal) / dp);
+    if (dp > 0) {
+      g.uv = std::max(g.uv, uvDiff(h.uv, at.uv) / dp);
+      g.normal = std::max(g.normal, glm::length(h.normal - at.normal) / dp);
+    }
   }
   return g;
 }
@@ -209,7 +203,9 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
           hit.position = a.position_m[i];
           hit.uv = a.uv[i];
           hit.object = int(obj);
-          const double g = uvSlope(scene, model, dvec2(double(i % width), double(i / width)), hit);
+          hit.normal = a.normal[i];
+          const Slopes pixelSlopes = offsetSlopes(scene, model, dvec2(double(i % width), double(i / width)), hit);
+          const double g = pixelSlopes.uv;
           boundP = tol.k * tol.epsilon * D / cosTheta;
           boundUv = tol.k * tol.epsilon *
                     (std::max(1.0, g * glm::length(a.position_m[i] - objectOrigins[obj])) + g * D / cosTheta);
@@ -217,12 +213,11 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
                            cam.exposure;
           // Specular lobes and spot cones, shaded in float (render/shading_tolerance.h).
           if (hasSpecularOrSpotTerms(scene, scene.objects[obj])) {
-            hit.normal = a.normal[i];
             ShadingErrorInputs in;
             in.position = a.position_m[i];
             in.cosView = cosTheta;
             in.positionBound_m = boundP;
-            in.normalSlope = normalSlope(scene, model, dvec2(double(i % width), double(i / width)), hit);
+            in.normalSlope = pixelSlopes.normal;
             in.epsilon = 0x1p-24;  // lib/real.glsl: shading runs in float in fp32 and df64
             in.k = tol.k;
             in.reflectanceMax = reflectances[obj];

@@ -17,6 +17,7 @@
 #include "core/json.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/prepared_scene.h"
+#include "geometry/texture_cache.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
 #include "io/junit.h"
@@ -107,7 +108,7 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 // Renders and compares one item; appends its text or JSON to stdout. `several`: progress lines
 // name the item.
 ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool several, RenderOptions options,
-                        gpu::Context& context, gpu::Renderer& renderer) {
+                        gpu::Context& context, gpu::Renderer& renderer, TextureCache& textures) {
   const auto t0 = std::chrono::steady_clock::now();
   ItemOutcome out;
   out.suite.name = item.label;
@@ -115,7 +116,7 @@ ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool
   SceneParams params{item.defines, cmd.frame};
   params.sweepParameters = item.sweepParameters;
   const Scene scene = loadScene(item.scenePath, params);
-  const PreparedScene prepared = prepareScene(scene, {cmd.args.downscale});
+  const PreparedScene prepared = prepareScene(scene, {cmd.args.downscale, &textures});
   const std::string prefix = several ? item.label + ": " : "";
   options.progress = progressPrinter(prefix + "cpu reference");
   const RenderResult cpu = cpu::render(prepared, options);
@@ -200,6 +201,7 @@ int runCompare(const CompareCommand& cmd) {
   co.device = cmd.args.device;
   gpu::Context context(co);
   gpu::Renderer renderer(context);
+  TextureCache textures;  // a folder's scenes and a sweep's points often share their file textures
   RenderOptions options = base;
   options.precision = resolvePrecision(cmd.args, context, renderer);
 
@@ -209,7 +211,7 @@ int runCompare(const CompareCommand& cmd) {
   for (const CompareItem& item : items) {
     ItemOutcome outcome;
     try {
-      outcome = compareItem(cmd, item, items.size() > 1, options, context, renderer);
+      outcome = compareItem(cmd, item, items.size() > 1, options, context, renderer, textures);
     } catch (const InputError& e) {
       outcome = erroredItem(item, e.what(), true);
     } catch (const std::exception& e) {

@@ -140,6 +140,7 @@ bool ds_camera_ray(GpuCamera cam, hreal2 pixel, bool distorted, real2 lens, out 
 #endif
   }
   const hreal zero = h(real(0.0)), one = h(real(1.0));
+  // The camera centre: the translation column of worldFromCamera.
   const hreal3 centre = h3(h_w(cam.worldFromCamera[0]), h_w(cam.worldFromCamera[1]), h_w(cam.worldFromCamera[2]));
   hreal3 dc = h3(x, y, one);
   origin = centre;
@@ -169,10 +170,6 @@ real2 ds_lens_sample(uint seed, uint frame, uint camera, uint px, uint py, uint 
   const uint packed = ds_lens_lattice(seed, frame, camera, px, py, s);
   const int ix = int(2u * (packed >> 16u)) - 32767, iy = int(2u * (packed & 0xffffu)) - 32767;
   return real2(real(ix), real(iy)) * real(1.0 / 32768.0);
-}
-
-hreal3 ds_camera_centre(GpuCamera cam) {
-  return h3(h_w(cam.worldFromCamera[0]), h_w(cam.worldFromCamera[1]), h_w(cam.worldFromCamera[2]));
 }
 
 // Offset (px) of sample s from the pixel centre: stratified jitter over the sensitive square.

@@ -19,6 +19,19 @@ struct lua_State;
 namespace dicsynth {
 
 // One value of a sweep parameter: a number, a boolean or a string, set as a Lua global.
+// Largest number of points of one declaration (scene or --sweep/--random): the points are enumerated
+// in memory (about 100 bytes each), so 10 million is ~1 GB — far beyond any sweep a machine renders,
+// far below a mistake like n = 1e12 that would exhaust memory instead of failing clearly.
+inline constexpr std::int64_t kMaxSweepPoints = 10'000'000;
+
+// The i-th of n values evenly spaced from a to b (n >= 1): linspace(a, b, n) in a scene and
+// --sweep NAME=A:B:N both use it, so the two spell the same points. The last value is b itself
+// (a + (n-1)·(b-a)/(n-1) may round off b by an ulp); n = 1 gives a.
+inline double linspaceValue(double a, double b, std::int64_t n, std::int64_t i) {
+  if (n == 1) return a;
+  return i == n - 1 ? b : a + double(i) * (b - a) / double(n - 1);
+}
+
 struct SweepValue {
   enum class Kind { Number, Boolean, String };
   Kind kind = Kind::Number;

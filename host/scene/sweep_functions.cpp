@@ -57,10 +57,6 @@ as with -D). The scene never sees the declaration's tables: each point sets its 
 globals, exactly like -D name=value, before the scene runs.
 ------------------------------------------------------------------------------------------------ */
 
-// Largest number of points of one declaration: the points are enumerated in memory (about 100
-// bytes each), so 10 million is ~1 GB — far beyond any sweep a machine renders, far below a
-// mistake like n = 1e12 that would exhaust memory instead of failing clearly.
-constexpr std::int64_t kMaxPoints = 10'000'000;
 
 [[noreturn]] void fail(const std::string& function, const std::string& message) {
   throw ScriptError(function + ": " + message);
@@ -119,12 +115,10 @@ int linspace(lua_State* L) {
     fail("linspace", "a and b must be numbers");
   const long long n = integerArgument(L, 3, "linspace", "n");
   if (n < 1) fail("linspace", "n = " + std::to_string(n) + " gives an empty range (n must be >= 1)");
-  if (n > kMaxPoints) fail("linspace", "n = " + std::to_string(n) + " is more than " + std::to_string(kMaxPoints));
+  if (n > kMaxSweepPoints) fail("linspace", "n = " + std::to_string(n) + " is more than " + std::to_string(kMaxSweepPoints));
   lua_createtable(L, int(n), 0);
   for (long long i = 0; i < n; ++i) {
-    // The last value is b itself: a + (n-1)·(b-a)/(n-1) may round off b by an ulp.
-    const double x = i == n - 1 && n > 1 ? b.number : a.number + double(i) * (b.number - a.number) / double(n - 1);
-    lua_pushnumber(L, n == 1 ? a.number : x);
+    lua_pushnumber(L, linspaceValue(a.number, b.number, n, i));
     lua_rawseti(L, -2, i + 1);
   }
   return 1;
@@ -175,7 +169,7 @@ int random(lua_State* L) {
     if (name == "n") {
       const long long n = integerArgument(L, -1, "random", "'n'");
       if (n < 1) fail("random", "'n' must be >= 1 (a sweep needs at least one point), got " + std::to_string(n));
-      if (n > kMaxPoints) fail("random", "'n' = " + std::to_string(n) + " is more than " + std::to_string(kMaxPoints));
+      if (n > kMaxSweepPoints) fail("random", "'n' = " + std::to_string(n) + " is more than " + std::to_string(kMaxSweepPoints));
       d.count = n;
       haveN = true;
     } else if (name == "seed") {

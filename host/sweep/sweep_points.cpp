@@ -11,9 +11,6 @@
 namespace dicsynth {
 namespace {
 
-// Same bound as the scene functions (sweep_functions.cpp): points live in memory.
-constexpr std::int64_t kMaxPoints = 10'000'000;
-
 bool isIdentifier(const std::string& name) {
   auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
   if (name.empty() || !letter(name[0])) return false;
@@ -69,9 +66,9 @@ SweepDeclaration parseSweepOptions(const SweepOptions& options) {
   d.origin = "--sweep";
   d.kind = options.randomCount ? SweepDeclaration::Kind::Random : SweepDeclaration::Kind::Grid;
   if (options.randomCount) {
-    if (*options.randomCount < 1 || *options.randomCount > kMaxPoints)
+    if (*options.randomCount < 1 || *options.randomCount > kMaxSweepPoints)
       throw InputError("--random " + std::to_string(*options.randomCount) + ": the number of points must be in 1.." +
-                       std::to_string(kMaxPoints));
+                       std::to_string(kMaxSweepPoints));
     d.count = *options.randomCount;
     d.seed = options.randomSeed;
   }
@@ -97,10 +94,8 @@ SweepDeclaration parseSweepOptions(const SweepOptions& options) {
       if (!a || !b || r.ec != std::errc() || r.ptr != colons[2].data() + colons[2].size())
         throw InputError(option + "expected A:B:N (numbers A, B and an integer N)");
       if (n < 1) throw InputError(option + "N = " + std::to_string(n) + " gives an empty range (N must be >= 1)");
-      if (n > kMaxPoints) throw InputError(option + "N is more than " + std::to_string(kMaxPoints));
-      // Same values as the scene's linspace (sweep_functions.cpp).
-      for (long long i = 0; i < n; ++i)
-        values.push_back(SweepValue::ofNumber(n == 1 ? *a : i == n - 1 ? *b : *a + double(i) * (*b - *a) / double(n - 1)));
+      if (n > kMaxSweepPoints) throw InputError(option + "N is more than " + std::to_string(kMaxSweepPoints));
+      for (long long i = 0; i < n; ++i) values.push_back(SweepValue::ofNumber(linspaceValue(*a, *b, n, i)));
     } else if (colons.size() == 1) {
       for (const std::string& v : split(spec, ',')) {
         if (v.empty()) throw InputError(option + "empty value in the list (write V1,V2,...)");
@@ -124,8 +119,8 @@ std::vector<SweepPoint> enumerateSweep(const SweepDeclaration& d) {
       std::int64_t total = 1;
       for (const auto& [name, values] : d.grid) {
         if (values.empty()) throw InputError(d.origin + ": sweep parameter '" + name + "' has no value");
-        if (total > kMaxPoints / std::int64_t(values.size()))
-          throw InputError(d.origin + ": the grid has more than " + std::to_string(kMaxPoints) + " points");
+        if (total > kMaxSweepPoints / std::int64_t(values.size()))
+          throw InputError(d.origin + ": the grid has more than " + std::to_string(kMaxSweepPoints) + " points");
         total *= std::int64_t(values.size());
       }
       points.reserve(std::size_t(total));

@@ -10,14 +10,7 @@ namespace dicsynth {
 
 PixelRandom::PixelRandom(std::uint32_t seed, std::uint32_t frame, std::uint32_t camera, std::uint32_t px,
                          std::uint32_t py, std::uint32_t dim)
-    : dim_(dim) {
-  // The first five steps of ds_sample_bits; uniform() adds (counter, dim).
-  std::uint32_t h = ds_hash(seed ^ 0x9e3779b9u);
-  h = ds_hash_combine(h, frame);
-  h = ds_hash_combine(h, camera);
-  h = ds_hash_combine(h, px);
-  prefix_ = ds_hash_combine(h, py);
-}
+    : prefix_(ds_pixel_bits(seed, frame, camera, px, py)), dim_(dim) {}  // uniform() adds (counter, dim)
 
 double PixelRandom::uniform() {
   const std::uint32_t a = ds_hash_combine(ds_hash_combine(prefix_, counter_), dim_);

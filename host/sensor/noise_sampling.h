@@ -7,7 +7,7 @@
 
 namespace dicsynth {
 
-// The random dimensions of the sensor (rng.h reserves 20..39 for it; the backends use 0..19).
+// The random dimensions of the sensor: 20..39, host-side only (shared/rng.h lists the GPU's, all below 20).
 inline constexpr std::uint32_t kDimSensorShot = 20;     // Poisson shot noise
 inline constexpr std::uint32_t kDimSensorRead = 21;     // Gaussian read noise
 inline constexpr std::uint32_t kDimSensorDefect = 22;   // defective-pixel draw
@@ -25,7 +25,7 @@ class PixelRandom {
   double uniform();
 
  private:
-  std::uint32_t prefix_;  // hash of (seed, frame, camera, px, py), as in ds_sample_bits
+  std::uint32_t prefix_;  // ds_pixel_bits(seed, frame, camera, px, py) (shared/rng.h)
   std::uint32_t dim_;
   std::uint32_t counter_ = 0;
 };

@@ -36,14 +36,18 @@ DS_FN uint ds_hash_combine(uint h, uint value) { return ds_hash(h ^ value); }
 #define DS_DIM_SPECKLE_Y 13u
 #define DS_DIM_LENS 2u  // Camera.ThinLens: the sample's point on the lens disk (ds_lens_lattice)
 
-DS_FN uint ds_sample_bits(uint seed, uint frame, uint camera, uint px, uint py, uint sampleIndex, uint dim) {
+// The hash of one pixel of one camera and frame: every random number of that pixel starts from it
+// (ds_sample_bits below; the host's sensor noise, host/sensor/noise_sampling.cpp).
+DS_FN uint ds_pixel_bits(uint seed, uint frame, uint camera, uint px, uint py) {
   uint h = ds_hash(seed ^ 0x9e3779b9u);
   h = ds_hash_combine(h, frame);
   h = ds_hash_combine(h, camera);
   h = ds_hash_combine(h, px);
-  h = ds_hash_combine(h, py);
-  h = ds_hash_combine(h, sampleIndex);
-  return ds_hash_combine(h, dim);
+  return ds_hash_combine(h, py);
+}
+
+DS_FN uint ds_sample_bits(uint seed, uint frame, uint camera, uint px, uint py, uint sampleIndex, uint dim) {
+  return ds_hash_combine(ds_hash_combine(ds_pixel_bits(seed, frame, camera, px, py), sampleIndex), dim);
 }
 
 // A point uniformly distributed over the unit disk, for the lens of Camera.ThinLens, drawn by

@@ -198,8 +198,8 @@ TEST_CASE("speckle-options: the CLI options reach the generator and bad values e
 
   const std::string bad = folder.file("bad.tif");
   for (const std::string args :
-       {"--radius 3 --diameter 6", "--diameter -2", "--radius-spread 1", "--radius-spread -0.1",
-        "--count-density -1", "--density 0.5 --count-density 0.01", "--edge-width -1", "--radius 2 --edge-width 5",
+       {"--radius 3 --diameter 6", "--diameter -2", "--diameter 0", "--radius-spread 1", "--radius-spread -0.1",
+        "--count-density -1", "--count-density 0", "--density 0.5 --count-density 0.01", "--edge-width -1", "--radius 2 --edge-width 5",
         "--pattern squares", "--pattern perlin --perlin-cell 0.5", "--pattern perlin --octaves 9",
         "--pattern perlin --edge-width -1"}) {
     CAPTURE(args);

@@ -32,6 +32,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,7 +49,8 @@ struct SpeckleOptions {
   std::vector<int> size;
   SpeckleParams params;
   int bits = 16;
-  double diameter = 0;  // > 0: given instead of the radius
+  std::optional<double> diameter;      // given instead of the radius
+  std::optional<double> countDensity;  // disks per px², given instead of the density
   std::string pattern = "disks";
 };
 
@@ -87,10 +89,17 @@ int runSpeckle(SpeckleOptions options) {
   SpeckleParams& p = options.params;
   p.width_px = options.size.at(0);
   p.height_px = options.size.at(1);
-  if (options.diameter != 0) {
-    if (!(options.diameter > 0) || !std::isfinite(options.diameter))
-      throw InputError("speckle: --diameter must be a finite number > 0 px (got " + shortest(options.diameter) + ")");
-    p.radius_px = options.diameter / 2;
+  // Given explicitly, 0 is an error like any value out of range (SpeckleParams reads 0 as "not given").
+  if (options.diameter) {
+    if (!(*options.diameter > 0) || !std::isfinite(*options.diameter))
+      throw InputError("speckle: --diameter must be a finite number > 0 px (got " + shortest(*options.diameter) + ")");
+    p.radius_px = *options.diameter / 2;
+  }
+  if (options.countDensity) {
+    if (!(*options.countDensity > 0) || !std::isfinite(*options.countDensity))
+      throw InputError("speckle: --count-density must be a finite number > 0 disks/px² (got " +
+                       shortest(*options.countDensity) + ")");
+    p.disksPerPx2 = *options.countDensity;
   }
   if (options.pattern == "perlin")
     p.pattern = SpecklePattern::Perlin;
@@ -136,7 +145,7 @@ void addSpeckleCommand(CLI::App& root, RunFn& run) {
       ->capture_default_str();
   auto* density = sub->add_option("--density", options->params.density, "Expected dark area fraction, in (0, 1)")
                       ->capture_default_str();
-  sub->add_option("--count-density", options->params.disksPerPx2, "Disks per px² (instead of --density)")
+  sub->add_option("--count-density", options->countDensity, "Disks per px² (instead of --density)")
       ->excludes(density);
   sub->add_option("--edge-width", options->params.edgeWidth_px, "Width in px of the smooth step across edges (0: hard)")
       ->capture_default_str();

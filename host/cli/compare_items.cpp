@@ -3,17 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "cli/render_args.h"
 #include "core/error.h"
 
 namespace dicsynth::cli {
 
 void addCompareSweepArgs(CLI::App& app, CompareSweepArgs& args) {
   app.add_flag("--points", args.points, "Compare every point of the scene's `sweep` (implied by --sweep, --random)");
-  app.add_option("--sweep", args.options.sweeps,
-                 "NAME=A:B:N, NAME=V1,V2,... or, with --random, NAME=LO:HI: compare each point of this sweep "
-                 "(as `dicsynth sweep`)");
-  app.add_option("--random", args.options.randomCount, "Random sweep of N points over the --sweep ranges");
-  app.add_option("--random-seed", args.options.randomSeed, "Seed of --random")->capture_default_str();
+  addSweepOptions(app, args.options, ": compare each point of this sweep (as `dicsynth sweep`)");
 }
 
 std::vector<CompareItem> compareItems(const std::string& path,

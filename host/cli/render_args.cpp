@@ -10,6 +10,13 @@
 
 namespace dicsynth::cli {
 
+void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect) {
+  app.add_option("--sweep", options.sweeps,
+                 "NAME=A:B:N (N values from A to B), NAME=V1,V2,... or, with --random, NAME=LO:HI" + effect);
+  app.add_option("--random", options.randomCount, "Random sweep of N points over the --sweep ranges");
+  app.add_option("--random-seed", options.randomSeed, "Seed of --random")->capture_default_str();
+}
+
 void addRenderArgs(CLI::App& app, RenderArgs& args) {
   app.add_option("scene", args.scenePath, "Scene file (Lua)")->required();
   app.add_option("-D,--define", args.defines,

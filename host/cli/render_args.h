@@ -1,6 +1,6 @@
 #pragma once
-// Options shared by the subcommands that render a scene (render, compare): the scene, its
-// parameters, frames, sampling, device. Parsing of their values into the library's types.
+// Options shared by the subcommands that render a scene (render, sweep, compare): the scene, its
+// parameters, frames, sampling, device, and a sweep's points (sweep, compare). Parsing of their values into the library's types.
 #include <CLI/CLI.hpp>
 
 #include <optional>
@@ -11,6 +11,7 @@
 #include "gpu/renderer.h"
 #include "render/options.h"
 #include "scene/scene.h"
+#include "sweep/sweep_points.h"
 
 namespace dicsynth::cli {
 
@@ -26,6 +27,10 @@ struct RenderArgs {
 };
 
 void addRenderArgs(CLI::App& app, RenderArgs& args);
+
+// --sweep, --random, --random-seed (sweep/sweep_points.h). `effect` ends the --sweep help text: what
+// the subcommand does with the points.
+void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect);
 
 // -D name=value list → SceneParams::defines. Throws InputError for a malformed entry.
 std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<std::string>& defines);

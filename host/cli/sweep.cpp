@@ -288,11 +288,7 @@ void addSweepCommand(CLI::App& root, RunFn& run) {
       ->check(CLI::IsMember({"gpu", "cpu"}))
       ->capture_default_str();
   sub->add_option("--frames", cmd->frames, "Frames A:B or N of every point (as render --frames)");
-  sub->add_option("--sweep", cmd->sweep.sweeps,
-                  "NAME=A:B:N (N values from A to B), NAME=V1,V2,... or, with --random, NAME=LO:HI; replaces the "
-                  "scene's `sweep`");
-  sub->add_option("--random", cmd->sweep.randomCount, "Random sweep of N points over the --sweep ranges");
-  sub->add_option("--random-seed", cmd->sweep.randomSeed, "Seed of --random")->capture_default_str();
+  addSweepOptions(*sub, cmd->sweep, "; replaces the scene's `sweep`");
   sub->add_option("--shard", cmd->shard,
                   "I/N: render the points whose index mod N is I (default: from SLURM_ARRAY_TASK_ID/COUNT/MIN)");
   sub->add_flag("--seed-per-point", cmd->seedPerPoint,

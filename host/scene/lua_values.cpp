@@ -199,6 +199,13 @@ std::optional<double> Params::number(const char* key) const {
   return checkNumber(-1, quote(key));
 }
 
+std::optional<bool> Params::boolean(const char* key) const {
+  Pushed value(L_, key);
+  if (value.isNil()) return std::nullopt;
+  if (lua_type(L_, -1) != LUA_TBOOLEAN) fail(quote(key) + " must be true or false");
+  return lua_toboolean(L_, -1) != 0;
+}
+
 double Params::requiredNumber(const char* key) const {
   std::optional<double> value = number(key);
   if (!value) fail("missing required " + quote(key));

@@ -158,6 +158,7 @@ class Params {
   double requiredNumber(const char* key) const;
   std::optional<long long> integer(const char* key) const;
   std::optional<std::string> string(const char* key) const;
+  std::optional<bool> boolean(const char* key) const;  // true or false, nothing else
   // A table of count numbers (minCount..maxCount, maxCount may be kAnyCount), e.g. "{x, y, z}".
   static constexpr std::size_t kAnyCount = static_cast<std::size_t>(-1);
   std::optional<std::vector<double>> numbers(const char* key, std::size_t minCount,

@@ -40,18 +40,6 @@ namespace {
 
 void pushPostProcessor(lua_State* L, PostProcessorValue value) { pushUserdata(L, std::move(value)); }
 
-// Reads an optional boolean (Params has no accessor for booleans).
-std::optional<bool> boolean(lua_State* L, const Params& p, const char* key) {
-  const int type = p.luaType(key);
-  if (type == LUA_TNIL) return std::nullopt;
-  if (type != LUA_TBOOLEAN) p.fail(Params::quote(key) + " must be true or false");
-  lua_pushstring(L, key);
-  lua_rawget(L, 1);
-  const bool value = lua_toboolean(L, -1) != 0;
-  lua_pop(L, 1);
-  return value;
-}
-
 /* ------------------------------------------------------------------------------------------------
 Sensor.Emva: the linear camera model of EMVA 1288 (README "Sensor" has the formulas). Every value
 not given comes from the preset, else from the defaults below (the "machine-vision-cmos" preset's
@@ -100,7 +88,7 @@ int sensorEmva(lua_State* L) {
   positive("photonsAtFullScale", s.photonsAtFullScale);
   positive("gain_DN_per_e", s.gain_DN_per_e);
   nonNegative("darkOffset_DN", s.darkOffset_DN);
-  s.shotNoise = boolean(L, p, "shotNoise").value_or(true);
+  s.shotNoise = p.boolean("shotNoise").value_or(true);
   pushUserdata(L, std::move(s));
   return 1;
 }
@@ -271,14 +259,13 @@ void readCameraSensor(lua_State* L, const Params& p, Camera& camera) {
   const lua_Integer count = lua_Integer(lua_rawlen(L, table));
   // Collect the values first (copies), so that the Lua stack is balanced before any failure.
   std::vector<PostProcessorValue> values;
-  bool sequence = true;
   lua_Integer entries = 0;
   lua_pushnil(L);
   while (lua_next(L, table) != 0) {
     lua_pop(L, 1);
     ++entries;
   }
-  sequence = entries == count;
+  const bool sequence = entries == count;
   std::string bad;
   for (lua_Integer i = 1; sequence && bad.empty() && i <= count; ++i) {
     lua_rawgeti(L, table, i);

@@ -28,16 +28,6 @@ std::pair<int, int> readCounts(const Params& p, const char* key, const char* sha
   return {int(counts->x), int(counts->y)};
 }
 
-bool readBoolean(lua_State* L, const Params& p, const char* key, bool fallback) {
-  const int type = p.luaType(key);
-  if (type == LUA_TNIL) return fallback;
-  if (type != LUA_TBOOLEAN) p.fail(Params::quote(key) + " must be true or false");
-  lua_getfield(L, 1, key);  // Params holds the parameter table at index 1
-  const bool value = lua_toboolean(L, -1) != 0;
-  lua_pop(L, 1);
-  return value;
-}
-
 // worldFromTarget must be rigid: object points of a calibration are metric target coordinates.
 dmat4 readRigidTransform(const Params& p) {
   const TransformValue* t = p.userdata<TransformValue>("transform", "a Transform (translate, rotate_x, ...)");
@@ -153,7 +143,7 @@ int targetCircleGrid(lua_State* L) {
   std::tie(pattern.cols, pattern.rows) = readCounts(p, "circles", "{cols, rows}", 2);
   pattern.spacing_m = p.requiredNumber("spacing");
   p.require(pattern.spacing_m > 0, "spacing", "> 0 (metres)", pattern.spacing_m);
-  pattern.asymmetric = readBoolean(L, p, "asymmetric", false);
+  pattern.asymmetric = p.boolean("asymmetric").value_or(false);
   pattern.radius_m = p.number("radius", pattern.spacing_m / 4);
   // Nearest neighbours: spacing apart (symmetric), spacing·√2 apart diagonally (asymmetric).
   const double nearest = pattern.asymmetric ? pattern.spacing_m * std::sqrt(2.0) : pattern.spacing_m;

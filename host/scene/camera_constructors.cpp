@@ -12,6 +12,24 @@ namespace dicsynth::scene {
 
 namespace {
 
+// The keys both distortion families share: `radial` (1..maxRadial of k1..k6; missing ones 0) and
+// `tangential` {p1, p2}.
+void readRadialTangential(const Params& p, Distortion& d, std::size_t maxRadial, const char* radialShape) {
+  if (auto radial = p.numbers("radial", 1, maxRadial, radialShape)) {
+    radial->resize(6, 0.0);
+    d.k1 = (*radial)[0];
+    d.k2 = (*radial)[1];
+    d.k3 = (*radial)[2];
+    d.k4 = (*radial)[3];
+    d.k5 = (*radial)[4];
+    d.k6 = (*radial)[5];
+  }
+  if (auto tangential = p.vec2("tangential", "{p1, p2}")) {
+    d.p1 = tangential->x;
+    d.p2 = tangential->y;
+  }
+}
+
 /* ------------------------------------------------------------------------------------------------
 Distortion.Brown: OpenCV's Brown–Conrady lens distortion on normalized coordinates
 (x' = X/Z, y' = Y/Z, r² = x'² + y'²), mapping ideal → distorted:
@@ -32,16 +50,7 @@ int distortionBrown(lua_State* L) {
   Params p(L, "Distortion.Brown", {"radial", "tangential"});
   Distortion distortion;
   distortion.kind = DistortionKind::Brown;
-  if (auto radial = p.numbers("radial", 1, 3, "{k1[, k2[, k3]]}")) {
-    radial->resize(3, 0.0);
-    distortion.k1 = (*radial)[0];
-    distortion.k2 = (*radial)[1];
-    distortion.k3 = (*radial)[2];
-  }
-  if (auto tangential = p.vec2("tangential", "{p1, p2}")) {
-    distortion.p1 = tangential->x;
-    distortion.p2 = tangential->y;
-  }
+  readRadialTangential(p, distortion, 3, "{k1[, k2[, k3]]}");
   pushUserdata(L, distortion);
   return 1;
 }
@@ -71,19 +80,7 @@ int distortionRational(lua_State* L) {
   Params p(L, "Distortion.Rational", {"radial", "tangential", "thinPrism"});
   Distortion d;
   d.kind = DistortionKind::Rational;
-  if (auto radial = p.numbers("radial", 1, 6, "{k1[, k2[, ..., k6]]}")) {
-    radial->resize(6, 0.0);
-    d.k1 = (*radial)[0];
-    d.k2 = (*radial)[1];
-    d.k3 = (*radial)[2];
-    d.k4 = (*radial)[3];
-    d.k5 = (*radial)[4];
-    d.k6 = (*radial)[5];
-  }
-  if (auto tangential = p.vec2("tangential", "{p1, p2}")) {
-    d.p1 = tangential->x;
-    d.p2 = tangential->y;
-  }
+  readRadialTangential(p, d, 6, "{k1[, k2[, ..., k6]]}");
   if (auto prism = p.numbers("thinPrism", 4, 4, "{s1, s2, s3, s4}")) {
     d.s1 = (*prism)[0];
     d.s2 = (*prism)[1];

@@ -61,8 +61,15 @@ AnalyticSpeckle makeAnalyticSpeckle(double radius_uv, double density, double asp
 // Mean disk count per cell for a coverage `density`: m = −4 ln(1 − density)/π.
 double speckleMeanPerCell(double density);
 
+// The hash every cell of a pattern starts from.
+inline std::uint32_t speckleStream(std::uint32_t seed) { return ds_hash(seed ^ kSpeckleCellStream); }
+
+inline std::uint32_t speckleCellHashFrom(std::uint32_t stream, int i, int j) {
+  return ds_hash_combine(ds_hash_combine(stream, std::uint32_t(i)), std::uint32_t(j));
+}
+
 inline std::uint32_t speckleCellHash(std::uint32_t seed, int i, int j) {
-  return ds_hash_combine(ds_hash_combine(ds_hash(seed ^ kSpeckleCellStream), std::uint32_t(i)), std::uint32_t(j));
+  return speckleCellHashFrom(speckleStream(seed), i, j);
 }
 
 inline int speckleDiskCount(const AnalyticSpeckle& s, std::uint32_t cellHash) {
@@ -74,13 +81,15 @@ inline int speckleDiskCount(const AnalyticSpeckle& s, std::uint32_t cellHash) {
 }
 
 // Smallest squared distance (cells²) from the local point (fx, fy) of cell (i, j) to a disk centre
-// of the 3 × 3 neighbourhood (1e30 when none), with the very operations of the decision.
+// of the 3 × 3 neighbourhood (1e30 when none), with the very operations of the decision. With
+// `stopAt` >= 0 it returns as soon as a distance is <= stopAt: enough to decide "<= stopAt".
 template <class Real>
-Real speckleNearestSquared(const AnalyticSpeckle& s, int i, int j, Real fx, Real fy) {
+Real speckleNearestSquared(const AnalyticSpeckle& s, int i, int j, Real fx, Real fy, Real stopAt = Real(-1)) {
   Real best = Real(1e30);
+  const std::uint32_t stream = speckleStream(s.seed);
   for (int dj = -1; dj <= 1; ++dj) {
     for (int di = -1; di <= 1; ++di) {
-      const std::uint32_t cell = speckleCellHash(s.seed, i + di, j + dj);
+      const std::uint32_t cell = speckleCellHashFrom(stream, i + di, j + dj);
       const int n = speckleDiskCount(s, cell);
       const std::uint32_t disks = ds_hash_combine(cell, DS_DIM_SPECKLE_DISK);
       for (int k = 0; k < n; ++k) {
@@ -95,6 +104,7 @@ Real speckleNearestSquared(const AnalyticSpeckle& s, int i, int j, Real fx, Real
         const Real dy2 = dy * dy;
         const Real d2 = dx2 + dy2;
         if (d2 < best) best = d2;
+        if (best <= stopAt) return best;
       }
     }
   }
@@ -115,7 +125,7 @@ inline SpeckleCellPoint speckleCellPoint(const AnalyticSpeckle& s, dvec2 uv) {
 // True where (u, v) lies in a disk (closed: distance exactly r is inside).
 inline bool speckleCovered(const AnalyticSpeckle& s, dvec2 uv) {
   const SpeckleCellPoint p = speckleCellPoint(s, uv);
-  return speckleNearestSquared(s, p.i, p.j, p.fx, p.fy) <= 0.25;
+  return speckleNearestSquared(s, p.i, p.j, p.fx, p.fy, 0.25) <= 0.25;
 }
 
 inline double speckleTextureValue(const AnalyticSpeckle& s, dvec2 uv) {

@@ -147,8 +147,10 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
   const auto worst = [&](double m, double v) { return std::isnan(v) ? inf : std::max(m, v); };
   std::vector<dvec3> objectOrigins;
   std::vector<double> slopes, reflectances;
+  std::vector<char> specularTerms;  // per object: hasSpecularOrSpotTerms (a loop over the lights)
   for (const auto& o : scene.objects) {
-    reflectances.push_back(tol.epsilon > 0 && hasSpecularOrSpotTerms(scene, o) ? reflectanceMax(scene, o) : 0.0);
+    specularTerms.push_back(hasSpecularOrSpotTerms(scene, o));
+    reflectances.push_back(tol.epsilon > 0 && specularTerms.back() ? reflectanceMax(scene, o) : 0.0);
     const dvec4 h = o.worldFromObject * dvec4(0, 0, 0, 1);
     objectOrigins.push_back(dvec3(h) / h.w);
     slopes.push_back(tol.epsilon > 0 ? textureSlope(scene, o) : 0.0);
@@ -212,7 +214,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
           boundRadiance += slopes[obj] * shadingFactor(scene, scene.objects[obj], a.position_m[i]) * boundUv *
                            cam.exposure;
           // Specular lobes and spot cones, shaded in float (render/shading_tolerance.h).
-          if (hasSpecularOrSpotTerms(scene, scene.objects[obj])) {
+          if (specularTerms[obj]) {
             ShadingErrorInputs in;
             in.position = a.position_m[i];
             in.cosView = cosTheta;

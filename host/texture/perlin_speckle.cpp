@@ -15,28 +15,6 @@ namespace {
 
 constexpr std::uint32_t kPerlinStream = 0x3c6ef372u;  // separates this stream from the disks'
 
-std::string str(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
-
-void validate(const SpeckleParams& p) {
-  if (p.width_px < 1 || p.height_px < 1 || p.width_px > 65536 || p.height_px > 65536)
-    throw InputError("speckle: size must be 1..65536 px per side (got " + std::to_string(p.width_px) + " x " +
-                     std::to_string(p.height_px) + ")");
-  if (!(p.density > 0 && p.density < 1))
-    throw InputError("speckle: density must be in (0, 1), exclusive (got " + str(p.density) + ")");
-  if (p.supersampling < 1 || p.supersampling > 8)
-    throw InputError("speckle: supersampling must be in 1..8 (got " + std::to_string(p.supersampling) + ")");
-  if (!(p.perlinCell_px >= 1) || !std::isfinite(p.perlinCell_px))
-    throw InputError("speckle: the Perlin cell must be a finite number >= 1 px (got " + str(p.perlinCell_px) + ")");
-  if (p.perlinOctaves < 1 || p.perlinOctaves > 8)
-    throw InputError("speckle: Perlin octaves must be in 1..8 (got " + std::to_string(p.perlinOctaves) + ")");
-  if (!(p.edgeWidth_px >= 0) || !std::isfinite(p.edgeWidth_px))
-    throw InputError("speckle: edge width must be a finite number >= 0 px (got " + str(p.edgeWidth_px) + ")");
-}
-
 double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
 // Corner ramp g·(dx, dy), g = (2U₁ − 1, 2U₂ − 1) with U from the hash (24-bit, exact).
@@ -76,7 +54,7 @@ double perlinNoise(const SpeckleParams& p, double x, double y) {
 }
 
 GrayImage generatePerlinSpeckle(const SpeckleParams& p) {
-  validate(p);
+  validateSpeckle(p);
   const std::size_t W = std::size_t(p.width_px), H = std::size_t(p.height_px);
   // Threshold: the (1 − density) quantile of the noise at the pixel centres.
   std::vector<double> centres(W * H);

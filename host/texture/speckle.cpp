@@ -65,27 +65,6 @@ std::string str(double v) {
 
 double reach(const SpeckleParams& p) { return p.radius_px * (1.0 + p.radiusSpread) + 0.5 * p.edgeWidth_px; }
 
-void validate(const SpeckleParams& p) {
-  if (p.width_px < 1 || p.height_px < 1 || p.width_px > kMaxSide_px || p.height_px > kMaxSide_px)
-    throw InputError("speckle: size must be 1.." + std::to_string(kMaxSide_px) + " px per side (got " +
-                     std::to_string(p.width_px) + " x " + std::to_string(p.height_px) + ")");
-  if (!(p.radius_px > 0) || !std::isfinite(p.radius_px))
-    throw InputError("speckle: radius must be a finite number > 0 px (got " + str(p.radius_px) + ")");
-  if (!(p.density > 0 && p.density < 1))
-    throw InputError("speckle: density must be in (0, 1), exclusive (got " + str(p.density) + ")");
-  if (p.supersampling < 1 || p.supersampling > 8)
-    throw InputError("speckle: supersampling must be in 1..8 (got " + std::to_string(p.supersampling) +
-                     ")");
-  if (!(p.radiusSpread >= 0 && p.radiusSpread < 1))
-    throw InputError("speckle: radius spread must be in [0, 1) (got " + str(p.radiusSpread) + ")");
-  if (!(p.disksPerPx2 >= 0) || !std::isfinite(p.disksPerPx2))
-    throw InputError("speckle: count density must be a finite number >= 0 disks/px² (got " + str(p.disksPerPx2) +
-                     ")");
-  const double smallestDiameter = 2.0 * p.radius_px * (1.0 - p.radiusSpread);
-  if (!(p.edgeWidth_px >= 0 && p.edgeWidth_px <= smallestDiameter))
-    throw InputError("speckle: edge width must be in [0, " + str(smallestDiameter) +
-                     "] px (the smallest disk diameter) (got " + str(p.edgeWidth_px) + ")");
-}
 
 // Marks, in each pixel's bit mask, the samples covered by the disk centred at (cx, cy).
 template <typename Mask>
@@ -236,9 +215,41 @@ double speckleIntensity(const SpeckleParams& p) {
   return -std::log1p(-p.density) / speckleEffectiveArea(p);
 }
 
+void validateSpeckle(const SpeckleParams& p) {
+  if (p.width_px < 1 || p.height_px < 1 || p.width_px > kMaxSide_px || p.height_px > kMaxSide_px)
+    throw InputError("speckle: size must be 1.." + std::to_string(kMaxSide_px) + " px per side (got " +
+                     std::to_string(p.width_px) + " x " + std::to_string(p.height_px) + ")");
+  const bool perlin = p.pattern == SpecklePattern::Perlin;
+  if (!perlin && (!(p.radius_px > 0) || !std::isfinite(p.radius_px)))
+    throw InputError("speckle: radius must be a finite number > 0 px (got " + str(p.radius_px) + ")");
+  if (!(p.density > 0 && p.density < 1))
+    throw InputError("speckle: density must be in (0, 1), exclusive (got " + str(p.density) + ")");
+  if (p.supersampling < 1 || p.supersampling > 8)
+    throw InputError("speckle: supersampling must be in 1..8 (got " + std::to_string(p.supersampling) +
+                     ")");
+  if (perlin) {
+    if (!(p.perlinCell_px >= 1) || !std::isfinite(p.perlinCell_px))
+      throw InputError("speckle: the Perlin cell must be a finite number >= 1 px (got " + str(p.perlinCell_px) + ")");
+    if (p.perlinOctaves < 1 || p.perlinOctaves > 8)
+      throw InputError("speckle: Perlin octaves must be in 1..8 (got " + std::to_string(p.perlinOctaves) + ")");
+    if (!(p.edgeWidth_px >= 0) || !std::isfinite(p.edgeWidth_px))
+      throw InputError("speckle: edge width must be a finite number >= 0 px (got " + str(p.edgeWidth_px) + ")");
+    return;
+  }
+  if (!(p.radiusSpread >= 0 && p.radiusSpread < 1))
+    throw InputError("speckle: radius spread must be in [0, 1) (got " + str(p.radiusSpread) + ")");
+  if (!(p.disksPerPx2 >= 0) || !std::isfinite(p.disksPerPx2))
+    throw InputError("speckle: count density must be a finite number >= 0 disks/px² (got " + str(p.disksPerPx2) +
+                     ")");
+  const double smallestDiameter = 2.0 * p.radius_px * (1.0 - p.radiusSpread);
+  if (!(p.edgeWidth_px >= 0 && p.edgeWidth_px <= smallestDiameter))
+    throw InputError("speckle: edge width must be in [0, " + str(smallestDiameter) +
+                     "] px (the smallest disk diameter) (got " + str(p.edgeWidth_px) + ")");
+}
+
 GrayImage generateSpeckle(const SpeckleParams& params) {
-  if (params.pattern == SpecklePattern::Perlin) return generatePerlinSpeckle(params);
-  validate(params);
+  if (params.pattern == SpecklePattern::Perlin) return generatePerlinSpeckle(params);  // validates too
+  validateSpeckle(params);
   const double r = reach(params);
   const double extArea = (double(params.width_px) + 2.0 * r) * (double(params.height_px) + 2.0 * r);
   const double lambda = speckleIntensity(params);  // disks per px²

@@ -44,4 +44,7 @@ double speckleIntensity(const SpeckleParams& p);
 // Perlin: texture/perlin_speckle.cpp.
 GrayImage generateSpeckle(const SpeckleParams& params);
 
+// Throws InputError for the impossible parameters listed above that `params.pattern` uses.
+void validateSpeckle(const SpeckleParams& params);
+
 }  // namespace dicsynth

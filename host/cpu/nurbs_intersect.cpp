@@ -161,15 +161,11 @@ class Search {
   double zHi() const { return (sBest_ - ray_.s0) * ray_.dLength; }
 
   void visitLeaf(const NurbsSubPatch& sp) {
-    // The patch in the ray frame depends only on the patch (the ray is fixed for the search), and a
-    // leaf's sub-patches and neighbouring leaves mostly share theirs: transform it once per change.
-    if (const BezierPatch* patch = &nurbs_.patches[sp.patch]; patch != patch_) {
-      patch_ = patch;
-      p_ = patch_->degreeU;
-      q_ = patch_->degreeV;
-      const int count = (p_ + 1) * (q_ + 1);
-      for (int i = 0; i < count; ++i) patchRay_[std::size_t(i)] = toRayFrame(ray_, patch_->points[std::size_t(i)]);
-    }
+    patch_ = &nurbs_.patches[sp.patch];
+    p_ = patch_->degreeU;
+    q_ = patch_->degreeV;
+    const int count = (p_ + 1) * (q_ + 1);
+    for (int i = 0; i < count; ++i) patchRay_[std::size_t(i)] = toRayFrame(ray_, patch_->points[std::size_t(i)]);
     Piece piece;
     extractBezier(patchRay_.data(), p_, q_, sp.localMin, sp.localMax, piece.points.data());
     piece.lo = sp.localMin;

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   options.samplesPerPixel = spp;
   auto gpuTime = [&](const PreparedScene& s, Precision p) {
     options.precision = p;
-    renderer.pipeline(p, s.features, true);
+    renderer.pipeline(p, s, true);
     return best([&] { return renderer.render(s, options).renderSeconds; });
   };
   auto cpuTime = [&](const PreparedScene& s) { return best([&] { return cpu::render(s, options).renderSeconds; }); };

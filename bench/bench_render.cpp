@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   };
   auto gpuTime = [&](Precision p, bool specialize) {
     options.precision = p;
-    renderer.pipeline(p, scene.features, specialize);  // pipeline creation is not render time
+    renderer.pipeline(p, scene, specialize);  // pipeline creation is not render time
     return best([&] { return renderer.render(scene, options, {specialize}).renderSeconds; });
   };
   const double t32 = gpuTime(Precision::Fp32, true);

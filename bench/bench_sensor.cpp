@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   options.samplesPerPixel = spp;
   gpu::Context context;
   gpu::Renderer renderer(context);
-  renderer.pipeline(options.precision, scene.features, true);  // pipeline creation is not render time
+  renderer.pipeline(options.precision, scene, true);  // pipeline creation is not render time
   double renderSeconds = 1e300;
   RenderResult result;
   for (int k = 0; k < repeat; ++k) {

@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
     if (p == Precision::Fp64 && !context.info().shaderFloat64) continue;
     options.precision = p;
     double best[4] = {1e300, 1e300, 1e300, 1e300};
-    for (const PreparedScene* v : variants) renderer.pipeline(p, v->features, true);  // not render time
+    for (const PreparedScene* v : variants) renderer.pipeline(p, *v, true);  // not render time
     for (int k = 0; k < repeat; ++k)
       for (int v = 0; v < 4; ++v) best[v] = std::min(best[v], renderer.render(*variants[v], options).renderSeconds);
     std::printf("| %s | %.2f s | %.2f s (%.2fx) | %.2f s (%.2fx) | %.2f s (%.2fx) |\n", toString(p), best[0], best[1],

@@ -12,11 +12,57 @@
 
 layout(local_size_x = DS_LOCAL_SIZE_X, local_size_y = DS_LOCAL_SIZE_Y) in;
 
+// Cameras, objects and lights: storage buffers of any size, and the same bytes as uniform blocks of
+// DS_UNIFORM_BLOCK_BYTES read instead when the scene fits (UNIFORM_SCENE). Why both: every index
+// into them is dynamically uniform (the camera from the push constants, objects and lights from
+// loops that unroll to constants when OBJECT_COUNT / LIGHT_COUNT are exact), and a driver may fetch
+// such data once per SIMD batch only from a uniform block. Mesa 22.3's lavapipe does (a uniform
+// block read at a constant offset is one scalar load), while it reads a storage buffer inside any
+// loop or branch lane by lane (bench/RESULTS.md, "Render speed after issue 6"); on GPUs uniform
+// blocks go through the constant cache. Storage buffers remain for scenes too large for the blocks.
+#if defined(DS_FP64)
+#define DS_H4_BYTES 32
+#define DS_R4_BYTES 32
+#elif defined(DS_DF64)
+#define DS_H4_BYTES 32
+#define DS_R4_BYTES 16
+#else
+#define DS_H4_BYTES 16
+#define DS_R4_BYTES 16
+#endif
 layout(std430, set = 0, binding = DS_BINDING_CAMERAS) readonly buffer Cameras { GpuCamera cameras[]; };
 layout(std430, set = 0, binding = DS_BINDING_OBJECTS) readonly buffer Objects { GpuObject objects[]; };
 layout(std430, set = 0, binding = DS_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
+layout(std140, set = 0, binding = DS_BINDING_CAMERAS_UNIFORM) uniform CamerasUniform {
+  GpuCamera uniformCameras[DS_UNIFORM_BLOCK_BYTES / DS_GPU_CAMERA_BYTES(DS_H4_BYTES, DS_R4_BYTES)];
+};
+layout(std140, set = 0, binding = DS_BINDING_OBJECTS_UNIFORM) uniform ObjectsUniform {
+  GpuObject uniformObjects[DS_UNIFORM_BLOCK_BYTES / DS_GPU_OBJECT_BYTES(DS_H4_BYTES, DS_R4_BYTES)];
+};
+layout(std140, set = 0, binding = DS_BINDING_LIGHTS_UNIFORM) uniform LightsUniform {
+  GpuLight uniformLights[DS_UNIFORM_BLOCK_BYTES / DS_GPU_LIGHT_BYTES(DS_H4_BYTES, DS_R4_BYTES)];
+};
+#define DS_OBJECT(i, member) (UNIFORM_SCENE ? uniformObjects[i].member : objects[i].member)
+// hreal4 members: in df64 a struct {hi, lo}, and a ternary between the two blocks' copies would mix
+// two SPIR-V struct types (each block lays out its own): the pair is rebuilt from its vec4 halves.
+#if defined(DS_DF64)
+#define DS_OBJECT_H(i, member) df4(DS_OBJECT(i, member.hi), DS_OBJECT(i, member.lo))
+#else
+#define DS_OBJECT_H(i, member) DS_OBJECT(i, member)
+#endif
+#define DS_LIGHT(i, member) (UNIFORM_SCENE ? uniformLights[i].member : lights[i].member)
 layout(std430, set = 0, binding = DS_BINDING_TEXTURES) readonly buffer Textures { GpuTexture textures[]; };
+// Texture coefficients: a storage buffer, or (TEXEL_VIEW, fp32 and df64) the same bytes as a uniform
+// texel buffer, whose fetches a SIMD device gathers for all lanes at once: on Mesa 22.3's lavapipe
+// a storage-buffer read at a per-lane index is a loop over the lanes. In fp64 the storage buffer is
+// used (the texel buffer would need two 32-bit halves per double and measured slower).
 layout(std430, set = 0, binding = DS_BINDING_TEXELS) readonly buffer Texels { real texels[]; };
+layout(set = 0, binding = DS_BINDING_TEXEL_VIEW) uniform samplerBuffer texelView;
+#if defined(DS_FP64)
+#define DS_TEXEL(i) texels[i]
+#else
+#define DS_TEXEL(i) (TEXEL_VIEW ? texelFetch(texelView, i).x : texels[i])
+#endif
 layout(std430, set = 0, binding = DS_BINDING_PIXELS) writeonly buffer Pixels { GpuPixel pixels[]; };
 layout(std430, set = 0, binding = DS_BINDING_NURBS_NODES) readonly buffer NurbsNodes { GpuNurbsNode nurbsNodes[]; };
 layout(std430, set = 0, binding = DS_BINDING_NURBS_SUBPATCHES) readonly buffer NurbsSubPatches {
@@ -33,7 +79,11 @@ void main() {
   const ivec2 local = ivec2(gl_GlobalInvocationID.xy);
   if (local.x >= params.tile.z || local.y >= params.tile.w) return;
   const int cameraIndex = params.counts.x;
-  const GpuCamera cam = cameras[cameraIndex];
+  GpuCamera cam;
+  if (UNIFORM_SCENE)
+    cam = uniformCameras[cameraIndex];
+  else
+    cam = cameras[cameraIndex];
   const ivec2 pixel = params.tile.xy + local;
   const hreal2 centre = h(real2(pixel));  // integers: exact in every variant
   const bool distorted = HAS_DISTORTION && cam.flags.x != 0;
@@ -55,7 +105,7 @@ void main() {
     outPixel.positionDepth = h4_31(hit.position, hit.t);
     outPixel.normal = real4(hit.normal, 0.0);
     uv = hit.uv;
-    objectId = real(objects[hit.object].kinds.w);
+    objectId = real(DS_OBJECT(hit.object, kinds).w);
   }
 
   // Radiance: mean over stratified samples of the pixel's sensitive square.

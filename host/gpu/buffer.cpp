@@ -46,6 +46,8 @@ struct Buffer::Impl {
   UniqueMemory memory;
   void* mapped = nullptr;             // persistent mapping when the memory is host-visible
   bool coherent = false;
+  UniqueBufferView view;              // texelView(), destroyed before the buffer (declared after it)
+  VkFormat viewFormat = VK_FORMAT_UNDEFINED;
 
   void checkRange(const char* what, std::size_t offset, std::size_t count) const {
     if (count > bytes || offset > bytes - count)
@@ -88,7 +90,8 @@ Buffer::Buffer(Context& context, std::size_t bytes, BufferUse use) : impl_(std::
   VkDevice device = context.device();
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
-  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+               VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkBuffer buffer = VK_NULL_HANDLE;
@@ -146,6 +149,28 @@ Buffer& Buffer::operator=(Buffer&&) noexcept = default;
 // A moved-from Buffer has no Impl: no handle, no bytes.
 VkBuffer Buffer::handle() const { return impl_ ? impl_->buffer.get() : VK_NULL_HANDLE; }
 std::size_t Buffer::size() const { return impl_ ? impl_->bytes : 0; }
+
+VkBufferView Buffer::texelView(VkFormat format, std::size_t texelBytes) {
+  if (!impl_) throw Error("Buffer::texelView: the buffer was moved from");
+  Impl& m = *impl_;
+  if (m.view) {
+    if (format != m.viewFormat) throw Error("Buffer::texelView: the buffer already has a view of another format");
+    return m.view.get();
+  }
+  // An empty buffer still gets a view of one texel (its allocation is at least 16 bytes).
+  const std::size_t limit = m.context->properties().limits.maxTexelBufferElements;
+  const std::size_t texels = std::clamp<std::size_t>(m.bytes / texelBytes, 1, limit);
+  VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  info.buffer = m.buffer.get();
+  info.format = format;
+  info.offset = 0;
+  info.range = VkDeviceSize(texels * texelBytes);
+  VkBufferView view = VK_NULL_HANDLE;
+  DS_VK(vkCreateBufferView(m.context->device(), &info, nullptr, &view));
+  m.view = UniqueBufferView(m.context->device(), view);
+  m.viewFormat = format;
+  return view;
+}
 
 void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
   DS_CHECK(impl_, "upload to a moved-from Buffer");

@@ -1,5 +1,5 @@
 #pragma once
-// A storage buffer with its memory, owned (RAII). Memory is host-visible when the device offers a
+// A buffer with its memory, owned (RAII), usable as a storage, uniform or uniform texel buffer. Memory is host-visible when the device offers a
 // device-local host-visible type (lavapipe, resizable BAR) or when `readback` asks for it; otherwise
 // device-local with a staging copy for upload/download.
 #include <vulkan/vulkan.h>
@@ -28,6 +28,12 @@ class Buffer {
 
   VkBuffer handle() const;
   std::size_t size() const;  // bytes requested (the allocation may be larger)
+
+  // A view of the buffer as texels of `format` (`texelBytes` each) for a uniform texel buffer
+  // binding, created at the first call and owned by the buffer (one format per buffer). It covers
+  // the first min(size() / texelBytes, maxTexelBufferElements) texels (at least one): callers that
+  // read through it check the limit themselves.
+  VkBufferView texelView(VkFormat format, std::size_t texelBytes);
 
   // Copy host bytes into [offset, offset+bytes) / out of it. Blocking; uses a staging buffer when the
   // memory is not host-visible. Throws Error on out-of-range access.

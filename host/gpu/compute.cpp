@@ -1,7 +1,8 @@
-// ComputePipeline (layout: N storage buffers in set 0 + push constants; specialization constants)
-// and dispatchAndWait.
+// ComputePipeline (layout: N buffers in set 0 + push constants; specialization constants) and
+// dispatchAndWait.
 #include "gpu/compute.h"
 
+#include <algorithm>
 #include <set>
 #include <string>
 
@@ -20,16 +21,31 @@ constexpr uint32_t kSpirvMagic = 0x07230203;
 
 }  // namespace
 
+VkDescriptorType descriptorType(BindingKind kind) {
+  switch (kind) {
+    case BindingKind::Storage: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case BindingKind::Uniform: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case BindingKind::UniformTexel: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+  }
+  throw Error("descriptorType: unknown binding kind");
+}
+
 struct ComputePipeline::Impl {
   UniqueDescriptorSetLayout setLayout;
   UniquePipelineLayout layout;
   UniquePipeline pipeline;
-  uint32_t storageBufferCount = 0;
+  std::vector<BindingKind> bindings;
   uint32_t pushConstantBytes = 0;
 };
 
 ComputePipeline::ComputePipeline(Context& context, std::span<const uint32_t> spirv,
                                  uint32_t storageBufferCount, uint32_t pushConstantBytes,
+                                 const std::vector<SpecConstant>& specialization)
+    : ComputePipeline(context, spirv, std::vector<BindingKind>(storageBufferCount, BindingKind::Storage),
+                      pushConstantBytes, specialization) {}
+
+ComputePipeline::ComputePipeline(Context& context, std::span<const uint32_t> spirv,
+                                 std::vector<BindingKind> bindingKinds, uint32_t pushConstantBytes,
                                  const std::vector<SpecConstant>& specialization)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
@@ -40,24 +56,36 @@ ComputePipeline::ComputePipeline(Context& context, std::span<const uint32_t> spi
     throw Error("ComputePipeline: " + std::to_string(pushConstantBytes) +
                 " bytes of push constants; must be a multiple of 4 and at most " +
                 std::to_string(limits.maxPushConstantsSize) + " on this device");
-  if (storageBufferCount > limits.maxPerStageDescriptorStorageBuffers)
-    throw Error("ComputePipeline: " + std::to_string(storageBufferCount) +
+  const auto count = [&](BindingKind kind) {
+    return uint32_t(std::count(bindingKinds.begin(), bindingKinds.end(), kind));
+  };
+  if (count(BindingKind::Storage) > limits.maxPerStageDescriptorStorageBuffers)
+    throw Error("ComputePipeline: " + std::to_string(count(BindingKind::Storage)) +
                 " storage buffers; this device allows " +
                 std::to_string(limits.maxPerStageDescriptorStorageBuffers) + " per stage");
+  if (count(BindingKind::Uniform) > limits.maxPerStageDescriptorUniformBuffers)
+    throw Error("ComputePipeline: " + std::to_string(count(BindingKind::Uniform)) +
+                " uniform buffers; this device allows " +
+                std::to_string(limits.maxPerStageDescriptorUniformBuffers) + " per stage");
+  if (count(BindingKind::UniformTexel) > limits.maxPerStageDescriptorSampledImages)
+    throw Error("ComputePipeline: " + std::to_string(count(BindingKind::UniformTexel)) +
+                " uniform texel buffers; this device allows " +
+                std::to_string(limits.maxPerStageDescriptorSampledImages) + " per stage");
   std::set<uint32_t> ids;
   for (const SpecConstant& c : specialization)
     if (!ids.insert(c.id).second)
       throw Error("ComputePipeline: specialization constant " + std::to_string(c.id) + " given twice");
-  m.storageBufferCount = storageBufferCount;
+  const auto bindingCount = uint32_t(bindingKinds.size());
+  m.bindings = std::move(bindingKinds);
   m.pushConstantBytes = pushConstantBytes;
   VkDevice device = context.device();
 
-  // Set 0: bindings 0..N-1, one storage buffer each.
-  std::vector<VkDescriptorSetLayoutBinding> bindings(storageBufferCount);
-  for (uint32_t i = 0; i < storageBufferCount; ++i)
-    bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  // Set 0: bindings 0..N-1, one buffer each.
+  std::vector<VkDescriptorSetLayoutBinding> bindings(bindingCount);
+  for (uint32_t i = 0; i < bindingCount; ++i)
+    bindings[i] = {i, descriptorType(m.bindings[i]), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  setInfo.bindingCount = storageBufferCount;
+  setInfo.bindingCount = bindingCount;
   setInfo.pBindings = bindings.data();
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   DS_VK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout));
@@ -110,19 +138,33 @@ ComputePipeline::~ComputePipeline() = default;
 VkPipeline ComputePipeline::handle() const { return impl_->pipeline.get(); }
 VkPipelineLayout ComputePipeline::layout() const { return impl_->layout.get(); }
 VkDescriptorSetLayout ComputePipeline::setLayout() const { return impl_->setLayout.get(); }
-uint32_t ComputePipeline::storageBufferCount() const { return impl_->storageBufferCount; }
+uint32_t ComputePipeline::bindingCount() const { return uint32_t(impl_->bindings.size()); }
+const std::vector<BindingKind>& ComputePipeline::bindings() const { return impl_->bindings; }
 uint32_t ComputePipeline::pushConstantBytes() const { return impl_->pushConstantBytes; }
 
 void dispatchAndWait(Context& context, const ComputePipeline& pipeline,
                      std::span<Buffer* const> buffers, const void* pushConstants,
                      uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
-  const uint32_t n = pipeline.storageBufferCount();
+  std::vector<BoundBuffer> bound(buffers.size());
+  for (size_t i = 0; i < buffers.size(); ++i) bound[i].buffer = buffers[i];
+  dispatchAndWait(context, pipeline, bound, pushConstants, groupsX, groupsY, groupsZ);
+}
+
+void dispatchAndWait(Context& context, const ComputePipeline& pipeline,
+                     std::span<const BoundBuffer> buffers, const void* pushConstants,
+                     uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
+  const std::vector<BindingKind>& kinds = pipeline.bindings();
+  const auto n = uint32_t(kinds.size());
   if (buffers.size() != n)
     throw Error("dispatchAndWait: " + std::to_string(buffers.size()) + " buffers for a pipeline with " +
-                std::to_string(n) + " storage-buffer bindings");
-  for (size_t i = 0; i < buffers.size(); ++i)
-    if (!buffers[i] || buffers[i]->handle() == VK_NULL_HANDLE)
+                std::to_string(n) + " bindings");
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    if (!buffers[i].buffer || buffers[i].buffer->handle() == VK_NULL_HANDLE)
       throw Error("dispatchAndWait: buffer " + std::to_string(i) + " is null or moved from");
+    if ((kinds[i] == BindingKind::UniformTexel) != (buffers[i].view != VK_NULL_HANDLE))
+      throw Error("dispatchAndWait: binding " + std::to_string(i) +
+                  (kinds[i] == BindingKind::UniformTexel ? " needs a buffer view" : " takes no buffer view"));
+  }
   if (pipeline.pushConstantBytes() > 0 && !pushConstants)
     throw Error("dispatchAndWait: the pipeline takes " + std::to_string(pipeline.pushConstantBytes()) +
                 " bytes of push constants but none were given");
@@ -136,17 +178,20 @@ void dispatchAndWait(Context& context, const ComputePipeline& pipeline,
   context.submitter().run("compute dispatch", [&](Submitter::Recording& r) {
     VkCommandBuffer commands = r.commands();
     if (n > 0) {
-      VkDescriptorSet set = r.storageBufferSet(pipeline.setLayout(), n);
+      VkDescriptorSet set = r.descriptorSet(pipeline.setLayout(), n);
       std::vector<VkDescriptorBufferInfo> infos(n);
       std::vector<VkWriteDescriptorSet> writes(n);
       for (uint32_t i = 0; i < n; ++i) {
-        infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+        infos[i] = {buffers[i].buffer->handle(), 0, buffers[i].range};
         writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         writes[i].dstSet = set;
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
-        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[i].pBufferInfo = &infos[i];
+        writes[i].descriptorType = descriptorType(kinds[i]);
+        if (kinds[i] == BindingKind::UniformTexel)
+          writes[i].pTexelBufferView = &buffers[i].view;
+        else
+          writes[i].pBufferInfo = &infos[i];
       }
       vkUpdateDescriptorSets(context.device(), n, writes.data(), 0, nullptr);
       vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set,

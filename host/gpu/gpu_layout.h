@@ -60,7 +60,10 @@ using hreal4 = df64x4;
   static_assert(offsetof(ns::GpuPixel, normal) == 2 * H4);                                 \
   static_assert(sizeof(ns::GpuTileParams) == 48);                                          \
   static_assert(sizeof(ns::GpuNurbsNode) == 48 && sizeof(ns::GpuNurbsSubPatch) == 32);     \
-  static_assert(sizeof(ns::GpuNurbsPatch) == H4 + 32);
+  static_assert(sizeof(ns::GpuNurbsPatch) == H4 + 32);                                      \
+  static_assert(sizeof(ns::GpuCamera) == DS_GPU_CAMERA_BYTES(H4, R4));                     \
+  static_assert(sizeof(ns::GpuObject) == DS_GPU_OBJECT_BYTES(H4, R4));                     \
+  static_assert(sizeof(ns::GpuLight) == DS_GPU_LIGHT_BYTES(H4, R4));
 // Sizes: std430 rounds a struct up to its alignment (32 with a dvec4 member, else 16).
 DS_CHECK_LAYOUT(fp32, 16, 16, 9 * 16 + 32, 12 * 16 + 2 * 16 + 128, 3 * 16)
 DS_CHECK_LAYOUT(fp64, 32, 32, 9 * 32 + 32, 12 * 32 + 2 * 32 + 128, 3 * 32)

@@ -36,9 +36,45 @@ Buffer& cachedInput(Context& context, Renderer::InputCache& cache, int binding, 
   return *slot.buffer;
 }
 
+// How many records of T a uniform block holds (shaders/shared/bindings.h).
+template <class T>
+constexpr std::size_t uniformCapacity() { return DS_UNIFORM_BLOCK_BYTES / sizeof(T); }
+
+// `values` padded with zeroed records to the uniform block's capacity: the bound range then equals
+// the block the shader declares.
+template <class T>
+std::vector<T> paddedToBlock(std::vector<T> values) {
+  values.resize(std::max(values.size(), uniformCapacity<T>()));
+  return values;
+}
+
+// Binding i of render.comp: the buffer, with its uniform range or texel view.
+BoundBuffer storage(Buffer& buffer) { return {&buffer}; }
+BoundBuffer uniform(Buffer& buffer) {
+  return {&buffer, std::min<VkDeviceSize>(buffer.size() ? buffer.size() : 16, DS_UNIFORM_BLOCK_BYTES)};
+}
+
+template <class Layout>
+SceneResidency residencyOf(const PreparedScene& scene, std::uint32_t maxTexelBufferElements, bool texelViewPossible,
+                           const RendererOptions& rendererOptions) {
+  SceneResidency r;
+  if (!rendererOptions.uniformScene) return r;
+  r.uniformScene = scene.cameras.size() <= uniformCapacity<typename Layout::GpuCamera>() &&
+                   scene.objects.size() <= uniformCapacity<typename Layout::GpuObject>() &&
+                   scene.lights.size() <= uniformCapacity<typename Layout::GpuLight>();
+  std::size_t texels = 0;
+  for (const PreparedTexture& t : scene.textures) texels += t.coefficients.size();
+  r.texelView = texelViewPossible && texels <= maxTexelBufferElements;
+  if (r.uniformScene && scene.objects.size() >= 1 && scene.objects.size() <= DS_MAX_UNROLLED_OBJECTS)
+    r.objectCount = int(scene.objects.size());
+  if (r.uniformScene && scene.lights.size() <= DS_MAX_UNROLLED_LIGHTS) r.lightCount = int(scene.lights.size());
+  return r;
+}
+
 template <class Layout>
 void renderAll(Context& context, const ComputePipeline& pipeline, const PreparedScene& scene,
-               const RenderOptions& options, int tileSize, Renderer::InputCache& cache, RenderResult& result) {
+               const RenderOptions& options, int tileSize, const SceneResidency& residency,
+               Renderer::InputCache& cache, RenderResult& result) {
   const PackedScene<Layout> packed = packScene<Layout>(scene);
   Buffer& textures = cachedInput(context, cache, DS_BINDING_TEXTURES, packed.textures);
   Buffer& texels = cachedInput(context, cache, DS_BINDING_TEXELS, packed.texels);
@@ -48,14 +84,16 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   Buffer& nurbsPoints = cachedInput(context, cache, DS_BINDING_NURBS_POINTS, packed.nurbsPoints);
   const std::size_t tilePixels = std::size_t(tileSize) * std::size_t(tileSize);
   Buffer pixels(context, tilePixels * sizeof(typename Layout::GpuPixel), BufferUse::Readback);
-  Buffer* bindings[DS_BINDING_COUNT];
-  bindings[DS_BINDING_TEXTURES] = &textures;
-  bindings[DS_BINDING_TEXELS] = &texels;
-  bindings[DS_BINDING_PIXELS] = &pixels;
-  bindings[DS_BINDING_NURBS_NODES] = &nurbsNodes;
-  bindings[DS_BINDING_NURBS_SUBPATCHES] = &nurbsSubPatches;
-  bindings[DS_BINDING_NURBS_PATCHES] = &nurbsPatches;
-  bindings[DS_BINDING_NURBS_POINTS] = &nurbsPoints;
+  BoundBuffer bindings[DS_BINDING_COUNT];
+  bindings[DS_BINDING_TEXTURES] = storage(textures);
+  bindings[DS_BINDING_TEXELS] = storage(texels);
+  // The view is bound in every variant (the layout has the binding); fp64 never reads it.
+  bindings[DS_BINDING_TEXEL_VIEW] = {&texels, VK_WHOLE_SIZE, texels.texelView(VK_FORMAT_R32_SFLOAT, 4)};
+  bindings[DS_BINDING_PIXELS] = storage(pixels);
+  bindings[DS_BINDING_NURBS_NODES] = storage(nurbsNodes);
+  bindings[DS_BINDING_NURBS_SUBPATCHES] = storage(nurbsSubPatches);
+  bindings[DS_BINDING_NURBS_PATCHES] = storage(nurbsPatches);
+  bindings[DS_BINDING_NURBS_POINTS] = storage(nurbsPoints);
   std::vector<typename Layout::GpuPixel> tile(tilePixels);
 
   double totalPixels = 0, donePixels = 0;
@@ -63,12 +101,16 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   result.cameras.resize(scene.cameras.size());
   for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
     const PackedFrame<Layout> frame = packFrame<Layout>(scene, packed, options.samplesPerPixel, ci);
-    Buffer cameras = inputBuffer(context, frame.cameras);
-    Buffer objects = inputBuffer(context, frame.objects);
-    Buffer lights = inputBuffer(context, frame.lights);
-    bindings[DS_BINDING_CAMERAS] = &cameras;
-    bindings[DS_BINDING_OBJECTS] = &objects;
-    bindings[DS_BINDING_LIGHTS] = &lights;
+    Buffer cameras = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.cameras) : frame.cameras);
+    Buffer objects = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.objects) : frame.objects);
+    Buffer lights = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.lights) : frame.lights);
+    // Each bound twice: the shader reads the uniform blocks when residency.uniformScene says so.
+    bindings[DS_BINDING_CAMERAS] = storage(cameras);
+    bindings[DS_BINDING_OBJECTS] = storage(objects);
+    bindings[DS_BINDING_LIGHTS] = storage(lights);
+    bindings[DS_BINDING_CAMERAS_UNIFORM] = uniform(cameras);
+    bindings[DS_BINDING_OBJECTS_UNIFORM] = uniform(objects);
+    bindings[DS_BINDING_LIGHTS_UNIFORM] = uniform(lights);
     const Camera& cam = scene.cameras[ci].camera;
     CameraImage& image = result.cameras[ci];
     image.cameraName = cam.name;
@@ -111,11 +153,34 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
 Renderer::Renderer(Context& context) : context_(context) {}
 Renderer::~Renderer() = default;
 
+SceneResidency Renderer::residency(Precision precision, const PreparedScene& scene,
+                                   const RendererOptions& rendererOptions) const {
+  const std::uint32_t maxTexels = context_.properties().limits.maxTexelBufferElements;
+  switch (precision) {
+    case Precision::Fp32: return residencyOf<Fp32Layout>(scene, maxTexels, true, rendererOptions);
+    case Precision::Df64: return residencyOf<Df64Layout>(scene, maxTexels, true, rendererOptions);
+    case Precision::Fp64: return residencyOf<Fp64Layout>(scene, maxTexels, false, rendererOptions);
+  }
+  throw Error("Renderer::residency: unknown precision");
+}
+
+const ComputePipeline& Renderer::pipeline(Precision precision, const PreparedScene& scene, bool specialize,
+                                          bool df64Fma, const RendererOptions& rendererOptions) {
+  return pipeline(precision, scene.features, specialize, df64Fma, residency(precision, scene, rendererOptions));
+}
+
 const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatures& f, bool specialize,
-                                          bool df64Fma) {
+                                          bool df64Fma, const SceneResidency& residency) {
   // The NURBS degree is not a feature to switch on: the data is packed for exactly that degree.
   const SceneFeatures used = specialize ? f : SceneFeatures::all(f.nurbsDegree);
-  auto& slot = pipelines_[{precision, used, df64Fma}];
+  // Unspecialized ("every feature compiled in"): the loops over objects and lights keep their
+  // dynamic counts too; where the data is read from stays the scene's.
+  SceneResidency r = residency;
+  if (!specialize) {
+    r.objectCount = 0;
+    r.lightCount = -1;
+  }
+  auto& slot = pipelines_[{precision, used, df64Fma, r}];
   if (!slot) {
     const std::vector<SpecConstant> spec = {{DS_SPEC_HAS_LIGHTS, used.lights ? 1u : 0u},
                                             {DS_SPEC_HAS_DISTORTION, used.distortion ? 1u : 0u},
@@ -128,12 +193,21 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
                                             {DS_SPEC_HAS_RATIONAL_DISTORTION, used.rationalDistortion ? 1u : 0u},
                                             {DS_SPEC_SHADER_KINDS, used.shaderKinds},
                                             {DS_SPEC_LIGHT_KINDS, used.lightKinds},
-                                            {DS_SPEC_DF64_FMA, df64Fma ? 1u : 0u}};
+                                            {DS_SPEC_DF64_FMA, df64Fma ? 1u : 0u},
+                                            {DS_SPEC_UNIFORM_SCENE, r.uniformScene ? 1u : 0u},
+                                            {DS_SPEC_TEXEL_VIEW, r.texelView ? 1u : 0u},
+                                            {DS_SPEC_OBJECT_COUNT, std::uint32_t(r.objectCount)},
+                                            {DS_SPEC_LIGHT_COUNT, std::uint32_t(r.lightCount)}};
     std::span<const std::uint32_t> spirv = spirv::render_fp32;
     if (precision == Precision::Fp64) spirv = spirv::render_fp64;
     if (precision == Precision::Df64) spirv = spirv::render_df64;
     const std::uint32_t pushBytes = sizeof(fp32::GpuTileParams);  // the same in every variant
-    slot = std::make_unique<ComputePipeline>(context_, spirv, DS_BINDING_COUNT, pushBytes, spec);
+    std::vector<BindingKind> bindings(DS_BINDING_COUNT, BindingKind::Storage);
+    bindings[DS_BINDING_CAMERAS_UNIFORM] = BindingKind::Uniform;
+    bindings[DS_BINDING_OBJECTS_UNIFORM] = BindingKind::Uniform;
+    bindings[DS_BINDING_LIGHTS_UNIFORM] = BindingKind::Uniform;
+    bindings[DS_BINDING_TEXEL_VIEW] = BindingKind::UniformTexel;
+    slot = std::make_unique<ComputePipeline>(context_, spirv, std::move(bindings), pushBytes, spec);
   }
   return *slot;
 }
@@ -148,16 +222,17 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   if (options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
   if (rendererOptions.tileSize < 8 || rendererOptions.tileSize % 8 != 0)
     throw InputError("tile size must be a positive multiple of 8");
-  const ComputePipeline& pipe = pipeline(options.precision, scene.features, rendererOptions.specialize, df64Fma);
+  const SceneResidency where = residency(options.precision, scene, rendererOptions);
+  const ComputePipeline& pipe = pipeline(options.precision, scene.features, rendererOptions.specialize, df64Fma, where);
   RenderResult result;
   result.backend = "gpu";
   result.precision = toString(options.precision);
   result.device = context_.info().name;
   const auto start = std::chrono::steady_clock::now();
   switch (options.precision) {
-    case Precision::Fp32: renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, inputs_, result); break;
-    case Precision::Df64: renderAll<Df64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, inputs_, result); break;
-    case Precision::Fp64: renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, inputs_, result); break;
+    case Precision::Fp32: renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, inputs_, result); break;
+    case Precision::Df64: renderAll<Df64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, inputs_, result); break;
+    case Precision::Fp64: renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, inputs_, result); break;
   }
   result.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

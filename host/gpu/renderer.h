@@ -21,6 +21,21 @@ struct RendererOptions {
   bool specialize = true;
   // Tile edge (px): bounds the time of one submission (GPU watchdogs) and the readback buffer.
   int tileSize = 256;
+  // false: read cameras, objects, lights and texels from storage buffers, with loops over counts
+  // from the push constants — the layout a scene too large for the uniform blocks gets (render.comp).
+  // The images are identical; tests compare the two layouts.
+  bool uniformScene = true;
+};
+
+// Where render.comp reads the scene from, and the exact object and light counts it is specialized
+// to (shaders/shared/bindings.h: DS_SPEC_UNIFORM_SCENE, DS_SPEC_TEXEL_VIEW, DS_SPEC_OBJECT_COUNT,
+// DS_SPEC_LIGHT_COUNT). Part of the pipeline's key.
+struct SceneResidency {
+  bool uniformScene = false;  // cameras, objects, lights fit the uniform blocks and are read there
+  bool texelView = false;     // texels read through the uniform texel buffer (fp32, df64)
+  int objectCount = 0;        // 1..DS_MAX_UNROLLED_OBJECTS: exact; 0: any
+  int lightCount = -1;        // 0..DS_MAX_UNROLLED_LIGHTS: exact; -1: any
+  auto operator<=>(const SceneResidency&) const = default;
 };
 
 class Renderer {
@@ -32,15 +47,21 @@ class Renderer {
   RenderResult render(const PreparedScene& scene, const RenderOptions& options,
                       const RendererOptions& rendererOptions = {});
 
-  // Creates (or finds) the pipeline for a precision and feature set; render() calls it, start-up
-  // benchmarks call it alone.
+  // Creates (or finds) the pipeline render() uses for this scene; benchmarks call it before timing
+  // a render so that the pipeline's creation is not counted.
   // df64Fma: TwoProd by fma in df64 (only where the self-test proved fma exact).
+  const ComputePipeline& pipeline(Precision precision, const PreparedScene& scene, bool specialize,
+                                  bool df64Fma = false, const RendererOptions& rendererOptions = {});
+  // The pipeline for a precision, feature set and residency.
   const ComputePipeline& pipeline(Precision precision, const SceneFeatures& features, bool specialize,
-                                  bool df64Fma = false);
+                                  bool df64Fma, const SceneResidency& residency);
+  // Where this device's render of `scene` reads its data from (see SceneResidency).
+  SceneResidency residency(Precision precision, const PreparedScene& scene,
+                           const RendererOptions& rendererOptions) const;
 
  private:
   Context& context_;
-  std::map<std::tuple<Precision, SceneFeatures, bool>, std::unique_ptr<ComputePipeline>> pipelines_;
+  std::map<std::tuple<Precision, SceneFeatures, bool, SceneResidency>, std::unique_ptr<ComputePipeline>> pipelines_;
 
  public:
   // The scene-wide input buffers (textures, texels, NURBS) of the last render, with the bytes they

@@ -49,19 +49,21 @@ Submitter::Submitter(VkDevice device, VkQueue queue, uint32_t queueFamily, doubl
   fence_ = UniqueFence(device, fence);
 }
 
-VkDescriptorSet Submitter::Recording::storageBufferSet(VkDescriptorSetLayout layout,
-                                                       uint32_t storageBuffers) {
+VkDescriptorSet Submitter::Recording::descriptorSet(VkDescriptorSetLayout layout, uint32_t bindings) {
   DS_CHECK(!setTaken_, "one descriptor set per submission");
   setTaken_ = true;
   Submitter& s = owner_;
   // The pool is idle here (the previous submission was waited for), so it may be replaced.
-  if (!s.descriptors_ || storageBuffers > s.descriptorCapacity_) {
-    uint32_t capacity = std::max({kInitialDescriptorCapacity, storageBuffers, 2 * s.descriptorCapacity_});
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, capacity};
+  if (!s.descriptors_ || bindings > s.descriptorCapacity_) {
+    uint32_t capacity = std::max({kInitialDescriptorCapacity, bindings, 2 * s.descriptorCapacity_});
+    // Room for every binding being of any one of the three buffer types.
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, capacity},
+                                          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, capacity},
+                                          {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, capacity}};
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     info.maxSets = 1;
-    info.poolSizeCount = 1;
-    info.pPoolSizes = &size;
+    info.poolSizeCount = 3;
+    info.pPoolSizes = sizes;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     s.descriptors_.reset();
     DS_VK(vkCreateDescriptorPool(s.device_, &info, nullptr, &pool));
@@ -106,7 +108,7 @@ void Submitter::run(const char* what, const std::function<void(Recording&)>& rec
   // Earlier submissions' writes → this one's reads and writes (host writes are made visible by
   // vkQueueSubmit itself).
   globalBarrier(commands_, kWorkStages, kWrites, kWorkStages,
-                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                     VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
   try {
     Recording recording(*this, commands_);

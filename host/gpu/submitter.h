@@ -22,9 +22,10 @@ class Submitter {
   class Recording {
    public:
     VkCommandBuffer commands() const { return commands_; }
-    // A descriptor set of `layout` (whose bindings are `storageBuffers` storage buffers), valid until
-    // the submission has finished. At most one per recording.
-    VkDescriptorSet storageBufferSet(VkDescriptorSetLayout layout, uint32_t storageBuffers);
+    // A descriptor set of `layout` (whose `bindings` bindings are each one storage buffer, uniform
+    // buffer or uniform texel buffer), valid until the submission has finished. At most one per
+    // recording.
+    VkDescriptorSet descriptorSet(VkDescriptorSetLayout layout, uint32_t bindings);
 
    private:
     friend class Submitter;
@@ -52,7 +53,7 @@ class Submitter {
   VkCommandBuffer commands_ = VK_NULL_HANDLE;  // freed with pool_
   UniqueFence fence_;
   UniqueDescriptorPool descriptors_;
-  uint32_t descriptorCapacity_ = 0;  // storage-buffer descriptors descriptors_ can hold
+  uint32_t descriptorCapacity_ = 0;  // descriptors of each buffer type descriptors_ can hold
   bool pending_ = false;             // a submission whose fence has not been seen signalled
 };
 

@@ -43,6 +43,7 @@ class DeviceObject {
 
 using UniqueBuffer = DeviceObject<VkBuffer, &vkDestroyBuffer>;
 using UniqueMemory = DeviceObject<VkDeviceMemory, &vkFreeMemory>;
+using UniqueBufferView = DeviceObject<VkBufferView, &vkDestroyBufferView>;
 using UniqueShaderModule = DeviceObject<VkShaderModule, &vkDestroyShaderModule>;
 using UniqueDescriptorSetLayout = DeviceObject<VkDescriptorSetLayout, &vkDestroyDescriptorSetLayout>;
 using UniqueDescriptorPool = DeviceObject<VkDescriptorPool, &vkDestroyDescriptorPool>;

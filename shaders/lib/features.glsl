@@ -25,6 +25,12 @@ layout(constant_id = DS_SPEC_SHADER_KINDS) const uint SHADER_KINDS = 0xffffffffu
 layout(constant_id = DS_SPEC_LIGHT_KINDS) const uint LIGHT_KINDS = 0xffffffffu;
 #define DS_HAS_SHADER(kind) ((SHADER_KINDS & (1u << (kind))) != 0u)
 #define DS_HAS_LIGHT(kind) ((LIGHT_KINDS & (1u << (kind))) != 0u)
+// Where the scene's data is read from (shared/bindings.h, render.comp) and how many objects and
+// lights the loops run over: a count > 0 (objects) or >= 0 (lights) is exact and unrolls the loops.
+layout(constant_id = DS_SPEC_UNIFORM_SCENE) const bool UNIFORM_SCENE = false;
+layout(constant_id = DS_SPEC_TEXEL_VIEW) const bool TEXEL_VIEW = false;
+layout(constant_id = DS_SPEC_OBJECT_COUNT) const int OBJECT_COUNT = 0;
+layout(constant_id = DS_SPEC_LIGHT_COUNT) const int LIGHT_COUNT = -1;
 // One bit test (an || of specialization-constant expressions trips glslc's optimizer, shaderc 2023).
 #define HAS_SPECULAR ((SHADER_KINDS & ((1u << DS_SHADER_PHONG) | (1u << DS_SHADER_BLINN_PHONG) | (1u << DS_SHADER_GGX))) != 0u)
 #endif

@@ -10,7 +10,7 @@
 //    the point, s and (u, v) in hreal.
 // The CPU reference (host/cpu/nurbs_intersect.cpp) finds every root by subdivision instead; the
 // stress suite (tests/test_nurbs_stress.cpp) compares the two.
-// Expects nurbsNodes[], nurbsSubPatches[], nurbsPatches[], nurbsPoints[] and objects[].
+// Expects nurbsNodes[], nurbsSubPatches[], nurbsPatches[], nurbsPoints[] and DS_OBJECT(i, member).
 #ifndef DS_NURBS_GLSL
 #define DS_NURBS_GLSL
 #include "lib/features.glsl"
@@ -206,7 +206,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
                             abs(d.z) > 1e-30 ? d.z : 1e-30);
   const real3 invD = 1.0 / safeD;
   const real dd = dot(d, d);
-  const real scale = h_real(h_x(objects[object].shape0));  // surface size (m)
+  const real scale = h_real(h_x(DS_OBJECT_H(object, shape0)));  // surface size (m)
 #if defined(DS_FP64)
   const real sameRoot = 1e-10LF;
 #else
@@ -215,7 +215,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   bool found = false;
   int stack[DS_NURBS_STACK_SIZE];
   int top = 0;
-  stack[top++] = objects[object].extra.x;
+  stack[top++] = DS_OBJECT(object, extra).x;
   while (top > 0) {
     const int node = stack[--top];
     const ivec4 links = nurbsNodes[node].links;

@@ -1,6 +1,6 @@
 // Reflectance models and light kinds: the GPU twin of host/cpu/shading.{h,cpp} (formulas and their
 // derivations there), step by step in `real`. Included by lib/trace.glsl after ds_occluded; expects
-// objects[], lights[], `params` and lib/features.glsl.
+// DS_OBJECT(i, member), DS_LIGHT(i, member), `params` and lib/features.glsl.
 #ifndef DS_SHADING_GLSL
 #define DS_SHADING_GLSL
 
@@ -19,9 +19,9 @@ real ds_pow_int(real x, int n) {
 // Smoothstep of cos φ between cos(outer) (0) and cos(inner) (1); φ: angle between the spot's axis
 // and the direction from the light to p.
 real ds_spot_factor(int l, real3 p) {
-  const real3 fromLight = p - lights[l].positionIntensity.xyz;
-  const real cosPhi = dot(lights[l].direction.xyz, fromLight) / sqrt(dot(fromLight, fromLight));
-  const real4 cone = lights[l].cone;
+  const real3 fromLight = p - DS_LIGHT(l, positionIntensity).xyz;
+  const real cosPhi = dot(DS_LIGHT(l, direction).xyz, fromLight) / sqrt(dot(fromLight, fromLight));
+  const real4 cone = DS_LIGHT(l, cone);
   const real t = clamp((cosPhi - cone.x) / (cone.y - cone.x), real(0.0), real(1.0));
   return t * t * (real(3.0) - real(2.0) * t);
 }
@@ -63,22 +63,22 @@ real ds_specular_brdf(int shader, real4 material, real3 n, real3 wi, real3 wo) {
 
 // L = ρ Σ I s cosθ / (π r²) + Σ f_spec I s cosθ / r² + ρ Σ L_a (host/cpu/shading.h), over
 // point and spot lights on the viewer's side that no object shadows, and ambient lights.
-real ds_shade_surface(SurfaceHit hit, real reflectance) {
-  const int shader = objects[hit.object].kinds.y;
+// shader: the object's DS_SHADER_* kind; material: its GpuObject.material.
+real ds_shade_surface(int shader, real4 material, SurfaceHit hit, real reflectance) {
   if (shader == DS_SHADER_CONSTANT) return reflectance;
   real diffuse = real(0.0), specular = real(0.0), ambient = real(0.0);
   if (HAS_LIGHTS) {
     const real3 p = h_real(hit.position);
     const real3 toViewer = -normalize(hit.rayDirection);
-    const real4 material = objects[hit.object].material;
-    const int lightCount = params.counts.w;
-    for (int l = 0; l < lightCount; ++l) {
-      const int kind = lights[l].info.x;
+    // LIGHT_COUNT >= 0: the exact count, the loop unrolls to constant light indices (render.comp).
+    const int lightCount = LIGHT_COUNT >= 0 ? LIGHT_COUNT : params.counts.w;
+    [[unroll]] for (int l = 0; l < lightCount; ++l) {
+      const int kind = DS_LIGHT(l, info).x;
       if (DS_HAS_LIGHT(DS_LIGHT_AMBIENT) && kind == DS_LIGHT_AMBIENT) {
-        ambient += lights[l].positionIntensity.w;
+        ambient += DS_LIGHT(l, positionIntensity).w;
         continue;
       }
-      const real4 light = lights[l].positionIntensity;
+      const real4 light = DS_LIGHT(l, positionIntensity);
       const real3 toLight = light.xyz - p;
       const real r2 = dot(toLight, toLight);
       const real r = sqrt(r2);

@@ -4,7 +4,7 @@
 //  - search, in `real`: which root is nearest (s, and what identifies it: box face, barycentrics);
 //  - attributes, in `hreal`, once per camera ray for the winner: s again (refined in df64), the
 //    point and (u, v) in the geometric precision, the normal in `real`.
-// Needs lib/features.glsl (SHAPE_KINDS) and objects[] in the including shader.
+// Needs lib/features.glsl (SHAPE_KINDS) and DS_OBJECT(i, member) in the including shader.
 #ifndef DS_SHAPES_GLSL
 #define DS_SHAPES_GLSL
 #include "lib/math.glsl"
@@ -89,8 +89,8 @@ bool ds_search_xy_plane(real2 extent, real3 o, real3 d, real sMin, real sMax, bo
 bool ds_search_triangle(int index, real3 o, real3 d, real sMin, real sMax, bool originOnSurface,
                         inout ShapeHit hit) {
   if (originOnSurface) return false;
-  const real3 p0 = h_real(h_xyz(objects[index].shape0));
-  const real3 e1 = h_real(h_xyz(objects[index].shape1)) - p0, e2 = h_real(h_xyz(objects[index].shape2)) - p0;
+  const real3 p0 = h_real(h_xyz(DS_OBJECT_H(index, shape0)));
+  const real3 e1 = h_real(h_xyz(DS_OBJECT_H(index, shape1))) - p0, e2 = h_real(h_xyz(DS_OBJECT_H(index, shape2))) - p0;
   const real3 pv = cross(d, e2);
   const real det = dot(e1, pv);
   if (det == 0.0) return false;
@@ -111,8 +111,8 @@ bool ds_search_triangle(int index, real3 o, real3 d, real sMin, real sMax, bool 
 // originOnSurface: the ray leaves this object's surface at `origin` (a shadow ray).
 bool ds_search_shape(int index, real3 o, real3 d, hreal3 oh, hreal3 dh, real sMin, real sMax, bool originOnSurface,
                      ShapeHit origin, inout ShapeHit hit) {
-  const int kind = objects[index].kinds.x;
-  const real4 shape0 = h_real(objects[index].shape0);
+  const int kind = DS_OBJECT(index, kinds).x;
+  const real4 shape0 = h_real(DS_OBJECT_H(index, shape0));
   if (DS_HAS_SHAPE(DS_SHAPE_SPHERE) && kind == DS_SHAPE_SPHERE)
     return ds_search_sphere(shape0.x, o, d, sMin, sMax, originOnSurface, hit);
   if (DS_HAS_SHAPE(DS_SHAPE_BOX) && kind == DS_SHAPE_BOX)
@@ -158,8 +158,8 @@ hreal2 ds_box_uv(int axis, bool positive, hreal3 a) {
 // search's, in df64 the df64-accurate one), its point and (u, v), and its object-frame normal.
 void ds_shape_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hreal s, out hreal3 point,
                          out real3 normal, out hreal2 uv) {
-  const int kind = objects[index].kinds.x;
-  const hreal4 shape0 = objects[index].shape0;
+  const int kind = DS_OBJECT(index, kinds).x;
+  const hreal4 shape0 = DS_OBJECT_H(index, shape0);
   const hreal halfOne = h(real(0.5));
   s = h(found.s);
   if (DS_HAS_SHAPE(DS_SHAPE_SPHERE) && kind == DS_SHAPE_SPHERE) {
@@ -193,7 +193,7 @@ void ds_shape_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hrea
                                       h_div(h_z(point), h_z(hs))));
   } else if (DS_HAS_SHAPE(DS_SHAPE_TRIANGLE) && kind == DS_SHAPE_TRIANGLE) {
     const hreal3 p0 = h_xyz(shape0);
-    const hreal3 e1 = h_sub(h_xyz(objects[index].shape1), p0), e2 = h_sub(h_xyz(objects[index].shape2), p0);
+    const hreal3 e1 = h_sub(h_xyz(DS_OBJECT_H(index, shape1)), p0), e2 = h_sub(h_xyz(DS_OBJECT_H(index, shape2)), p0);
 #if defined(DS_DF64)
     // Möller–Trumbore again in hreal (in fp32/fp64 the search's values are already that).
     const hreal3 pv = h_cross(d, e2);
@@ -206,7 +206,7 @@ void ds_shape_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hrea
 #endif
     point = h_add(p0, h_add(h_mul(e1, b1), h_mul(e2, b2)));
     normal = cross(h_real(e1), h_real(e2));
-    const hreal4 uv01 = objects[index].shape3, uv2 = objects[index].shape4;
+    const hreal4 uv01 = DS_OBJECT_H(index, shape3), uv2 = DS_OBJECT_H(index, shape4);
     const hreal b0 = h_sub(h_sub(h(real(1.0)), b1), b2);
     uv = h2(h_add(h_add(h_mul(b0, h_x(uv01)), h_mul(b1, h_z(uv01))), h_mul(b2, h_x(uv2))),
             h_add(h_add(h_mul(b0, h_y(uv01)), h_mul(b1, h_w(uv01))), h_mul(b2, h_y(uv2))));

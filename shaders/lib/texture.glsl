@@ -3,8 +3,9 @@
 // The texel coordinate x = u W − 1/2 is formed in hreal and split into its integer part and a
 // fraction in [0, 1): the fraction, rounded to `real`, is then exact to ~1e-7 texel in every
 // variant (in df64 the texture position error does not grow with W). Weights and sum in `real`.
-// Expects the including shader to declare `textures[]` (GpuTexture), `texels[]` (real) and, for the
-// analytic textures (calibration targets, Texture.Speckle), `objects[]` (GpuObject), and to include
+// Expects the including shader to declare `textures[]` (GpuTexture), DS_TEXEL(i) (coefficient i, a
+// real) and, for the analytic textures (calibration targets, Texture.Speckle), DS_OBJECT(i, member)
+// (member of GpuObject i), and to include
 // lib/features.glsl. ds_object_texture() at the end is the one entry point the shading calls.
 #ifndef DS_TEXTURE_GLSL
 #define DS_TEXTURE_GLSL
@@ -68,7 +69,7 @@ real ds_texture_lookup(int texture, hreal2 uv) {
     for (int j = 0; j < 6; ++j) {
       const int rowStart = offset + ds_mirror_index(iy + j - 2, height) * width;
       real rowSum = 0.0;
-      for (int i = 0; i < 6; ++i) rowSum += qx[i] * texels[rowStart + qcols[i]];
+      for (int i = 0; i < 6; ++i) rowSum += qx[i] * DS_TEXEL(rowStart + qcols[i]);
       qsum += qy[j] * rowSum;
     }
     return qsum;
@@ -82,7 +83,7 @@ real ds_texture_lookup(int texture, hreal2 uv) {
   for (int j = 0; j < 4; ++j) {
     const int rowStart = offset + ds_mirror_index(iy + j - 1, height) * width;
     real rowSum = 0.0;
-    for (int i = 0; i < 4; ++i) rowSum += wx[i] * texels[rowStart + cols[i]];
+    for (int i = 0; i < 4; ++i) rowSum += wx[i] * DS_TEXEL(rowStart + cols[i]);
     sum += wy[j] * rowSum;
   }
   return sum;
@@ -109,12 +110,12 @@ hreal ds_nearest_dot_distance_squared(hreal cx, hreal cy, int cols, int rows, bo
 }
 
 real ds_target_texture(int object, hreal2 uv) {
-  const hreal4 t0 = objects[object].target0, t1 = objects[object].target1;
-  const ivec4 info = objects[object].targetInfo;
+  const hreal4 t0 = DS_OBJECT_H(object, target0), t1 = DS_OBJECT_H(object, target1);
+  const ivec4 info = DS_OBJECT(object, targetInfo);
   const hreal cx = h_div(h_sub(h_x(uv), h_x(t0)), h_z(t0));
   const hreal cy = h_div(h_sub(h_y(uv), h_y(t0)), h_w(t0));
   const real dark = h_real(h_y(t1)), light = h_real(h_z(t1));
-  if (objects[object].extra.y == DS_TEXTURE_CHECKERBOARD) {
+  if (DS_OBJECT(object, extra).y == DS_TEXTURE_CHECKERBOARD) {
     const hreal zero = h(real(0.0));
     if (!(h_ge(cx, zero) && h_lt(cx, h(real(info.x))) && h_ge(cy, zero) && h_lt(cy, h(real(info.y)))))
       return light;
@@ -171,23 +172,23 @@ bool ds_speckle_covered(hreal2 uv, hreal2 cellsPerUv, uint seed, uvec4 cdf[4]) {
 }
 
 real ds_speckle_texture(int object, hreal2 uv) {
-  const hreal4 s0 = objects[object].speckle0;
-  const uvec4 cdf[4] = uvec4[4](objects[object].speckleCdf[0], objects[object].speckleCdf[1],
-                                objects[object].speckleCdf[2], objects[object].speckleCdf[3]);
-  const bool covered = ds_speckle_covered(uv, h2(h_x(s0), h_y(s0)), uint(objects[object].speckleInfo.x), cdf);
+  const hreal4 s0 = DS_OBJECT_H(object, speckle0);
+  const uvec4 cdf[4] = uvec4[4](DS_OBJECT(object, speckleCdf[0]), DS_OBJECT(object, speckleCdf[1]),
+                                DS_OBJECT(object, speckleCdf[2]), DS_OBJECT(object, speckleCdf[3]));
+  const bool covered = ds_speckle_covered(uv, h2(h_x(s0), h_y(s0)), uint(DS_OBJECT(object, speckleInfo).x), cdf);
   return covered ? h_real(h_z(s0)) : h_real(h_w(s0));
 }
 
 // The texture value (multiplies the shader's colour) of an object at (u, v): the one entry point
 // of the shading (lib/trace.glsl), the twin of textureValue() in host/cpu/trace.cpp.
 real ds_object_texture(int object, hreal2 uv) {
-  const int textureIndex = objects[object].kinds.z;
+  const int textureIndex = DS_OBJECT(object, kinds).z;
   if (HAS_FILE_TEXTURES && textureIndex >= 0) return ds_texture_lookup(textureIndex, uv);
-  const int textureKind = objects[object].extra.y;
+  const int textureKind = DS_OBJECT(object, extra).y;
   if (textureKind == DS_TEXTURE_CHECKERBOARD || textureKind == DS_TEXTURE_CIRCLE_GRID)
     return ds_target_texture(object, uv);
   if (HAS_SPECKLE_TEXTURES && textureKind == DS_TEXTURE_SPECKLE) return ds_speckle_texture(object, uv);
-  return objects[object].shading.y;
+  return DS_OBJECT(object, shading).y;
 }
 
 #endif

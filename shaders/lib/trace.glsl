@@ -3,10 +3,11 @@
 // A camera ray is given in hreal. Per object it is mapped into the object's frame in hreal (so an
 // object far from the origin loses nothing), the nearest hit is searched in `real`, and the
 // winner's parameter, point and (u, v) are recomputed in hreal (lib/shapes.glsl, attributes).
-// Expects the including shader to declare objects[], lights[] (and what texture.glsl needs) and the
+// Expects the including shader to declare DS_OBJECT(i, member), DS_LIGHT(i, member) (and what texture.glsl needs) and the
 // push constants `params`, and to include lib/features.glsl.
 #ifndef DS_TRACE_GLSL
 #define DS_TRACE_GLSL
+#extension GL_EXT_control_flow_attributes : require
 #include "lib/shapes.glsl"
 #include "lib/texture.glsl"
 
@@ -22,8 +23,8 @@ struct SurfaceHit {
 
 // World ray o + t d in the object frame: o' + s d', s = t / (1 + t w). False at infinity.
 bool ds_object_ray(int index, hreal3 o, hreal3 d, out hreal3 oo, out hreal3 od, out hreal w) {
-  const hreal4 r0 = objects[index].objectFromWorld[0], r1 = objects[index].objectFromWorld[1],
-               r2 = objects[index].objectFromWorld[2], r3 = objects[index].objectFromWorld[3];
+  const hreal4 r0 = DS_OBJECT_H(index, objectFromWorld[0]), r1 = DS_OBJECT_H(index, objectFromWorld[1]),
+               r2 = DS_OBJECT_H(index, objectFromWorld[2]), r3 = DS_OBJECT_H(index, objectFromWorld[3]);
   // A = H⁻¹ [o; 1], B = H⁻¹ [d; 0], row by row.
   const hreal aw = h_add(h_dot(h_xyz(r3), o), h_w(r3));
   if (h_real(aw) == real(0.0)) return false;
@@ -46,8 +47,27 @@ real ds_world_param(real s, real w) { return s / (1.0 - s * w); }
 // (H⁻¹)ᵀ [n; −n·x]: rows of H⁻¹ are objectFromWorld[i], so the result is Σ_i π_i row_i.
 real3 ds_world_normal(int index, real3 n, real3 x) {
   const real4 plane = real4(n, -dot(n, x));
-  return (plane.x * h_real(objects[index].objectFromWorld[0]) + plane.y * h_real(objects[index].objectFromWorld[1]) +
-          plane.z * h_real(objects[index].objectFromWorld[2]) + plane.w * h_real(objects[index].objectFromWorld[3])).xyz;
+  return (plane.x * h_real(DS_OBJECT_H(index, objectFromWorld[0])) + plane.y * h_real(DS_OBJECT_H(index, objectFromWorld[1])) +
+          plane.z * h_real(DS_OBJECT_H(index, objectFromWorld[2])) + plane.w * h_real(DS_OBJECT_H(index, objectFromWorld[3]))).xyz;
+}
+
+// The number of objects the loops run over: OBJECT_COUNT when the pipeline is specialized to the
+// exact count (the [[unroll]] loops then unroll and every object index is a constant), else the
+// push constants' count. A constant index matters on SIMD devices that fetch uniform data once per
+// batch only at constant offsets (render.comp).
+int ds_object_count() { return OBJECT_COUNT > 0 ? OBJECT_COUNT : params.counts.z; }
+
+// The winner's attributes in hreal: parameter, position, normal, (u, v).
+void ds_hit_attributes(int object, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hreal w, ShapeHit found,
+                       inout SurfaceHit hit) {
+  hreal s;
+  hreal3 point;
+  real3 normal;
+  ds_shape_attributes(object, oo, od, found, s, point, normal, hit.uv);
+  hit.t = h_div(s, h_sub(h(real(1.0)), h_mul(s, w)));
+  hit.position = h_add(o, h_mul(d, hit.t));
+  hit.normal = normalize(ds_world_normal(object, normal, h_real(point)));
+  if (dot(hit.normal, h_real(d)) > 0.0) hit.normal = -hit.normal;
 }
 
 // Nearest hit along the camera ray o + t d, t > 0, compared by world t.
@@ -57,8 +77,7 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   int bestObject = -1;
   hreal3 bestOo, bestOd;  // the winner's ray in its frame, kept for its attributes
   hreal bestW;
-  const int objectCount = params.counts.z;
-  for (int i = 0; i < objectCount; ++i) {
+  [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
     hreal3 oo, od;
     hreal w;
     if (!ds_object_ray(i, o, d, oo, od, w)) continue;
@@ -80,16 +99,14 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   hit.object = bestObject;
   if (bestObject < 0) return false;
   hit.shape = best;
-  // The winner's attributes in hreal.
-  hreal s;
-  hreal3 point;
-  real3 normal;
-  ds_shape_attributes(bestObject, bestOo, bestOd, best, s, point, normal, hit.uv);
-  hit.t = h_div(s, h_sub(h(real(1.0)), h_mul(s, bestW)));
-  hit.position = h_add(o, h_mul(d, hit.t));
-  hit.normal = normalize(ds_world_normal(bestObject, normal, h_real(point)));
-  if (dot(hit.normal, h_real(d)) > 0.0) hit.normal = -hit.normal;
   hit.rayDirection = h_real(d);
+  // With an exact count, the winner's data is read at a constant index: one guarded copy per object.
+  if (OBJECT_COUNT > 0) {
+    [[unroll]] for (int i = 0; i < OBJECT_COUNT; ++i)
+      if (i == bestObject) ds_hit_attributes(i, o, d, bestOo, bestOd, bestW, best, hit);
+  } else {
+    ds_hit_attributes(bestObject, o, d, bestOo, bestOd, bestW, best, hit);
+  }
   return true;
 }
 
@@ -98,8 +115,7 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
 bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
   const real3 p = h_real(hit.position);
   const hreal3 ph = h(p), dh = h(lightPosition - p);
-  const int objectCount = params.counts.z;
-  for (int i = 0; i < objectCount; ++i) {
+  [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
     hreal3 oo, od;
     hreal w;
     if (!ds_object_ray(i, ph, dh, oo, od, w)) continue;
@@ -114,10 +130,26 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
 
 #include "lib/shading.glsl"
 
+// What the shading needs from the hit's object: shader kind, material and albedo × texture.
+void ds_surface(int object, hreal2 uv, inout int shader, inout real4 material, inout real reflectance) {
+  shader = DS_OBJECT(object, kinds).y;
+  material = DS_OBJECT(object, material);
+  reflectance = DS_OBJECT(object, shading).x * ds_object_texture(object, uv);
+}
+
+// Radiance of the hit. With an exact object count the object's data is read at a constant index
+// (one guarded copy per object); the lights are then summed once.
 real ds_shade(SurfaceHit hit) {
-  const real4 shading = objects[hit.object].shading;
-  const real reflectance = shading.x * ds_object_texture(hit.object, hit.uv);
-  return ds_shade_surface(hit, reflectance);  // lib/shading.glsl
+  int shader = DS_SHADER_CONSTANT;
+  real4 material = real4(0.0);
+  real reflectance = real(0.0);
+  if (OBJECT_COUNT > 0) {
+    [[unroll]] for (int i = 0; i < OBJECT_COUNT; ++i)
+      if (i == hit.object) ds_surface(i, hit.uv, shader, material, reflectance);
+  } else {
+    ds_surface(hit.object, hit.uv, shader, material, reflectance);
+  }
+  return ds_shade_surface(shader, material, hit, reflectance);  // lib/shading.glsl
 }
 
 #endif

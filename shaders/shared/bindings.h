@@ -2,7 +2,10 @@
 #ifndef DS_SHARED_BINDINGS_H
 #define DS_SHARED_BINDINGS_H
 
-// Binding numbers of render.comp's storage buffers (set 0).
+// Binding numbers of render.comp's buffers (set 0). Cameras, objects and lights are bound twice: as
+// storage buffers and as uniform blocks of DS_UNIFORM_BLOCK_BYTES; the shader reads the uniform
+// blocks when the scene fits in them (DS_SPEC_UNIFORM_SCENE), and the texels through a uniform
+// texel buffer when DS_SPEC_TEXEL_VIEW says so. Why: see shaders/render.comp.
 #define DS_BINDING_CAMERAS 0
 #define DS_BINDING_OBJECTS 1
 #define DS_BINDING_LIGHTS 2
@@ -13,7 +16,20 @@
 #define DS_BINDING_NURBS_SUBPATCHES 7
 #define DS_BINDING_NURBS_PATCHES 8
 #define DS_BINDING_NURBS_POINTS 9
-#define DS_BINDING_COUNT 10
+#define DS_BINDING_CAMERAS_UNIFORM 10
+#define DS_BINDING_OBJECTS_UNIFORM 11
+#define DS_BINDING_LIGHTS_UNIFORM 12
+#define DS_BINDING_TEXEL_VIEW 13
+#define DS_BINDING_COUNT 14
+
+// Size of each uniform block: Vulkan's guaranteed minimum of maxUniformBufferRange, so every
+// device takes it. Holds 51 cameras, 28 objects, 128 lights in fp64 and df64 (more in fp32).
+#define DS_UNIFORM_BLOCK_BYTES 16384
+
+// Object and light counts up to which the pipeline is specialized to the exact count (loops over
+// objects and lights unroll to constant indices); above, the count comes from the push constants.
+#define DS_MAX_UNROLLED_OBJECTS 4
+#define DS_MAX_UNROLLED_LIGHTS 4
 
 // Deepest NURBS BVH the traversal stack holds (root = depth 0); the host refuses deeper ones.
 #define DS_NURBS_STACK_SIZE 48
@@ -34,6 +50,11 @@
 #define DS_SPEC_HAS_RATIONAL_DISTORTION 6  // bool: some camera has Distortion.Rational (k4..k6, s1..s4)
 #define DS_SPEC_SHADER_KINDS 11  // bit k set: some object has shader kind k (DS_SHADER_*)
 #define DS_SPEC_LIGHT_KINDS 12   // bit k set: the scene has a light of kind k (DS_LIGHT_*)
+
+#define DS_SPEC_TEXEL_VIEW 7      // bool: texels are read through the uniform texel buffer
+#define DS_SPEC_UNIFORM_SCENE 13  // bool: cameras, objects and lights are read from the uniform blocks
+#define DS_SPEC_OBJECT_COUNT 14   // 1..DS_MAX_UNROLLED_OBJECTS: exactly that many objects; 0: any number
+#define DS_SPEC_LIGHT_COUNT 15    // 0..DS_MAX_UNROLLED_LIGHTS: exactly that many lights; -1: any number
 
 // Arithmetic switches of shaders/lib/df64.glsl (any shader that includes it).
 #define DS_SPEC_DF64_FMA 16  // bool: TwoProd by fma(a, b, -p); only where the self-test proved fma exact

@@ -8,6 +8,13 @@
 //
 // No include guard: C++ includes this file once per precision namespace.
 
+// Bytes of the structs that also live in uniform blocks, given the bytes of hreal4 (H4) and real4
+// (R4). std140 lays them out exactly as std430 does: every member is a 16- or 32-byte vector (or an
+// array of 16-byte vectors), so no std140 rounding applies. gpu_layout.h checks both formulas.
+#define DS_GPU_CAMERA_BYTES(H4, R4) (9 * (H4) + 32)
+#define DS_GPU_OBJECT_BYTES(H4, R4) (12 * (H4) + 2 * (R4) + 128)
+#define DS_GPU_LIGHT_BYTES(H4, R4) (3 * (R4) + 32)
+
 struct GpuCamera {
   hreal4 worldFromCamera[3];  // rows of the 3x3 rotation [R_wc], w = camera centre coordinate (m)
   hreal4 intrinsics;          // fx, fy, cx, cy (px)

@@ -12,6 +12,9 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Objects { GpuObject objects[]; };
 layout(std430, binding = 1) readonly buffer Textures { GpuTexture textures[]; };
 layout(std430, binding = 2) readonly buffer Texels { real texels[]; };
+#define DS_OBJECT(i, member) objects[i].member
+#define DS_OBJECT_H(i, member) objects[i].member
+#define DS_TEXEL(i) texels[i]
 layout(std430, binding = 3) readonly buffer UvIn { real uvIn[]; };        // (u, v) per item
 layout(std430, binding = 4) writeonly buffer ValuesOut { real valuesOut[]; };  // 3 per item
 layout(push_constant) uniform Push { uint count; } push;

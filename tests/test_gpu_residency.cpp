@@ -1,0 +1,128 @@
+// Where render.comp reads the scene from (gpu/renderer.h, SceneResidency): cameras, objects and
+// lights from uniform blocks or storage buffers, texels through a texel buffer or a storage buffer,
+// loops over exact (unrolled) or dynamic object and light counts. Speed only: every layout must give
+// the same image, and a scene beyond the uniform blocks and the unrolled counts must still match the
+// CPU reference.
+#include <doctest/doctest.h>
+
+#include <cstdint>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "cpu/reference_renderer.h"
+#include "gpu/renderer.h"
+#include "gpu_test_context.h"
+#include "render/compare.h"
+#include "shared/bindings.h"
+#include "temp_folder.h"
+
+using namespace dicsynth;
+
+namespace {
+
+// Reduced resolution, as in test_cpu_vs_gpu.cpp.
+constexpr int kDownscale = 4;
+constexpr int kSpp = 4;
+
+gpu::RendererOptions storageOnly() {
+  gpu::RendererOptions o;
+  o.uniformScene = false;
+  return o;
+}
+
+// `spheres` Lambert spheres on a grid in front of a 160 × 120 camera, lit by `lights` point lights,
+// on a textured Lambert floor that receives their shadows.
+std::string gridScene(int spheres, int lights) {
+  std::ostringstream s;
+  s << "camera = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.012; pixelSize = {6e-5, 6e-5};\n"
+       "  bitsPerPixel = 12; distortion = Distortion.Brown { radial = {-0.1, 0.05, 0}; }; };\n"
+       "floor = Object.Simple { shape = Shape.Rectangle { size = {2, 2}; location = {0, 0, 1.2}; };\n"
+       "  shader = Shader.Lambert { color = 0.8; }; texture = Texture.File { fileName = \""
+    << DS_SOURCE_DIR << "/scenes/speckle.tif\"; }; };\n";
+  for (int i = 0; i < spheres; ++i)
+    s << "ball" << i << " = Object.Simple { shape = Shape.Sphere { radius = 0.03; location = {"
+      << -0.35 + 0.1 * (i % 8) << ", " << -0.25 + 0.1 * (i / 8) << ", " << 1.0 + 0.01 * (i % 3)
+      << "}; }; shader = Shader.Lambert { color = 0.6; }; };\n";
+  for (int l = 0; l < lights; ++l)
+    s << "light" << l << " = Light.Point { position = {" << -0.4 + 0.16 * l << ", -0.5, 0.3}; intensity = "
+      << 0.3 / lights << "; };\n";
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("gpu-residency: uniform blocks, texel buffer and exact counts change no pixel") {
+  gpu::Renderer renderer(test::gpuContext());
+  RenderOptions options;
+  options.samplesPerPixel = kSpp;
+  // figure1: one textured object, no light; shadows: two objects, one light, shadow rays.
+  for (const char* name : {"figure1.lua", "shadows.lua"}) {
+    const PreparedScene scene =
+        prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/" + name, {}), {kDownscale});
+    for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
+      INFO(name << " " << std::string(toString(p)));
+      options.precision = p;
+      const gpu::SceneResidency fast = renderer.residency(p, scene, {});
+      CHECK(fast.uniformScene);
+      CHECK(fast.texelView == (p != Precision::Fp64));
+      CHECK(fast.objectCount == int(scene.objects.size()));
+      CHECK(fast.lightCount == int(scene.lights.size()));
+      const gpu::SceneResidency slow = renderer.residency(p, scene, storageOnly());
+      CHECK_FALSE(slow.uniformScene);
+      CHECK_FALSE(slow.texelView);
+      CHECK(slow.objectCount == 0);
+      CHECK(slow.lightCount == -1);
+
+      const RenderResult a = renderer.render(scene, options);
+      const RenderResult b = renderer.render(scene, options, storageOnly());
+      for (const CameraDifference& d : compareResults(scene, a, b, tolerancesFor(Precision::Fp64))) {
+        // The same arithmetic on the same values: only where they are loaded from differs.
+        CHECK(d.maxRadianceDiff == 0.0);
+        CHECK(d.maxPositionDiff_m == 0.0);
+        CHECK(d.maxUvDiff == 0.0);
+        CHECK(d.objectIdMismatches == 0);
+      }
+    }
+  }
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("gpu-residency: more objects and lights than the unrolled counts and the uniform blocks") {
+  test::TempFolder folder;
+  // 41 objects: above DS_MAX_UNROLLED_OBJECTS everywhere, and above the fp64/df64 uniform block
+  // (16384 / 576 = 28 objects) but within fp32's (16384 / 352 = 46); 6 lights > DS_MAX_UNROLLED_LIGHTS.
+  const PreparedScene scene = prepareScene(loadScene(folder.write("grid.lua", gridScene(40, 6)), {}), {1});
+  REQUIRE(scene.objects.size() == 41);
+  REQUIRE(scene.lights.size() == 6);
+  gpu::Renderer renderer(test::gpuContext());
+  RenderOptions options;
+  options.samplesPerPixel = kSpp;
+  options.seed = 5;
+  const RenderResult reference = cpu::render(scene, options);
+  // The comparison means something only if the spheres are in view: each covers pixels.
+  std::set<std::uint32_t> seen(reference.cameras[0].objectId.begin(), reference.cameras[0].objectId.end());
+  seen.erase(0);  // background
+  CHECK(seen.size() == 41);
+  for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
+    INFO(std::string(toString(p)));
+    options.precision = p;
+    const gpu::SceneResidency where = renderer.residency(p, scene, {});
+    CHECK(where.uniformScene == (p == Precision::Fp32));
+    CHECK(where.objectCount == 0);
+    CHECK(where.lightCount == -1);
+    const RenderResult gpu = renderer.render(scene, options);
+    const Tolerances tol = tolerancesFor(p);
+    for (const CameraDifference& d : compareResults(scene, reference, gpu, tol)) {
+      MESSAGE("grid of 40 spheres, 6 lights, " << std::string(toString(p)) << ": max dL " << d.maxRadianceDiff
+              << ", max dP " << d.maxPositionDiff_m << " m, object mismatches " << d.objectIdMismatches);
+      CHECK(withinTolerance(d, tol));
+      if (p == Precision::Fp64) CHECK(d.maxRadianceDiff <= 1e-9);
+    }
+    // And the storage layout gives the same image as the one chosen.
+    const RenderResult storage = renderer.render(scene, options, storageOnly());
+    for (const CameraDifference& d : compareResults(scene, gpu, storage, tolerancesFor(Precision::Fp64)))
+      CHECK(d.maxRadianceDiff == 0.0);
+  }
+  test::expectNoValidationMessages();
+}

@@ -101,7 +101,9 @@ void main() {
   SurfaceHit hit;
   hreal2 uv = h2(h(real(0.0)), h(real(0.0)));
   real objectId = 0.0;
-  if (ds_camera_ray(cam, centre, distorted, real2(0.0), origin, d) && ds_trace_nearest(origin, d, hit)) {
+  UndistortStart start;
+  start.valid = false;
+  if (ds_camera_ray(cam, centre, distorted, real2(0.0), false, start, origin, d) && ds_trace_nearest(origin, d, hit)) {
     outPixel.positionDepth = h4_31(hit.position, hit.t);
     outPixel.normal = real4(hit.normal, 0.0);
     uv = hit.uv;
@@ -121,7 +123,8 @@ void main() {
       const real2 lens = thinLens ? ds_lens_sample(params.random.x, params.random.y, uint(cameraIndex),
                                                    uint(pixel.x), uint(pixel.y), uint(s))
                                   : real2(0.0);
-      if (ds_camera_ray(cam, h_add(centre, offset), distorted, lens, origin, d) && ds_trace_nearest(origin, d, hit))
+      if (ds_camera_ray(cam, h_add(centre, offset), distorted, lens, true, start, origin, d) &&
+          ds_trace_nearest(origin, d, hit))
         sum = h_add(sum, h(ds_shade(hit)));
     }
   }

@@ -67,10 +67,10 @@ bool ds_undistort_step(Brown c, real2 p, real2 f, out real2 step) {
   return det > 0.0;
 }
 
-// Newton's method on distort(p) = target in `real`. False when it does not converge or the Jacobian
-// is not positive (no inverse there).
-bool ds_undistort(Brown c, real2 target, out real2 p) {
-  p = target;
+// Newton's method on distort(p) = target in `real`, from `start`. False when it does not converge or
+// the Jacobian is not positive (no inverse there).
+bool ds_undistort(Brown c, real2 target, real2 start, out real2 p) {
+  p = start;
   for (int i = 0; i < DS_UNDISTORT_MAX_ITERATIONS; ++i) {
     real2 step;
     if (!ds_undistort_step(c, p, ds_distort(c, p) - target, step)) return false;
@@ -106,6 +106,21 @@ hreal2 ds_distort_h(GpuCamera cam, hreal2 p) {
 
 #define DS_HAS_CAMERA(kind) ((CAMERA_KINDS & (1u << (kind))) != 0u)
 
+// Where the inversion of a pixel's samples starts: its centre's solution moved to first order,
+//   p₀ = p_c + J(p_c)⁻¹ (t − t_c),
+// t the sample's distorted (normalized) position, t_c the centre's, p_c the centre's undistorted
+// point, J the distortion's Jacobian there. The error of p₀ is of second order in |t − t_c|
+// (≤ 0.5 px / f ≈ 2e-4 for Figure 1), about 1e-8 · |∂²d|: Newton then stops after one step where a
+// start at t (the CPU's, host/camera/distortion.cpp) takes three to five, and every SIMD lane waits
+// for the slowest. Both stop on the same criterion (step ≤ DS_UNDISTORT_TOLERANCE), so they land
+// on the same root to within that step's rounding.
+struct UndistortStart {
+  bool valid;      // the centre's inversion succeeded
+  real2 target;    // t_c
+  real2 ideal;     // p_c
+  real4 jacobian;  // J(p_c) as ds_distort_jacobian returns it
+};
+
 // The ray of a sample at the distorted image position `pixel` through the unit-disk lens point
 // `lens` (ThinLens only): origin (camera-relative world, m) and direction (world frame, camera-frame
 // z = 1 so that t = depth), as cameraRay() in host/camera/pinhole.h. False when the distortion
@@ -113,21 +128,33 @@ hreal2 ds_distort_h(GpuCamera cam, hreal2 p) {
 // df64: Newton runs in float to convergence, then two steps whose residual is evaluated in df64
 // (iterative refinement: each step multiplies the error by ~ε_float·cond(J) ≈ 1e-6, so two steps
 // take a float-accurate start to the df64 limit).
-bool ds_camera_ray(GpuCamera cam, hreal2 pixel, bool distorted, real2 lens, out hreal3 origin,
-                   out hreal3 direction) {
+// start: with warm = false (the pixel centre's ray) it is filled in; with warm = true (the samples)
+// the inversion starts from it when it is valid.
+bool ds_camera_ray(GpuCamera cam, hreal2 pixel, bool distorted, real2 lens, bool warm, inout UndistortStart start,
+                   out hreal3 origin, out hreal3 direction) {
   const hreal4 k = cam.intrinsics;
   hreal x = h_div(h_sub(h_x(pixel), h_z(k)), h_x(k)), y = h_div(h_sub(h_y(pixel), h_w(k)), h_y(k));
   if (distorted) {
     const real4 c0 = h_real(cam.brown0), c1 = h_real(cam.brown1);
     const real4 q0 = h_real(cam.rational0), q1 = h_real(cam.rational1);
     const Brown c = Brown(c0.x, c0.y, c0.z, c0.w, c1.x, q0.x, q0.y, q0.z, q0.w, q1.x, q1.y, q1.z);
+    const real2 target = real2(h_real(x), h_real(y));
+    // Branch-free choice of the start (a SIMD device would run both sides of a branch).
+    const real4 j = start.jacobian;
+    const real2 dt = target - start.target;
+    const real det = j.x * j.y - j.z * j.w;  // > 0 where the centre's inversion succeeded
+    const real2 guess = warm && start.valid
+                            ? start.ideal + real2(j.y * dt.x - j.z * dt.y, -j.w * dt.x + j.x * dt.y) / det
+                            : target;
     real2 ideal;
-    if (!ds_undistort(c, real2(h_real(x), h_real(y)), ideal)) return false;
+    const bool converged = ds_undistort(c, target, guess, ideal);
+    if (!warm) start = UndistortStart(converged, target, ideal, ds_distort_jacobian(c, ideal));
+    if (!converged) return false;
 #if defined(DS_DF64)
-    const hreal2 target = h2(x, y);
+    const hreal2 targetH = h2(x, y);
     hreal2 p = h(ideal);
     for (int i = 0; i < 2; ++i) {
-      const hreal2 f = h_sub(ds_distort_h(cam, p), target);
+      const hreal2 f = h_sub(ds_distort_h(cam, p), targetH);
       real2 step;
       if (!ds_undistort_step(c, h_real(p), h_real(f), step)) return false;
       p = h_sub(p, h(step));

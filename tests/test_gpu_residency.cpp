@@ -126,3 +126,28 @@ TEST_CASE("gpu-residency: more objects and lights than the unrolled counts and t
   }
   test::expectNoValidationMessages();
 }
+
+TEST_CASE("gpu-residency: the tile size changes no pixel, and the renderer's reused buffers carry nothing over") {
+  const PreparedScene scene =
+      prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua", {}), {kDownscale});
+  gpu::Renderer renderer(test::gpuContext());
+  RenderOptions options;
+  options.samplesPerPixel = kSpp;
+  options.precision = Precision::Fp32;
+  gpu::RendererOptions small;
+  small.tileSize = 64;  // 400 × 300 px: 35 tiles, edge tiles partial
+  const RenderResult automatic = renderer.render(scene, options);  // one tile on lavapipe
+  const RenderResult tiled = renderer.render(scene, options, small);
+  // A second automatic render reuses the readback buffer and host tile the tiled one left behind.
+  const RenderResult again = renderer.render(scene, options);
+  for (const RenderResult* r : {&tiled, &again})
+    for (const CameraDifference& d : compareResults(scene, automatic, *r, tolerancesFor(Precision::Fp64))) {
+      CHECK(d.maxRadianceDiff == 0.0);
+      CHECK(d.maxPositionDiff_m == 0.0);
+      CHECK(d.objectIdMismatches == 0);
+    }
+  gpu::RendererOptions bad;
+  bad.tileSize = 12;
+  CHECK_THROWS_AS(renderer.render(scene, options, bad), InputError);
+  test::expectNoValidationMessages();
+}

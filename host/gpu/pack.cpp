@@ -2,6 +2,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -156,12 +157,18 @@ PackedScene<Layout> packScene(const PreparedScene& scene) {
   PackedScene<Layout> p;
   for (const auto& o : scene.objects)
     p.nurbsRoots.push_back(o.nurbs ? packNurbs<Layout>(*o.nurbs, scene.features.nurbsDegree, p) : -1);
+  std::size_t texelCount = 0;
+  for (const auto& t : scene.textures) texelCount += t.coefficients.size();
+  p.texels.reserve(texelCount);  // one allocation: Figure 1's texture alone is 8.4 M coefficients
   for (const auto& t : scene.textures) {
     // The shader indexes texels with 32-bit ints.
     if (p.texels.size() + t.coefficients.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
       throw InputError(t.path + ": textures too large in total for the GPU backend");
     p.textures.push_back({{t.width, t.height, int(p.texels.size()), int(t.interpolation)}});
-    for (double c : t.coefficients) p.texels.push_back(typename Layout::real(c));
+    const std::size_t first = p.texels.size();
+    p.texels.resize(first + t.coefficients.size());
+    std::transform(t.coefficients.begin(), t.coefficients.end(), p.texels.begin() + std::ptrdiff_t(first),
+                   [](double c) { return typename Layout::real(c); });
   }
   return p;
 }

@@ -1,8 +1,11 @@
 #include "gpu/renderer.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <future>
+#include <type_traits>
 
 #include "gpu/buffer.h"
 #include "gpu/pack.h"
@@ -71,10 +74,58 @@ SceneResidency residencyOf(const PreparedScene& scene, std::uint32_t maxTexelBuf
   return r;
 }
 
+// The tile edge (px) when none is requested. A GPU gets 256 px: one submission stays short, which
+// desktop GPUs need (their display watchdog stops a kernel after ~2 s). A CPU device (lavapipe) has
+// no watchdog and pays about 3 ms per dispatch — Figure 1 at 1600 × 1200, 1 spp, fp32: 0.325 s of
+// dispatches as 35 tiles of 256 px, 0.223 s as 4 of 1024 px (this machine, 2026-11-21) — so it gets
+// 1024 px. Halved until the tile's readback buffer fits maxStorageBufferRange.
+int tileEdge(const Context& context, int requested, std::size_t pixelBytes) {
+  if (requested != 0) return requested;
+  int edge = context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1024 : 256;
+  const VkDeviceSize limit = context.properties().limits.maxStorageBufferRange;
+  while (edge > 8 && VkDeviceSize(edge) * VkDeviceSize(edge) * pixelBytes > limit) edge /= 2;
+  return edge;
+}
+
+// The tile readback buffer of at least `bytes`, kept across renders.
+Buffer& readbackBuffer(Context& context, Renderer::Caches& caches, std::size_t bytes) {
+  if (!caches.readback || caches.readback->size() < bytes) {
+    caches.readback.reset();  // free the old buffer before allocating its successor
+    caches.readback = std::make_unique<Buffer>(context, bytes, BufferUse::Readback);
+  }
+  return *caches.readback;
+}
+
+// The host copy of one tile, at least `count` records, kept across renders. Not zero-filled:
+// every record read is downloaded first.
+template <class Pixel>
+Pixel* hostTile(Renderer::Caches& caches, std::size_t count) {
+  static_assert(std::is_trivially_copyable_v<Pixel> && alignof(Pixel) <= Renderer::Caches::kTileAlignment);
+  const std::size_t bytes = count * sizeof(Pixel);
+  if (caches.tileBytes < bytes) {
+    caches.tile.reset(static_cast<std::byte*>(::operator new[](bytes, std::align_val_t{Renderer::Caches::kTileAlignment})));
+    caches.tileBytes = bytes;
+  }
+  return reinterpret_cast<Pixel*>(caches.tile.get());
+}
+
 template <class Layout>
 void renderAll(Context& context, const ComputePipeline& pipeline, const PreparedScene& scene,
-               const RenderOptions& options, int tileSize, const SceneResidency& residency,
-               Renderer::InputCache& cache, RenderResult& result) {
+               const RenderOptions& options, int requestedTile, const SceneResidency& residency,
+               Renderer::Caches& caches, RenderResult& result) {
+  Renderer::InputCache& cache = caches.inputs;
+  const int tileSize = tileEdge(context, requestedTile, sizeof(typename Layout::GpuPixel));
+  // The result images (~84 bytes per pixel, NaN-filled: 160 MB for 1600 × 1200) are allocated on a
+  // second thread while this one packs and uploads the scene: on a CPU device the render's own
+  // threads are idle until the first dispatch, so the two phases overlap instead of adding up.
+  result.cameras.resize(scene.cameras.size());
+  std::future<void> images = std::async(std::launch::async, [&scene, &result] {
+    for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
+      const Camera& cam = scene.cameras[ci].camera;
+      result.cameras[ci].cameraName = cam.name;
+      result.cameras[ci].resize(cam.width_px, cam.height_px);
+    }
+  });
   const PackedScene<Layout> packed = packScene<Layout>(scene);
   Buffer& textures = cachedInput(context, cache, DS_BINDING_TEXTURES, packed.textures);
   Buffer& texels = cachedInput(context, cache, DS_BINDING_TEXELS, packed.texels);
@@ -83,7 +134,7 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   Buffer& nurbsPatches = cachedInput(context, cache, DS_BINDING_NURBS_PATCHES, packed.nurbsPatches);
   Buffer& nurbsPoints = cachedInput(context, cache, DS_BINDING_NURBS_POINTS, packed.nurbsPoints);
   const std::size_t tilePixels = std::size_t(tileSize) * std::size_t(tileSize);
-  Buffer pixels(context, tilePixels * sizeof(typename Layout::GpuPixel), BufferUse::Readback);
+  Buffer& pixels = readbackBuffer(context, caches, tilePixels * sizeof(typename Layout::GpuPixel));
   BoundBuffer bindings[DS_BINDING_COUNT];
   bindings[DS_BINDING_TEXTURES] = storage(textures);
   bindings[DS_BINDING_TEXELS] = storage(texels);
@@ -94,11 +145,11 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   bindings[DS_BINDING_NURBS_SUBPATCHES] = storage(nurbsSubPatches);
   bindings[DS_BINDING_NURBS_PATCHES] = storage(nurbsPatches);
   bindings[DS_BINDING_NURBS_POINTS] = storage(nurbsPoints);
-  std::vector<typename Layout::GpuPixel> tile(tilePixels);
+  typename Layout::GpuPixel* const tile = hostTile<typename Layout::GpuPixel>(caches, tilePixels);
 
   double totalPixels = 0, donePixels = 0;
   for (const auto& c : scene.cameras) totalPixels += double(c.camera.width_px) * c.camera.height_px;
-  result.cameras.resize(scene.cameras.size());
+  images.get();  // rethrows an allocation failure
   for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
     const PackedFrame<Layout> frame = packFrame<Layout>(scene, packed, options.samplesPerPixel, ci);
     Buffer cameras = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.cameras) : frame.cameras);
@@ -113,8 +164,6 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
     bindings[DS_BINDING_LIGHTS_UNIFORM] = uniform(lights);
     const Camera& cam = scene.cameras[ci].camera;
     CameraImage& image = result.cameras[ci];
-    image.cameraName = cam.name;
-    image.resize(cam.width_px, cam.height_px);
     for (int y0 = 0; y0 < cam.height_px; y0 += tileSize) {
       for (int x0 = 0; x0 < cam.width_px; x0 += tileSize) {
         const int tw = std::min(tileSize, cam.width_px - x0), th = std::min(tileSize, cam.height_px - y0);
@@ -124,7 +173,7 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
         params.random = {options.seed, std::uint32_t(options.frame), 0, 0};
         dispatchAndWait(context, pipeline, bindings, &params, std::uint32_t((tw + DS_LOCAL_SIZE_X - 1) / DS_LOCAL_SIZE_X),
                         std::uint32_t((th + DS_LOCAL_SIZE_Y - 1) / DS_LOCAL_SIZE_Y));
-        pixels.download(tile.data(), std::size_t(tw) * std::size_t(th) * sizeof(tile[0]));
+        pixels.download(tile, std::size_t(tw) * std::size_t(th) * sizeof(tile[0]));
         for (int ty = 0; ty < th; ++ty) {
           for (int tx = 0; tx < tw; ++tx) {
             const auto& p = tile[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)];
@@ -220,8 +269,8 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   // df64: the device's self-test (cached per device) decides, and whether its products use fma.
   const bool df64Fma = options.precision == Precision::Df64 && requireDf64(context_).useFma;
   if (options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
-  if (rendererOptions.tileSize < 8 || rendererOptions.tileSize % 8 != 0)
-    throw InputError("tile size must be a positive multiple of 8");
+  if (rendererOptions.tileSize != 0 && (rendererOptions.tileSize < 8 || rendererOptions.tileSize % 8 != 0))
+    throw InputError("tile size must be 0 (automatic) or a positive multiple of 8");
   const SceneResidency where = residency(options.precision, scene, rendererOptions);
   const ComputePipeline& pipe = pipeline(options.precision, scene.features, rendererOptions.specialize, df64Fma, where);
   RenderResult result;
@@ -230,9 +279,9 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   result.device = context_.info().name;
   const auto start = std::chrono::steady_clock::now();
   switch (options.precision) {
-    case Precision::Fp32: renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, inputs_, result); break;
-    case Precision::Df64: renderAll<Df64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, inputs_, result); break;
-    case Precision::Fp64: renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, inputs_, result); break;
+    case Precision::Fp32: renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, caches_, result); break;
+    case Precision::Df64: renderAll<Df64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, caches_, result); break;
+    case Precision::Fp64: renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, caches_, result); break;
   }
   result.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -1,8 +1,10 @@
 #pragma once
 // The GPU backend: packs a PreparedScene into buffers, specializes render.comp to the scene's
 // features, dispatches it tile by tile and reads the results back into a RenderResult.
+#include <cstddef>
 #include <map>
 #include <memory>
+#include <new>
 #include <tuple>
 #include <vector>
 
@@ -19,8 +21,9 @@ struct RendererOptions {
   // false: run every feature's code whatever the scene uses (the benchmark's baseline for what
   // specialization saves; results are identical).
   bool specialize = true;
-  // Tile edge (px): bounds the time of one submission (GPU watchdogs) and the readback buffer.
-  int tileSize = 256;
+  // Tile edge (px), a multiple of 8: bounds the time of one submission (GPU watchdogs) and the
+  // readback buffer. 0: automatic (renderer.cpp, tileEdge).
+  int tileSize = 0;
   // false: read cameras, objects, lights and texels from storage buffers, with loops over counts
   // from the push constants — the layout a scene too large for the uniform blocks gets (render.comp).
   // The images are identical; tests compare the two layouts.
@@ -73,9 +76,20 @@ class Renderer {
     std::unique_ptr<Buffer> buffer;
   };
   using InputCache = std::map<int, CachedInput>;  // by binding
+  // What renders reuse: the input buffers above, the tile readback buffer and its host copy.
+  struct Caches {
+    InputCache inputs;
+    std::unique_ptr<Buffer> readback;
+    struct AlignedDelete {
+      void operator()(std::byte* p) const { ::operator delete[](p, std::align_val_t{kTileAlignment}); }
+    };
+    static constexpr std::size_t kTileAlignment = 64;  // ≥ alignof of every GpuPixel variant (32)
+    std::unique_ptr<std::byte[], AlignedDelete> tile;
+    std::size_t tileBytes = 0;
+  };
 
  private:
-  InputCache inputs_;
+  Caches caches_;
 };
 
 }  // namespace dicsynth::gpu

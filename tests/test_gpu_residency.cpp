@@ -136,7 +136,7 @@ TEST_CASE("gpu-residency: the tile size changes no pixel, and the renderer's reu
   options.precision = Precision::Fp32;
   gpu::RendererOptions small;
   small.tileSize = 64;  // 400 × 300 px: 35 tiles, edge tiles partial
-  const RenderResult automatic = renderer.render(scene, options);  // one tile on lavapipe
+  const RenderResult automatic = renderer.render(scene, options);  // one tile on lavapipe (400 px edge)
   const RenderResult tiled = renderer.render(scene, options, small);
   // A second automatic render reuses the readback buffer and host tile the tiled one left behind.
   const RenderResult again = renderer.render(scene, options);

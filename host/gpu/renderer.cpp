@@ -76,12 +76,19 @@ SceneResidency residencyOf(const PreparedScene& scene, std::uint32_t maxTexelBuf
 
 // The tile edge (px) when none is requested. A GPU gets 256 px: one submission stays short, which
 // desktop GPUs need (their display watchdog stops a kernel after ~2 s). A CPU device (lavapipe) has
-// no watchdog and pays about 3 ms per dispatch — Figure 1 at 1600 × 1200, 1 spp, fp32: 0.325 s of
-// dispatches as 35 tiles of 256 px, 0.223 s as 4 of 1024 px (this machine, 2026-11-21) — so it gets
-// 1024 px. Halved until the tile's readback buffer fits maxStorageBufferRange.
-int tileEdge(const Context& context, int requested, std::size_t pixelBytes) {
+// no watchdog but pays about 3 ms per dispatch (Figure 1, 1600 × 1200, 1 spp, fp32: 0.325 s of
+// dispatches as 35 tiles of 256 px, 0.223 s as 4 of 1024 px), and it splits each dispatch evenly
+// between its threads, so one huge dispatch waits for the thread that shares its core with a
+// sweep's writer. Measured on this 2-core machine, 2026-11-21 (Figure 1 fp32, 16 spp, 1600 × 1200;
+// bench_sweep.sh, s per point): 256 px 1.23 s, 0.477 s; 512 px 1.12 s, 0.452 s; 1024 px 1.14 s,
+// 0.536 s. So 512 px. Never larger than the largest image (rounded up to 8 px), and halved until
+// the tile's readback buffer fits maxStorageBufferRange.
+int tileEdge(const Context& context, int requested, std::size_t pixelBytes, const PreparedScene& scene) {
   if (requested != 0) return requested;
-  int edge = context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1024 : 256;
+  int edge = context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 512 : 256;
+  int largest = 8;
+  for (const auto& c : scene.cameras) largest = std::max({largest, c.camera.width_px, c.camera.height_px});
+  edge = std::min(edge, (largest + 7) / 8 * 8);
   const VkDeviceSize limit = context.properties().limits.maxStorageBufferRange;
   while (edge > 8 && VkDeviceSize(edge) * VkDeviceSize(edge) * pixelBytes > limit) edge /= 2;
   return edge;
@@ -114,7 +121,7 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
                const RenderOptions& options, int requestedTile, const SceneResidency& residency,
                Renderer::Caches& caches, RenderResult& result) {
   Renderer::InputCache& cache = caches.inputs;
-  const int tileSize = tileEdge(context, requestedTile, sizeof(typename Layout::GpuPixel));
+  const int tileSize = tileEdge(context, requestedTile, sizeof(typename Layout::GpuPixel), scene);
   // The result images (~84 bytes per pixel, NaN-filled: 160 MB for 1600 × 1200) are allocated on a
   // second thread while this one packs and uploads the scene: on a CPU device the render's own
   // threads are idle until the first dispatch, so the two phases overlap instead of adding up.

@@ -22,7 +22,7 @@ struct RendererOptions {
   // specialization saves; results are identical).
   bool specialize = true;
   // Tile edge (px), a multiple of 8: bounds the time of one submission (GPU watchdogs) and the
-  // readback buffer. 0: automatic (renderer.cpp, tileEdge).
+  // readback buffer. 0: automatic (renderer.cpp, tileEdge: 256 px on a GPU, 512 px on a CPU device).
   int tileSize = 0;
   // false: read cameras, objects, lights and texels from storage buffers, with loops over counts
   // from the push constants — the layout a scene too large for the uniform blocks gets (render.comp).

@@ -90,8 +90,9 @@ TEST_CASE("gpu-residency: uniform blocks, texel buffer and exact counts change n
 
 TEST_CASE("gpu-residency: more objects and lights than the unrolled counts and the uniform blocks") {
   test::TempFolder folder;
-  // 41 objects: above DS_MAX_UNROLLED_OBJECTS everywhere, and above the fp64/df64 uniform block
-  // (16384 / 576 = 28 objects) but within fp32's (16384 / 352 = 46); 6 lights > DS_MAX_UNROLLED_LIGHTS.
+  // 41 objects: above DS_MAX_UNROLLED_OBJECTS everywhere, and above the fp64 and df64 uniform blocks
+  // (16384 / 576 = 28, 16384 / 544 = 30 objects) but within fp32's (16384 / 352 = 46); 6 lights >
+  // DS_MAX_UNROLLED_LIGHTS.
   const PreparedScene scene = prepareScene(loadScene(folder.write("grid.lua", gridScene(40, 6)), {}), {1});
   REQUIRE(scene.objects.size() == 41);
   REQUIRE(scene.lights.size() == 6);

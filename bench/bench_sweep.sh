@@ -6,6 +6,7 @@
 #     point, as a fraction of the time per point;
 #  3. peak memory (max RSS of the child process) of a 1000-point vs a 10-point sweep of a 32×24 scene.
 # Usage: bench/bench_sweep.sh [BUILD_DIR] [POINTS] [PROCS] [MANY]   (defaults: build 50 10 1000)
+# EXTRA_OPTS="..." adds options to both the sweep and the render processes (e.g. --exr-compression rle).
 set -eu
 BUILD=${1:-build}
 POINTS=${2:-50}
@@ -15,7 +16,7 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 BIN=$(cd "$BUILD" && pwd)/dicsynth
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
-OPTS="--downscale 2 --spp 4 --precision fp32"
+OPTS="--downscale 2 --spp 4 --precision fp32 ${EXTRA_OPTS:-}"
 now() { date +%s.%N; }
 
 # 1. One sweep process.

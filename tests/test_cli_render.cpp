@@ -3,8 +3,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 
+#include "exr_test_util.h"
 #include "io/image_io.h"
 #include "run_cli.h"
 
@@ -94,6 +96,31 @@ TEST_CASE("cli: scene errors give one line with file:line, exit code 2 and no ou
   }
 }
 
+TEST_CASE("cli: --exr-compression changes the EXR's compression, never its values") {
+  TempFolder dir;
+  const std::string common = " --downscale 8 --spp 2 --backend gpu --precision fp32";
+  REQUIRE(runCli("render " + kScenes + "figure1.lua -o " + dir.file("zip") + common).exitCode == 0);
+  for (const std::string compression : {"rle", "piz", "none"}) {
+    INFO(compression);
+    const test::CliResult r = runCli("render " + kScenes + "figure1.lua -o " + dir.file(compression) + common +
+                                     " --exr-compression " + compression);
+    INFO(r.err);
+    REQUIRE(r.exitCode == 0);
+    const test::ExrContents a = test::readExr(dir.file("zip/camera1.exr"));
+    const test::ExrContents b = test::readExr(dir.file(compression + "/camera1.exr"));
+    CHECK(a.spec.get_string_attribute("compression") == "zip");
+    CHECK(b.spec.get_string_attribute("compression") == compression);
+    CHECK(a.objectId == b.objectId);
+    REQUIRE(a.floats.size() == b.floats.size());
+    for (const auto& [name, values] : a.floats) {
+      INFO(name);
+      REQUIRE(b.floats.count(name) == 1);
+      // Lossless: bit for bit (memcmp also equates the NaN of the background).
+      CHECK(std::memcmp(values.data(), b.floats.at(name).data(), values.size() * sizeof(float)) == 0);
+    }
+  }
+}
+
 TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
   TempFolder dir;
   const std::string scene = kScenes + "rectangle.lua";
@@ -104,6 +131,7 @@ TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
   expectBadInput(dir, scene + " --spp 0", "--spp 0");
   expectBadInput(dir, scene + " --downscale 0", "--downscale");
   expectBadInput(dir, dir.file("no_such_scene.lua"), dir.file("no_such_scene.lua"));
+  expectBadInput(dir, scene + " --exr-compression dwaa", "dicsynth: --exr-compression");  // lossy: not offered
   const test::CliResult r = runCli("render " + scene + " --backend vulkan");  // CLI11's own check
   CHECK(r.exitCode == 2);
   CHECK(oneLine(r.err));

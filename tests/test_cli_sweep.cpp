@@ -2,6 +2,7 @@
 // after damage, shards (concurrent, and by Slurm's variables), bad input, and a full disk (a small
 // tmpfs; needs root to mount).
 #include <doctest/doctest.h>
+#include <OpenImageIO/imageio.h>
 #include <sys/mount.h>
 
 #include <filesystem>
@@ -124,6 +125,12 @@ TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered ag
   // Another spp is another sweep: every point is rendered again.
   const test::CliResult other = runCli("sweep " + scene + " -o " + out + " --spp 2 --precision fp32");
   CHECK(other.out.find("rendered 6, already complete 0") != std::string::npos);
+  // So is another EXR compression (the files differ): every point again, written with it.
+  const test::CliResult rle = runCli("sweep " + scene + " -o " + out + " --spp 2 --precision fp32 --exr-compression rle");
+  CHECK(rle.out.find("rendered 6, already complete 0") != std::string::npos);
+  const auto in = OIIO::ImageInput::open(out + "/point_00004/cam.exr");
+  REQUIRE(in);
+  CHECK(in->spec().get_string_attribute("compression") == "rle");
 }
 
 TEST_CASE("cli: sweep shards write one folder safely and merge to the single-process manifest") {

@@ -292,6 +292,22 @@ TEST_CASE("ground truth: the distortion layer maps each pixel centre to its undi
   Frame g = renderFrame(plain, 0);
   const DerivedTruth tp = deriveTruth(ReferenceFrame(0, g.scene, g.result), 0, g.scene, g.result, 0);
   for (const dvec2& v : tp.distortion_px) CHECK(v == dvec2(0));
+  // The fields are kept across calls (a sweep's points share them), keyed by the camera's numbers:
+  // a camera differing only in one coefficient gets its own field, and the first one comes back intact.
+  const std::string other = dir.write("o.lua", camera("; distortion = Distortion.Brown { radial = {-0.3, 0.2, -0.05}; tangential = {2e-3, 1.5e-3} }") +
+      "obj = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {0, 0, 0.4} } }\n");
+  Frame h = renderFrame(other, 0);
+  const DerivedTruth to = deriveTruth(ReferenceFrame(0, h.scene, h.result), 0, h.scene, h.result, 0);
+  const auto& mo = h.scene.cameras[0].model;
+  REQUIRE(to.distortion_px.size() == t.distortion_px.size());
+  CHECK(to.distortion_px != t.distortion_px);
+  for (std::size_t i = 0; i < to.distortion_px.size(); i += 97) {
+    const dvec2 pixel{double(i % 160), double(i / 160)};
+    const dvec2 undistorted = pixel - to.distortion_px[i];
+    const dvec2 back = distort(mo.brown, dvec2{(undistorted.x - mo.cx) / mo.fx, (undistorted.y - mo.cy) / mo.fy});
+    CHECK(glm::length(dvec2{mo.fx * back.x + mo.cx, mo.fy * back.y + mo.cy} - pixel) < 1e-9);
+  }
+  CHECK(deriveTruth(reference, 0, f.scene, f.result, 0).distortion_px == t.distortion_px);
 }
 
 }  // namespace dicsynth

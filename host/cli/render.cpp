@@ -18,6 +18,7 @@ struct RenderCommand {
   std::string backend = "gpu";
   std::string frames;
   std::optional<int> referenceFrame;  // default: the first of --frames
+  std::string exrCompression = "zip";
 };
 
 int runRender(const RenderCommand& cmd) {
@@ -38,6 +39,7 @@ int runRender(const RenderCommand& cmd) {
   job.numbered = numbered;
   job.defines = parseDefines(cmd.args.defines);
   job.progressLabel = "rendering";
+  job.exrCompression = cmd.exrCompression;
   runRenderJob(session, job);
   return kExitOk;
 }
@@ -55,6 +57,7 @@ void addRenderCommand(CLI::App& root, RunFn& run) {
       ->capture_default_str();
   sub->add_option("--frames", cmd->frames,
                   "Frames A:B (both included) or N; sets the scene global `frame` and numbers the files");
+  addExrCompressionOption(*sub, cmd->exrCompression);
   sub->add_option("--reference-frame", cmd->referenceFrame,
                   "Frame whose pixels the motion ground truth (disp, flow) starts from; one of --frames "
                   "(default: the first)");

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "io/outputs.h"
 #include "render/precision_calibration.h"
 
 namespace dicsynth::cli {
@@ -15,6 +16,14 @@ void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& ef
                  "NAME=A:B:N (N values from A to B), NAME=V1,V2,... or, with --random, NAME=LO:HI" + effect);
   app.add_option("--random", options.randomCount, "Random sweep of N points over the --sweep ranges");
   app.add_option("--random-seed", options.randomSeed, "Seed of --random")->capture_default_str();
+}
+
+void addExrCompressionOption(CLI::App& app, std::string& compression) {
+  app.add_option("--exr-compression", compression,
+                 "Lossless compression of the ground-truth EXR: zip (smallest of the fast ones), zips, piz, "
+                 "rle (about 2.3x larger than zip, nearly free to write: for large sweeps), none")
+      ->check(CLI::IsMember(kExrCompressions))
+      ->capture_default_str();
 }
 
 void addRenderArgs(CLI::App& app, RenderArgs& args) {

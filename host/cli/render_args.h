@@ -28,6 +28,9 @@ struct RenderArgs {
 
 void addRenderArgs(CLI::App& app, RenderArgs& args);
 
+// --exr-compression: how the ground-truth EXR is compressed (render, sweep).
+void addExrCompressionOption(CLI::App& app, std::string& compression);
+
 // --sweep, --random, --random-seed (sweep/sweep_points.h). `effect` ends the --sweep help text: what
 // the subcommand does with the points.
 void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect);

@@ -80,6 +80,7 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
   info.backend = result.backend;
   info.precision = result.precision;
   info.device = result.device;
+  info.exrCompression = job.exrCompression;
   for (const auto& o : scene.objects) info.objectNames.push_back(o.name);
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
   if (first || calibrationPerFrame)

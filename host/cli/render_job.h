@@ -54,6 +54,7 @@ struct RenderJob {
   std::optional<std::uint32_t> seed;                         // overrides --seed (sweep --seed-per-point)
   bool verbose = true;            // print one line per written camera and the calibration files
   std::string progressLabel;      // prefix of the terminal progress (render: "rendering"); "" = none
+  std::string exrCompression = "zip";  // --exr-compression (io/outputs.h, kExrCompressions)
 };
 
 struct RenderJobResult {

@@ -37,6 +37,7 @@ struct SweepCommand {
   std::string frames;
   SweepOptions sweep;
   std::string shard;  // "I/N"
+  std::string exrCompression = "zip";
   bool seedPerPoint = false;
   bool mergeOnly = false;
   bool list = false;
@@ -161,7 +162,7 @@ int runSweep(const SweepCommand& cmd) {
       "scene_crc32=" + std::to_string(sweep::crc32Of(sceneText)) + " spp=" + std::to_string(cmd.args.spp) +
       " precision=" + cmd.args.precision + " max_error_px=" + exactNumber(cmd.args.maxErrorPx) +
       " downscale=" + std::to_string(cmd.args.downscale) + " backend=" + cmd.backend + " frames=" + cmd.frames +
-      " defines=" + definesText;
+      " defines=" + definesText + " exr_compression=" + cmd.exrCompression;
   auto seedOf = [&](const SweepPoint& p) {
     return cmd.seedPerPoint ? ds_hash_combine(ds_hash(cmd.args.seed), std::uint32_t(p.index)) : cmd.args.seed;
   };
@@ -227,6 +228,7 @@ int runSweep(const SweepCommand& cmd) {
     job->sweepParameters = plan.names;
     job->seed = seedOf(*p);
     job->verbose = false;
+    job->exrCompression = cmd.exrCompression;
     RenderedJob result;
     try {
       result = renderJob(session, *job);
@@ -288,6 +290,7 @@ void addSweepCommand(CLI::App& root, RunFn& run) {
       ->check(CLI::IsMember({"gpu", "cpu"}))
       ->capture_default_str();
   sub->add_option("--frames", cmd->frames, "Frames A:B or N of every point (as render --frames)");
+  addExrCompressionOption(*sub, cmd->exrCompression);
   addSweepOptions(*sub, cmd->sweep, "; replaces the scene's `sweep`");
   sub->add_option("--shard", cmd->shard,
                   "I/N: render the points whose index mod N is I (default: from SLURM_ARRAY_TASK_ID/COUNT/MIN)");

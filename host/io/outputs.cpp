@@ -194,7 +194,9 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
     // objectId, defects: exact 32-bit integers; everything else float32.
     spec.channelformats.push_back(c.idValue ? OIIO::TypeDesc::UINT : OIIO::TypeDesc::FLOAT);
   }
-  spec.attribute("compression", "zip");
+  if (std::find(kExrCompressions.begin(), kExrCompressions.end(), info.exrCompression) == kExrCompressions.end())
+    throw InputError("EXR compression '" + info.exrCompression + "': expected zip, zips, piz, rle or none");
+  spec.attribute("compression", info.exrCompression);
   addMetadata(spec, camera, info);
   if (truth) {
     spec.attribute("dicsynth:reference_frame", std::to_string(truth->referenceFrame));

@@ -21,7 +21,13 @@ struct OutputInfo {
   int samplesPerPixel = 0;
   std::string backend, precision, device;
   std::vector<std::string> objectNames;  // objectNames[id - 1] is the object with objectId == id
+  // OpenEXR compression of the ground truth (kExrCompressions); every one is lossless for float32
+  // and uint32 channels. Only size and writing time differ (README, "Output files").
+  std::string exrCompression = "zip";
 };
+
+// The --exr-compression values: lossless OpenEXR compressions.
+inline const std::vector<std::string> kExrCompressions = {"zip", "zips", "piz", "rle", "none"};
 
 struct OutputFiles {
   std::string image;        // DIR/<stem>.tif

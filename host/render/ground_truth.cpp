@@ -1,7 +1,11 @@
 #include "render/ground_truth.h"
 
+#include <array>
 #include <cmath>
+#include <deque>
 #include <limits>
+#include <mutex>
+#include <utility>
 
 #include "core/parallel.h"
 #include "geometry/material_point.h"
@@ -31,7 +35,7 @@ int objectIndexByName(const PreparedScene& scene, const std::string& name) {
   return -1;
 }
 
-std::vector<dvec2> distortionField(const PreparedCamera& pc) {
+std::vector<dvec2> computeDistortionField(const PreparedCamera& pc) {
   const Camera& c = pc.camera;
   std::vector<dvec2> field(std::size_t(c.width_px) * std::size_t(c.height_px), dvec2(0));
   const auto& m = pc.model;
@@ -42,6 +46,31 @@ std::vector<dvec2> distortionField(const PreparedCamera& pc) {
     const dvec2 ideal = undistort(m.brown, dvec2{(x - m.cx) / m.fx, (y - m.cy) / m.fy});
     field[i] = dvec2{x, y} - dvec2{m.fx * ideal.x + m.cx, m.fy * ideal.y + m.cy};
   });
+  return field;
+}
+
+// The field depends only on the image size, the intrinsics and the distortion coefficients, which
+// the points of a sweep rarely change, while computing it (a Newton inversion per pixel, in double)
+// cost about 9 % of a sweep point's CPU time (bench/RESULTS.md). So the last two fields computed are
+// kept, keyed by exactly those numbers (compared exactly), so that a sweep computes each camera's
+// once; two entries: the two cameras of a stereo rig.
+std::vector<dvec2> distortionField(const PreparedCamera& pc) {
+  const auto& m = pc.model;
+  const auto& k = m.brown;
+  using Key = std::array<double, 19>;
+  const Key key = {double(pc.camera.width_px), double(pc.camera.height_px), m.fx, m.fy, m.cx, m.cy,
+                   m.distorted ? 1.0 : 0.0, k.k1, k.k2, k.k3, k.p1, k.p2, k.k4, k.k5, k.k6, k.s1, k.s2, k.s3, k.s4};
+  static std::mutex mutex;
+  static std::deque<std::pair<Key, std::vector<dvec2>>> kept;  // newest first
+  {
+    std::lock_guard lock(mutex);
+    for (const auto& [kk, field] : kept)
+      if (kk == key) return field;
+  }
+  std::vector<dvec2> field = computeDistortionField(pc);
+  std::lock_guard lock(mutex);
+  kept.emplace_front(key, field);
+  if (kept.size() > 2) kept.pop_back();
   return field;
 }
 

@@ -13,6 +13,7 @@
 #include "cpu/reference_renderer.h"
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
+#include "identical_results.h"
 #include "render/compare.h"
 #include "shared/bindings.h"
 #include "temp_folder.h"
@@ -74,15 +75,8 @@ TEST_CASE("gpu-residency: uniform blocks, texel buffer and exact counts change n
       CHECK(slow.objectCount == 0);
       CHECK(slow.lightCount == -1);
 
-      const RenderResult a = renderer.render(scene, options);
-      const RenderResult b = renderer.render(scene, options, storageOnly());
-      for (const CameraDifference& d : compareResults(scene, a, b, tolerancesFor(Precision::Fp64))) {
-        // The same arithmetic on the same values: only where they are loaded from differs.
-        CHECK(d.maxRadianceDiff == 0.0);
-        CHECK(d.maxPositionDiff_m == 0.0);
-        CHECK(d.maxUvDiff == 0.0);
-        CHECK(d.objectIdMismatches == 0);
-      }
+      // The same arithmetic on the same values: only where they are loaded from differs.
+      test::checkIdenticalResults(scene, renderer.render(scene, options), renderer.render(scene, options, storageOnly()));
     }
   }
   test::expectNoValidationMessages();
@@ -121,9 +115,7 @@ TEST_CASE("gpu-residency: more objects and lights than the unrolled counts and t
       if (p == Precision::Fp64) CHECK(d.maxRadianceDiff <= 1e-9);
     }
     // And the storage layout gives the same image as the one chosen.
-    const RenderResult storage = renderer.render(scene, options, storageOnly());
-    for (const CameraDifference& d : compareResults(scene, gpu, storage, tolerancesFor(Precision::Fp64)))
-      CHECK(d.maxRadianceDiff == 0.0);
+    test::checkIdenticalResults(scene, gpu, renderer.render(scene, options, storageOnly()));
   }
   test::expectNoValidationMessages();
 }
@@ -141,12 +133,7 @@ TEST_CASE("gpu-residency: the tile size changes no pixel, and the renderer's reu
   const RenderResult tiled = renderer.render(scene, options, small);
   // A second automatic render reuses the readback buffer and host tile the tiled one left behind.
   const RenderResult again = renderer.render(scene, options);
-  for (const RenderResult* r : {&tiled, &again})
-    for (const CameraDifference& d : compareResults(scene, automatic, *r, tolerancesFor(Precision::Fp64))) {
-      CHECK(d.maxRadianceDiff == 0.0);
-      CHECK(d.maxPositionDiff_m == 0.0);
-      CHECK(d.objectIdMismatches == 0);
-    }
+  for (const RenderResult* r : {&tiled, &again}) test::checkIdenticalResults(scene, automatic, *r);
   gpu::RendererOptions bad;
   bad.tileSize = 12;
   CHECK_THROWS_AS(renderer.render(scene, options, bad), InputError);

@@ -132,6 +132,20 @@ int shaderGgx(lua_State* L) {
   return 1;
 }
 
+// A light of `kind` at the line of its constructor call; point and spot lights with their required
+// position.
+Light newLight(lua_State* L, const Params& p, LightKind kind) {
+  Light light;
+  light.kind = kind;
+  light.where = LuaSandbox::of(L).here(L);
+  if (kind != LightKind::Ambient) {
+    const std::optional<dvec3> position = p.vec3("position");
+    if (!position) p.fail("missing required 'position' = {x, y, z} (metres)");
+    light.position_m = *position;
+  }
+  return light;
+}
+
 // Intensity of a light: a number > 0, or {r, g, b} (each >= 0) reduced to a luminance > 0.
 double readIntensity(const Params& p) {
   if (p.luaType("intensity") == LUA_TTABLE) {
@@ -159,12 +173,7 @@ Example:  lamp = Light.Point { position = {0.2, -0.3, 0}; intensity = 0.05 }
 ------------------------------------------------------------------------------------------------ */
 int lightPoint(lua_State* L) {
   Params p(L, "Light.Point", {"position", "intensity"});
-  Light light;
-  light.kind = LightKind::Point;
-  light.where = LuaSandbox::of(L).here(L);
-  const std::optional<dvec3> position = p.vec3("position");
-  if (!position) p.fail("missing required 'position' = {x, y, z} (metres)");
-  light.position_m = *position;
+  Light light = newLight(L, p, LightKind::Point);
   light.intensity = readIntensity(p);
   pushUserdata(L, std::move(light));
   return 1;
@@ -184,9 +193,7 @@ Example:  sky = Light.Ambient { intensity = 0.05 }
 ------------------------------------------------------------------------------------------------ */
 int lightAmbient(lua_State* L) {
   Params p(L, "Light.Ambient", {"intensity"});
-  Light light;
-  light.kind = LightKind::Ambient;
-  light.where = LuaSandbox::of(L).here(L);
+  Light light = newLight(L, p, LightKind::Ambient);
   light.intensity = readIntensity(p);
   pushUserdata(L, std::move(light));
   return 1;
@@ -212,12 +219,7 @@ Example:  spot = Light.Spot { position = {0, -0.3, 0}; lookAt = {0, 0, 0.5};
 ------------------------------------------------------------------------------------------------ */
 int lightSpot(lua_State* L) {
   Params p(L, "Light.Spot", {"position", "direction", "lookAt", "intensity", "innerAngle", "outerAngle"});
-  Light light;
-  light.kind = LightKind::Spot;
-  light.where = LuaSandbox::of(L).here(L);
-  const std::optional<dvec3> position = p.vec3("position");
-  if (!position) p.fail("missing required 'position' = {x, y, z} (metres)");
-  light.position_m = *position;
+  Light light = newLight(L, p, LightKind::Spot);
   const std::optional<dvec3> direction = p.vec3("direction"), lookAt = p.vec3("lookAt");
   if (direction.has_value() == lookAt.has_value())
     p.fail("give exactly one of 'direction' = {x, y, z} and 'lookAt' = {x, y, z} (metres)");

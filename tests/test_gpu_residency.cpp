@@ -6,11 +6,13 @@
 #include <doctest/doctest.h>
 
 #include <cstdint>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
 
 #include "cpu/reference_renderer.h"
+#include "geometry/texture_cache.h"
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
 #include "identical_results.h"
@@ -137,5 +139,38 @@ TEST_CASE("gpu-residency: the tile size changes no pixel, and the renderer's reu
   gpu::RendererOptions bad;
   bad.tileSize = 12;
   CHECK_THROWS_AS(renderer.render(scene, options, bad), InputError);
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("gpu-residency: texels follow the textures' coefficient arrays, which a texture cache shares") {
+  // The renderer keeps its texel buffer while a render's textures are the same shared arrays
+  // (Renderer::CachedTexels): a scene with other coefficients, or another precision, must never
+  // see the old texels.
+  const Scene loaded = loadScene(std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua", {});
+  TextureCache cache;
+  const PreparedScene a = prepareScene(loaded, {kDownscale, &cache});
+  // A second preparation through the cache shares the array instead of copying 8 M coefficients.
+  const PreparedScene again = prepareScene(loaded, {kDownscale, &cache});
+  REQUIRE(a.textures.size() == 1);
+  CHECK(again.textures[0].coefficients == a.textures[0].coefficients);
+  PreparedScene b = a;  // the same texture, darkened: a new array with other values
+  std::vector<double> darker = a.textures[0].values();
+  for (double& c : darker) c *= 0.5;
+  b.textures[0].coefficients = std::make_shared<const std::vector<double>>(std::move(darker));
+
+  RenderOptions options;
+  options.samplesPerPixel = 1;
+  options.precision = Precision::Fp32;
+  gpu::Renderer fresh(test::gpuContext());
+  const RenderResult freshB = fresh.render(b, options);
+  gpu::Renderer renderer(test::gpuContext());
+  const RenderResult firstA = renderer.render(a, options);
+  test::checkIdenticalResults(b, freshB, renderer.render(b, options));
+  test::checkIdenticalResults(a, firstA, renderer.render(again, options));
+  // The test means something: darkening the texture changed the image.
+  CHECK(firstA.cameras[0].radiance != freshB.cameras[0].radiance);
+  // Same arrays, another precision: texels packed for that precision.
+  options.precision = Precision::Fp64;
+  test::checkIdenticalResults(a, gpu::Renderer(test::gpuContext()).render(a, options), renderer.render(a, options));
   test::expectNoValidationMessages();
 }

@@ -47,8 +47,10 @@ PreparedScene probeScene(const AnalyticSpeckle& speckle) {
     t.width = 37;
     t.height = 23;
     t.interpolation = k == 0 ? Interpolation::Quintic : Interpolation::Cubic;
-    for (std::uint32_t i = 0; i < 37u * 23u; ++i) t.coefficients.push_back(testUnit(99, i));
-    bsplinePrefilter(t.coefficients, t.width, t.height, t.interpolation);
+    std::vector<double> c;
+    for (std::uint32_t i = 0; i < 37u * 23u; ++i) c.push_back(testUnit(99, i));
+    bsplinePrefilter(c, t.width, t.height, t.interpolation);
+    t.coefficients = std::make_shared<const std::vector<double>>(std::move(c));
     ps.textures.push_back(std::move(t));
     ps.objects[std::size_t(k + 1)].textureKind = TextureKind::File;
     ps.objects[std::size_t(k + 1)].textureIndex = k;
@@ -72,7 +74,8 @@ std::vector<typename Layout::real> runProbe(std::span<const std::uint32_t> spirv
   };
   gpu::Buffer objects = input(frame.objects.data(), frame.objects.size() * sizeof(frame.objects[0]));
   gpu::Buffer textures = input(packed.textures.data(), packed.textures.size() * sizeof(packed.textures[0]));
-  gpu::Buffer texels = input(packed.texels.data(), packed.texels.size() * sizeof(Real));
+  const auto packedTexels = gpu::packTexels<Layout>(ps);
+  gpu::Buffer texels = input(packedTexels.data(), packedTexels.size() * sizeof(Real));
   gpu::Buffer uvIn = input(uv.data(), uv.size() * sizeof(Real));
   gpu::Buffer out(ctx, 3 * std::size_t(count) * sizeof(Real), gpu::BufferUse::Readback);
   gpu::ComputePipeline pipeline(ctx, spirv, 5, 4);
@@ -124,7 +127,7 @@ ProbeReport probe(std::span<const std::uint32_t> spirv, const AnalyticSpeckle& s
     }
     for (int k = 0; k < 2; ++k) {
       const PreparedTexture& t = ps.textures[std::size_t(k)];
-      const double ref = bsplineLookup(t.coefficients.data(), t.width, t.height, at.x, at.y, t.interpolation);
+      const double ref = bsplineLookup(t.values().data(), t.width, t.height, at.x, at.y, t.interpolation);
       r.worstFileDiff = std::max(r.worstFileDiff, std::abs(double(gpuValues[3 * std::size_t(i) + 1 + std::size_t(k)]) - ref));
     }
   }
@@ -134,7 +137,7 @@ ProbeReport probe(std::span<const std::uint32_t> spirv, const AnalyticSpeckle& s
 double maxAbsCoefficient(const PreparedScene& ps) {
   double m = 0;
   for (const auto& t : ps.textures)
-    for (double c : t.coefficients) m = std::max(m, std::abs(c));
+    for (double c : t.values()) m = std::max(m, std::abs(c));
   return m;
 }
 

@@ -68,7 +68,7 @@ double textureValue(const PreparedScene& scene, const PreparedObject& obj, dvec2
     case TextureKind::File: break;
   }
   const PreparedTexture& tex = scene.textures[std::size_t(obj.textureIndex)];
-  return bsplineLookup(tex.coefficients.data(), tex.width, tex.height, std::clamp(uv.x, 0.0, 1.0),
+  return bsplineLookup(tex.values().data(), tex.width, tex.height, std::clamp(uv.x, 0.0, 1.0),
                        std::clamp(uv.y, 0.0, 1.0), tex.interpolation);
 }
 

@@ -155,8 +155,8 @@ int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::m
   pt.width = image.width;
   pt.height = image.height;
   pt.interpolation = t.interpolation;
-  pt.coefficients = std::move(image.pixels);
-  bsplinePrefilter(pt.coefficients, pt.width, pt.height, t.interpolation);
+  bsplinePrefilter(image.pixels, pt.width, pt.height, t.interpolation);
+  pt.coefficients = std::make_shared<const std::vector<double>>(std::move(image.pixels));
   if (cache) cache->insert(pt);
   textures.push_back(std::move(pt));
   return byPath[key] = int(textures.size()) - 1;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "camera/sampling.h"
@@ -157,20 +158,27 @@ PackedScene<Layout> packScene(const PreparedScene& scene) {
   PackedScene<Layout> p;
   for (const auto& o : scene.objects)
     p.nurbsRoots.push_back(o.nurbs ? packNurbs<Layout>(*o.nurbs, scene.features.nurbsDegree, p) : -1);
-  std::size_t texelCount = 0;
-  for (const auto& t : scene.textures) texelCount += t.coefficients.size();
-  p.texels.reserve(texelCount);  // one allocation: Figure 1's texture alone is 8.4 M coefficients
+  std::size_t offset = 0;
   for (const auto& t : scene.textures) {
     // The shader indexes texels with 32-bit ints.
-    if (p.texels.size() + t.coefficients.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
+    if (offset + t.values().size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
       throw InputError(t.path + ": textures too large in total for the GPU backend");
-    p.textures.push_back({{t.width, t.height, int(p.texels.size()), int(t.interpolation)}});
-    const std::size_t first = p.texels.size();
-    p.texels.resize(first + t.coefficients.size());
-    std::transform(t.coefficients.begin(), t.coefficients.end(), p.texels.begin() + std::ptrdiff_t(first),
-                   [](double c) { return typename Layout::real(c); });
+    p.textures.push_back({{t.width, t.height, int(offset), int(t.interpolation)}});
+    offset += t.values().size();
   }
   return p;
+}
+
+template <class Layout>
+std::vector<typename Layout::real> packTexels(const PreparedScene& scene) {
+  std::size_t count = 0;
+  for (const auto& t : scene.textures) count += t.values().size();
+  std::vector<typename Layout::real> texels;
+  texels.reserve(count);  // one allocation: Figure 1's texture alone is 8.4 M coefficients
+  for (const auto& t : scene.textures)
+    std::transform(t.values().begin(), t.values().end(), std::back_inserter(texels),
+                   [](double c) { return typename Layout::real(c); });
+  return texels;
 }
 
 template <class Layout>
@@ -197,6 +205,7 @@ PackedFrame<Layout> packFrame(const PreparedScene& scene, const PackedScene<Layo
 
 #define DS_INSTANTIATE(Layout)                                                                        \
   template PackedScene<Layout> packScene<Layout>(const PreparedScene&);                               \
+  template std::vector<Layout::real> packTexels<Layout>(const PreparedScene&);                        \
   template PackedFrame<Layout> packFrame<Layout>(const PreparedScene&, const PackedScene<Layout>&, int, \
                                                  std::size_t);
 DS_INSTANTIATE(Fp32Layout)

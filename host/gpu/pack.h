@@ -11,8 +11,7 @@ namespace dicsynth::gpu {
 // What does not depend on the camera: textures and NURBS data (in their objects' frames).
 template <class Layout>
 struct PackedScene {
-  std::vector<typename Layout::GpuTexture> textures;
-  std::vector<typename Layout::real> texels;  // all textures' B-spline coefficients, concatenated
+  std::vector<typename Layout::GpuTexture> textures;  // offsets into packTexels' array
   // Every NURBS object's BVH nodes, sub-patches, patches and control points, concatenated.
   std::vector<typename Layout::GpuNurbsNode> nurbsNodes;
   std::vector<typename Layout::GpuNurbsSubPatch> nurbsSubPatches;
@@ -65,6 +64,12 @@ inline double component(const df64x4& v, int i) { return double((&v.hi.x)[i]) + 
 
 template <class Layout>
 PackedScene<Layout> packScene(const PreparedScene& scene);
+
+// All textures' B-spline coefficients, concatenated in scene.textures order and rounded to the
+// variant's real (at PackedScene::textures' offsets). Apart from packScene: the renderer packs them
+// only when the textures change (Renderer::CachedTexels).
+template <class Layout>
+std::vector<typename Layout::real> packTexels(const PreparedScene& scene);
 
 template <class Layout>
 PackedFrame<Layout> packFrame(const PreparedScene& scene, const PackedScene<Layout>& packed, int samplesPerPixel,

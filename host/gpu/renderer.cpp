@@ -39,6 +39,22 @@ Buffer& cachedInput(Context& context, Renderer::InputCache& cache, int binding, 
   return *slot.buffer;
 }
 
+// The texel buffer of `scene` in `Layout`: the cached one when it was packed from the same shared
+// coefficient arrays (Renderer::CachedTexels).
+template <class Layout>
+Buffer& cachedTexels(Context& context, Renderer::CachedTexels& cache, const PreparedScene& scene) {
+  std::vector<std::shared_ptr<const std::vector<double>>> sources;
+  for (const PreparedTexture& t : scene.textures) sources.push_back(t.coefficients);
+  const std::type_index layout(typeid(Layout));
+  if (cache.buffer && cache.layout == layout && cache.sources == sources) return *cache.buffer;
+  cache.buffer.reset();  // free the old buffer (and arrays) before packing their successors
+  cache.sources.clear();
+  cache.buffer = std::make_unique<Buffer>(inputBuffer(context, packTexels<Layout>(scene)));
+  cache.sources = std::move(sources);
+  cache.layout = layout;
+  return *cache.buffer;
+}
+
 // How many records of T a uniform block holds (shaders/shared/bindings.h).
 template <class T>
 constexpr std::size_t uniformCapacity() { return DS_UNIFORM_BLOCK_BYTES / sizeof(T); }
@@ -66,7 +82,7 @@ SceneResidency residencyOf(const PreparedScene& scene, std::uint32_t maxTexelBuf
                    scene.objects.size() <= uniformCapacity<typename Layout::GpuObject>() &&
                    scene.lights.size() <= uniformCapacity<typename Layout::GpuLight>();
   std::size_t texels = 0;
-  for (const PreparedTexture& t : scene.textures) texels += t.coefficients.size();
+  for (const PreparedTexture& t : scene.textures) texels += t.values().size();
   r.texelView = texelViewPossible && texels <= maxTexelBufferElements;
   if (r.uniformScene && scene.objects.size() >= 1 && scene.objects.size() <= DS_MAX_UNROLLED_OBJECTS)
     r.objectCount = int(scene.objects.size());
@@ -135,7 +151,7 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   });
   const PackedScene<Layout> packed = packScene<Layout>(scene);
   Buffer& textures = cachedInput(context, cache, DS_BINDING_TEXTURES, packed.textures);
-  Buffer& texels = cachedInput(context, cache, DS_BINDING_TEXELS, packed.texels);
+  Buffer& texels = cachedTexels<Layout>(context, caches.texels, scene);
   Buffer& nurbsNodes = cachedInput(context, cache, DS_BINDING_NURBS_NODES, packed.nurbsNodes);
   Buffer& nurbsSubPatches = cachedInput(context, cache, DS_BINDING_NURBS_SUBPATCHES, packed.nurbsSubPatches);
   Buffer& nurbsPatches = cachedInput(context, cache, DS_BINDING_NURBS_PATCHES, packed.nurbsPatches);

@@ -6,6 +6,7 @@
 #include <memory>
 #include <new>
 #include <tuple>
+#include <typeindex>
 #include <vector>
 
 #include "geometry/prepared_scene.h"
@@ -76,9 +77,20 @@ class Renderer {
     std::unique_ptr<Buffer> buffer;
   };
   using InputCache = std::map<int, CachedInput>;  // by binding
-  // What renders reuse: the input buffers above, the tile readback buffer and its host copy.
+  // The texel buffer (all textures' coefficients in one variant) and what it was packed from: the
+  // textures' shared coefficient arrays in order, held so that no other array can take their
+  // addresses, and the variant. Texels are matched by identity, not by bytes: comparing them would
+  // mean repacking ~34 MB per render (Figure 1), about 10 % of a sweep point's time on lavapipe.
+  // Sweep points share the arrays through the texture cache (geometry/texture_cache.h).
+  struct CachedTexels {
+    std::vector<std::shared_ptr<const std::vector<double>>> sources;
+    std::type_index layout = typeid(void);
+    std::unique_ptr<Buffer> buffer;
+  };
+  // What renders reuse: the input buffers above, the texels, the tile readback buffer and its host copy.
   struct Caches {
     InputCache inputs;
+    CachedTexels texels;
     std::unique_ptr<Buffer> readback;
     struct AlignedDelete {
       void operator()(std::byte* p) const { ::operator delete[](p, std::align_val_t{kTileAlignment}); }

@@ -73,13 +73,14 @@ double uvDiff(dvec2 a, dvec2 b) { return std::max(wrappedDiff(a.x, b.x), wrapped
 double textureSlope(const PreparedScene& scene, const PreparedObject& o) {
   if (o.textureIndex < 0) return 0;
   const PreparedTexture& t = scene.textures[std::size_t(o.textureIndex)];
+  const std::vector<double>& c = t.values();
   double sx = 0, sy = 0;
   const auto w = std::size_t(t.width), h = std::size_t(t.height);
   for (std::size_t y = 0; y < h; ++y)
     for (std::size_t x = 0; x < w; ++x) {
-      const double c = t.coefficients[y * w + x];
-      if (x + 1 < w) sx = std::max(sx, std::abs(t.coefficients[y * w + x + 1] - c));
-      if (y + 1 < h) sy = std::max(sy, std::abs(t.coefficients[(y + 1) * w + x] - c));
+      const double here = c[y * w + x];
+      if (x + 1 < w) sx = std::max(sx, std::abs(c[y * w + x + 1] - here));
+      if (y + 1 < h) sy = std::max(sy, std::abs(c[(y + 1) * w + x] - here));
     }
   return o.albedo * std::max(sx * double(t.width), sy * double(t.height));
 }

@@ -40,7 +40,7 @@ double reflectanceMax(const PreparedScene& scene, const PreparedObject& o) {
   if (o.textureKind == TextureKind::Speckle)
     t = std::max({t, std::abs(o.speckleTexture.light), std::abs(o.speckleTexture.dark)});
   if (o.textureKind == TextureKind::File && o.textureIndex >= 0)
-    for (double c : scene.textures[std::size_t(o.textureIndex)].coefficients) t = std::max(t, std::abs(c));
+    for (double c : scene.textures[std::size_t(o.textureIndex)].values()) t = std::max(t, std::abs(c));
   return o.albedo * t;
 }
 

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "cpu/reference_renderer.h"
 #include "cpu/trace.h"
@@ -128,6 +129,28 @@ TEST_CASE("ground truth: a rotating sphere under distortion, the ray through x +
   }
   CHECK(checked > 1000);
   CHECK(hidden > 50);  // points turning to the back are masked
+}
+
+TEST_CASE("ground truth: a reference frame built for itself alone derives the same layers") {
+  // A single-frame render (every sweep point) builds its ReferenceFrame without the projections
+  // that only other frames' flow uses; the reference frame's own layers must not change by a bit.
+  test::TempFolder dir;
+  const std::string path = dir.write("s.lua", camera("; distortion = Distortion.Brown { radial = {-0.2, 0.1, 0}; tangential = {1e-3, -2e-3} }") +
+      "obj = Object.Simple { shape = Shape.Sphere { radius = 0.04; location = {0.005, 0, 0.3} } }\n");
+  Frame f0 = renderFrame(path, 0);
+  const DerivedTruth full = deriveTruth(ReferenceFrame(0, f0.scene, f0.result, true), 0, f0.scene, f0.result, 0);
+  const DerivedTruth alone = deriveTruth(ReferenceFrame(0, f0.scene, f0.result, false), 0, f0.scene, f0.result, 0);
+  REQUIRE(full.displacement_m.size() == 160 * 120);
+  auto sameBits = [](const auto& a, const auto& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+  };
+  CHECK(sameBits(full.displacement_m, alone.displacement_m));
+  CHECK(sameBits(full.flow_px, alone.flow_px));
+  CHECK(sameBits(full.flowMask, alone.flowMask));
+  CHECK(sameBits(full.distortion_px, alone.distortion_px));
+  std::size_t seen = 0;
+  for (float m : alone.flowMask) seen += m > 0 ? 1 : 0;
+  CHECK(seen > 1000);  // the sphere covers part of the image: the layers are not all NaN
 }
 
 TEST_CASE("ground truth: uniform strain of a NURBS plate, closed form") {

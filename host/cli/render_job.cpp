@@ -65,10 +65,11 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
 // Writes one frame's files. `reference` is created from the first frame written (moved from it).
 void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool calibrationPerFrame,
                 std::unique_ptr<ReferenceFrame>& reference) {
+  const bool otherFrames = job.frames.size() > 1;
   const int frame = rendered.frame;
   const RenderResult& result = rendered.result;
   const RenderOptions& options = rendered.options;
-  if (first) reference = std::make_unique<ReferenceFrame>(frame, std::move(rendered.scene), result);
+  if (first) reference = std::make_unique<ReferenceFrame>(frame, std::move(rendered.scene), result, otherFrames);
   // The reference frame's scene now lives in `reference` (moved: its textures are not copied).
   const PreparedScene& scene = first ? reference->scene() : rendered.scene;
 

@@ -91,7 +91,7 @@ Sighting sight(const PreparedScene& scene, const PreparedCamera& camera, int obj
 
 }  // namespace
 
-ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result)
+ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result, bool otherFrames)
     : frame_(frame), scene_(std::move(scene)) {
   DS_CHECK(result.cameras.size() == scene_.cameras.size(), "reference render and scene disagree");
   for (std::size_t c = 0; c < result.cameras.size(); ++c) {
@@ -104,7 +104,7 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
     v.object.assign(n, -1);
     v.material.assign(n, kNaN2);
     v.position_m.assign(n, dvec3(kNaN));
-    v.pixel_px.assign(n, kNaN2);
+    if (otherFrames) v.pixel_px.assign(n, kNaN2);
     const PreparedCamera& camera = scene_.cameras[c];
     forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
       if (image.objectId[i] == 0) return;
@@ -116,7 +116,7 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
       v.object[i] = o;
       v.material[i] = m;
       v.position_m[i] = *p;
-      v.pixel_px[i] = projectPoint(camera, *p);
+      if (otherFrames) v.pixel_px[i] = projectPoint(camera, *p);
     });
     views_.push_back(std::move(v));
   }
@@ -148,6 +148,7 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
     for (std::size_t o = 0; o < objectNow.size(); ++o)
       objectNow[o] = objectIndexByName(scene, reference.scene().objects[o].name);
     const bool isReference = frame == reference.frame();
+    DS_CHECK(isReference || view->pixel_px.size() == n, "reference frame built without otherFrames");
     forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
       if (view->object[i] < 0) return;
       if (isReference) {

@@ -52,7 +52,10 @@ struct DerivedTruth {
 // point the backend found at each pixel centre.
 class ReferenceFrame {
  public:
-  ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result);
+  // `otherFrames` false: only the reference frame itself will be derived (a single-frame render, every
+  // sweep point), so the projections x_ref(m), which only other frames' flow uses, are not computed
+  // (a distortion inversion per pixel in projectToImage's fold test: ~5 % of a sweep point's CPU).
+  ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result, bool otherFrames = true);
   int frame() const { return frame_; }
 
   struct View {
@@ -61,7 +64,7 @@ class ReferenceFrame {
     std::vector<int> object;       // index into scene().objects, −1 for background
     std::vector<dvec2> material;   // material coordinates (geometry/material_point.h)
     std::vector<dvec3> position_m; // P_ref(m), recomputed in double from the material coordinates
-    std::vector<dvec2> pixel_px;   // x_ref(m): its projection into the reference camera
+    std::vector<dvec2> pixel_px;   // x_ref(m): its projection into the reference camera (empty: !otherFrames)
   };
   const View* view(const std::string& camera) const;
   const PreparedScene& scene() const { return scene_; }

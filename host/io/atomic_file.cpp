@@ -69,13 +69,30 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
+TextWriter::TextWriter(const AtomicFile& file) : finalPath_(file.finalPath()) {
+  out_ = std::fopen(file.tempPath().c_str(), "wb");
+  if (out_ == nullptr)
+    throw Error("cannot write '" + finalPath_ + "': cannot open " + file.tempPath() + ": " + errnoText(errno));
+}
+
+TextWriter::~TextWriter() {
+  if (out_ != nullptr) std::fclose(out_);
+}
+
+void TextWriter::write(std::string_view text) {
+  if (std::fwrite(text.data(), 1, text.size(), out_) != text.size()) failed_ = true;
+}
+
+void TextWriter::close() {
+  const bool closed = std::fclose(out_) == 0;
+  out_ = nullptr;
+  if (failed_ || !closed) throw Error("cannot write '" + finalPath_ + "': write error (disk full?)");
+}
+
 void writeText(const AtomicFile& file, std::string_view text) {
-  std::FILE* out = std::fopen(file.tempPath().c_str(), "wb");
-  if (out == nullptr)
-    throw Error("cannot write '" + file.finalPath() + "': cannot open " + file.tempPath() + ": " + errnoText(errno));
-  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size();
-  const bool closed = std::fclose(out) == 0;
-  if (!written || !closed) throw Error("cannot write '" + file.finalPath() + "': write error (disk full?)");
+  TextWriter out(file);
+  out.write(text);
+  out.close();
 }
 
 void writeTextAtomically(const std::string& path, std::string_view text) {

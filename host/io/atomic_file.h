@@ -1,5 +1,6 @@
 #pragma once
 // Write-then-rename: a file appears under its final name complete or not at all.
+#include <cstdio>
 #include <string>
 #include <string_view>
 
@@ -21,6 +22,24 @@ class AtomicFile {
  private:
   std::string final_, temp_;
   bool committed_ = false;
+};
+
+// Writes `file`'s temporary file piece by piece, for text too large to build in memory first (a
+// sweep's manifest grows with its points). Commit the AtomicFile after close().
+class TextWriter {
+ public:
+  explicit TextWriter(const AtomicFile& file);  // throws Error naming the final path
+  ~TextWriter();                                // closes without reporting (after an error elsewhere)
+  TextWriter(const TextWriter&) = delete;
+  TextWriter& operator=(const TextWriter&) = delete;
+  void write(std::string_view text);
+  // Throws Error naming the final path when any piece was not written completely (e.g. a full disk).
+  void close();
+
+ private:
+  std::string finalPath_;
+  std::FILE* out_ = nullptr;
+  bool failed_ = false;
 };
 
 // Writes `text` as the whole content of `file`'s temporary file, without committing: for writers

@@ -70,19 +70,25 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
   FileLock lock((fs::path(outputDir) / ".manifest.lock").string(), true);
   ManifestSummary summary;
   summary.total = std::int64_t(plan.points.size());
+  // Streamed point by point: the manifest of a long sweep is never held in memory (a sweep's peak
+  // memory must not grow with its points; bench/RESULTS.md, "Sweeps").
+  AtomicFile csvFile((fs::path(outputDir) / "manifest.csv").string());
+  AtomicFile jsonFile((fs::path(outputDir) / "manifest.json").string());
+  TextWriter csv(csvFile), js(jsonFile);
 
-  std::string csv = "index,folder";
+  std::string head = "index,folder";
   // (+= piecewise: GCC 12 warns -Wrestrict, wrongly, on "," + std::string temporaries)
   for (const std::string& n : plan.names) {
-    csv += ',';
-    csv += csvField(n);
+    head += ',';
+    head += csvField(n);
   }
-  csv += ",seed,spp,backend,precision,device,render_seconds,files\n";
-  std::string js = "{\n  \"scene\": " + json::quote(scenePath) + ",\n  \"sweep\": " +
-                   json::quote(kindName(plan.declaration.kind)) + ",\n  \"parameters\": [";
-  for (std::size_t i = 0; i < plan.names.size(); ++i) js += (i ? ", " : "") + json::quote(plan.names[i]);
-  js += "],\n  \"points_total\": " + std::to_string(summary.total) + ",\n";
-  std::string points;
+  head += ",seed,spp,backend,precision,device,render_seconds,files\n";
+  csv.write(head);
+  head = "{\n  \"scene\": " + json::quote(scenePath) + ",\n  \"sweep\": " + json::quote(kindName(plan.declaration.kind)) +
+         ",\n  \"parameters\": [";
+  for (std::size_t i = 0; i < plan.names.size(); ++i) head += (i ? ", " : "") + json::quote(plan.names[i]);
+  head += "],\n  \"points_total\": " + std::to_string(summary.total) + ",\n  \"points\": [";
+  js.write(head);
 
   for (const SweepPoint& p : plan.points) {
     const std::string folderName = pointFolderName(p.index);
@@ -90,34 +96,38 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
     const auto record = readPointRecord(folder);
     // Sizes only: the checksums are verified when a run decides to skip a point.
     if (!record || record->index != p.index || !pointFilesIntact(folder, *record, keyOf(p), false)) continue;
-    ++summary.complete;
     std::string files, filesJson;
     for (const PointFile& f : record->files) {
       files += (files.empty() ? "" : " ") + folderName + "/" + f.name;
       filesJson += std::string(filesJson.empty() ? "" : ", ") + json::quote(folderName + "/" + f.name);
     }
-    csv += std::to_string(p.index) + "," + folderName;
+    std::string row = std::to_string(p.index) + "," + folderName;
     std::string params;
     for (const auto& [name, value] : p.values) {
-      csv += ',';
-      csv += csvValue(value);
+      row += ',';
+      row += csvValue(value);
       params += (params.empty() ? "" : ", ") + json::quote(name) + ": " + value.json();
     }
-    csv += ',';
-    csv += std::to_string(record->seed) + "," + std::to_string(record->samplesPerPixel) + "," +
+    row += ',';
+    row += std::to_string(record->seed) + "," + std::to_string(record->samplesPerPixel) + "," +
            csvField(record->backend) + "," + csvField(record->precision) + "," + csvField(record->device) + "," +
            seconds(record->renderSeconds) + "," + csvField(files) + "\n";
-    points += std::string(points.empty() ? "" : ",\n") + "    {\"index\": " + std::to_string(p.index) +
-              ", \"folder\": " + json::quote(folderName) + ", \"parameters\": {" + params +
-              "}, \"seed\": " + std::to_string(record->seed) + ", \"spp\": " + std::to_string(record->samplesPerPixel) +
-              ", \"backend\": " + json::quote(record->backend) + ", \"precision\": " + json::quote(record->precision) +
-              ", \"device\": " + json::quote(record->device) + ", \"render_seconds\": " +
-              seconds(record->renderSeconds) + ", \"files\": [" + filesJson + "]}";
+    csv.write(row);
+    js.write(std::string(summary.complete ? ",\n" : "\n") + "    {\"index\": " + std::to_string(p.index) +
+             ", \"folder\": " + json::quote(folderName) + ", \"parameters\": {" + params +
+             "}, \"seed\": " + std::to_string(record->seed) + ", \"spp\": " + std::to_string(record->samplesPerPixel) +
+             ", \"backend\": " + json::quote(record->backend) + ", \"precision\": " + json::quote(record->precision) +
+             ", \"device\": " + json::quote(record->device) + ", \"render_seconds\": " +
+             seconds(record->renderSeconds) + ", \"files\": [" + filesJson + "]}");
+    ++summary.complete;
   }
-  js += "  \"points_complete\": " + std::to_string(summary.complete) + ",\n  \"points\": [\n" + points +
-        (points.empty() ? "" : "\n") + "  ]\n}\n";
-  writeTextAtomically((fs::path(outputDir) / "manifest.csv").string(), csv);
-  writeTextAtomically((fs::path(outputDir) / "manifest.json").string(), js);
+  // points_complete after the list: it is counted while the list is written.
+  js.write(std::string(summary.complete ? "\n  ],\n" : "],\n") + "  \"points_complete\": " +
+           std::to_string(summary.complete) + "\n}\n");
+  csv.close();
+  js.close();
+  csvFile.commit();
+  jsonFile.commit();
   return summary;
 }
 

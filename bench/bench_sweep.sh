@@ -2,9 +2,12 @@
 # Sweep benchmarks (bench/RESULTS.md, "Sweeps (issue 6)"), measured in one run:
 #  1. time per point: one `dicsynth sweep` over POINTS points of Figure 1 at 800×600 (--downscale 2),
 #     4 spp, vs one `dicsynth render` process per point (PROCS of them, same points);
-#  2. per-point overhead: (sweep wall time − one process start) / points − GPU render time per
-#     point, as a fraction of the time per point;
-#  3. peak memory (max RSS of the child process) of a 1000-point vs a 10-point sweep of a 32×24 scene.
+#  2. per-point overhead: the steady-state time per point (the sweep's wall time minus that of a
+#     sweep rendering its first point alone, i.e. without the one-off process, device and texture
+#     start, over the other POINTS − 1 points) minus the GPU render time per point, as a fraction of
+#     the steady-state time per point (the start-up is per sweep, not per point: shown apart);
+#  3. peak memory (max RSS of the child process) of a 10-, MANY- and 8×MANY-point sweep of a 32×24
+#     scene: no growth per point.
 # Usage: bench/bench_sweep.sh [BUILD_DIR] [POINTS] [PROCS] [MANY]   (defaults: build 50 10 1000)
 # EXTRA_OPTS="..." adds options to both the sweep and the render processes (e.g. --exr-compression rle).
 set -eu
@@ -27,6 +30,11 @@ t1=$(now)
 # name is quoted and holds commas, so count from the end).
 gpu=$(awk -F, 'NR > 1 { n = NF; s += $(n - 1) } END { printf "%.4f", s / (NR - 1) }' "$OUT/sweep/manifest.csv")
 
+# The same sweep's first point alone (--shard 0/POINTS): process, device and texture start-up + 1 point.
+t8=$(now)
+"$BIN" sweep "$HERE/figure1_sweep.lua" -o "$OUT/first" $OPTS --sweep angle=30:40:$POINTS --shard 0/$POINTS >/dev/null
+t9=$(now)
+
 # One render process per point (the first PROCS points of the same sweep).
 "$BIN" sweep "$HERE/figure1_sweep.lua" -o "$OUT/unused" --sweep angle=30:40:$POINTS --list | head -n "$PROCS" > "$OUT/points"
 t2=$(now)
@@ -40,21 +48,26 @@ t4=$(now)
 "$BIN" sweep "$HERE/figure1_sweep.lua" -o "$OUT/sweep" $OPTS --sweep angle=30:40:$POINTS >/dev/null  # all complete: skips
 t5=$(now)
 
-awk -v ts="$t0" -v te="$t1" -v rs="$t2" -v re="$t3" -v ss="$t4" -v se="$t5" -v n="$POINTS" -v p="$PROCS" -v gpu="$gpu" 'BEGIN {
-  sweep = (te - ts) / n; render = (re - rs) / p; rerun = se - ss
-  printf "sweep: %d points in %.1f s: %.3f s per point\n", n, te - ts, sweep
+awk -v ts="$t0" -v te="$t1" -v rs="$t2" -v re="$t3" -v ss="$t4" -v se="$t5" -v fs="$t8" -v fe="$t9" -v n="$POINTS" -v p="$PROCS" -v gpu="$gpu" 'BEGIN {
+  sweep = (te - ts) / n; render = (re - rs) / p; rerun = se - ss; first = fe - fs
+  steady = ((te - ts) - first) / (n - 1)
+  printf "sweep: %d points in %.1f s: %.3f s per point (start-up included)\n", n, te - ts, sweep
   printf "render processes: %d in %.1f s: %.3f s per point\n", p, re - rs, render
   printf "speed-up per point (render process / sweep): %.2fx\n", render / sweep
+  printf "first point alone (process, device, texture start + 1 point): %.2f s; steady state: %.3f s per point\n", first, steady
   printf "GPU render time per point in the sweep (manifest render_seconds): %.3f s\n", gpu
-  printf "per-point overhead (time per point - GPU render) / time per point: %.1f %%\n", 100 * (sweep - gpu) / sweep
+  printf "per-point overhead (steady-state time per point - GPU render) / steady-state time per point: %.1f %%\n", 100 * (steady - gpu) / steady
+  printf "  (with the start-up spread over the %d points: %.1f %%)\n", n, 100 * (sweep - gpu) / sweep
   printf "rerun with every point complete (checks %d records and CRC-32s): %.2f s\n", n, rerun
 }'
 
-# 3. Peak memory: 10 vs 1000 points of the 32×24 scene.
+# 3. Peak memory: 10 vs MANY vs 8×MANY points of the 32×24 scene.
 rss() { /usr/bin/time -f %M "$BIN" sweep "$HERE/tiny_sweep.lua" -o "$OUT/$1" --spp 1 --precision fp32 --sweep "shift=0:0.01:$1" 2>&1 >/dev/null | tail -n 1; }
 r10=$(rss 10)
 t6=$(now)
 r1000=$(rss "$MANY")
 t7=$(now)
-awk -v a="$r10" -v b="$r1000" -v m="$MANY" -v t="$(echo "$t7 - $t6" | bc)" 'BEGIN {
-  printf "peak RSS: 10 points %.1f MiB, %d points %.1f MiB (ratio %.3f; the %d points took %.1f s)\n", a / 1024, m, b / 1024, b / a, m, t }'
+r8000=$(rss "$((8 * MANY))")
+awk -v a="$r10" -v b="$r1000" -v c="$r8000" -v m="$MANY" -v t="$(echo "$t7 - $t6" | bc)" 'BEGIN {
+  printf "peak RSS: 10 points %.1f MiB, %d points %.1f MiB (ratio %.3f; the %d points took %.1f s), %d points %.1f MiB (ratio to %d: %.3f)\n",
+    a / 1024, m, b / 1024, b / a, m, t, 8 * m, c / 1024, m, c / b }'

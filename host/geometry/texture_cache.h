@@ -18,7 +18,8 @@ namespace dicsynth {
 
 class TextureCache {
  public:
-  // The prepared texture of `path` with `interpolation` when cached and the file is unchanged.
+  // The prepared texture of `path` with `interpolation` when cached and the file is unchanged. It
+  // shares the cached coefficient array (PreparedTexture::coefficients): nothing is copied.
   std::optional<PreparedTexture> find(const std::string& path, Interpolation interpolation) const {
     const auto stamp = stampOf(path);
     std::lock_guard lock(mutex_);

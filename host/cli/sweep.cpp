@@ -11,7 +11,12 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
-#include <future>
+#include <condition_variable>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <utility>
 #include <memory>
 #include <optional>
 
@@ -136,6 +141,75 @@ class Progress {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
+// One long-lived thread that runs one task at a time: the writer of the points. A thread per point
+// would do the same work, but each new thread may take another of malloc's per-thread arenas, so
+// the process's footprint wandered by a few MiB between runs (bench/RESULTS.md, "Sweeps").
+class SerialWorker {
+ public:
+  SerialWorker() : thread_([this] { loop(); }) {}
+  ~SerialWorker() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    changed_.notify_all();
+    thread_.join();  // a task still running completes first
+  }
+  SerialWorker(const SerialWorker&) = delete;
+  SerialWorker& operator=(const SerialWorker&) = delete;
+
+  // Starts `task`; the previous one must have been collected by wait().
+  void start(std::function<void()> task) {
+    {
+      std::lock_guard lock(mutex_);
+      DS_CHECK(!running_ && error_ == nullptr, "SerialWorker::start before the previous task was collected");
+      task_ = std::move(task);
+      running_ = true;
+    }
+    changed_.notify_all();
+  }
+  // Waits for the running task (if any) and rethrows its exception.
+  void wait() {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return !running_; });
+    if (error_ != nullptr) std::rethrow_exception(std::exchange(error_, nullptr));
+  }
+
+ private:
+  void loop() {
+    for (;;) {
+      std::function<void()> task;
+      {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [this] { return stop_ || running_; });
+        if (!running_) return;  // stopped with nothing to run
+        task = std::move(task_);
+      }
+      std::exception_ptr error;
+      try {
+        task();
+      } catch (...) {
+        error = std::current_exception();
+      }
+      task = nullptr;  // what the task holds (a point's images, its lock) goes before it counts as done
+      {
+        std::lock_guard lock(mutex_);
+        error_ = error;
+        running_ = false;
+      }
+      changed_.notify_all();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::function<void()> task_;
+  bool running_ = false;       // a task was started and has not finished
+  std::exception_ptr error_;   // the last task's exception, until wait() rethrows it
+  bool stop_ = false;
+  std::thread thread_;         // last: started after the members it uses
+};
+
 int runSweep(const SweepCommand& cmd) {
   const auto defines = parseDefines(cmd.args.defines);
   renderOptions(cmd.args, 0);  // validate the sampling options before any work
@@ -195,10 +269,12 @@ int runSweep(const SweepCommand& cmd) {
   // The files of point i are written (sensor, truth, files, record) on a worker thread while the
   // main thread evaluates, prepares and renders point i+1: at most one point waits to be written,
   // so memory does not grow with the number of points.
-  std::future<void> writing;
+  SerialWorker writer;
+  bool writing = false;  // a point was handed to the writer and not yet collected
   auto finishWriting = [&] {
-    if (!writing.valid()) return;
-    writing.get();  // rethrows the worker's error
+    if (!writing) return;
+    writing = false;
+    writer.wait();  // rethrows the writer's error
     ++rendered;
     images += std::int64_t(frames.size());
     progress.update(++done, rendered, images);
@@ -233,8 +309,7 @@ int runSweep(const SweepCommand& cmd) {
     try {
       result = renderJob(session, *job);
     } catch (...) {
-      if (writing.valid()) writing.wait();  // the previous point still completes
-      finishWriting();
+      finishWriting();  // the previous point still completes (its own error, if any, wins)
       throw;
     }
     finishWriting();
@@ -252,9 +327,10 @@ int runSweep(const SweepCommand& cmd) {
     record->device = result.summary.device;
     record->renderSeconds = result.summary.renderSeconds;
     record->host = host;
-    writing = std::async(std::launch::async, [job, record, lock, folder, r = std::move(result)]() mutable {
+    writing = true;
+    writer.start([job, record, lock, folder, r = std::make_shared<RenderedJob>(std::move(result))] {
       try {
-        writeRenderedJob(std::move(r), *job);
+        writeRenderedJob(std::move(*r), *job);
         record->files = sweep::scanPointFiles(folder);
         record->finishedUtc = utcNow();
         sweep::writePointRecord(folder, *record);  // last: the point is complete from here on

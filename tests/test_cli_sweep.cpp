@@ -259,6 +259,20 @@ TEST_CASE("cli: sweep points that switch textures render exactly as render does 
     if (i == 0) first = a.pixels;
     if (i == 2) CHECK(a.pixels != first);  // the textures differ, so the test can tell them apart
   }
+  // Each point's record lists the texture it rendered with. When b.tif changes, a rerun renders
+  // the two points that use it again (the scene's text, in the key, did not change) and keeps the rest.
+  CHECK(readText(dir.file("out/point_00000/point.json")).find(std::filesystem::absolute(dir.file("a.tif")).lexically_normal().string()) != std::string::npos);
+  const GrayImage oldB = readGrayImage(dir.file("out/point_00002/cam.tif"));
+  REQUIRE(runCli("speckle -o " + dir.file("b.tif") + " --size 64 64 --seed 3 --bits 8").exitCode == 0);
+  const test::CliResult again = runCli("sweep " + scene + " -o " + dir.file("out") + kFast);
+  INFO(again.err);
+  REQUIRE(again.exitCode == 0);
+  CHECK(again.out.find("rendered 2, already complete 3") != std::string::npos);
+  CHECK(readGrayImage(dir.file("out/point_00002/cam.tif")).pixels != oldB.pixels);
+  // --merge-only agrees: with b.tif changed once more, its two points are not complete.
+  REQUIRE(runCli("speckle -o " + dir.file("b.tif") + " --size 64 64 --seed 4 --bits 8").exitCode == 0);
+  CHECK(runCli("sweep " + scene + " -o " + dir.file("out") + kFast + " --merge-only").out ==
+        "manifest: 3 of 5 points complete (" + dir.file("out") + "/manifest.csv, manifest.json)\n");
 }
 
 TEST_CASE("cli: sweep shows progress on a terminal only") {

@@ -3,6 +3,8 @@
 // records that decide whether a point is complete.
 #include <doctest/doctest.h>
 
+#include <chrono>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -226,6 +228,9 @@ TEST_CASE("sweep: a point record is complete only with every file intact") {
   r.finishedUtc = "2026-11-21T00:00:00Z";
   r.files = sweep::scanPointFiles(folder);
   REQUIRE(r.files.size() == 2);
+  sweep::AssetChecksums assets;
+  dir.write("speckle.tif", "texture bytes");
+  r.assets = {assets.of(dir.file("speckle.tif"))};
   CHECK(r.files[0].name == "camera.exr");
   CHECK(r.files[0].bytes == 11);
   // zlib's CRC-32 of "truth bytes", checked against Python's zlib.crc32(b"truth bytes").
@@ -238,16 +243,31 @@ TEST_CASE("sweep: a point record is complete only with every file intact") {
   CHECK(back->device == r.device);
   CHECK(back->renderSeconds == 0.25);
   CHECK(back->files.size() == 2);
-  CHECK(sweep::pointFilesIntact(folder, *back, r.key, true));
-  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, "another key", true));
+  REQUIRE(back->assets.size() == 1);
+  CHECK(back->assets[0].name == std::filesystem::absolute(dir.file("speckle.tif")).lexically_normal().string());
+  CHECK(back->assets[0].bytes == 13);
+  CHECK(back->assets[0].crc32 == sweep::crc32Of("texture bytes"));
+  CHECK(sweep::pointFilesIntact(folder, *back, r.key, true, assets));
+  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, "another key", true, assets));
+  // An asset changed since the point was rendered (same size; a new modification time, so the
+  // cached checksum is not used): not complete, even when the point's own files are not checksummed.
+  dir.write("speckle.tif", "texture bytez");
+  std::filesystem::last_write_time(dir.file("speckle.tif"),
+                                   std::filesystem::last_write_time(dir.file("speckle.tif")) + std::chrono::seconds(2));
+  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, r.key, false, assets));
+  dir.write("speckle.tif", "texture bytes");
+  CHECK(sweep::pointFilesIntact(folder, *back, r.key, true, assets));
+  std::filesystem::remove(dir.file("speckle.tif"));
+  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, r.key, false, assets));
+  dir.write("speckle.tif", "texture bytes");
   // Same size, one byte changed: only the checksum notices.
   dir.write("point_00003/camera.tif", "image bytez");
-  CHECK(sweep::pointFilesIntact(folder, *back, r.key, false));
-  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, r.key, true));
+  CHECK(sweep::pointFilesIntact(folder, *back, r.key, false, assets));
+  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, r.key, true, assets));
   dir.write("point_00003/camera.tif", "image");
-  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, r.key, false));
+  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, r.key, false, assets));
   std::filesystem::remove(folder + "/camera.exr");
-  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, r.key, false));
+  CHECK_FALSE(sweep::pointFilesIntact(folder, *back, r.key, false, assets));
   // A damaged record counts as missing.
   std::string text;
   {

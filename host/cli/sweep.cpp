@@ -5,6 +5,7 @@
 // --shard I/N (or a Slurm job array) renders the points with index ≡ I (mod N).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -247,8 +248,9 @@ int runSweep(const SweepCommand& cmd) {
   createOutputDir(cmd.outputDir);
   if (::access(cmd.outputDir.c_str(), W_OK | X_OK) != 0)
     throw InputError("-o " + cmd.outputDir + ": the output folder is not writable");
+  sweep::AssetChecksums assets;
   if (cmd.mergeOnly) {
-    const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf);
+    const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets);
     std::printf("manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
                 (long long)summary.complete, (long long)summary.total, cmd.outputDir.c_str());
     return kExitOk;
@@ -290,7 +292,7 @@ int runSweep(const SweepCommand& cmd) {
     }
     const std::string key = keyOf(*p);
     if (const auto record = sweep::readPointRecord(folder);
-        record && record->index == p->index && sweep::pointFilesIntact(folder, *record, key, true)) {
+        record && record->index == p->index && sweep::pointFilesIntact(folder, *record, key, true, assets)) {
       ++skipped;
       progress.update(++done, rendered, images);
       continue;
@@ -327,6 +329,14 @@ int runSweep(const SweepCommand& cmd) {
     record->device = result.summary.device;
     record->renderSeconds = result.summary.renderSeconds;
     record->host = host;
+    // The textures it rendered with, so that a rerun notices when they change.
+    for (const RenderedFrame& f : result.frames)
+      for (const PreparedTexture& t : f.scene.textures) record->assets.push_back(assets.of(t.path));
+    std::sort(record->assets.begin(), record->assets.end(),
+              [](const sweep::PointFile& a, const sweep::PointFile& b) { return a.name < b.name; });
+    record->assets.erase(std::unique(record->assets.begin(), record->assets.end(),
+                                     [](const sweep::PointFile& a, const sweep::PointFile& b) { return a.name == b.name; }),
+                         record->assets.end());
     writing = true;
     writer.start([job, record, lock, folder, r = std::make_shared<RenderedJob>(std::move(result))] {
       try {
@@ -342,7 +352,7 @@ int runSweep(const SweepCommand& cmd) {
     });
   }
   finishWriting();
-  const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf);
+  const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets);
   std::printf("sweep: %lld points%s: rendered %lld, already complete %lld, in progress elsewhere %lld; "
               "manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
               (long long)mine.size(),

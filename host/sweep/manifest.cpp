@@ -66,7 +66,7 @@ FileLock::~FileLock() {
 }
 
 ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
-                              const std::function<std::string(const SweepPoint&)>& keyOf) {
+                              const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets) {
   FileLock lock((fs::path(outputDir) / ".manifest.lock").string(), true);
   ManifestSummary summary;
   summary.total = std::int64_t(plan.points.size());
@@ -95,7 +95,7 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
     const std::string folder = (fs::path(outputDir) / folderName).string();
     const auto record = readPointRecord(folder);
     // Sizes only: the checksums are verified when a run decides to skip a point.
-    if (!record || record->index != p.index || !pointFilesIntact(folder, *record, keyOf(p), false)) continue;
+    if (!record || record->index != p.index || !pointFilesIntact(folder, *record, keyOf(p), false, assets)) continue;
     std::string files, filesJson;
     for (const PointFile& f : record->files) {
       files += (files.empty() ? "" : " ") + folderName + "/" + f.name;

@@ -8,6 +8,7 @@
 #include <functional>
 #include <string>
 
+#include "sweep/point_record.h"
 #include "sweep/sweep_points.h"
 
 namespace dicsynth::sweep {
@@ -16,10 +17,10 @@ struct ManifestSummary {
   std::int64_t complete = 0, total = 0;
 };
 
-// `keyOf` gives each point's key (a record with another key is not complete).
-// Throws Error naming a file that cannot be written.
+// `keyOf` gives each point's key (a record with another key is not complete); `assets` checks the
+// records' assets (point_record.h). Throws Error naming a file that cannot be written.
 ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
-                              const std::function<std::string(const SweepPoint&)>& keyOf);
+                              const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets);
 
 // An exclusive advisory lock (flock) on a file, held while the object lives.
 class FileLock {

@@ -109,6 +109,24 @@ std::uint32_t crc32Of(std::string_view bytes) {
   return std::uint32_t(crc);
 }
 
+PointFile AssetChecksums::of(const std::string& path) {
+  const fs::path absolute = fs::absolute(path).lexically_normal();
+  std::error_code ec;
+  const std::uintmax_t bytes = fs::file_size(absolute, ec);
+  const fs::file_time_type modified = ec ? fs::file_time_type{} : fs::last_write_time(absolute, ec);
+  if (ec) throw Error("cannot read '" + absolute.string() + "': " + ec.message());
+  {
+    std::lock_guard lock(mutex_);
+    if (auto it = entries_.find(absolute.string());
+        it != entries_.end() && it->second.bytes == bytes && it->second.modified == modified)
+      return {absolute.string(), bytes, it->second.crc32};
+  }
+  const std::uint32_t crc = fileCrc32(absolute);
+  std::lock_guard lock(mutex_);
+  entries_[absolute.string()] = {bytes, modified, crc};
+  return {absolute.string(), bytes, crc};
+}
+
 std::vector<PointFile> scanPointFiles(const std::string& folder) {
   std::vector<PointFile> files;
   for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
@@ -122,7 +140,7 @@ std::vector<PointFile> scanPointFiles(const std::string& folder) {
 
 void writePointRecord(const std::string& folder, const PointRecord& r) {
   std::string t = "{\n";
-  t += "  \"dicsynth_point\": 1,\n";
+  t += "  \"dicsynth_point\": 2,\n";
   t += "  \"index\": " + std::to_string(r.index) + ",\n";
   t += "  \"key\": " + json::quote(r.key) + ",\n";
   t += "  \"parameters\": " + r.parametersJson + ",\n";
@@ -134,10 +152,15 @@ void writePointRecord(const std::string& folder, const PointRecord& r) {
   t += "  \"render_seconds\": " + json::number(r.renderSeconds) + ",\n";
   t += "  \"host\": " + json::quote(r.host) + ",\n";
   t += "  \"finished_utc\": " + json::quote(r.finishedUtc) + ",\n";
+  auto list = [&t](const std::vector<PointFile>& files) {
+    for (std::size_t i = 0; i < files.size(); ++i)
+      t += "    {\"name\": " + json::quote(files[i].name) + ", \"bytes\": " + std::to_string(files[i].bytes) +
+           ", \"crc32\": \"" + hex32(files[i].crc32) + "\"}" + (i + 1 < files.size() ? ",\n" : "\n");
+  };
   t += "  \"files\": [\n";
-  for (std::size_t i = 0; i < r.files.size(); ++i)
-    t += "    {\"name\": " + json::quote(r.files[i].name) + ", \"bytes\": " + std::to_string(r.files[i].bytes) +
-         ", \"crc32\": \"" + hex32(r.files[i].crc32) + "\"}" + (i + 1 < r.files.size() ? ",\n" : "\n");
+  list(r.files);
+  t += "  ],\n  \"assets\": [\n";
+  list(r.assets);
   t += "  ]\n}\n";
   writeTextAtomically((fs::path(folder) / kPointRecordName).string(), t);
 }
@@ -147,8 +170,10 @@ std::optional<PointRecord> readPointRecord(const std::string& folder) {
   if (!in) return std::nullopt;
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
-  // Fixed layout: "{", 13 members, the file lines, "  ]", "}".
-  if (lines.size() < 17 || lines[0] != "{" || lines[lines.size() - 1] != "}" || lines[lines.size() - 2] != "  ]")
+  // Fixed layout: "{", 13 members, the file lines, "  ],", "  \"assets\": [", the asset lines, "  ]",
+  // "}". A record of layout 1 (without assets) counts as missing: it cannot tell whether its textures
+  // changed, so its point is rendered again.
+  if (lines.size() < 19 || lines[0] != "{" || lines[lines.size() - 1] != "}" || lines[lines.size() - 2] != "  ]")
     return std::nullopt;
   PointRecord r;
   auto str = [&](std::size_t i, const char* name) -> std::optional<std::string> {
@@ -164,7 +189,7 @@ std::optional<PointRecord> readPointRecord(const std::string& folder) {
   auto backend = str(7, "backend"), precision = str(8, "precision"), device = str(9, "device");
   auto seconds = member(lines[10], "render_seconds");
   auto host = str(11, "host"), finished = str(12, "finished_utc");
-  if (!version || *version != "1" || !index || !key || !params || !seed || !spp || !backend || !precision ||
+  if (!version || *version != "2" || !index || !key || !params || !seed || !spp || !backend || !precision ||
       !device || !seconds || !host || !finished || lines[13] != "  \"files\": [")
     return std::nullopt;
   auto i = numberValue<std::int64_t>(*index);
@@ -183,30 +208,46 @@ std::optional<PointRecord> readPointRecord(const std::string& folder) {
   r.renderSeconds = *sec;
   r.host = *host;
   r.finishedUtc = *finished;
-  for (std::size_t k = 14; k + 2 < lines.size(); ++k) {
-    std::string line = lines[k];
-    if (!line.empty() && line.back() == ',') line.pop_back();
-    const std::string head = "    {\"name\": ";
-    if (line.rfind(head, 0) != 0 || line.back() != '}') return std::nullopt;
-    std::size_t pos = head.size();
-    auto name = unquote(line, pos);
-    if (!name) return std::nullopt;
-    unsigned long long bytes = 0;
-    char crc[9] = {0};
-    int used = 0;
-    const std::string rest = line.substr(pos);
-    if (std::sscanf(rest.c_str(), ", \"bytes\": %llu, \"crc32\": \"%8[0-9a-f]\"}%n", &bytes, crc, &used) != 2 ||
-        std::size_t(used) != rest.size() || std::string(crc).size() != 8)
-      return std::nullopt;
-    r.files.push_back({*name, bytes, std::uint32_t(std::stoul(crc, nullptr, 16))});
-  }
+  // `    {"name": ..., "bytes": N, "crc32": "xxxxxxxx"}[,]` lines from lines[k] up to the line `end`.
+  auto readList = [&lines](std::size_t& k, const std::string& end, std::vector<PointFile>& out) {
+    for (; k < lines.size() && lines[k] != end; ++k) {
+      std::string line = lines[k];
+      if (!line.empty() && line.back() == ',') line.pop_back();
+      const std::string head = "    {\"name\": ";
+      if (line.rfind(head, 0) != 0 || line.back() != '}') return false;
+      std::size_t pos = head.size();
+      auto name = unquote(line, pos);
+      if (!name) return false;
+      unsigned long long bytes = 0;
+      char crc[9] = {0};
+      int used = 0;
+      const std::string rest = line.substr(pos);
+      if (std::sscanf(rest.c_str(), ", \"bytes\": %llu, \"crc32\": \"%8[0-9a-f]\"}%n", &bytes, crc, &used) != 2 ||
+          std::size_t(used) != rest.size() || std::string(crc).size() != 8)
+        return false;
+      out.push_back({*name, bytes, std::uint32_t(std::stoul(crc, nullptr, 16))});
+    }
+    return k < lines.size();
+  };
+  std::size_t k = 14;
+  if (!readList(k, "  ],", r.files) || ++k >= lines.size() || lines[k] != "  \"assets\": [") return std::nullopt;
+  ++k;
+  if (!readList(k, "  ]", r.assets) || k + 2 != lines.size()) return std::nullopt;
   if (r.files.empty()) return std::nullopt;  // a point always writes files
   return r;
 }
 
 bool pointFilesIntact(const std::string& folder, const PointRecord& record, const std::string& key,
-                      bool verifyChecksums) {
+                      bool verifyChecksums, AssetChecksums& assets) {
   if (record.key != key) return false;
+  for (const PointFile& a : record.assets) {
+    try {
+      const PointFile now = assets.of(a.name);
+      if (now.bytes != a.bytes || now.crc32 != a.crc32) return false;
+    } catch (const Error&) {
+      return false;  // gone or unreadable: the point cannot be as it was
+    }
+  }
   for (const PointFile& f : record.files) {
     const fs::path path = fs::path(folder) / f.name;
     std::error_code ec;

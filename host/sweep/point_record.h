@@ -4,7 +4,13 @@
 // size and CRC-32, and the point's key (everything that determines its images), so a rerun skips a
 // point only when its record exists, its key matches the run's and every file is still there with
 // the recorded size and checksum. A point without a valid record is rendered again from scratch.
+// The record also lists the point's assets, the files its scene loaded (textures), with size and
+// CRC-32: the key holds the scene file's text but not what it loads, so a point whose textures
+// changed since it was rendered is not complete either.
 #include <cstdint>
+#include <filesystem>
+#include <map>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -28,6 +34,24 @@ struct PointRecord {
   double renderSeconds = 0;      // per run: differs between runs
   std::string host, finishedUtc; // per run
   std::vector<PointFile> files;  // sorted by name
+  std::vector<PointFile> assets; // files the scene loaded, by absolute path, sorted by name
+};
+
+// CRC-32s of input files, each computed once per process while its size and modification time stay
+// the same: every point of a sweep records and checks the same textures (Figure 1's is 32 MB).
+class AssetChecksums {
+ public:
+  // The file's absolute path, size and CRC-32. Throws Error naming the file when it cannot be read.
+  PointFile of(const std::string& path);
+
+ private:
+  struct Entry {
+    std::uintmax_t bytes = 0;
+    std::filesystem::file_time_type modified;
+    std::uint32_t crc32 = 0;
+  };
+  std::mutex mutex_;  // the sweep's writer thread and its main thread both ask
+  std::map<std::string, Entry> entries_;
 };
 
 inline constexpr const char* kPointRecordName = "point.json";
@@ -45,9 +69,10 @@ void writePointRecord(const std::string& folder, const PointRecord& record);
 // Reads folder/point.json; nullopt when missing or not in the layout writePointRecord writes.
 std::optional<PointRecord> readPointRecord(const std::string& folder);
 
-// True when `record` has `key` and each of its files exists with the recorded size (and, when
-// verifyChecksums, the recorded CRC-32).
+// True when `record` has `key`, each of its files exists with the recorded size (and, when
+// verifyChecksums, the recorded CRC-32), and each of its assets still has the recorded size and
+// CRC-32 (always compared: `assets` computes each file's once).
 bool pointFilesIntact(const std::string& folder, const PointRecord& record, const std::string& key,
-                      bool verifyChecksums);
+                      bool verifyChecksums, AssetChecksums& assets);
 
 }  // namespace dicsynth::sweep

@@ -25,7 +25,8 @@ std::vector<CompareItem> compareItems(const std::string& path,
     const SweepPlan plan = planSweep(path, defines, sweep.options);
     const std::string stem = fs::path(path).stem().string();
     std::vector<CompareItem> items;
-    for (const SweepPoint& p : plan.points) {
+    for (std::int64_t i = 0; i < plan.count; ++i) {
+      const SweepPoint p = plan.point(i);
       ComparePoint point{p.index, {}};
       std::string values;
       for (const auto& [name, value] : p.values) {

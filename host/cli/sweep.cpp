@@ -220,7 +220,8 @@ int runSweep(const SweepCommand& cmd) {
   const Shard shard = resolveShard(cmd.shard);
 
   if (cmd.list) {
-    for (const SweepPoint& p : plan.points) {
+    for (std::int64_t i = 0; i < plan.count; ++i) {
+      const SweepPoint p = plan.point(i);
       std::printf("%lld %s", (long long)p.index, pointFolderName(p.index).c_str());
       for (const auto& [name, value] : p.values) std::printf(" %s=%s", name.c_str(), value.defineText().c_str());
       std::printf("\n");
@@ -260,12 +261,11 @@ int runSweep(const SweepCommand& cmd) {
   fs::create_directories(lockDir, ec);
   if (ec) throw InputError("-o " + cmd.outputDir + ": cannot create " + lockDir.string() + ": " + ec.message());
 
-  std::vector<const SweepPoint*> mine;
-  for (const SweepPoint& p : plan.points)
-    if (p.index % shard.count == shard.index) mine.push_back(&p);
+  // This shard's points: index ≡ shard.index (mod shard.count).
+  const std::int64_t mine = plan.count > shard.index ? (plan.count - shard.index + shard.count - 1) / shard.count : 0;
 
   RenderSession session(cmd.args, cmd.backend);
-  Progress progress(std::int64_t(mine.size()), stderrIsTerminal());
+  Progress progress(mine, stderrIsTerminal());
   std::int64_t done = 0, rendered = 0, skipped = 0, busy = 0, images = 0;
   const std::string host = hostName();
   // The files of point i are written (sensor, truth, files, record) on a worker thread while the
@@ -281,18 +281,19 @@ int runSweep(const SweepCommand& cmd) {
     images += std::int64_t(frames.size());
     progress.update(++done, rendered, images);
   };
-  for (const SweepPoint* p : mine) {
-    const std::string folder = (fs::path(cmd.outputDir) / pointFolderName(p->index)).string();
+  for (std::int64_t index = shard.index; index < plan.count; index += shard.count) {
+    const SweepPoint p = plan.point(index);
+    const std::string folder = (fs::path(cmd.outputDir) / pointFolderName(p.index)).string();
     // One owner per point at a time, whatever the sharding: a second process skips it.
-    auto lock = std::make_shared<sweep::FileLock>((lockDir / (pointFolderName(p->index) + ".lock")).string(), false);
+    auto lock = std::make_shared<sweep::FileLock>((lockDir / (pointFolderName(p.index) + ".lock")).string(), false);
     if (!lock->acquired()) {
       ++busy;
       progress.update(++done, rendered, images);
       continue;
     }
-    const std::string key = keyOf(*p);
+    const std::string key = keyOf(p);
     if (const auto record = sweep::readPointRecord(folder);
-        record && record->index == p->index && sweep::pointFilesIntact(folder, *record, key, true, assets)) {
+        record && record->index == p.index && sweep::pointFilesIntact(folder, *record, key, true, assets)) {
       ++skipped;
       progress.update(++done, rendered, images);
       continue;
@@ -302,9 +303,9 @@ int runSweep(const SweepCommand& cmd) {
     job->outputDir = folder;
     job->frames = frames;
     job->numbered = numbered;
-    job->defines = pointDefines(defines, *p);
+    job->defines = pointDefines(defines, p);
     job->sweepParameters = plan.names;
-    job->seed = seedOf(*p);
+    job->seed = seedOf(p);
     job->verbose = false;
     job->exrCompression = cmd.exrCompression;
     RenderedJob result;
@@ -319,10 +320,10 @@ int runSweep(const SweepCommand& cmd) {
     std::error_code ec;
     fs::remove_all(folder, ec);
     auto record = std::make_shared<sweep::PointRecord>();
-    record->index = p->index;
+    record->index = p.index;
     record->key = key;
-    record->parametersJson = parametersJson(*p);
-    record->seed = seedOf(*p);
+    record->parametersJson = parametersJson(p);
+    record->seed = seedOf(p);
     record->samplesPerPixel = cmd.args.spp;
     record->backend = result.summary.backend;
     record->precision = result.summary.precision;
@@ -355,9 +356,9 @@ int runSweep(const SweepCommand& cmd) {
   const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets);
   std::printf("sweep: %lld points%s: rendered %lld, already complete %lld, in progress elsewhere %lld; "
               "manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
-              (long long)mine.size(),
+              (long long)mine,
               shard.count > 1 ? (" (shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) + " of " +
-                                 std::to_string(plan.points.size()) + ", by " + shard.origin + ")").c_str()
+                                 std::to_string(plan.count) + ", by " + shard.origin + ")").c_str()
                               : "",
               (long long)rendered, (long long)skipped, (long long)busy, (long long)summary.complete,
               (long long)summary.total, cmd.outputDir.c_str());

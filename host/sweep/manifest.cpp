@@ -69,7 +69,7 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
                               const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets) {
   FileLock lock((fs::path(outputDir) / ".manifest.lock").string(), true);
   ManifestSummary summary;
-  summary.total = std::int64_t(plan.points.size());
+  summary.total = plan.count;
   // Streamed point by point: the manifest of a long sweep is never held in memory (a sweep's peak
   // memory must not grow with its points; bench/RESULTS.md, "Sweeps").
   AtomicFile csvFile((fs::path(outputDir) / "manifest.csv").string());
@@ -90,7 +90,8 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
   head += "],\n  \"points_total\": " + std::to_string(summary.total) + ",\n  \"points\": [";
   js.write(head);
 
-  for (const SweepPoint& p : plan.points) {
+  for (std::int64_t i = 0; i < plan.count; ++i) {
+    const SweepPoint p = plan.point(i);
     const std::string folderName = pointFolderName(p.index);
     const std::string folder = (fs::path(outputDir) / folderName).string();
     const auto record = readPointRecord(folder);

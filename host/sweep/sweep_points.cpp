@@ -111,10 +111,9 @@ SweepDeclaration parseSweepOptions(const SweepOptions& options) {
   return d;
 }
 
-std::vector<SweepPoint> enumerateSweep(const SweepDeclaration& d) {
-  std::vector<SweepPoint> points;
+std::int64_t sweepPointCount(const SweepDeclaration& d) {
   switch (d.kind) {
-    case SweepDeclaration::Kind::None: break;
+    case SweepDeclaration::Kind::None: return 0;
     case SweepDeclaration::Kind::Grid: {
       std::int64_t total = 1;
       for (const auto& [name, values] : d.grid) {
@@ -123,38 +122,49 @@ std::vector<SweepPoint> enumerateSweep(const SweepDeclaration& d) {
           throw InputError(d.origin + ": the grid has more than " + std::to_string(kMaxSweepPoints) + " points");
         total *= std::int64_t(values.size());
       }
-      points.reserve(std::size_t(total));
-      for (std::int64_t i = 0; i < total; ++i) {
-        SweepPoint p{i, {}};
-        p.values.resize(d.grid.size());
-        std::int64_t rest = i;
-        for (std::size_t k = d.grid.size(); k-- > 0;) {  // the last name varies fastest
-          const auto& values = d.grid[k].second;
-          p.values[k] = {d.grid[k].first, values[std::size_t(rest % std::int64_t(values.size()))]};
-          rest /= std::int64_t(values.size());
-        }
-        points.push_back(std::move(p));
+      return total;
+    }
+    case SweepDeclaration::Kind::Points: return std::int64_t(d.points.size());
+    case SweepDeclaration::Kind::Random: return d.count;
+  }
+  return 0;
+}
+
+SweepPoint sweepPoint(const SweepDeclaration& d, std::int64_t i) {
+  SweepPoint p{i, {}};
+  switch (d.kind) {
+    case SweepDeclaration::Kind::None: break;
+    case SweepDeclaration::Kind::Grid: {
+      p.values.resize(d.grid.size());
+      std::int64_t rest = i;
+      for (std::size_t k = d.grid.size(); k-- > 0;) {  // the last name varies fastest
+        const auto& values = d.grid[k].second;
+        p.values[k] = {d.grid[k].first, values[std::size_t(rest % std::int64_t(values.size()))]};
+        rest /= std::int64_t(values.size());
       }
       break;
     }
-    case SweepDeclaration::Kind::Points:
-      for (std::size_t i = 0; i < d.points.size(); ++i) points.push_back({std::int64_t(i), d.points[i]});
-      break;
+    case SweepDeclaration::Kind::Points: p.values = d.points.at(std::size_t(i)); break;
     case SweepDeclaration::Kind::Random:
-      points.reserve(std::size_t(d.count));
-      for (std::int64_t i = 0; i < d.count; ++i) {
-        SweepPoint p{i, {}};
-        for (const SweepRange& r : d.ranges) {
-          double x = r.lo + (r.hi - r.lo) * sweepUniform(d.seed, i, r.name);
-          if (x >= r.hi) x = std::nextafter(r.hi, r.lo);  // rounding must not reach the open end
-          p.values.emplace_back(r.name, SweepValue::ofNumber(x));
-        }
-        points.push_back(std::move(p));
+      for (const SweepRange& r : d.ranges) {
+        double x = r.lo + (r.hi - r.lo) * sweepUniform(d.seed, i, r.name);
+        if (x >= r.hi) x = std::nextafter(r.hi, r.lo);  // rounding must not reach the open end
+        p.values.emplace_back(r.name, SweepValue::ofNumber(x));
       }
       break;
   }
+  return p;
+}
+
+std::vector<SweepPoint> enumerateSweep(const SweepDeclaration& d) {
+  const std::int64_t n = sweepPointCount(d);
+  std::vector<SweepPoint> points;
+  points.reserve(std::size_t(n));
+  for (std::int64_t i = 0; i < n; ++i) points.push_back(sweepPoint(d, i));
   return points;
 }
+
+SweepPoint SweepPlan::point(std::int64_t index) const { return sweepPoint(declaration, index); }
 
 SweepPlan planSweep(const std::string& scenePath, const std::vector<std::pair<std::string, std::string>>& defines,
                     const SweepOptions& options) {
@@ -165,9 +175,9 @@ SweepPlan planSweep(const std::string& scenePath, const std::vector<std::pair<st
     if (plan.declaration.kind == SweepDeclaration::Kind::None)
       throw InputError(scenePath + ": the scene declares no sweep (global `sweep`) and no --sweep option is given");
   }
-  plan.points = enumerateSweep(plan.declaration);
-  if (plan.points.empty()) throw InputError(plan.declaration.origin + ": the sweep has no point");
-  for (const auto& [name, value] : plan.points.front().values) plan.names.push_back(name);
+  plan.count = sweepPointCount(plan.declaration);
+  if (plan.count == 0) throw InputError(plan.declaration.origin + ": the sweep has no point");
+  for (const auto& [name, value] : plan.point(0).values) plan.names.push_back(name);
   for (const std::string& name : plan.names) {
     const std::string what = plan.declaration.origin + ": sweep parameter '" + name + "': ";
     if (!isIdentifier(name)) throw InputError(what + "not a Lua identifier (letters, digits and _, not starting with a digit)");

@@ -33,16 +33,26 @@ struct SweepOptions {
   std::uint32_t randomSeed = 1;             // --random-seed S
 };
 
+// A sweep's points are generated on demand from the declaration, not listed: a grid or random
+// sweep of N points then costs no memory per point (a listed SweepPoint is ~0.2 KB, 2 GB at the
+// 10-million-point limit; bench/RESULTS.md, "Sweeps").
 struct SweepPlan {
   SweepDeclaration declaration;
   std::vector<std::string> names;  // parameter names, sorted
-  std::vector<SweepPoint> points;  // index = position
+  std::int64_t count = 0;          // points: indices 0 .. count − 1
+  SweepPoint point(std::int64_t index) const;
 };
 
 // Parses the --sweep options (Kind::None when there are none). Throws InputError.
 SweepDeclaration parseSweepOptions(const SweepOptions& options);
 
-// Enumerates a declaration's points. Throws InputError (too many points, inconsistent names).
+// How many points a declaration has. Throws InputError (too many points, a parameter without values).
+std::int64_t sweepPointCount(const SweepDeclaration& declaration);
+
+// Point `index` (0 ≤ index < sweepPointCount) of a declaration.
+SweepPoint sweepPoint(const SweepDeclaration& declaration, std::int64_t index);
+
+// Every point of a declaration, in index order. Throws as sweepPointCount.
 std::vector<SweepPoint> enumerateSweep(const SweepDeclaration& declaration);
 
 // The sweep of a run: the --sweep options when any are given (they replace the scene's

@@ -12,12 +12,6 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
-#include <condition_variable>
-#include <exception>
-#include <functional>
-#include <mutex>
-#include <thread>
-#include <utility>
 #include <memory>
 #include <optional>
 
@@ -27,6 +21,7 @@
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/json.h"
+#include "core/serial_worker.h"
 #include "shared/rng.h"
 #include "sweep/manifest.h"
 #include "sweep/point_record.h"
@@ -140,75 +135,6 @@ class Progress {
   std::int64_t total_;
   bool enabled_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
-// One long-lived thread that runs one task at a time: the writer of the points. A thread per point
-// would do the same work, but each new thread may take another of malloc's per-thread arenas, so
-// the process's footprint wandered by a few MiB between runs (bench/RESULTS.md, "Sweeps").
-class SerialWorker {
- public:
-  SerialWorker() : thread_([this] { loop(); }) {}
-  ~SerialWorker() {
-    {
-      std::lock_guard lock(mutex_);
-      stop_ = true;
-    }
-    changed_.notify_all();
-    thread_.join();  // a task still running completes first
-  }
-  SerialWorker(const SerialWorker&) = delete;
-  SerialWorker& operator=(const SerialWorker&) = delete;
-
-  // Starts `task`; the previous one must have been collected by wait().
-  void start(std::function<void()> task) {
-    {
-      std::lock_guard lock(mutex_);
-      DS_CHECK(!running_ && error_ == nullptr, "SerialWorker::start before the previous task was collected");
-      task_ = std::move(task);
-      running_ = true;
-    }
-    changed_.notify_all();
-  }
-  // Waits for the running task (if any) and rethrows its exception.
-  void wait() {
-    std::unique_lock lock(mutex_);
-    changed_.wait(lock, [this] { return !running_; });
-    if (error_ != nullptr) std::rethrow_exception(std::exchange(error_, nullptr));
-  }
-
- private:
-  void loop() {
-    for (;;) {
-      std::function<void()> task;
-      {
-        std::unique_lock lock(mutex_);
-        changed_.wait(lock, [this] { return stop_ || running_; });
-        if (!running_) return;  // stopped with nothing to run
-        task = std::move(task_);
-      }
-      std::exception_ptr error;
-      try {
-        task();
-      } catch (...) {
-        error = std::current_exception();
-      }
-      task = nullptr;  // what the task holds (a point's images, its lock) goes before it counts as done
-      {
-        std::lock_guard lock(mutex_);
-        error_ = error;
-        running_ = false;
-      }
-      changed_.notify_all();
-    }
-  }
-
-  std::mutex mutex_;
-  std::condition_variable changed_;
-  std::function<void()> task_;
-  bool running_ = false;       // a task was started and has not finished
-  std::exception_ptr error_;   // the last task's exception, until wait() rethrows it
-  bool stop_ = false;
-  std::thread thread_;         // last: started after the members it uses
 };
 
 int runSweep(const SweepCommand& cmd) {

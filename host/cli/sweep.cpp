@@ -5,7 +5,6 @@
 // --shard I/N (or a Slurm job array) renders the points with index ≡ I (mod N).
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -257,13 +256,10 @@ int runSweep(const SweepCommand& cmd) {
     record->renderSeconds = result.summary.renderSeconds;
     record->host = host;
     // The textures it rendered with, so that a rerun notices when they change.
+    std::vector<std::string> texturePaths;
     for (const RenderedFrame& f : result.frames)
-      for (const PreparedTexture& t : f.scene.textures) record->assets.push_back(assets.of(t.path));
-    std::sort(record->assets.begin(), record->assets.end(),
-              [](const sweep::PointFile& a, const sweep::PointFile& b) { return a.name < b.name; });
-    record->assets.erase(std::unique(record->assets.begin(), record->assets.end(),
-                                     [](const sweep::PointFile& a, const sweep::PointFile& b) { return a.name == b.name; }),
-                         record->assets.end());
+      for (const PreparedTexture& t : f.scene.textures) texturePaths.push_back(t.path);
+    record->assets = assets.of(texturePaths);
     writing = true;
     writer.start([job, record, lock, folder, r = std::make_shared<RenderedJob>(std::move(result))] {
       try {

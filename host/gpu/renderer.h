@@ -80,7 +80,8 @@ class Renderer {
   // The texel buffer (all textures' coefficients in one variant) and what it was packed from: the
   // textures' shared coefficient arrays in order, held so that no other array can take their
   // addresses, and the variant. Texels are matched by identity, not by bytes: comparing them would
-  // mean repacking ~34 MB per render (Figure 1), about 10 % of a sweep point's time on lavapipe.
+  // mean repacking ~34 MB per render (Figure 1); with the texture cache's copy, which sharing also
+  // removed, that was ~14 % of a sweep point's time on lavapipe (bench/RESULTS.md, "Sweeps").
   // Sweep points share the arrays through the texture cache (geometry/texture_cache.h).
   struct CachedTexels {
     std::vector<std::shared_ptr<const std::vector<double>>> sources;

@@ -95,7 +95,8 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
     const std::string folderName = pointFolderName(p.index);
     const std::string folder = (fs::path(outputDir) / folderName).string();
     const auto record = readPointRecord(folder);
-    // Sizes only: the checksums are verified when a run decides to skip a point.
+    // The point's own files by size only (their checksums are verified when a run decides to skip
+    // a point); its assets by checksum, computed once per file and run.
     if (!record || record->index != p.index || !pointFilesIntact(folder, *record, keyOf(p), false, assets)) continue;
     std::string files, filesJson;
     for (const PointFile& f : record->files) {

@@ -33,6 +33,9 @@ std::uint32_t fileCrc32(const fs::path& path) {
   return std::uint32_t(crc);
 }
 
+// Records list files sorted by name.
+bool byName(const PointFile& a, const PointFile& b) { return a.name < b.name; }
+
 std::string hex32(std::uint32_t v) {
   char buf[16];
   std::snprintf(buf, sizeof buf, "%08x", v);
@@ -127,6 +130,15 @@ PointFile AssetChecksums::of(const std::string& path) {
   return {absolute.string(), bytes, crc};
 }
 
+std::vector<PointFile> AssetChecksums::of(const std::vector<std::string>& paths) {
+  std::vector<PointFile> files;
+  for (const std::string& path : paths) files.push_back(of(path));
+  std::sort(files.begin(), files.end(), byName);
+  files.erase(std::unique(files.begin(), files.end(), [](const PointFile& a, const PointFile& b) { return a.name == b.name; }),
+              files.end());
+  return files;
+}
+
 std::vector<PointFile> scanPointFiles(const std::string& folder) {
   std::vector<PointFile> files;
   for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
@@ -134,7 +146,7 @@ std::vector<PointFile> scanPointFiles(const std::string& folder) {
     if (!e.is_regular_file() || name == kPointRecordName || name.empty() || name[0] == '.') continue;
     files.push_back({name, e.file_size(), fileCrc32(e.path())});
   }
-  std::sort(files.begin(), files.end(), [](const PointFile& a, const PointFile& b) { return a.name < b.name; });
+  std::sort(files.begin(), files.end(), byName);
   return files;
 }
 

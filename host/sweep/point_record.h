@@ -43,6 +43,8 @@ class AssetChecksums {
  public:
   // The file's absolute path, size and CRC-32. Throws Error naming the file when it cannot be read.
   PointFile of(const std::string& path);
+  // of() for each path, sorted by name, each file once (a point's record lists them so).
+  std::vector<PointFile> of(const std::vector<std::string>& paths);
 
  private:
   struct Entry {

@@ -53,7 +53,9 @@ void ds_bernstein(int p, real t, out real basis[DS_NURBS_MAX_DEGREE + 1], out re
 
 void ds_patch_load(int patchIndex, out real4 cp[DS_NURBS_MAX_POINTS]) {
   const int first = nurbsPatches[patchIndex].info.z;
-  for (int i = 0; i < DS_NURBS_MAX_POINTS; ++i) cp[i] = i < DS_NURBS_POINTS ? h_real(nurbsPoints[first + i]) : real4(0.0);
+  // Only the patch's own points are read: a ternary's select would read past the buffer's end.
+  for (int i = 0; i < DS_NURBS_MAX_POINTS; ++i) cp[i] = real4(0.0);
+  for (int i = 0; i < DS_NURBS_POINTS; ++i) cp[i] = h_real(nurbsPoints[first + i]);
 }
 
 // Homogeneous point S and partial derivatives Sa, Sb at local (a, b).

@@ -1,0 +1,248 @@
+// The randomized differential test of ray–NURBS intersection (issue 14): random folded rational
+// surfaces (tests/random_nurbs.h) rendered as ground truth by the GPU in every precision and
+// compared, pixel-centre ray by pixel-centre ray, with the CPU reference's nearest hit. Every
+// disagreement is counted by kind:
+//   miss           the reference hits, the GPU sees the background
+//   extra hit      the reference sees the background, the GPU hits
+//   other object   both hit, different objects (e.g. the sphere behind a surface)
+//   farther root   same object, |ΔP| over the precision's bound, the GPU's point is the farther
+//   nearer root    same object, |ΔP| over the bound, the GPU's point is the nearer
+// df64 and fp64 must have none. fp32 may differ only where its own rounding explains it: where a
+// reference ray within kFp32RayBound_px of the pixel centre gets the GPU's answer (a pixel centre
+// that close to a silhouette or a surface's border may go either way in float). The test measures
+// and prints the largest such offset it needed.
+// The CPU reference is itself checked against an independent root finder in
+// tests/test_nurbs_oracle.cpp.
+// Size: 14 scenes of 320 × 240 rays, 1 075 200 rays per precision. DICSYNTH_NURBS_RANDOM_SCENES=N
+// sets the number of scenes (the opt-in long run: 140, 1.07e7 rays per precision; README,
+// "Precision and the CPU reference").
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
+#include "core/parallel.h"
+#include "cpu/trace.h"
+#include "gpu/renderer.h"
+#include "gpu_test_context.h"
+#include "random_nurbs.h"
+
+using namespace dicsynth;
+using namespace dicsynth::test;
+
+namespace {
+
+// fp32's ray error in image pixels: the GPU builds the chief ray and maps it into the object frame
+// in float, ~k ε D with k = 32 rounding steps (render/compare.cpp, the fp32 tolerances), D ≤ 2 Z
+// here (camera at the origin, objects about Z from it); seen from the camera that is
+// 32 · 2^-24 · 2 Z · fx / Z = 64 · 2^-24 · fx ≈ 0.0104 px for fx = 2727 px. The GPU's acceptance of a
+// tangent root in float (residual ≤ 2e-6 of the surface size, lib/nurbs.glsl: ≤ 1.4e-7 m here,
+// 1.3e-3 px at 0.3 m) lies within it.
+constexpr double kFp32RayBound_px = 64 * 0x1p-24 * 0.012 / 4.4e-6;
+
+enum Kind { Agree, Miss, ExtraHit, OtherObject, FartherRoot, NearerRoot, KindCount };
+constexpr std::array<const char*, KindCount> kKindNames{"agree", "miss", "extra hit", "other object", "farther root",
+                                                        "nearer root"};
+
+struct Answer {
+  std::uint32_t objectId = 0;  // 0: background
+  dvec3 position{0};
+  dvec3 normal{0};
+  double depth = 0;
+};
+
+Answer referenceAnswer(const PreparedScene& scene, dvec2 pixel) {
+  const CameraRay<double> ray = worldRay(scene.cameras[0].model, pixel);
+  cpu::SurfaceHit hit;
+  Answer a;
+  if (cpu::traceNearest(scene, ray.origin, ray.direction, hit)) {
+    a.objectId = std::uint32_t(hit.object + 1);
+    a.position = hit.position;
+    a.normal = hit.normal;
+    a.depth = hit.t;
+  }
+  return a;
+}
+
+// Per-pixel bound of |ΔP| for "the same root": the conditioned bounds of render/compare.cpp
+// (k ε D / max(cos θ, √ε) on curved surfaces; fp64: 1e-9 m).
+double sameRootBound(Precision p, const Answer& ref, dvec3 normal, dvec3 objectOrigin) {
+  if (p == Precision::Fp64) return 1e-9;
+  const double eps = p == Precision::Df64 ? 0x1p-44 : 0x1p-24;
+  const double distance = glm::length(ref.position);
+  const double cosTheta = std::max(std::abs(glm::dot(normal, ref.position)) / distance, std::sqrt(eps));
+  return 32 * eps * (distance + glm::length(objectOrigin)) / cosTheta;
+}
+
+Kind classify(const Answer& ref, const Answer& test, double bound) {
+  if (ref.objectId == 0) return test.objectId == 0 ? Agree : ExtraHit;
+  if (test.objectId == 0) return Miss;
+  if (test.objectId != ref.objectId) return OtherObject;
+  if (glm::length(test.position - ref.position) <= bound) return Agree;
+  return test.depth > ref.depth ? FartherRoot : NearerRoot;
+}
+
+struct Tally {
+  std::array<std::size_t, KindCount> kinds{};
+  std::size_t rays = 0, hits = 0;
+  std::size_t explained = 0;  // fp32 disagreements a reference ray within the bound reproduces
+  double largestExplainingOffset_px = 0;
+  std::string firstUnexplained;
+
+  std::size_t disagreements() const { return rays - kinds[Agree]; }
+  std::size_t unexplained() const { return disagreements() - explained; }
+  std::string line() const {
+    std::ostringstream o;
+    o << rays << " rays (" << hits << " reference hits):";
+    for (int k = 1; k < KindCount; ++k) o << " " << kKindNames[std::size_t(k)] << " " << kinds[std::size_t(k)] << ",";
+    o << " explained by the float ray's rounding " << explained << " (largest offset needed "
+      << largestExplainingOffset_px << " px)";
+    return o.str();
+  }
+};
+
+// Smallest offset (px, ≤ limit) of the pixel centre at which the reference gets `test`'s answer,
+// over 8 directions; 0 when none does.
+double explainingOffset(const PreparedScene& scene, dvec2 pixel, const Answer& test, Precision p,
+                        const std::vector<dvec3>& origins, double limit) {
+  double best = 0;
+  for (int k = 0; k < 8; ++k) {
+    const dvec2 dir(std::cos(k * kPi / 4), std::sin(k * kPi / 4));
+    auto agrees = [&](double r) {
+      const Answer a = referenceAnswer(scene, pixel + r * dir);
+      if (a.objectId == 0) return test.objectId == 0;
+      return classify(a, test, sameRootBound(p, a, a.normal, origins[a.objectId - 1])) == Agree;
+    };
+    if (!agrees(limit)) continue;
+    double lo = 0, hi = limit;  // bisection for the smallest offset along this direction
+    for (int it = 0; it < 20; ++it) (agrees(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+    best = best == 0 ? hi : std::min(best, hi);
+  }
+  return best;
+}
+
+RenderOptions groundTruthOnly(Precision p) {
+  RenderOptions o;
+  o.samplesPerPixel = 1;  // only the pixel-centre ray's ground truth is judged
+  o.precision = p;
+  return o;
+}
+
+// Compares one scene in every precision and adds to the tallies (index: fp64, df64, fp32).
+void compareScene(const Scene& sceneIn, std::array<Tally, 3>& tallies, const std::string& label) {
+  const PreparedScene scene = prepareScene(sceneIn);
+  const int width = scene.cameras[0].camera.width_px, height = scene.cameras[0].camera.height_px;
+  const std::size_t pixels = std::size_t(width) * std::size_t(height);
+  std::vector<Answer> reference(pixels);
+  parallelFor(std::size_t(height), [&](std::size_t y) {
+    for (std::size_t x = 0; x < std::size_t(width); ++x)
+      reference[y * std::size_t(width) + x] = referenceAnswer(scene, dvec2(double(x), double(y)));
+  });
+  std::vector<dvec3> origins;
+  for (const PreparedObject& o : scene.objects) {
+    const dvec4 h = o.worldFromObject * dvec4(0, 0, 0, 1);
+    origins.push_back(dvec3(h) / h.w);
+  }
+  gpu::Renderer renderer(gpuContext());
+  const std::array<Precision, 3> precisions{Precision::Fp64, Precision::Df64, Precision::Fp32};
+  for (std::size_t pi = 0; pi < precisions.size(); ++pi) {
+    const Precision p = precisions[pi];
+    const CameraImage gpu = renderer.render(scene, groundTruthOnly(p)).cameras[0];
+    Tally& t = tallies[pi];
+    for (std::size_t i = 0; i < pixels; ++i) {
+      const Answer& ref = reference[i];
+      Answer test;
+      test.objectId = gpu.objectId[i];
+      if (test.objectId != 0) {
+        test.position = gpu.position_m[i];
+        test.depth = gpu.depth_m[i];
+      }
+      const double bound = ref.objectId ? sameRootBound(p, ref, ref.normal, origins[ref.objectId - 1]) : 0.0;
+      const Kind kind = classify(ref, test, bound);
+      ++t.rays;
+      t.hits += ref.objectId != 0;
+      ++t.kinds[std::size_t(kind)];
+      if (kind == Agree) continue;
+      const dvec2 pixel(double(i % std::size_t(width)), double(i / std::size_t(width)));
+      if (p == Precision::Fp32) {
+        const double offset = explainingOffset(scene, pixel, test, p, origins, kFp32RayBound_px);
+        if (offset > 0) {
+          ++t.explained;
+          t.largestExplainingOffset_px = std::max(t.largestExplainingOffset_px, offset);
+          continue;
+        }
+      }
+      if (t.firstUnexplained.empty()) {
+        std::ostringstream o;
+        o << label << " pixel (" << pixel.x << ", " << pixel.y << "): " << kKindNames[std::size_t(kind)]
+          << "; reference object " << ref.objectId << " at depth " << ref.depth << " m, GPU object " << test.objectId
+          << " at depth " << test.depth << " m";
+        t.firstUnexplained = o.str();
+      }
+    }
+  }
+}
+
+int sceneCount() {
+  const char* v = std::getenv("DICSYNTH_NURBS_RANDOM_SCENES");
+  return v ? std::max(1, std::atoi(v)) : 14;
+}
+
+void report(const std::array<Tally, 3>& tallies) {
+  const std::array<const char*, 3> names{"fp64", "df64", "fp32"};
+  for (std::size_t pi = 0; pi < 3; ++pi) {
+    const Tally& t = tallies[pi];
+    MESSAGE(std::string(names[pi]) << ": " << t.line());
+    if (!t.firstUnexplained.empty()) MESSAGE(std::string(names[pi]) << " first unexplained disagreement: " << t.firstUnexplained);
+    CHECK(t.unexplained() == 0);
+  }
+}
+
+}  // namespace
+
+// Skipped until the GPU search is fixed and lavapipe's loop limit handled (issue 14, open): besides
+// wrong roots, Mesa's llvmpipe ends every
+// loop of a shader invocation (a batch of 8 lanes) once their iterations together reach 65 535
+// (LP_MAX_TGSI_LOOP_ITERATIONS, shared by all loops), silently. On these folded surfaces a batch's
+// NURBS searches exceed it, so rays end early: misses, and ground truth cut short. Run it by name:
+//   build/dicsynth_tests -tc="nurbs-random: GPU*" --no-skip
+TEST_CASE("nurbs-random: GPU nearest hits equal the CPU reference's on random folded surfaces, every precision" *
+          doctest::skip()) {
+  std::array<Tally, 3> tallies;
+  const int scenes = sceneCount();
+  for (int k = 0; k < scenes; ++k) compareScene(randomNurbsScene(std::uint64_t(1000 + k)), tallies, "scene " + std::to_string(k));
+  report(tallies);
+  // The scenes really exercise the surfaces: most rays hit one (the sphere behind catches the rest).
+  CHECK(tallies[0].hits > tallies[0].rays / 2);
+  CHECK(tallies[0].rays >= std::size_t(scenes) * 76800);
+  expectNoValidationMessages();
+}
+
+// Skipped until the GPU's leaf search proves its root nearest (issue 14, open): fails today with 141
+// farther roots in every precision. Run it by name with --no-skip.
+TEST_CASE("nurbs-random: a half cylinder turned 60 degrees, both crossings of its curved surface" * doctest::skip()) {
+  // Nurbs.cylinderSegment { radius = 0.03; angle = math.pi; height = 0.08; arcs = 4 } 0.3 m away,
+  // turned 60° about y and 5° about x: rays near its silhouette cut the surface twice, and the
+  // nearer crossing must win (the GPU returns the farther on 141 of 172 800 pixels in every
+  // precision, before issue 14 is resolved).
+  Scene s;
+  s.file = "cylinder.lua";
+  RandomSource rng(7);
+  Camera c = randomTestCamera(rng);
+  c.distortion = Distortion{};
+  c.width_px = 480;
+  c.height_px = 360;
+  c.principalPoint_px = {239.5, 179.5};
+  s.cameras.push_back(c);
+  const dmat4 turn = glm::rotate(dmat4(1.0), 60 * kPi / 180, dvec3(0, 1, 0)) * glm::rotate(dmat4(1.0), 5 * kPi / 180, dvec3(1, 0, 0));
+  s.objects.push_back(nurbsObject("tube", cylinderSurface(0.03, -kPi / 2, kPi / 2, 4, -0.04, 0.04, 1), {0, 0, 0.3}, turn));
+  std::array<Tally, 3> tallies;
+  compareScene(s, tallies, "cylinder");
+  report(tallies);
+  CHECK(tallies[0].hits > 50000);
+  expectNoValidationMessages();
+}

@@ -129,5 +129,14 @@ void main() {
     }
   }
   outPixel.uvRadianceId = h4_211(uv, h_div(sum, h(real(strata.x * strata.y))), h(objectId));
+  // Loop-limit sentinel. Mesa's llvmpipe (lavapipe) ends every loop of a shader invocation once
+  // the loop iterations of its SIMD batch (8 or 16 lanes), all loops together, reach 65 535
+  // (LP_MAX_TGSI_LOOP_ITERATIONS in gallivm), silently: a search cut short returns a wrong hit. After
+  // that every loop runs its body once, so a loop that must run twice (its bound is not a
+  // constant: params.random.z is 0) counts once. normal.w = 1 tells the host (gpu/renderer.cpp),
+  // which refuses the result. Other drivers have no such limit: the sentinel then never fires.
+  int probe = 0;
+  for (int i = 0; i < 2 + int(params.random.z); ++i) ++probe;
+  outPixel.normal.w = probe == 2 ? 0.0 : 1.0;
   pixels[local.y * params.tile.z + local.x] = outPixel;
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <string>
 #include <future>
 #include <type_traits>
 
@@ -172,6 +173,8 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
 
   double totalPixels = 0, donePixels = 0;
   for (const auto& c : scene.cameras) totalPixels += double(c.camera.width_px) * c.camera.height_px;
+  std::size_t cutShort = 0;  // pixels whose batch hit lavapipe's loop limit (render.comp's sentinel)
+  std::string firstCutShort;
   images.get();  // rethrows an allocation failure
   for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
     const PackedFrame<Layout> frame = packFrame<Layout>(scene, packed, options.samplesPerPixel, ci);
@@ -201,6 +204,11 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
           for (int tx = 0; tx < tw; ++tx) {
             const auto& p = tile[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)];
             const std::size_t i = std::size_t(y0 + ty) * std::size_t(cam.width_px) + std::size_t(x0 + tx);
+            if (component(p.normal, 3) != 0) {
+              if (cutShort++ == 0)
+                firstCutShort = "camera '" + cam.name + "' pixel (" + std::to_string(x0 + tx) + ", " +
+                                std::to_string(y0 + ty) + ")";
+            }
             image.radiance[i] = component(p.uvRadianceId, 2);
             const auto id = std::uint32_t(std::lround(component(p.uvRadianceId, 3)));
             if (id == 0) continue;  // background keeps NaN ground truth (CameraImage::resize)
@@ -218,6 +226,13 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
       }
     }
   }
+  // Nothing cut short is returned as if it were an answer.
+  if (cutShort > 0)
+    throw Error("the Vulkan driver cut the shader's loops short on " + std::to_string(cutShort) +
+                " pixels (first: " + firstCutShort + "): Mesa's lavapipe ends all loops of a batch of pixels "
+                "after 65535 iterations in total, so their results would be wrong. Render with "
+                "--backend cpu, or on a GPU; fewer samples per pixel or a NURBS surface with fewer folds "
+                "also need fewer iterations");
 }
 
 }  // namespace

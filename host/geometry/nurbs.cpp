@@ -264,12 +264,13 @@ void extractBezier(const dvec4* in, int p, int q, dvec2 localMin, dvec2 localMax
   std::array<dvec4, kMaxBezierPoints> cur, tmp;
   std::copy(in, in + count, cur.begin());
   for (int d = 0; d < 2; ++d) {
-    // Keep [0, max] first, then [min/max, 1] of that (the same point min of the original).
-    if (localMax[d] < 1) {
+    // Keep [0, max] first, then [min/max, 1] of that (the same point min of the original). Either
+    // end may lie outside [0, 1]: de Casteljau at such t extrapolates the same polynomial.
+    if (localMax[d] != 1) {
       splitBezier(cur.data(), p, q, d, localMax[d], tmp.data(), out);
       cur = tmp;
     }
-    if (localMin[d] > 0) {
+    if (localMin[d] != 0) {
       splitBezier(cur.data(), p, q, d, localMin[d] / localMax[d], out, tmp.data());
       cur = tmp;
     }

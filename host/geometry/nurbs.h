@@ -95,7 +95,8 @@ void splitBezier(const dvec4* in, int degreeU, int degreeV, int direction, doubl
 std::pair<BezierPatch, BezierPatch> splitBezier(const BezierPatch& patch, int direction, double t);
 
 // The control points of the part [localMin.x, localMax.x] × [localMin.y, localMax.y] of a patch
-// (two splits per direction). `out` may not alias `in`.
+// (two splits per direction; localMax ≠ 0). The range may reach beyond [0, 1]² (an extrapolation
+// of the same polynomial: the GPU stores sub-patches enlarged so). `out` may not alias `in`.
 void extractBezier(const dvec4* in, int degreeU, int degreeV, dvec2 localMin, dvec2 localMax,
                    dvec4* out);
 

@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -125,20 +126,31 @@ int packNurbs(const PreparedNurbs& n, int degree, PackedScene<Layout>& p) {
                node.subPatchCount, 0};
     p.nurbsNodes.push_back(g);
   }
-  for (const NurbsSubPatch& sp : n.subPatches) {
-    typename Layout::GpuNurbsSubPatch g{};
-    // Sub-patch ranges come from halvings: dyadic fractions, exact in float.
-    g.local = {float(sp.localMin.x), float(sp.localMin.y), float(sp.localMax.x), float(sp.localMax.y)};
-    g.info = {int(sp.patch) + patchOffset, sp.degenerate ? 1 : 0, 0, 0};
-    p.nurbsSubPatches.push_back(g);
-  }
+  std::vector<BezierPatch> elevated;
+  elevated.reserve(n.patches.size());
   for (const BezierPatch& original : n.patches) {
-    const BezierPatch bp = elevateBezier(original, degree, degree);
+    const BezierPatch& bp = elevated.emplace_back(elevateBezier(original, degree, degree));
     typename Layout::GpuNurbsPatch g{};
     g.uvRange = h4<Layout>(bp.uvMin.x, bp.uvMin.y, bp.uvMax.x, bp.uvMax.y);
     g.info = {bp.degreeU, bp.degreeV, int(p.nurbsPoints.size()), 0};
     p.nurbsPatches.push_back(g);
     for (const dvec4& q : bp.points) p.nurbsPoints.push_back(h4<Layout>(q.x, q.y, q.z, q.w));
+  }
+  for (const NurbsSubPatch& sp : n.subPatches) {
+    typename Layout::GpuNurbsSubPatch g{};
+    // Sub-patch ranges come from halvings: dyadic fractions, exact in float.
+    g.local = {float(sp.localMin.x), float(sp.localMin.y), float(sp.localMax.x), float(sp.localMax.y)};
+    g.info = {int(sp.patch) + patchOffset, sp.degenerate ? 1 : 0, int(p.nurbsPoints.size()), 0};
+    p.nurbsSubPatches.push_back(g);
+    // The sub-patch's own control points over its range enlarged by 1/8 of its width on each side
+    // (in double, then rounded like the patch's): the GPU's per-ray subdivision starts from them
+    // (shaders/lib/nurbs.glsl, "per-ray subdivision of a leaf").
+    const BezierPatch& bp = elevated[sp.patch];
+    const dvec2 margin = 0.125 * (sp.localMax - sp.localMin);
+    std::array<dvec4, kMaxBezierPoints> points;
+    extractBezier(bp.points.data(), bp.degreeU, bp.degreeV, sp.localMin - margin, sp.localMax + margin, points.data());
+    for (std::size_t i = 0; i < bp.points.size(); ++i)
+      p.nurbsPoints.push_back(h4<Layout>(points[i].x, points[i].y, points[i].z, points[i].w));
   }
   return nodeOffset;
 }

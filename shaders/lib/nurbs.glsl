@@ -1,18 +1,20 @@
-// Ray–NURBS intersection on the GPU (DESIGN.md §4, "Ray–NURBS"): the surface arrives as rational
-// Bézier patches cut into sub-patches that the host made Newton-friendly (normal cone ≤ 25°,
-// speeds within a factor 2: host/geometry/nurbs_bvh.h), with a BVH over their conservative boxes.
+// Ray–NURBS intersection on the GPU: the surface arrives as rational Bézier patches cut into
+// sub-patches (normal cone ≤ 25°, speeds within a factor 2: host/geometry/nurbs_bvh.h), with a BVH
+// over their conservative boxes.
 //  - search (`real`): front-to-back traversal with a shrinking sMax that never drops a node (the
-//    stack holds the deepest tree the host accepts); in each leaf, Newton on the two-plane
-//    formulation from the sub-patch's centre (and four more starts in a degenerate one), accepted
-//    only inside the slightly enlarged sub-domain; a tangent root (singular Jacobian at a
-//    silhouette) is accepted on a small residual when Newton stops converging quadratically.
+//    stack holds the deepest tree the host accepts); in each leaf sub-patch, a per-ray subdivision
+//    in (a, b) that proves, box by box, "no root here" or "exactly one root here" (Krawczyk) before
+//    trusting Newton, so the nearest root is found on folds, silhouettes and patch borders too
+//    (method and proofs: "per-ray subdivision of a leaf" below).
 //  - attributes (`hreal`): in df64 two more Newton steps whose residual is evaluated in df64, then
 //    the point, s and (u, v) in hreal.
-// The CPU reference (host/cpu/nurbs_intersect.cpp) finds every root by subdivision instead; the
-// stress suite (tests/test_nurbs_stress.cpp) compares the two.
+// The CPU reference (host/cpu/nurbs_intersect.cpp) finds every root by its own subdivision; the
+// stress suite (tests/test_nurbs_stress.cpp) and the randomized test (tests/test_nurbs_random.cpp)
+// compare the two.
 // Expects nurbsNodes[], nurbsSubPatches[], nurbsPatches[], nurbsPoints[] and DS_OBJECT(i, member).
 #ifndef DS_NURBS_GLSL
 #define DS_NURBS_GLSL
+#extension GL_EXT_control_flow_attributes : require
 #include "lib/features.glsl"
 #include "lib/real.glsl"
 #include "shared/bindings.h"
@@ -37,12 +39,17 @@ const int DS_NURBS_MAX_ITERATIONS = 24;
 // Bernstein basis functions B_i^p(t), i = 0..p, and their derivatives p (B_{i−1}^{p−1} − B_i^{p−1}),
 // by raising the degree one step at a time (de Casteljau's triangle on the basis).
 void ds_bernstein(int p, real t, out real basis[DS_NURBS_MAX_DEGREE + 1], out real slope[DS_NURBS_MAX_DEGREE + 1]) {
-  for (int i = 0; i <= DS_NURBS_MAX_DEGREE; ++i) { basis[i] = 0.0; slope[i] = 0.0; }
+  [[unroll]] for (int i = 0; i <= DS_NURBS_MAX_DEGREE; ++i) { basis[i] = 0.0; slope[i] = 0.0; }
   basis[0] = 1.0;
-  for (int k = 1; k <= p; ++k) {
+  // Constant trip counts with guards: an inner bound depending on k would keep these loops from
+  // unrolling (lavapipe then pays loop passes for them on every call: ds_search_nurbs).
+  [[unroll]] for (int k = 1; k <= DS_NURBS_MAX_DEGREE; ++k) {
+    if (k > p) continue;
     if (k == p)
-      for (int i = 0; i <= p; ++i) slope[i] = real(p) * ((i > 0 ? basis[i - 1] : 0.0) - (i < p ? basis[i] : 0.0));
-    for (int i = k; i >= 0; --i) basis[i] = (i < k ? (1.0 - t) * basis[i] : 0.0) + (i > 0 ? t * basis[i - 1] : 0.0);
+      [[unroll]] for (int i = 0; i <= DS_NURBS_MAX_DEGREE; ++i)
+        if (i <= p) slope[i] = real(p) * ((i > 0 ? basis[i - 1] : 0.0) - (i < p ? basis[i] : 0.0));
+    [[unroll]] for (int i = DS_NURBS_MAX_DEGREE; i >= 0; --i)
+      if (i <= k) basis[i] = (i < k ? (1.0 - t) * basis[i] : 0.0) + (i > 0 ? t * basis[i - 1] : 0.0);
   }
 }
 
@@ -54,8 +61,8 @@ void ds_bernstein(int p, real t, out real basis[DS_NURBS_MAX_DEGREE + 1], out re
 void ds_patch_load(int patchIndex, out real4 cp[DS_NURBS_MAX_POINTS]) {
   const int first = nurbsPatches[patchIndex].info.z;
   // Only the patch's own points are read: a ternary's select would read past the buffer's end.
-  for (int i = 0; i < DS_NURBS_MAX_POINTS; ++i) cp[i] = real4(0.0);
-  for (int i = 0; i < DS_NURBS_POINTS; ++i) cp[i] = h_real(nurbsPoints[first + i]);
+  [[unroll]] for (int i = 0; i < DS_NURBS_MAX_POINTS; ++i) cp[i] = real4(0.0);
+  [[unroll]] for (int i = 0; i < DS_NURBS_POINTS; ++i) cp[i] = h_real(nurbsPoints[first + i]);
 }
 
 // Homogeneous point S and partial derivatives Sa, Sb at local (a, b).
@@ -67,9 +74,9 @@ void ds_patch_eval(real4 cp[DS_NURBS_MAX_POINTS], real2 ab, out real4 S, out rea
   S = real4(0.0);
   Sa = real4(0.0);
   Sb = real4(0.0);
-  for (int i = 0; i <= p; ++i) {
+  [[unroll]] for (int i = 0; i <= p; ++i) {
     real4 row = real4(0.0), rowSlope = real4(0.0);
-    for (int j = 0; j <= p; ++j) {
+    [[unroll]] for (int j = 0; j <= p; ++j) {
       const real4 point = cp[i * (p + 1) + j];
       row += bv[j] * point;
       rowSlope += dv[j] * point;
@@ -99,43 +106,14 @@ RayPlanes ds_ray_planes(real3 o, real3 d) {
   return r;
 }
 
-// Newton from `start`; true when it converges inside the sub-patch's range enlarged by 1e-3 of
-// its size (a root on a shared border belongs to both neighbours) but not beyond the patch's own
-// [0, 1]² (plus the border tolerance), or stalls on a tangent root.
-bool ds_nurbs_newton(real4 cp[DS_NURBS_MAX_POINTS], vec4 range, RayPlanes r, real scale, real2 start, out real2 ab) {
-  ab = start;
-  const real2 margin = 1e-3 * (real2(range.zw) - real2(range.xy));
-  const real2 lo = max(real2(range.xy) - margin, real2(-DS_NURBS_BORDER_TOLERANCE));
-  const real2 hi = min(real2(range.zw) + margin, real2(1.0 + DS_NURBS_BORDER_TOLERANCE));
-  bool converged = false;
-  real residual = 0.0;
-  for (int it = 0; it < DS_NURBS_MAX_ITERATIONS && !converged; ++it) {
-    real4 S, Sa, Sb;
-    ds_patch_eval(cp, ab, S, Sa, Sb);
-    const real2 F = real2(dot(r.n1, S.xyz) - r.c1 * S.w, dot(r.n2, S.xyz) - r.c2 * S.w);
-    const real j11 = dot(r.n1, Sa.xyz) - r.c1 * Sa.w, j12 = dot(r.n1, Sb.xyz) - r.c1 * Sb.w;
-    const real j21 = dot(r.n2, Sa.xyz) - r.c2 * Sa.w, j22 = dot(r.n2, Sb.xyz) - r.c2 * Sb.w;
-    const real det = j11 * j22 - j12 * j21;
-    residual = length(F) / abs(S.w);
-    if (det == 0.0) break;
-    const real2 step = real2(j22 * F.x - j12 * F.y, -j21 * F.x + j11 * F.y) / det;
-    ab -= step;
-    // Far outside the patch: no root of this sub-patch lies that way.
-    if (any(lessThan(ab, real2(-0.5))) || any(greaterThan(ab, real2(1.5)))) return false;
-    converged = abs(step.x) <= DS_NURBS_STEP_TOLERANCE && abs(step.y) <= DS_NURBS_STEP_TOLERANCE;
-  }
-  const bool inside = all(greaterThanEqual(ab, lo)) && all(lessThanEqual(ab, hi));
-  return inside && (converged || residual <= DS_NURBS_RESIDUAL_TOLERANCE * scale);
-}
-
 #if defined(DS_DF64)
 // Bernstein basis in hreal (no derivatives) for the df64 residual.
 void ds_bernstein_h(int p, hreal t, out hreal basis[DS_NURBS_MAX_DEGREE + 1]) {
   const hreal zero = h(real(0.0)), one = h(real(1.0)), u = h_sub(one, t);
-  for (int i = 0; i <= DS_NURBS_MAX_DEGREE; ++i) basis[i] = zero;
+  [[unroll]] for (int i = 0; i <= DS_NURBS_MAX_DEGREE; ++i) basis[i] = zero;
   basis[0] = one;
-  for (int k = 1; k <= p; ++k)
-    for (int i = k; i >= 0; --i)
+  [[unroll]] for (int k = 1; k <= p; ++k)
+    [[unroll]] for (int i = k; i >= 0; --i)
       basis[i] = h_add(i < k ? h_mul(u, basis[i]) : zero, i > 0 ? h_mul(t, basis[i - 1]) : zero);
 }
 
@@ -145,9 +123,9 @@ hreal4 ds_patch_eval_h(int patchIndex, hreal2 ab) {
   ds_bernstein_h(p, h_x(ab), bu);
   ds_bernstein_h(p, h_y(ab), bv);
   hreal4 S = h(real4(0.0));
-  for (int i = 0; i <= p; ++i) {
+  [[unroll]] for (int i = 0; i <= p; ++i) {
     hreal4 row = h(real4(0.0));
-    for (int j = 0; j <= p; ++j) row = h_add(row, h_mul(nurbsPoints[first + i * (p + 1) + j], bv[j]));
+    [[unroll]] for (int j = 0; j <= p; ++j) row = h_add(row, h_mul(nurbsPoints[first + i * (p + 1) + j], bv[j]));
     S = h_add(S, h_mul(row, bu[i]));
   }
   return S;
@@ -168,7 +146,7 @@ hreal2 ds_nurbs_refine(int patchIndex, real4 cp[DS_NURBS_MAX_POINTS], hreal3 o, 
   const real3 f1 = h_real(n1), f2 = h_real(n2);
   const real g1 = h_real(c1), g2 = h_real(c2);
   hreal2 ab = h(start);
-  for (int step = 0; step < 2; ++step) {
+  [[unroll]] for (int step = 0; step < 2; ++step) {
     const hreal4 Sh = ds_patch_eval_h(patchIndex, ab);
     const real2 F = real2(h_real(h_sub(h_dot(n1, h_xyz(Sh)), h_mul(c1, h_w(Sh)))),
                           h_real(h_sub(h_dot(n2, h_xyz(Sh)), h_mul(c2, h_w(Sh)))));
@@ -197,18 +175,216 @@ real2 ds_box_range(vec4 lo, vec4 hi, real3 o, real3 invD) {
   return real2(max(max(tmin.x, tmin.y), tmin.z), min(min(tmax.x, tmax.y), tmax.z));
 }
 
+// ---------------------------------------------------------------- per-ray subdivision of a leaf
+// Method: ray-dependent subdivision with Krawczyk certificates (Krawczyk 1969; Moore 1977), on the
+// ray-frame form of the patch. Chosen over Bézier clipping (Nishita et al. 1990), which needs a
+// convex-hull clip per step and a rule for roots it cannot separate, and over a transversality
+// test of the normal cone alone (Martin et al. 2000): a narrow normal cone that the ray crosses
+// transversally still admits two crossings (a helical ramp has all normals within a few degrees of
+// its axis), so that test proves no uniqueness.
+//
+// The ray frame. With N1, N2 unit, orthogonal to each other and to the ray, D̂ its direction, a
+// homogeneous control point H = (X, w) = (w P, w) becomes (N1·X − c1 w, N2·X − c2 w, D̂·X − c3 w, w)
+// (c = N·o): a linear map, so the patch stays a rational Bézier patch whose first two homogeneous
+// coordinates F(a, b) form a *polynomial* map; its zeros (w > 0) are the points of the surface on
+// the ray's line, and z / w = D̂·(P − o) = s |d| along it.
+// For a parameter box X (restricted control points q_ij, de Casteljau) this gives, rigorously up to
+// rounding (covered by `pad` and the slack below):
+//  - Exclusion: F is a convex combination of the q_ij.xy, so 0 ∉ hull{q_ij.xy} ⇒ no root in X;
+//    z / w of every point lies between the smallest and largest z_ij / w_ij ⇒ no root in X with
+//    s outside that range (pruning against the nearest root found so far).
+//  - Jacobian: ∂F/∂a is a Bézier polynomial with coefficients n (q_{i+1,j} − q_ij), so over X it
+//    lies in the box of those (likewise ∂F/∂b): an interval matrix J(X) = Jc ± Jr.
+//  - Krawczyk: with y the centre of X, C = J(y)⁻¹, K = y − C F(y) + (I − C J(X))(X − y), whose
+//    radius is (|I − C Jc| + |C| Jr) r. K ⊂ int X ⇒ X holds exactly one zero of F and Newton from
+//    y − C F(y) converges to it; K ∩ X = ∅ ⇒ X holds none. Otherwise X is halved (its spatially
+//    longer side) and both halves examined, the nearer first.
+// Every box is examined enlarged by 1/8 of its width on each side: a root on or near the border
+// between two boxes lies inside both enlarged boxes, where a certificate can hold (on the border
+// of a closed box it never could). A root certified in an enlarged box is accepted whichever box
+// owns it: it is a genuine root, and finding it twice changes nothing. The host stores each leaf
+// sub-patch's control points already restricted to its enlarged box (host/gpu/pack.cpp), so the
+// common case (a sub-patch certified at once, all the host's sub-patch criteria aim at) restricts
+// nothing on the GPU.
+// Grazing rays, folds and silhouettes make J singular nearby: those boxes subdivide until the two
+// crossings separate into boxes of their own, down to DS_NURBS_MAX_BOX_DEPTH halvings of the
+// sub-patch; a box still undecided there is within the rounding of a tangent contact (its size is
+// below what the precision resolves) and gets one Newton run accepted on its residual, as the CPU
+// reference accepts a tangent root. Nothing is assumed of the sub-patch: the host's criteria
+// (normal cone, speeds) only make most sub-patches certify at once.
+// The boxes are visited depth first without a stack (a stack of boxes indexed per lane is slow on
+// SIMD devices): a box is a dyadic rectangle of the sub-patch's [0, 1]² (integer corners, exact in
+// `real` down to the maximum depth), and per level one bit says which axis was halved, one which
+// half was searched first, one whether the second half is being searched; backtracking finds the
+// deepest level with a half left by bit arithmetic (findMSB, bitCount), without a loop.
+#if defined(DS_FP64)
+const real DS_NURBS_EPSILON = 1.1102230246251565e-16LF;  // 2^-53
+const int DS_NURBS_MAX_BOX_DEPTH = 31;  // the bits of one uint per level flag; 2^-31 of a sub-patch
+#else
+const real DS_NURBS_EPSILON = 5.9604644775390625e-8;  // 2^-24
+const int DS_NURBS_MAX_BOX_DEPTH = 22;  // box corners k 2^-22 stay exact in float
+#endif
+// Fraction of a box by which a Krawczyk interval must clear the box's border (or miss it) to
+// count: covers the rounding of the restricted control points, ≲ n ε of the patch's coordinates,
+// for boxes down to the maximum depth.
+const real DS_NURBS_KRAWCZYK_SLACK = 1.0 / 1024.0;
+const int DS_BOX_EMPTY = 0, DS_BOX_UNIQUE = 1, DS_BOX_SPLIT = 2;
+
+// A sub-patch's stored control points (first: their index in nurbsPoints) in the ray frame.
+void ds_points_load_ray(int first, RayPlanes r, real3 dn, real c3, out real4 q[DS_NURBS_MAX_POINTS]) {
+  [[unroll]] for (int i = 0; i < DS_NURBS_MAX_POINTS; ++i) q[i] = real4(0.0);
+  [[unroll]] for (int i = 0; i < DS_NURBS_POINTS; ++i) {
+    const real4 h = h_real(nurbsPoints[first + i]);
+    q[i] = real4(dot(r.n1, h.xyz) - r.c1 * h.w, dot(r.n2, h.xyz) - r.c2 * h.w, dot(dn, h.xyz) - c3 * h.w, h.w);
+  }
+}
+
+// Restricts, in place, the n + 1 Bézier curves q[k·stride + m·step] (m = 0..n, k = 0..n) to the
+// parameter interval [t0, t1] (which may reach slightly beyond [0, 1]): de Casteljau at t0 keeping
+// the right part (position m then holds c_m^(n−m)), then at (t1 − t0)/(1 − t0) keeping the left
+// part (position m then holds c_0^(m)). Every loop has a constant trip count (guards instead of
+// bounds that depend on an outer index), so the compiler unrolls them and q stays in registers.
+void ds_restrict_curves(inout real4 q[DS_NURBS_MAX_POINTS], int stride, int step, real t0, real t1) {
+  const int n = NURBS_DEGREE;
+  const real u = (t1 - t0) / (1.0 - t0);
+  [[unroll]] for (int k = 0; k <= n; ++k) {
+    const int base = k * stride;
+    [[unroll]] for (int r = 1; r <= n; ++r)
+      [[unroll]] for (int m = 0; m < n; ++m)
+        if (m <= n - r) q[base + m * step] = mix(q[base + m * step], q[base + (m + 1) * step], t0);
+    [[unroll]] for (int r = 1; r <= n; ++r)
+      [[unroll]] for (int m = n; m >= 1; --m)
+        if (m >= r) q[base + m * step] = mix(q[base + (m - 1) * step], q[base + m * step], u);
+  }
+}
+
+// Examines the box whose restricted control points are q (box-local parameters in [0, 1]²).
+// pad: rounding allowance (m) of the ray-frame coordinates; zLo, zHi: the s range as z (m).
+// Returns DS_BOX_EMPTY, DS_BOX_UNIQUE (start: Newton's start, box-local) or DS_BOX_SPLIT (split:
+// 0 to halve a, 1 to halve b; lowerFirst: whether the half at smaller parameters looks nearer).
+int ds_examine_box(real4 q[DS_NURBS_MAX_POINTS], real pad, real zLo, real zHi, out real2 start, out int split,
+                   out bool lowerFirst) {
+  const int n = NURBS_DEGREE;
+  start = real2(0.5);
+  split = 0;
+  lowerFirst = true;
+  // Exclusion by the hull: some q.xy on each side of 0 (padded), some z in [zLo, zHi].
+  bvec4 sides = bvec4(false);
+  real zMin = 1e30, zMax = -1e30;
+  [[unroll]] for (int i = 0; i < DS_NURBS_POINTS; ++i) {
+    const real4 h = q[i];
+    const real padW = pad * h.w;
+    sides = bvec4(sides.x || h.x <= padW, sides.y || h.x >= -padW, sides.z || h.y <= padW, sides.w || h.y >= -padW);
+    const real z = h.z / h.w;
+    zMin = min(zMin, z);
+    zMax = max(zMax, z);
+  }
+  if (!all(sides) || zMin > zHi || zMax < zLo) return DS_BOX_EMPTY;
+
+  // Interval Jacobian from the hodographs (the factor n is applied below).
+  real2 jaLo = real2(1e30), jaHi = real2(-1e30), jbLo = real2(1e30), jbHi = real2(-1e30);
+  [[unroll]] for (int i = 0; i < n; ++i)
+    [[unroll]] for (int j = 0; j <= n; ++j) {
+      const real2 da = q[(i + 1) * (n + 1) + j].xy - q[i * (n + 1) + j].xy;
+      const real2 db = q[j * (n + 1) + i + 1].xy - q[j * (n + 1) + i].xy;
+      jaLo = min(jaLo, da);
+      jaHi = max(jaHi, da);
+      jbLo = min(jbLo, db);
+      jbHi = max(jbHi, db);
+    }
+  const real degree = real(n);
+  const real2 jaC = 0.5 * degree * (jaLo + jaHi), jaR = 0.5 * degree * (jaHi - jaLo);
+  const real2 jbC = 0.5 * degree * (jbLo + jbHi), jbR = 0.5 * degree * (jbHi - jbLo);
+
+  // Krawczyk at the centre y = (1/2, 1/2), radius r = (1/2, 1/2).
+  real4 S, Sa, Sb;
+  ds_patch_eval(q, real2(0.5), S, Sa, Sb);
+  const real det = Sa.x * Sb.y - Sb.x * Sa.y;
+  if (det != 0.0) {
+    // C = J(y)⁻¹, columns of J(y) = (Sa.xy, Sb.xy).
+    const real c00 = Sb.y / det, c01 = -Sb.x / det, c10 = -Sa.y / det, c11 = Sa.x / det;
+    const real2 newton = real2(0.5) - real2(c00 * S.x + c01 * S.y, c10 * S.x + c11 * S.y);
+    // M = I − C Jc, Δ = |C| Jr (Jc, Jr: columns ja, jb).
+    const real m00 = 1.0 - (c00 * jaC.x + c01 * jaC.y), m01 = -(c00 * jbC.x + c01 * jbC.y);
+    const real m10 = -(c10 * jaC.x + c11 * jaC.y), m11 = 1.0 - (c10 * jbC.x + c11 * jbC.y);
+    const real d00 = abs(c00) * jaR.x + abs(c01) * jaR.y, d01 = abs(c00) * jbR.x + abs(c01) * jbR.y;
+    const real d10 = abs(c10) * jaR.x + abs(c11) * jaR.y, d11 = abs(c10) * jbR.x + abs(c11) * jbR.y;
+    const real2 radius = 0.5 * real2(abs(m00) + abs(m01) + d00 + d01, abs(m10) + abs(m11) + d10 + d11);
+    const real slack = DS_NURBS_KRAWCZYK_SLACK;
+    if (any(lessThan(newton + radius, real2(-slack))) || any(greaterThan(newton - radius, real2(1.0 + slack))))
+      return DS_BOX_EMPTY;
+    if (all(greaterThan(newton - radius, real2(slack))) && all(lessThan(newton + radius, real2(1.0 - slack)))) {
+      start = newton;
+      return DS_BOX_UNIQUE;
+    }
+  }
+
+  // Undecided: the split direction (spatially longer side) and which half to search first, from
+  // the control net: chords along a and b, mean z of the first and last rows along a or b.
+  real chordA = 0.0, chordB = 0.0, zA0 = 0.0, zA1 = 0.0, zB0 = 0.0, zB1 = 0.0;
+  [[unroll]] for (int k = 0; k <= n; ++k) {
+    const real3 a0 = q[k].xyz / q[k].w, a1 = q[n * (n + 1) + k].xyz / q[n * (n + 1) + k].w;
+    const real3 b0 = q[k * (n + 1)].xyz / q[k * (n + 1)].w, b1 = q[k * (n + 1) + n].xyz / q[k * (n + 1) + n].w;
+    chordA = max(chordA, dot(a1 - a0, a1 - a0));
+    chordB = max(chordB, dot(b1 - b0, b1 - b0));
+    zA0 += a0.z;
+    zA1 += a1.z;
+    zB0 += b0.z;
+    zB1 += b1.z;
+  }
+  split = chordA >= chordB ? 0 : 1;
+  lowerFirst = split == 0 ? zA0 <= zA1 : zB0 <= zB1;
+  return DS_BOX_SPLIT;
+}
+
+// One Newton step on the box's ray-frame points q at t (box-local). residual: the distance of S(t)
+// from the ray (m) before the step; failed: J singular (t kept) or the step left the box.
+void ds_nurbs_newton_step(real4 q[DS_NURBS_MAX_POINTS], inout real2 t, out real residual, out bool converged,
+                          out bool failed) {
+  real4 S, Sa, Sb;
+  ds_patch_eval(q, t, S, Sa, Sb);
+  residual = length(S.xy) / abs(S.w);
+  converged = false;
+  failed = false;
+  const real det = Sa.x * Sb.y - Sb.x * Sa.y;
+  if (det == 0.0) {
+    failed = true;
+    return;
+  }
+  const real2 step = real2(Sb.y * S.x - Sb.x * S.y, -Sa.y * S.x + Sa.x * S.y) / det;
+  t -= step;
+  failed = any(lessThan(t, real2(0.0))) || any(greaterThan(t, real2(1.0)));
+  converged = !failed && abs(step.x) <= DS_NURBS_STEP_TOLERANCE && abs(step.y) <= DS_NURBS_STEP_TOLERANCE;
+}
+
+// The search is one loop whose iterations each do one unit of work (pop a BVH node, start a
+// sub-patch, examine a box, one Newton step), not nested loops. On SIMD devices that run every
+// path under a lane mask (Mesa's llvmpipe/lavapipe among them) a loop nested in another costs one
+// pass per outer iteration even when no lane enters it, and llvmpipe also ends all loops of a
+// batch of lanes after 65 535 passes in total (render.comp's sentinel): nested loops multiplied
+// the passes by ~17 per BVH node. One loop costs what its busiest lane needs.
+const int DS_NURBS_MODE_NODE = 0, DS_NURBS_MODE_SUBPATCH = 1, DS_NURBS_MODE_BOX = 2, DS_NURBS_MODE_NEWTON = 3;
+
 // Nearest root with s in (sMin, sMax). With an origin (a shadow ray leaving this surface), a root
 // in the origin's patch within 1e-5 (float; 1e-10 double) of its local parameters is the origin.
 // oh, dh: the same ray in hreal (df64 decides roots near a patch border with it).
 bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sMin, real sMax, bool originOnSurface,
                      ShapeHit origin, inout ShapeHit hit) {
   const RayPlanes planes = ds_ray_planes(o, d);
+  const real dLength = length(d);
+  const real3 dn = d / dLength;
+  const real c3 = dot(dn, o);
   // 1/d with zeros replaced by a huge number of the right sign (0·∞ would make NaN slabs).
   const real3 safeD = real3(abs(d.x) > 1e-30 ? d.x : 1e-30, abs(d.y) > 1e-30 ? d.y : 1e-30,
                             abs(d.z) > 1e-30 ? d.z : 1e-30);
   const real3 invD = 1.0 / safeD;
-  const real dd = dot(d, d);
   const real scale = h_real(h_x(DS_OBJECT_H(object, shape0)));  // surface size (m)
+  const int rootNode = DS_OBJECT(object, extra).x;
+  // Rounding allowance of the ray-frame coordinates: the transform rounds ~4 ε of |P| + |o|, the
+  // restriction ~2n ε of the patch's extent; 64 ε of both, with |P| from the root's bounds.
+  const real3 extent = max(abs(real3(nurbsNodes[rootNode].boundsMin.xyz)), abs(real3(nurbsNodes[rootNode].boundsMax.xyz)));
+  const real3 ao = abs(o);
+  const real pad = 64.0 * DS_NURBS_EPSILON * (max(max(extent.x, extent.y), extent.z) + max(max(ao.x, ao.y), ao.z) + scale);
 #if defined(DS_FP64)
   const real sameRoot = 1e-10LF;
 #else
@@ -217,60 +393,185 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   bool found = false;
   int stack[DS_NURBS_STACK_SIZE];
   int top = 0;
-  stack[top++] = DS_OBJECT(object, extra).x;
-  while (top > 0) {
-    const int node = stack[--top];
-    const ivec4 links = nurbsNodes[node].links;
-    const real2 range = ds_box_range(nurbsNodes[node].boundsMin, nurbsNodes[node].boundsMax, o, invD);
-    if (range.x > range.y || range.y < sMin || range.x > sMax) continue;
-    if (links.x < 0) {
-      for (int k = links.y; k < links.y + links.z; ++k) {
-        const vec4 local = nurbsSubPatches[k].local;
-        const ivec4 info = nurbsSubPatches[k].info;
-        const int starts = info.y != 0 ? 5 : 1;
-        real4 cp[DS_NURBS_MAX_POINTS];
-        ds_patch_load(info.x, cp);
-        for (int n = 0; n < starts; ++n) {
-          const real2 c = real2(0.5 * (local.xy + local.zw)), quarter = real2(0.25 * (local.zw - local.xy));
-          const real2 start = n == 0 ? c : c + quarter * real2(n == 1 || n == 3 ? -1.0 : 1.0, n <= 2 ? -1.0 : 1.0);
-          real2 ab;
-          if (!ds_nurbs_newton(cp, local, planes, scale, start, ab)) continue;
-#if defined(DS_DF64)
-          // Near the patch's border the float root cannot tell inside from outside (the surface's
-          // edge: hit or miss); its df64 refinement can, as precisely as the CPU reference.
-          if ((any(lessThan(ab, real2(1e-4))) || any(greaterThan(ab, real2(1.0 - 1e-4)))) &&
-              !ds_nurbs_inside_patch(ds_nurbs_refine(info.x, cp, oh, dh, ab)))
-            continue;
-#endif
-          if (originOnSurface && origin.part >= 0 && nurbsSubPatches[origin.part].info.x == info.x &&
-              all(lessThanEqual(abs(ab - origin.param), real2(sameRoot))))
-            continue;
+  stack[top++] = rootNode;
+  int mode = DS_NURBS_MODE_NODE;
+  int k = 0, kEnd = 0;  // the current leaf's sub-patches still to search: k .. kEnd − 1
+  vec4 local = vec4(0.0);
+  ivec4 info = ivec4(0);
+  real4 cp[DS_NURBS_MAX_POINTS];  // the current sub-patch's stored points in the ray frame
+  real4 q[DS_NURBS_MAX_POINTS];   // the current box's restricted points
+  [[unroll]] for (int i = 0; i < DS_NURBS_MAX_POINTS; ++i) {
+    cp[i] = real4(0.0);
+    q[i] = real4(0.0);
+  }
+  // The current box: a dyadic rectangle [ia, ia + 1] 2^-na × [ib, ib + 1] 2^-nb of the sub-patch's
+  // [0, 1]², at `depth` halvings; bit L of the masks: which axis level L halved (1: b), whether
+  // its lower half was searched first, whether its second half is being searched.
+  uint ia = 0u, ib = 0u;
+  int na = 0, nb = 0, depth = 0;
+  uint axisBits = 0u, lowerFirstBits = 0u, secondBits = 0u;
+  real2 lo = real2(0.0), hi = real2(1.0);  // the box enlarged by 1/8, in the stored points' coordinates
+  // Newton's state in the current box, and what its examination said.
+  real2 t = real2(0.5);
+  int newtonSteps = 0;
+  int split = 0;
+  bool lowerFirst = true, last = false;
+  while (true) {
+    if (mode == DS_NURBS_MODE_NODE) {
+      if (top == 0) break;
+      const int node = stack[--top];
+      const ivec4 links = nurbsNodes[node].links;
+      const real2 range = ds_box_range(nurbsNodes[node].boundsMin, nurbsNodes[node].boundsMax, o, invD);
+      if (range.x > range.y || range.y < sMin || range.x > sMax) continue;
+      if (links.x >= 0) {
+        // Children: the nearer one is searched first (pushed last); both are kept.
+        const int left = node + 1, right = links.x;
+        const real2 rl = ds_box_range(nurbsNodes[left].boundsMin, nurbsNodes[left].boundsMax, o, invD);
+        const real2 rr = ds_box_range(nurbsNodes[right].boundsMin, nurbsNodes[right].boundsMax, o, invD);
+        const bool leftFirst = rl.x <= rr.x;
+        stack[top++] = leftFirst ? right : left;
+        stack[top++] = leftFirst ? left : right;
+        continue;
+      }
+      k = links.y;
+      kEnd = links.y + links.z;
+      mode = DS_NURBS_MODE_SUBPATCH;
+    }
+    if (mode == DS_NURBS_MODE_SUBPATCH) {
+      local = nurbsSubPatches[k].local;
+      info = nurbsSubPatches[k].info;
+      ds_points_load_ray(info.z, planes, dn, c3, cp);  // the sub-patch enlarged by 1/8: [-1/8, 9/8]²
+      ia = 0u;
+      ib = 0u;
+      na = 0;
+      nb = 0;
+      depth = 0;
+      mode = DS_NURBS_MODE_BOX;
+    }
+    bool descend = false, boxDone = false;
+    if (mode == DS_NURBS_MODE_BOX) {
+      // The box enlarged by 1/8, in the stored points' coordinates: x ↦ (x + 1/8) / (5/4).
+      const real2 width = real2(ldexp(real(1.0), -na), ldexp(real(1.0), -nb));
+      const real2 boxLo = real2(real(ia), real(ib)) * width;
+      lo = (boxLo - 0.125 * width + 0.125) * 0.8;
+      hi = (boxLo + 1.125 * width + 0.125) * 0.8;
+      q = cp;
+      if (depth > 0) {
+        ds_restrict_curves(q, NURBS_DEGREE + 1, 1, lo.y, hi.y);  // along b, each row i
+        ds_restrict_curves(q, 1, NURBS_DEGREE + 1, lo.x, hi.x);  // along a, each column j
+      }
+      real2 start;
+      const int outcome = ds_examine_box(q, pad, sMin * dLength - pad, sMax * dLength + pad, start, split, lowerFirst);
+      last = depth >= DS_NURBS_MAX_BOX_DEPTH;
+      if (outcome == DS_BOX_EMPTY) {
+        boxDone = true;
+      } else if (outcome == DS_BOX_SPLIT && !last) {
+        descend = true;
+      } else {
+        // Certified: Newton from Krawczyk's point. At the last depth (within the rounding of a
+        // tangent contact): Newton from the centre, accepted on its residual.
+        t = start;
+        newtonSteps = 0;
+        mode = DS_NURBS_MODE_NEWTON;
+      }
+    }
+    if (mode == DS_NURBS_MODE_NEWTON) {
+      real residual;
+      bool converged, failed;
+      ds_nurbs_newton_step(q, t, residual, converged, failed);
+      ++newtonSteps;
+      if (converged || failed || newtonSteps >= DS_NURBS_MAX_ITERATIONS) {
+        mode = DS_NURBS_MODE_BOX;
+        const bool accepted = converged || (last && residual <= DS_NURBS_RESIDUAL_TOLERANCE * scale &&
+                                            all(greaterThanEqual(t, real2(0.0))) && all(lessThanEqual(t, real2(1.0))));
+        // A certified box whose Newton failed (rounding) is halved like an undecided one.
+        descend = !accepted && !last;
+        boxDone = !descend;
+        // Patch-local parameters: box-local → stored-points-local → sub-patch-local → patch.
+        const real2 x = (lo + t * (hi - lo)) * 1.25 - 0.125;
+        const real2 ab = real2(local.xy) + x * real2(local.zw - local.xy);
+        // A root: within the patch (up to the border tolerance), in the s range, not the origin.
+        bool keep = accepted && all(greaterThanEqual(ab, real2(-DS_NURBS_BORDER_TOLERANCE))) &&
+                    all(lessThanEqual(ab, real2(1.0 + DS_NURBS_BORDER_TOLERANCE)));
+        if (keep && originOnSurface && origin.part >= 0 && nurbsSubPatches[origin.part].info.x == info.x &&
+            all(lessThanEqual(abs(ab - origin.param), real2(sameRoot))))
+          keep = false;
+        real s = sMax;
+        if (keep) {
           real4 S, Sa, Sb;
-          ds_patch_eval(cp, ab, S, Sa, Sb);
-          const real s = dot(S.xyz / S.w - o, d) / dd;
-          if (s > sMin && s < sMax) {
-            sMax = s;
-            hit.s = s;
-            hit.part = k;
-            hit.param = ab;
-            found = true;
-          }
+          ds_patch_eval(q, t, S, Sa, Sb);
+          s = S.z / (S.w * dLength);
+        }
+#if defined(DS_DF64)
+        // Near the patch's border the float root cannot tell inside from outside (the surface's
+        // edge: hit or miss); its df64 refinement can, as precisely as the CPU reference.
+        if (keep && s > sMin && s < sMax &&
+            (any(lessThan(ab, real2(1e-4))) || any(greaterThan(ab, real2(1.0 - 1e-4))))) {
+          real4 objectPoints[DS_NURBS_MAX_POINTS];
+          ds_patch_load(info.x, objectPoints);
+          keep = ds_nurbs_inside_patch(ds_nurbs_refine(info.x, objectPoints, oh, dh, ab));
+        }
+#endif
+        if (keep && s > sMin && s < sMax) {
+          sMax = s;
+          hit.s = s;
+          hit.part = k;
+          hit.param = ab;
+          found = true;
         }
       }
-    } else {
-      // Children: the nearer one is searched first (pushed last); both are kept.
-      const int left = node + 1, right = links.x;
-      const real2 rl = ds_box_range(nurbsNodes[left].boundsMin, nurbsNodes[left].boundsMax, o, invD);
-      const real2 rr = ds_box_range(nurbsNodes[right].boundsMin, nurbsNodes[right].boundsMax, o, invD);
-      const bool leftFirst = rl.x <= rr.x;
-      stack[top++] = leftFirst ? right : left;
-      stack[top++] = leftFirst ? left : right;
+    }
+    if (descend) {
+      // Halve the box (level `depth`); the half that looks nearer first.
+      const uint bit = 1u << uint(depth);
+      const uint firstHalf = lowerFirst ? 0u : 1u;
+      if (split != 0) {
+        axisBits |= bit;
+        ib = 2u * ib + firstHalf;
+        ++nb;
+      } else {
+        axisBits &= ~bit;
+        ia = 2u * ia + firstHalf;
+        ++na;
+      }
+      if (lowerFirst) lowerFirstBits |= bit; else lowerFirstBits &= ~bit;
+      secondBits &= ~bit;
+      ++depth;
+    }
+    if (boxDone) {
+      // Backtrack without a loop: the deepest level whose second half is still to search.
+      const uint levels = (1u << uint(depth)) - 1u;  // depth ≤ 31
+      const uint open = ~secondBits & levels;
+      if (open != 0u) {
+        const int level = findMSB(open);
+        // Back to the box that level `level` halved: undo the halvings of levels level..depth−1.
+        const uint undone = levels & ~((1u << uint(level)) - 1u);
+        const int bHalvings = bitCount(axisBits & undone), aHalvings = depth - level - bHalvings;
+        ia >>= uint(aHalvings);
+        ib >>= uint(bHalvings);
+        na -= aHalvings;
+        nb -= bHalvings;
+        // Its other half: the upper one when the lower was searched first.
+        const uint bit = 1u << uint(level);
+        const uint secondHalf = (lowerFirstBits & bit) != 0u ? 1u : 0u;
+        if ((axisBits & bit) != 0u) {
+          ib = 2u * ib + secondHalf;
+          ++nb;
+        } else {
+          ia = 2u * ia + secondHalf;
+          ++na;
+        }
+        secondBits |= bit;
+        depth = level + 1;
+      } else {
+        // The sub-patch is searched: the leaf's next one, or back to the tree.
+        ++k;
+        mode = k < kEnd ? DS_NURBS_MODE_SUBPATCH : DS_NURBS_MODE_NODE;
+      }
     }
   }
   return found;
 }
-
-
 
 // The winner's s, point (object frame), normal and (u, v) (normalized surface parameters).
 void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hreal3 point, out real3 normal,

@@ -107,10 +107,9 @@ bool ds_search_triangle(int index, real3 o, real3 d, real sMin, real sMax, bool 
   return true;
 }
 
-// o, d: the ray in `real`; oh, dh: the same in hreal (NURBS in df64 uses it near patch borders).
-// originOnSurface: the ray leaves this object's surface at `origin` (a shadow ray).
-bool ds_search_shape(int index, real3 o, real3 d, hreal3 oh, hreal3 dh, real sMin, real sMax, bool originOnSurface,
-                     ShapeHit origin, inout ShapeHit hit) {
+// The analytic kinds (every kind but NURBS). o, d: the ray in `real`; originOnSurface: the ray
+// leaves this object's surface (a shadow ray).
+bool ds_search_analytic(int index, real3 o, real3 d, real sMin, real sMax, bool originOnSurface, inout ShapeHit hit) {
   const int kind = DS_OBJECT(index, kinds).x;
   const real4 shape0 = h_real(DS_OBJECT_H(index, shape0));
   if (DS_HAS_SHAPE(DS_SHAPE_SPHERE) && kind == DS_SHAPE_SPHERE)
@@ -123,9 +122,7 @@ bool ds_search_shape(int index, real3 o, real3 d, hreal3 oh, hreal3 dh, real sMi
     return ds_search_xy_plane(shape0.xy, o, d, sMin, sMax, originOnSurface, false, hit);
   if (DS_HAS_SHAPE(DS_SHAPE_RECTANGLE) && kind == DS_SHAPE_RECTANGLE)
     return ds_search_xy_plane(shape0.xy, o, d, sMin, sMax, originOnSurface, true, hit);
-  if (DS_HAS_SHAPE(DS_SHAPE_NURBS) && kind == DS_SHAPE_NURBS)
-    return ds_search_nurbs(index, o, d, oh, dh, sMin, sMax, originOnSurface, origin, hit);
-  return false;
+  return false;  // NURBS: ds_search_nurbs, called by lib/trace.glsl in a loop of its own
 }
 
 // ------------------------------------------------------------------------------------ attributes
@@ -156,7 +153,8 @@ hreal2 ds_box_uv(int axis, bool positive, hreal3 a) {
 
 // The winner's s in hreal (recomputed from the hreal ray: in fp32/fp64 the same value as the
 // search's, in df64 the df64-accurate one), its point and (u, v), and its object-frame normal.
-void ds_shape_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hreal s, out hreal3 point,
+// Analytic kinds only (NURBS: ds_nurbs_attributes).
+void ds_analytic_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hreal s, out hreal3 point,
                          out real3 normal, out hreal2 uv) {
   const int kind = DS_OBJECT(index, kinds).x;
   const hreal4 shape0 = DS_OBJECT_H(index, shape0);
@@ -210,8 +208,6 @@ void ds_shape_attributes(int index, hreal3 o, hreal3 d, ShapeHit found, out hrea
     const hreal b0 = h_sub(h_sub(h(real(1.0)), b1), b2);
     uv = h2(h_add(h_add(h_mul(b0, h_x(uv01)), h_mul(b1, h_z(uv01))), h_mul(b2, h_x(uv2))),
             h_add(h_add(h_mul(b0, h_y(uv01)), h_mul(b1, h_w(uv01))), h_mul(b2, h_y(uv2))));
-  } else if (DS_HAS_SHAPE(DS_SHAPE_NURBS) && kind == DS_SHAPE_NURBS) {
-    ds_nurbs_attributes(found, o, d, s, point, normal, uv);
   } else {  // Plane, Rectangle: z = 0
     s = h_div(h_neg(h_z(o)), h_z(d));
     point = h_add(o, h_mul(d, s));

@@ -58,19 +58,28 @@ real3 ds_world_normal(int index, real3 n, real3 x) {
 int ds_object_count() { return OBJECT_COUNT > 0 ? OBJECT_COUNT : params.counts.z; }
 
 // The winner's attributes in hreal: parameter, position, normal, (u, v).
-void ds_hit_attributes(int object, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hreal w, ShapeHit found,
+void ds_hit_attributes(int object, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hreal w, ShapeHit found, bool nurbs,
                        inout SurfaceHit hit) {
   hreal s;
   hreal3 point;
   real3 normal;
-  ds_shape_attributes(object, oo, od, found, s, point, normal, hit.uv);
+  if (DS_HAS_SHAPE(DS_SHAPE_NURBS) && nurbs)
+    ds_nurbs_attributes(found, oo, od, s, point, normal, hit.uv);
+  else
+    ds_analytic_attributes(object, oo, od, found, s, point, normal, hit.uv);
   hit.t = h_div(s, h_sub(h(real(1.0)), h_mul(s, w)));
   hit.position = h_add(o, h_mul(d, hit.t));
   hit.normal = normalize(ds_world_normal(object, normal, h_real(point)));
   if (dot(hit.normal, h_real(d)) > 0.0) hit.normal = -hit.normal;
 }
 
+bool ds_is_nurbs(int object) { return DS_HAS_SHAPE(DS_SHAPE_NURBS) && DS_OBJECT(object, kinds).x == DS_SHAPE_NURBS; }
+
 // Nearest hit along the camera ray o + t d, t > 0, compared by world t.
+// The analytic objects are searched in an unrolled loop (constant indices); the NURBS objects in a
+// loop of their own that does not unroll: the NURBS search is large, and one copy of it per object
+// and call site made the pipeline compile for tens of seconds on lavapipe. Its cost per ray
+// dwarfs an object index read at a varying offset.
 bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   real tBest = DS_FAR_AWAY;
   ShapeHit best;
@@ -78,14 +87,14 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   hreal3 bestOo, bestOd;  // the winner's ray in its frame, kept for its attributes
   hreal bestW;
   [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
+    if (ds_is_nurbs(i)) continue;
     hreal3 oo, od;
     hreal w;
     if (!ds_object_ray(i, o, d, oo, od, w)) continue;
     const real wr = h_real(w);
     ShapeHit found;
     found.part = -1;
-    if (!ds_search_shape(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(tBest, wr), false, found, found))
-      continue;
+    if (!ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_object_param(tBest, wr), false, found)) continue;
     const real t = ds_world_param(found.s, wr);
     if (t > 0.0 && t < tBest) {
       tBest = t;
@@ -96,34 +105,72 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
       bestW = w;
     }
   }
+  if (DS_HAS_SHAPE(DS_SHAPE_NURBS)) {
+    [[dont_unroll]] for (int i = 0; i < ds_object_count(); ++i) {
+      if (!ds_is_nurbs(i)) continue;
+      hreal3 oo, od;
+      hreal w;
+      if (!ds_object_ray(i, o, d, oo, od, w)) continue;
+      const real wr = h_real(w);
+      ShapeHit found;
+      found.part = -1;
+      if (!ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(tBest, wr), false, found, found))
+        continue;
+      const real t = ds_world_param(found.s, wr);
+      if (t > 0.0 && t < tBest) {
+        tBest = t;
+        best = found;
+        bestObject = i;
+        bestOo = oo;
+        bestOd = od;
+        bestW = w;
+      }
+    }
+  }
   hit.object = bestObject;
   if (bestObject < 0) return false;
   hit.shape = best;
   hit.rayDirection = h_real(d);
-  // With an exact count, the winner's data is read at a constant index: one guarded copy per object.
-  if (OBJECT_COUNT > 0) {
+  // With an exact count, an analytic winner's data is read at a constant index: one guarded copy
+  // per object. A NURBS winner's attributes: one copy, at the winner's index.
+  if (ds_is_nurbs(bestObject)) {
+    ds_hit_attributes(bestObject, o, d, bestOo, bestOd, bestW, best, true, hit);
+  } else if (OBJECT_COUNT > 0) {
     [[unroll]] for (int i = 0; i < OBJECT_COUNT; ++i)
-      if (i == bestObject) ds_hit_attributes(i, o, d, bestOo, bestOd, bestW, best, hit);
+      if (i == bestObject) ds_hit_attributes(i, o, d, bestOo, bestOd, bestW, best, false, hit);
   } else {
-    ds_hit_attributes(bestObject, o, d, bestOo, bestOd, bestW, best, hit);
+    ds_hit_attributes(bestObject, o, d, bestOo, bestOd, bestW, best, false, hit);
   }
   return true;
 }
 
 // Whether any object blocks the segment from the hit to the light (t in (0, 1)), in `real`: a
-// shadow ray only decides visibility.
+// shadow ray only decides visibility. NURBS objects in a loop of their own, as in ds_trace_nearest.
 bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
   const real3 p = h_real(hit.position);
   const hreal3 ph = h(p), dh = h(lightPosition - p);
   [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
+    if (ds_is_nurbs(i)) continue;
     hreal3 oo, od;
     hreal w;
     if (!ds_object_ray(i, ph, dh, oo, od, w)) continue;
     ShapeHit found;
     found.part = -1;
-    if (ds_search_shape(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(1.0, h_real(w)), i == hit.object,
-                        hit.shape, found))
+    if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_object_param(1.0, h_real(w)), i == hit.object, found))
       return true;
+  }
+  if (DS_HAS_SHAPE(DS_SHAPE_NURBS)) {
+    [[dont_unroll]] for (int i = 0; i < ds_object_count(); ++i) {
+      if (!ds_is_nurbs(i)) continue;
+      hreal3 oo, od;
+      hreal w;
+      if (!ds_object_ray(i, ph, dh, oo, od, w)) continue;
+      ShapeHit found;
+      found.part = -1;
+      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(1.0, h_real(w)), i == hit.object,
+                          hit.shape, found))
+        return true;
+    }
   }
   return false;
 }

@@ -74,7 +74,7 @@ struct GpuNurbsNode {
 
 struct GpuNurbsSubPatch {
   vec4 local;  // aMin, bMin, aMax, bMax: range of the patch's local parameters (dyadic: exact in float)
-  ivec4 info;  // patch, degenerate (0/1), 0, 0
+  ivec4 info;  // patch, degenerate (0/1: informative, the search treats every sub-patch alike), first of its own control points (range enlarged by 1/8), 0
 };
 
 struct GpuNurbsPatch {
@@ -87,12 +87,12 @@ struct GpuNurbsPatch {
 struct GpuPixel {
   hreal4 positionDepth;   // P (world, m), depth Z (m)
   hreal4 uvRadianceId;    // u, v, mean radiance over the samples, objectId (exact small integer)
-  real4 normal;           // N (world, unit, facing the camera), 0
+  real4 normal;           // N (world, unit, facing the camera), 1 where the loop-limit sentinel fired (render.comp)
 };
 
 // Push constants of one dispatch (one tile of one camera).
 struct GpuTileParams {
   ivec4 tile;       // x0, y0, width, height (px)
   ivec4 counts;     // camera index, samples per pixel, object count, light count
-  uvec4 random;     // seed, frame, 0, 0
+  uvec4 random;     // seed, frame, 0 (render.comp's loop-limit sentinel reads it), 0
 };

@@ -133,12 +133,18 @@ hreal4 ds_patch_eval_h(int patchIndex, hreal2 ab) {
 #endif
 
 #if defined(DS_DF64)
+const int DS_NURBS_REFINE_STEPS = 6;
+
 // Iterative refinement of a float root (a, b): the residual in df64 from the df64 ray, the Jacobian
-// in float. Each step multiplies the error by ~ε_float · cond(J); cond(J) is bounded by the host's
-// sub-patch criteria away from silhouettes, so two steps reach the df64 limit from a float root.
+// in float. Each step multiplies the error by ~ε_float · cond(J); away from silhouettes cond(J) is
+// bounded by the host's sub-patch criteria and two steps reach the df64 limit from a float root.
+// Near a silhouette (a grazing ray, two roots close together) cond(J) reaches 10^3–10^4 and each
+// step gains only ~3–4 digits: the winner's attributes take DS_NURBS_REFINE_STEPS (two steps left
+// 93 nm of error on a ray 1e-3 rad off a fold, tests/test_nurbs_random.cpp); the border decision
+// inside the search, which only needs the side of the border, keeps two.
 // The two planes must contain the df64 ray itself: n1 = d × e, n2 = d × n1 in df64 (not
 // normalized: F's scale does not matter), their float roundings for the Jacobian.
-hreal2 ds_nurbs_refine(int patchIndex, real4 cp[DS_NURBS_MAX_POINTS], hreal3 o, hreal3 d, real2 start) {
+hreal2 ds_nurbs_refine(int patchIndex, real4 cp[DS_NURBS_MAX_POINTS], hreal3 o, hreal3 d, real2 start, const int steps) {
   const real3 ad = abs(h_real(d));
   const real3 e = ad.x <= ad.y && ad.x <= ad.z ? real3(1.0, 0.0, 0.0) : ad.y <= ad.z ? real3(0.0, 1.0, 0.0) : real3(0.0, 0.0, 1.0);
   const hreal3 n1 = h_cross(d, h(e)), n2 = h_cross(d, n1);
@@ -146,7 +152,7 @@ hreal2 ds_nurbs_refine(int patchIndex, real4 cp[DS_NURBS_MAX_POINTS], hreal3 o, 
   const real3 f1 = h_real(n1), f2 = h_real(n2);
   const real g1 = h_real(c1), g2 = h_real(c2);
   hreal2 ab = h(start);
-  [[unroll]] for (int step = 0; step < 2; ++step) {
+  [[unroll]] for (int step = 0; step < steps; ++step) {
     const hreal4 Sh = ds_patch_eval_h(patchIndex, ab);
     const real2 F = real2(h_real(h_sub(h_dot(n1, h_xyz(Sh)), h_mul(c1, h_w(Sh)))),
                           h_real(h_sub(h_dot(n2, h_xyz(Sh)), h_mul(c2, h_w(Sh)))));
@@ -509,7 +515,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
             (any(lessThan(ab, real2(1e-4))) || any(greaterThan(ab, real2(1.0 - 1e-4))))) {
           real4 objectPoints[DS_NURBS_MAX_POINTS];
           ds_patch_load(info.x, objectPoints);
-          keep = ds_nurbs_inside_patch(ds_nurbs_refine(info.x, objectPoints, oh, dh, ab));
+          keep = ds_nurbs_inside_patch(ds_nurbs_refine(info.x, objectPoints, oh, dh, ab, 2));
         }
 #endif
         if (keep && s > sMin && s < sMax) {
@@ -584,7 +590,7 @@ void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hr
   // Cartesian derivatives ∝ w Sa.xyz − Sa.w S.xyz (quotient rule; the common 1/w² drops out).
   normal = cross(S.w * Sa.xyz - Sa.w * S.xyz, S.w * Sb.xyz - Sb.w * S.xyz);
 #if defined(DS_DF64)
-  const hreal2 ab = ds_nurbs_refine(patchIndex, cp, o, d, found.param);
+  const hreal2 ab = ds_nurbs_refine(patchIndex, cp, o, d, found.param, DS_NURBS_REFINE_STEPS);
   const hreal4 Sh = ds_patch_eval_h(patchIndex, ab);
   point = h_div(h_xyz(Sh), h_w(Sh));
 #else

@@ -88,3 +88,46 @@ TEST_CASE("cpu-vs-gpu: switching features off by specialization changes no pixel
   }
   test::expectNoValidationMessages();
 }
+
+TEST_CASE("compare: wrong nearest hits are counted by kind") {
+  // A reference render compared with a copy altered on five chosen pixels, one per kind: each must
+  // land in its own count, and nothing else may. The alterations are far beyond any bound (1 cm on
+  // a plate 0.3 m away, where fp32's position bound is ~1e-6 m).
+  const PreparedScene scene =
+      prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/nurbs_plate.lua", {}), {16});
+  RenderOptions options;
+  options.samplesPerPixel = 1;
+  const RenderResult reference = cpu::render(scene, options);
+  RenderResult altered = reference;
+  CameraImage& image = altered.cameras[0];
+  std::vector<std::size_t> hits, misses;
+  for (std::size_t i = 0; i < image.pixelCount(); ++i) (image.objectId[i] != 0 ? hits : misses).push_back(i);
+  REQUIRE(hits.size() >= 4);
+  REQUIRE(!misses.empty());
+  const Camera& cam = scene.cameras[0].camera;
+  const dvec3 centre = scene.cameras[0].model.centre;
+  auto moveAlongRay = [&](std::size_t i, double by_m) {
+    const double distance = glm::length(image.position_m[i] - centre);
+    image.position_m[i] += by_m / distance * (image.position_m[i] - centre);
+    image.depth_m[i] *= (distance + by_m) / distance;  // along a ray from the centre, depth ∝ distance
+  };
+  image.objectId[hits[0]] = 0;  // miss
+  image.objectId[misses[0]] = 1;  // extra hit
+  image.position_m[misses[0]] = dvec3(0, 0, 0.3);
+  image.objectId[hits[1]] = 99;  // other object
+  moveAlongRay(hits[2], 0.01);   // farther root
+  moveAlongRay(hits[3], -0.01);  // nearer root
+  INFO("camera " << cam.name);
+  for (const Precision p : {Precision::Fp64, Precision::Fp32}) {
+    const std::vector<CameraDifference> d = compareResults(scene, reference, altered, tolerancesFor(p));
+    REQUIRE(d.size() == 1);
+    CHECK(d[0].wrongMiss == 1);
+    CHECK(d[0].wrongExtraHit == 1);
+    CHECK(d[0].wrongOtherObject == 1);
+    CHECK(d[0].wrongFartherRoot == 1);
+    CHECK(d[0].wrongNearerRoot == 1);
+    CHECK(d[0].wrongNearestHits() == 5);
+    // The unaltered comparison counts none.
+    CHECK(compareResults(scene, reference, reference, tolerancesFor(p))[0].wrongNearestHits() == 0);
+  }
+}

@@ -67,7 +67,10 @@ std::string toJson(const CompareItem& item, const RenderResult& cpu, const Rende
       << ", \"object_id_mismatches_off_edge\": " << d.objectIdMismatchesOffEdge
       << ", \"max_uv_diff\": " << number(d.maxUvDiff) << ", \"max_P_diff_m\": " << number(d.maxPositionDiff_m)
       << ", \"max_Z_diff_m\": " << number(d.maxDepthDiff_m) << ", \"max_geometry_ratio\": " << number(d.maxGeometryRatio)
-      << ", \"geometry_outliers\": " << d.geometryOutliers
+      << ", \"geometry_outliers\": " << d.geometryOutliers << ", \"wrong_nearest_hits\": {\"total\": "
+      << d.wrongNearestHits() << ", \"miss\": " << d.wrongMiss << ", \"extra_hit\": " << d.wrongExtraHit
+      << ", \"other_object\": " << d.wrongOtherObject << ", \"farther_root\": " << d.wrongFartherRoot
+      << ", \"nearer_root\": " << d.wrongNearerRoot << "}"
       << ", \"pass\": " << boolean(withinTolerance(d, t)) << "}";
   }
   o << "}, \"pass\": " << boolean(pass) << "}";
@@ -85,11 +88,13 @@ std::string cameraText(const CameraDifference& d, const Tolerances& tol) {
   return format(
       "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, over tolerance %.3g: %zu px (%zu off edges);"
       " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px (%zu off edges); max |duv| %.3g,"
-      " max |dP| %.3g m, max |dZ| %.3g m; worst error/bound %.3g, over bound: %zu px\n",
+      " max |dP| %.3g m, max |dZ| %.3g m; worst error/bound %.3g, over bound: %zu px\n"
+      "    wrong nearest hits: %zu px (miss %zu, extra hit %zu, other object %zu, farther root %zu, nearer root %zu)\n",
       d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff, tol.radiance,
       d.radianceOutliers, d.radianceOutliersOffEdge, d.pixelsDiffering, d.objectIdMismatches,
       d.objectIdMismatchesOffEdge, d.maxUvDiff, d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxGeometryRatio,
-      d.geometryOutliers);
+      d.geometryOutliers, d.wrongNearestHits(), d.wrongMiss, d.wrongExtraHit, d.wrongOtherObject, d.wrongFartherRoot,
+      d.wrongNearerRoot);
 }
 
 std::string tolerancesText(const std::string& precision, const Tolerances& tol) {

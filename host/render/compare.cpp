@@ -180,6 +180,9 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
       if (!sameObject) {
         ++d.objectIdMismatches;
         if (!edge) ++d.objectIdMismatchesOffEdge;
+        if (b.objectId[i] == 0) ++d.wrongMiss;
+        else if (a.objectId[i] == 0) ++d.wrongExtraHit;
+        else ++d.wrongOtherObject;
       }
       if (sameObject && a.objectId[i] != 0) {
         const std::size_t obj = a.objectId[i] - 1;
@@ -227,6 +230,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
             boundRadiance += specularRadianceBound(scene, scene.objects[obj], in) * cam.exposure;
           }
         }
+        if (!(dp <= boundP)) ++(b.depth_m[i] > a.depth_m[i] ? d.wrongFartherRoot : d.wrongNearerRoot);
         const double ratio = std::max(dp / boundP, duv / boundUv);
         d.maxGeometryRatio = worst(d.maxGeometryRatio, ratio);
         if (!(ratio <= 1)) ++d.geometryOutliers;

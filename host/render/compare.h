@@ -32,6 +32,14 @@ struct CameraDifference {
   double maxDepthDiff_m = 0;
   double maxGeometryRatio = 0;          // worst |ΔP| or |Δuv| over its per-pixel bound (≤ 1: fine)
   std::size_t geometryOutliers = 0;     // pixels whose P or uv difference exceeds its bound
+  // Wrong nearest hits of the pixel-centre ray, by kind, named so that a wrong root shows as one
+  // (they are also among the counts above): the reference hits and the test sees the background
+  // (miss) or the reverse (extra hit); both hit, different objects (other object); both hit the
+  // same object with |ΔP| over its bound, the test's point farther or nearer along the ray.
+  std::size_t wrongMiss = 0, wrongExtraHit = 0, wrongOtherObject = 0, wrongFartherRoot = 0, wrongNearerRoot = 0;
+  std::size_t wrongNearestHits() const {
+    return wrongMiss + wrongExtraHit + wrongOtherObject + wrongFartherRoot + wrongNearerRoot;
+  }
 };
 
 // Tolerances of one precision (values and derivations in compare.cpp, summarized in README).

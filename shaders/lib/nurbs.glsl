@@ -275,17 +275,18 @@ int ds_examine_box(real4 q[DS_NURBS_MAX_POINTS], real pad, real zLo, real zHi, o
   split = 0;
   lowerFirst = true;
   // Exclusion by the hull: some q.xy on each side of 0 (padded), some z in [zLo, zHi].
+  // z / w < zLo ⇔ z < zLo w (w > 0): no division (divisions are slow on SIMD CPUs, and every pass
+  // of the search runs this on lavapipe).
   bvec4 sides = bvec4(false);
-  real zMin = 1e30, zMax = -1e30;
+  bool allNearer = true, allFarther = true;
   [[unroll]] for (int i = 0; i < DS_NURBS_POINTS; ++i) {
     const real4 h = q[i];
     const real padW = pad * h.w;
     sides = bvec4(sides.x || h.x <= padW, sides.y || h.x >= -padW, sides.z || h.y <= padW, sides.w || h.y >= -padW);
-    const real z = h.z / h.w;
-    zMin = min(zMin, z);
-    zMax = max(zMax, z);
+    allNearer = allNearer && h.z < zLo * h.w;
+    allFarther = allFarther && h.z > zHi * h.w;
   }
-  if (!all(sides) || zMin > zHi || zMax < zLo) return DS_BOX_EMPTY;
+  if (!all(sides) || allNearer || allFarther) return DS_BOX_EMPTY;
 
   // Interval Jacobian from the hodographs (the factor n is applied below).
   real2 jaLo = real2(1e30), jaHi = real2(-1e30), jbLo = real2(1e30), jbHi = real2(-1e30);
@@ -308,7 +309,8 @@ int ds_examine_box(real4 q[DS_NURBS_MAX_POINTS], real pad, real zLo, real zHi, o
   const real det = Sa.x * Sb.y - Sb.x * Sa.y;
   if (det != 0.0) {
     // C = J(y)⁻¹, columns of J(y) = (Sa.xy, Sb.xy).
-    const real c00 = Sb.y / det, c01 = -Sb.x / det, c10 = -Sa.y / det, c11 = Sa.x / det;
+    const real inverseDet = 1.0 / det;
+    const real c00 = Sb.y * inverseDet, c01 = -Sb.x * inverseDet, c10 = -Sa.y * inverseDet, c11 = Sa.x * inverseDet;
     const real2 newton = real2(0.5) - real2(c00 * S.x + c01 * S.y, c10 * S.x + c11 * S.y);
     // M = I − C Jc, Δ = |C| Jr (Jc, Jr: columns ja, jb).
     const real m00 = 1.0 - (c00 * jaC.x + c01 * jaC.y), m01 = -(c00 * jbC.x + c01 * jbC.y);
@@ -329,8 +331,10 @@ int ds_examine_box(real4 q[DS_NURBS_MAX_POINTS], real pad, real zLo, real zHi, o
   // the control net: chords along a and b, mean z of the first and last rows along a or b.
   real chordA = 0.0, chordB = 0.0, zA0 = 0.0, zA1 = 0.0, zB0 = 0.0, zB1 = 0.0;
   [[unroll]] for (int k = 0; k <= n; ++k) {
-    const real3 a0 = q[k].xyz / q[k].w, a1 = q[n * (n + 1) + k].xyz / q[n * (n + 1) + k].w;
-    const real3 b0 = q[k * (n + 1)].xyz / q[k * (n + 1)].w, b1 = q[k * (n + 1) + n].xyz / q[k * (n + 1) + n].w;
+    // A heuristic (any split is correct): one reciprocal per point instead of three divisions.
+    const real3 a0 = q[k].xyz * (1.0 / q[k].w), a1 = q[n * (n + 1) + k].xyz * (1.0 / q[n * (n + 1) + k].w);
+    const real3 b0 = q[k * (n + 1)].xyz * (1.0 / q[k * (n + 1)].w);
+    const real3 b1 = q[k * (n + 1) + n].xyz * (1.0 / q[k * (n + 1) + n].w);
     chordA = max(chordA, dot(a1 - a0, a1 - a0));
     chordB = max(chordB, dot(b1 - b0, b1 - b0));
     zA0 += a0.z;

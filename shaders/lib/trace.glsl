@@ -75,35 +75,46 @@ void ds_hit_attributes(int object, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hre
 
 bool ds_is_nurbs(int object) { return DS_HAS_SHAPE(DS_SHAPE_NURBS) && DS_OBJECT(object, kinds).x == DS_SHAPE_NURBS; }
 
+// The nearest hit so far of ds_trace_nearest, with the winner's ray in its frame (for its attributes).
+struct NearestHit {
+  real t;
+  ShapeHit found;
+  int object;
+  hreal3 oo, od;
+  hreal w;
+};
+
+// Keeps object i's hit (object parameter found.s) when it is nearer than the one kept so far.
+void ds_keep_nearer(int i, ShapeHit found, hreal3 oo, hreal3 od, hreal w, inout NearestHit nearest) {
+  const real t = ds_world_param(found.s, h_real(w));
+  if (t > 0.0 && t < nearest.t) {
+    nearest.t = t;
+    nearest.found = found;
+    nearest.object = i;
+    nearest.oo = oo;
+    nearest.od = od;
+    nearest.w = w;
+  }
+}
+
 // Nearest hit along the camera ray o + t d, t > 0, compared by world t.
 // The analytic objects are searched in an unrolled loop (constant indices); the NURBS objects in a
 // loop of their own that does not unroll: the NURBS search is large, and one copy of it per object
 // and call site made the pipeline compile for tens of seconds on lavapipe. Its cost per ray
 // dwarfs an object index read at a varying offset.
 bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
-  real tBest = DS_FAR_AWAY;
-  ShapeHit best;
-  int bestObject = -1;
-  hreal3 bestOo, bestOd;  // the winner's ray in its frame, kept for its attributes
-  hreal bestW;
+  NearestHit nearest;
+  nearest.t = DS_FAR_AWAY;
+  nearest.object = -1;
   [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
     if (ds_is_nurbs(i)) continue;
     hreal3 oo, od;
     hreal w;
     if (!ds_object_ray(i, o, d, oo, od, w)) continue;
-    const real wr = h_real(w);
     ShapeHit found;
     found.part = -1;
-    if (!ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_object_param(tBest, wr), false, found)) continue;
-    const real t = ds_world_param(found.s, wr);
-    if (t > 0.0 && t < tBest) {
-      tBest = t;
-      best = found;
-      bestObject = i;
-      bestOo = oo;
-      bestOd = od;
-      bestW = w;
-    }
+    if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_object_param(nearest.t, h_real(w)), false, found))
+      ds_keep_nearer(i, found, oo, od, w, nearest);
   }
   if (DS_HAS_SHAPE(DS_SHAPE_NURBS)) {
     [[dont_unroll]] for (int i = 0; i < ds_object_count(); ++i) {
@@ -111,22 +122,17 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
       hreal3 oo, od;
       hreal w;
       if (!ds_object_ray(i, o, d, oo, od, w)) continue;
-      const real wr = h_real(w);
       ShapeHit found;
       found.part = -1;
-      if (!ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(tBest, wr), false, found, found))
-        continue;
-      const real t = ds_world_param(found.s, wr);
-      if (t > 0.0 && t < tBest) {
-        tBest = t;
-        best = found;
-        bestObject = i;
-        bestOo = oo;
-        bestOd = od;
-        bestW = w;
-      }
+      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(nearest.t, h_real(w)), false, found,
+                          found))
+        ds_keep_nearer(i, found, oo, od, w, nearest);
     }
   }
+  const int bestObject = nearest.object;
+  const ShapeHit best = nearest.found;
+  const hreal3 bestOo = nearest.oo, bestOd = nearest.od;
+  const hreal bestW = nearest.w;
   hit.object = bestObject;
   if (bestObject < 0) return false;
   hit.shape = best;

@@ -427,8 +427,10 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   int split = 0;
   bool lowerFirst = true, last = false;
   while (true) {
-    if (mode == DS_NURBS_MODE_NODE) {
-      if (top == 0) break;
+    // The tree, in a loop of its own with a small body: its passes are cheap, where a pass of the
+    // outer loop costs the whole box and Newton code on lavapipe. It runs until this lane reaches
+    // a leaf (or the tree is done); lanes busy with a box wait.
+    while (mode == DS_NURBS_MODE_NODE && top > 0) {
       const int node = stack[--top];
       const ivec4 links = nurbsNodes[node].links;
       const real2 range = ds_box_range(nurbsNodes[node].boundsMin, nurbsNodes[node].boundsMax, o, invD);
@@ -447,6 +449,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
       kEnd = links.y + links.z;
       mode = DS_NURBS_MODE_SUBPATCH;
     }
+    if (mode == DS_NURBS_MODE_NODE) break;  // the tree is done
     if (mode == DS_NURBS_MODE_SUBPATCH) {
       local = nurbsSubPatches[k].local;
       info = nurbsSubPatches[k].info;

@@ -367,12 +367,14 @@ void ds_nurbs_newton_step(real4 q[DS_NURBS_MAX_POINTS], inout real2 t, out real 
   converged = !failed && abs(step.x) <= DS_NURBS_STEP_TOLERANCE && abs(step.y) <= DS_NURBS_STEP_TOLERANCE;
 }
 
-// The search is one loop whose iterations each do one unit of work (pop a BVH node, start a
-// sub-patch, examine a box, one Newton step), not nested loops. On SIMD devices that run every
-// path under a lane mask (Mesa's llvmpipe/lavapipe among them) a loop nested in another costs one
-// pass per outer iteration even when no lane enters it, and llvmpipe also ends all loops of a
-// batch of lanes after 65 535 passes in total (render.comp's sentinel): nested loops multiplied
-// the passes by ~17 per BVH node. One loop costs what its busiest lane needs.
+// The search is one loop whose passes each do one unit of work (start a sub-patch, examine a box,
+// one Newton step), with the BVH traversal in one small loop inside it, and no other loops. On
+// SIMD devices that run every path under a lane mask (Mesa's llvmpipe/lavapipe among them) every
+// pass costs the whole loop body, a loop nested in another costs at least one pass per outer pass
+// even when no lane enters it, and llvmpipe ends all loops of a batch of lanes after 65 535 passes
+// in total (render.comp's sentinel): the earlier nested loops took ~17 passes per BVH node. The
+// tree's own loop keeps its passes cheap (node code only); the outer loop costs what its busiest
+// lane needs (bench/RESULTS.md has the variants measured).
 const int DS_NURBS_MODE_NODE = 0, DS_NURBS_MODE_SUBPATCH = 1, DS_NURBS_MODE_BOX = 2, DS_NURBS_MODE_NEWTON = 3;
 
 // Nearest root with s in (sMin, sMax). With an origin (a shadow ray leaving this surface), a root

@@ -20,6 +20,10 @@
 #include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu/context.h"
+#include "gpu/renderer.h"
+#include "gpu_test_context.h"
+#include "geometry/prepared_scene.h"
+#include "scene/scene.h"
 #include "gpu/vk_check.h"
 #include "spirv/buffer_ops_fp32.h"
 #include "spirv/buffer_ops_fp64.h"
@@ -413,4 +417,25 @@ TEST_CASE("gpu: dicsynth devices lists the devices as text and JSON") {
   CHECK(json.find("\"selected\": true") != std::string::npos);
 
   CHECK(test::runCli("devices --device no-such-gpu").exitCode == 2);
+}
+
+TEST_CASE("gpu: a render that runs into lavapipe's loop limit is refused, not returned") {
+  // llvmpipe ends all loops of a batch of 8 lanes after 65 535 passes in total (render.comp's
+  // sentinel). 65 536 samples per pixel (256 × 256 strata) take more passes than that in the sample
+  // loop alone, on any scene: the render must throw, naming the limit. On other drivers (no such
+  // limit) the same render is an ordinary one.
+  const PreparedScene scene =
+      prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/rectangle.lua", {}), {100});  // 8 × 6 px
+  gpu::Renderer renderer(test::gpuContext());
+  RenderOptions options;
+  options.samplesPerPixel = 65536;
+  options.precision = Precision::Fp32;
+  if (test::gpuContext().info().name.find("llvmpipe") == std::string::npos) {
+    CHECK_NOTHROW(renderer.render(scene, options));
+    return;
+  }
+  CHECK_THROWS_WITH(renderer.render(scene, options), doctest::Contains("cut the shader's loops short"));
+  // Below the limit the same scene renders.
+  options.samplesPerPixel = 16;
+  CHECK_NOTHROW(renderer.render(scene, options));
 }

@@ -6,8 +6,8 @@
 //    in (a, b) that proves, box by box, "no root here" or "exactly one root here" (Krawczyk) before
 //    trusting Newton, so the nearest root is found on folds, silhouettes and patch borders too
 //    (method and proofs: "per-ray subdivision of a leaf" below).
-//  - attributes (`hreal`): in df64 two more Newton steps whose residual is evaluated in df64, then
-//    the point, s and (u, v) in hreal.
+//  - attributes (`hreal`): in df64 DS_NURBS_REFINE_STEPS more Newton steps whose residual is
+//    evaluated in df64, then the point, s and (u, v) in hreal.
 // The CPU reference (host/cpu/nurbs_intersect.cpp) finds every root by its own subdivision; the
 // stress suite (tests/test_nurbs_stress.cpp) and the randomized test (tests/test_nurbs_random.cpp)
 // compare the two.
@@ -107,7 +107,9 @@ RayPlanes ds_ray_planes(real3 o, real3 d) {
 }
 
 #if defined(DS_DF64)
-// Bernstein basis in hreal (no derivatives) for the df64 residual.
+// Bernstein basis in hreal (no derivatives) for the df64 residual. Unlike ds_bernstein its inner
+// bound depends on k: written with constant bounds and guards, fully unrolled, it lost df64
+// accuracy on lavapipe (the randomized test's df64 positions failed by far), so it keeps this form.
 void ds_bernstein_h(int p, hreal t, out hreal basis[DS_NURBS_MAX_DEGREE + 1]) {
   const hreal zero = h(real(0.0)), one = h(real(1.0)), u = h_sub(one, t);
   [[unroll]] for (int i = 0; i <= DS_NURBS_MAX_DEGREE; ++i) basis[i] = zero;
@@ -347,6 +349,18 @@ int ds_examine_box(real4 q[DS_NURBS_MAX_POINTS], real pad, real zLo, real zHi, o
   return DS_BOX_SPLIT;
 }
 
+// The half (upper: 0 lower, 1 upper) of the box [ia, ia + 1] 2^-na × [ib, ib + 1] 2^-nb along b (alongB)
+// or a, in place.
+void ds_box_half(bool alongB, uint upper, inout uint ia, inout uint ib, inout int na, inout int nb) {
+  if (alongB) {
+    ib = 2u * ib + upper;
+    ++nb;
+  } else {
+    ia = 2u * ia + upper;
+    ++na;
+  }
+}
+
 // One Newton step on the box's ray-frame points q at t (box-local). residual: the distance of S(t)
 // from the ray (m) before the step; failed: J singular (t kept) or the step left the box.
 void ds_nurbs_newton_step(real4 q[DS_NURBS_MAX_POINTS], inout real2 t, out real residual, out bool converged,
@@ -539,16 +553,8 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
     if (descend) {
       // Halve the box (level `depth`); the half that looks nearer first.
       const uint bit = 1u << uint(depth);
-      const uint firstHalf = lowerFirst ? 0u : 1u;
-      if (split != 0) {
-        axisBits |= bit;
-        ib = 2u * ib + firstHalf;
-        ++nb;
-      } else {
-        axisBits &= ~bit;
-        ia = 2u * ia + firstHalf;
-        ++na;
-      }
+      if (split != 0) axisBits |= bit; else axisBits &= ~bit;
+      ds_box_half(split != 0, lowerFirst ? 0u : 1u, ia, ib, na, nb);
       if (lowerFirst) lowerFirstBits |= bit; else lowerFirstBits &= ~bit;
       secondBits &= ~bit;
       ++depth;
@@ -568,14 +574,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
         nb -= bHalvings;
         // Its other half: the upper one when the lower was searched first.
         const uint bit = 1u << uint(level);
-        const uint secondHalf = (lowerFirstBits & bit) != 0u ? 1u : 0u;
-        if ((axisBits & bit) != 0u) {
-          ib = 2u * ib + secondHalf;
-          ++nb;
-        } else {
-          ia = 2u * ia + secondHalf;
-          ++na;
-        }
+        ds_box_half((axisBits & bit) != 0u, (lowerFirstBits & bit) != 0u ? 1u : 0u, ia, ib, na, nb);
         secondBits |= bit;
         depth = level + 1;
       } else {

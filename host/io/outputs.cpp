@@ -40,7 +40,15 @@
 // and PixelAspectRatio = pixelSize.x / pixelSize.y. No DateTime: the same render gives the same file.
 #include "io/outputs.h"
 
-#include <OpenImageIO/imageio.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfMatrixAttribute.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 
 #include <algorithm>
 #include <cstring>
@@ -50,6 +58,7 @@
 
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/parallel.h"
 #include "core/version.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
@@ -150,46 +159,49 @@ std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth
   return ch;
 }
 
-void addMetadata(OIIO::ImageSpec& spec, const Camera& camera, const OutputInfo& info) {
+void addMetadata(Imf::Header& header, const Camera& camera, const OutputInfo& info) {
+  auto attribute = [&header](const char* name, const std::string& value) {
+    header.insert(name, Imf::StringAttribute(value));
+  };
   const OpenCvCamera cv = toOpenCv(camera);
   std::string objects;
   for (const std::string& name : info.objectNames) objects += (objects.empty() ? "" : ",") + name;
 
-  spec.attribute("dicsynth:version", kVersion);
-  spec.attribute("dicsynth:scene", info.sceneFile);
-  spec.attribute("dicsynth:frame", std::to_string(info.frame));
-  spec.attribute("dicsynth:seed", std::to_string(info.seed));
-  spec.attribute("dicsynth:spp", std::to_string(info.samplesPerPixel));
-  spec.attribute("dicsynth:backend", info.backend);
-  spec.attribute("dicsynth:precision", info.precision);
-  spec.attribute("dicsynth:device", info.device);
-  spec.attribute("dicsynth:camera", camera.name);
-  spec.attribute("dicsynth:objects", objects);
-  spec.attribute("dicsynth:camera_matrix", formatNumbers(cv.cameraMatrix));
-  spec.attribute("dicsynth:distortion_coefficients", formatNumbers(cv.distortion));
+  attribute("dicsynth:version", kVersion);
+  attribute("dicsynth:scene", info.sceneFile);
+  attribute("dicsynth:frame", std::to_string(info.frame));
+  attribute("dicsynth:seed", std::to_string(info.seed));
+  attribute("dicsynth:spp", std::to_string(info.samplesPerPixel));
+  attribute("dicsynth:backend", info.backend);
+  attribute("dicsynth:precision", info.precision);
+  attribute("dicsynth:device", info.device);
+  attribute("dicsynth:camera", camera.name);
+  attribute("dicsynth:objects", objects);
+  attribute("dicsynth:camera_matrix", formatNumbers(cv.cameraMatrix));
+  attribute("dicsynth:distortion_coefficients", formatNumbers(cv.distortion));
   // The camera kind and what OpenCV's matrix cannot say (README "Outputs"; camera/pinhole.h).
   switch (camera.kind) {
-    case CameraKind::Pinhole: spec.attribute("dicsynth:camera_model", "pinhole"); break;
+    case CameraKind::Pinhole: attribute("dicsynth:camera_model", "pinhole"); break;
     case CameraKind::ThinLens:
-      spec.attribute("dicsynth:camera_model", "thin_lens");
-      spec.attribute("dicsynth:focal_length_m", exactNumber(camera.focalLength_m));
-      spec.attribute("dicsynth:aperture_m", exactNumber(camera.aperture_m));
-      spec.attribute("dicsynth:focus_distance_m", exactNumber(camera.focusDistance_m));
+      attribute("dicsynth:camera_model", "thin_lens");
+      attribute("dicsynth:focal_length_m", exactNumber(camera.focalLength_m));
+      attribute("dicsynth:aperture_m", exactNumber(camera.aperture_m));
+      attribute("dicsynth:focus_distance_m", exactNumber(camera.focusDistance_m));
       break;
     case CameraKind::Orthographic:
-      spec.attribute("dicsynth:camera_model", "orthographic");
-      spec.attribute("dicsynth:magnification", exactNumber(camera.magnification));
+      attribute("dicsynth:camera_model", "orthographic");
+      attribute("dicsynth:magnification", exactNumber(camera.magnification));
       break;
   }
-  spec.attribute("dicsynth:R", formatNumbers(cv.R));
-  spec.attribute("dicsynth:t", formatNumbers(cv.t));
-  spec.attribute("dicsynth:image_size",
+  attribute("dicsynth:R", formatNumbers(cv.R));
+  attribute("dicsynth:t", formatNumbers(cv.t));
+  attribute("dicsynth:image_size",
                  std::to_string(camera.width_px) + " " + std::to_string(camera.height_px));
-  spec.attribute("dicsynth:bits_per_pixel", std::to_string(camera.bitsPerPixel));
-  spec.attribute("dicsynth:exposure", exactNumber(camera.exposure));
-  spec.attribute("dicsynth:fill_factor", exactNumber(camera.fillFactor));
-  spec.attribute("Software", std::string("dicsynth ") + kVersion);
-  spec.attribute("DateTime", "");  // empty: OIIO omits it (reproducible files)
+  attribute("dicsynth:bits_per_pixel", std::to_string(camera.bitsPerPixel));
+  attribute("dicsynth:exposure", exactNumber(camera.exposure));
+  attribute("dicsynth:fill_factor", exactNumber(camera.fillFactor));
+  attribute("Software", std::string("dicsynth ") + kVersion);
+  // No capDate (OpenEXR's date): the same render gives the same file.
 
   // OpenEXR's worldToCamera: camera frame with y up. A column-major GLM matrix for column vectors
   // has the same memory layout as Imath's row-major matrix for row vectors, so copy in GLM order.
@@ -198,54 +210,77 @@ void addMetadata(OIIO::ImageSpec& spec, const Camera& camera, const OutputInfo& 
   float worldToCamera[16];
   for (int col = 0; col < 4; ++col)
     for (int row = 0; row < 4; ++row) worldToCamera[4 * col + row] = float(exrCameraFromWorld[col][row]);
-  spec.attribute("worldtocamera", OIIO::TypeMatrix, worldToCamera);
-  spec.attribute("PixelAspectRatio", float(camera.pixelSize_m.x / camera.pixelSize_m.y));
+  Imath::M44f m;
+  std::memcpy(&m[0][0], worldToCamera, sizeof worldToCamera);
+  Imf::addWorldToCamera(header, m);
+  header.pixelAspectRatio() = float(camera.pixelSize_m.x / camera.pixelSize_m.y);
+}
+
+Imf::Compression exrCompression(const std::string& name) {
+  if (name == "zip") return Imf::ZIP_COMPRESSION;
+  if (name == "zips") return Imf::ZIPS_COMPRESSION;
+  if (name == "piz") return Imf::PIZ_COMPRESSION;
+  if (name == "rle") return Imf::RLE_COMPRESSION;
+  if (name == "none") return Imf::NO_COMPRESSION;
+  throw InputError("EXR compression '" + name + "': expected zip, zips, piz, rle or none");
+}
+
+// OpenEXR compresses the blocks of one writePixels call on its global thread pool (16 rows per
+// zip block, 32 per piz). Sized once per process to the machine's cores; the calling thread does
+// the file I/O.
+void useAllCoresForExr() {
+  static const bool once = [] {
+    Imf::setGlobalThreadCount(int(hardwareThreads()));
+    return true;
+  }();
+  (void)once;
 }
 
 void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraImage& image,
                          const DerivedTruth* truth, const SensorImage* sensor, const OutputInfo& info) {
   const std::string& path = file.finalPath();
-  auto out = OIIO::ImageOutput::create("openexr");  // by format name, not by the temporary name
-  if (!out) throw Error(path + ": OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
-  if (!out->supports("channelformats"))
-    throw Error(path + ": this OpenImageIO's OpenEXR writer lacks per-channel formats");
-
   const std::vector<ExrChannel> channels = exrChannels(image, truth, sensor);
   const int channelCount = int(channels.size());
-  OIIO::ImageSpec spec(image.width_px, image.height_px, channelCount, OIIO::TypeDesc::FLOAT);
-  spec.channelnames.clear();
-  spec.channelformats.clear();
-  for (const ExrChannel& c : channels) {
-    spec.channelnames.push_back(c.name);
-    // objectId, defects: exact 32-bit integers; everything else float32.
-    spec.channelformats.push_back(c.uintValue ? OIIO::TypeDesc::UINT : OIIO::TypeDesc::FLOAT);
-  }
-  if (std::find(kExrCompressions.begin(), kExrCompressions.end(), info.exrCompression) == kExrCompressions.end())
-    throw InputError("EXR compression '" + info.exrCompression + "': expected zip, zips, piz, rle or none");
-  spec.attribute("compression", info.exrCompression);
-  addMetadata(spec, camera, info);
-  if (truth) {
-    spec.attribute("dicsynth:reference_frame", std::to_string(truth->referenceFrame));
-    if (!truth->disparityCamera.empty()) spec.attribute("dicsynth:disparity_camera", truth->disparityCamera);
-  }
-  if (sensor && !sensor->description.empty()) spec.attribute("dicsynth:sensor", sensor->description);
-  if (!out->open(file.tempPath(), spec)) throw Error(path + ": cannot create EXR: " + out->geterror());
-
-  // Convert and write in bands of rows: bounded memory for any image size. Every channel is 4
-  // bytes, so a pixel is channelCount 32-bit words in the file's native per-channel layout.
   const int width = image.width_px;
-  const int bandRows = 64;
-  std::vector<std::uint32_t> band(std::size_t(width) * bandRows * std::size_t(channelCount));
-  for (int y0 = 0; y0 < image.height_px; y0 += bandRows) {
-    const int y1 = std::min(image.height_px, y0 + bandRows);
-    const std::size_t first = std::size_t(y0) * std::size_t(width), count = std::size_t(y1 - y0) * std::size_t(width);
-    for (int c = 0; c < channelCount; ++c)
-      channels[std::size_t(c)].fill(first, count, band.data() + c, std::size_t(channelCount));
-    // TypeUnknown: the buffer is in the file's native per-channel layout.
-    if (!out->write_scanlines(y0, y1, 0, OIIO::TypeUnknown, band.data()))
-      throw Error(path + ": cannot write EXR pixels: " + out->geterror());
+  Imf::Header header(width, image.height_px);
+  header.compression() = exrCompression(info.exrCompression);
+  for (const ExrChannel& c : channels)  // objectId, defects: exact 32-bit integers; the others float32
+    header.channels().insert(c.name, Imf::Channel(c.uintValue ? Imf::UINT : Imf::FLOAT));
+  addMetadata(header, camera, info);
+  if (truth) {
+    header.insert("dicsynth:reference_frame", Imf::StringAttribute(std::to_string(truth->referenceFrame)));
+    if (!truth->disparityCamera.empty())
+      header.insert("dicsynth:disparity_camera", Imf::StringAttribute(truth->disparityCamera));
   }
-  if (!out->close()) throw Error(path + ": cannot finish EXR: " + out->geterror());
+  if (sensor && !sensor->description.empty()) header.insert("dicsynth:sensor", Imf::StringAttribute(sensor->description));
+  useAllCoresForExr();
+
+  try {
+    Imf::OutputFile out(file.tempPath().c_str(), header);
+    // Convert and write in bands of rows: bounded memory for any image size, and enough zip blocks
+    // per call (16 rows each) to keep every core compressing. Every channel is 4 bytes, so a pixel
+    // is channelCount 32-bit words, interleaved in the band.
+    const int bandRows = 256;
+    std::vector<std::uint32_t> band(std::size_t(width) * bandRows * std::size_t(channelCount));
+    const std::size_t xStride = sizeof(std::uint32_t) * std::size_t(channelCount);
+    for (int y0 = 0; y0 < image.height_px; y0 += bandRows) {
+      const int y1 = std::min(image.height_px, y0 + bandRows);
+      const std::size_t first = std::size_t(y0) * std::size_t(width), count = std::size_t(y1 - y0) * std::size_t(width);
+      // The slices' base is where pixel (0, 0) would be: band row 0 is image row y0.
+      char* base = reinterpret_cast<char*>(band.data()) - std::ptrdiff_t(first) * std::ptrdiff_t(xStride);
+      Imf::FrameBuffer frameBuffer;
+      for (int c = 0; c < channelCount; ++c) {
+        channels[std::size_t(c)].fill(first, count, band.data() + c, std::size_t(channelCount));
+        frameBuffer.insert(channels[std::size_t(c)].name,
+                           Imf::Slice(channels[std::size_t(c)].uintValue ? Imf::UINT : Imf::FLOAT,
+                                      base + sizeof(std::uint32_t) * std::size_t(c), xStride, xStride * std::size_t(width)));
+      }
+      out.setFrameBuffer(frameBuffer);
+      out.writePixels(y1 - y0);
+    }
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot write EXR: " + e.what());
+  }
 }
 
 }  // namespace

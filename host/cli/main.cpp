@@ -5,10 +5,12 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/phase_timer.h"
 #include "core/version.h"
 
 int main(int argc, char** argv) {
   using namespace dicsynth;
+  phaseDone(nullptr);  // DICSYNTH_TIMINGS=1: phases are timed from here
   CLI::App app{"dicsynth: ray-traced synthetic images and ground truth for stereo DIC", "dicsynth"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("dicsynth ") + kVersion);

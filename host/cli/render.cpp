@@ -19,9 +19,11 @@ struct RenderCommand {
   std::string frames;
   std::optional<int> referenceFrame;  // default: the first of --frames
   std::string exrCompression = "zip";
+  std::string layers = "all";
 };
 
 int runRender(const RenderCommand& cmd) {
+  const LayerSet layers = LayerSet::parse(cmd.layers);  // before any work
   const bool numbered = !cmd.frames.empty();
   std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
   // The reference frame is rendered first: every frame's motion truth is measured from it.
@@ -40,6 +42,7 @@ int runRender(const RenderCommand& cmd) {
   job.defines = parseDefines(cmd.args.defines);
   job.progressLabel = "rendering";
   job.exrCompression = cmd.exrCompression;
+  job.layers = layers;
   runRenderJob(session, job);
   return kExitOk;
 }
@@ -58,6 +61,7 @@ void addRenderCommand(CLI::App& root, RunFn& run) {
   sub->add_option("--frames", cmd->frames,
                   "Frames A:B (both included) or N; sets the scene global `frame` and numbers the files");
   addExrCompressionOption(*sub, cmd->exrCompression);
+  addLayersOption(*sub, cmd->layers);
   sub->add_option("--reference-frame", cmd->referenceFrame,
                   "Frame whose pixels the motion ground truth (disp, flow) starts from; one of --frames "
                   "(default: the first)");

@@ -26,6 +26,14 @@ void addExrCompressionOption(CLI::App& app, std::string& compression) {
       ->capture_default_str();
 }
 
+void addLayersOption(CLI::App& app, std::string& layers) {
+  app.add_option("--layers", layers,
+                 "Outputs to compute and write: all (every layer the scene can produce), or a comma-separated "
+                 "list of image (the TIFF), radiance, depth, P, normal, uv, mask, disp, flow, disparity, "
+                 "distortion, noise, defects (EXR channel groups; no EXR without one)")
+      ->capture_default_str();
+}
+
 void addRenderArgs(CLI::App& app, RenderArgs& args) {
   app.add_option("scene", args.scenePath, "Scene file (Lua)")->required();
   app.add_option("-D,--define", args.defines,

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/phase_timer.h"
 #include "cpu/reference_renderer.h"
 #include "io/calibration_files.h"
 #include "io/feature_files.h"
@@ -46,13 +47,17 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   RenderedFrame out;
   out.frame = frame;
   out.scene = prepareScene(sceneOfFrame, {args.downscale, &session.textures()});
+  phaseDone("prepare");
   RenderOptions options = renderOptions(args, frame);
   if (job.seed) options.seed = *job.seed;
+  options.geometry = job.layers.needsGeometry();
   options.precision = session.precision();  // resolved after the first frame is prepared (its errors first)
+  phaseDone("precision");
   if (!job.progressLabel.empty())
     options.progress = progressPrinter(job.progressLabel + (job.numbered ? " frame " + std::to_string(frame) : ""));
   gpu::Renderer* renderer = session.renderer();
   out.result = renderer ? renderer->render(out.scene, options) : cpu::render(out.scene, options);
+  phaseDone("render");
   if (session.context()) failOnValidationMessages(*session.context());  // before any file of this frame is written
   out.options = options;
   summary.renderSeconds += out.result.renderSeconds;
@@ -69,7 +74,8 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
   const int frame = rendered.frame;
   const RenderResult& result = rendered.result;
   const RenderOptions& options = rendered.options;
-  if (first) reference = std::make_unique<ReferenceFrame>(frame, std::move(rendered.scene), result, otherFrames);
+  const bool motion = job.layers.has(Layer::Disp) || job.layers.has(Layer::Flow);
+  if (first) reference = std::make_unique<ReferenceFrame>(frame, std::move(rendered.scene), result, otherFrames, motion);
   // The reference frame's scene now lives in `reference` (moved: its textures are not copied).
   const PreparedScene& scene = first ? reference->scene() : rendered.scene;
 
@@ -82,6 +88,7 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
   info.precision = result.precision;
   info.device = result.device;
   info.exrCompression = job.exrCompression;
+  info.layers = job.layers;
   for (const auto& o : scene.objects) info.objectNames.push_back(o.name);
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
   if (first || calibrationPerFrame)
@@ -89,17 +96,25 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
     const Camera& cam = scene.cameras[c].camera;
     const CameraImage& image = result.cameras[c];
-    const DerivedTruth truth = deriveTruth(*reference, frame, scene, result, c);
+    const DerivedTruth truth = deriveTruth(*reference, frame, scene, result, c, job.layers);
+    phaseDone("truth");
     if (!truth.disparityCamera.empty() && truth.disparityVisibleCount == 0)
       std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
                    truth.disparityCamera.c_str(), cam.name.c_str());
     const std::string stem = outputStem(cam.name, job.numbered, frame);
     const SensorImage sensed = applySensor(image.radiance, cam, {options.seed, frame, std::uint32_t(c)});
+    phaseDone("sensor");
     const OutputFiles files =
         writeCameraOutputs(job.outputDir, stem, cam, image, sensed.digital, info, &truth, &sensed);
+    phaseDone("write");
     writeFeatureFiles(job.outputDir, stem, scene, c, frame);
-    if (job.verbose)
-      std::printf("%s, %s: %dx%d, %d spp, %s %s on %s, %.2f s\n", files.image.c_str(), files.groundTruth.c_str(),
+    const std::string written =
+        files.image + (files.image.empty() || files.groundTruth.empty() ? "" : ", ") + files.groundTruth;
+    if (job.verbose && written.empty())
+      std::printf("camera %s: no layer of --layers %s exists for it: nothing written\n", cam.name.c_str(),
+                  job.layers.text().c_str());
+    else if (job.verbose)
+      std::printf("%s: %dx%d, %d spp, %s %s on %s, %.2f s\n", written.c_str(),
                   cam.width_px, cam.height_px, options.samplesPerPixel, result.backend.c_str(),
                   result.precision.c_str(), result.device.c_str(), result.renderSeconds);
   }
@@ -130,9 +145,12 @@ Precision RenderSession::precision() {
 RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   renderOptions(session.args(), 0);  // validate the sampling options before any work
   const std::vector<Scene> scenes = loadScenes(session, job);
+  checkLayersProducible(job.layers, scenes);
+  phaseDone("scenes");
   // Calibration files: once and unnumbered when every frame has the same cameras, else per frame.
   const bool calibrationPerFrame = !sameCalibration(scenes);
   session.startDevice();
+  phaseDone("device");
   RenderJobResult summary;
   std::unique_ptr<ReferenceFrame> reference;
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
@@ -145,6 +163,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
 RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
   renderOptions(session.args(), 0);
   const std::vector<Scene> scenes = loadScenes(session, job);
+  checkLayersProducible(job.layers, scenes);
   RenderedJob out;
   out.calibrationPerFrame = !sameCalibration(scenes);
   session.startDevice();

@@ -17,6 +17,7 @@
 #include "gpu/context.h"
 #include "gpu/renderer.h"
 #include "render/ground_truth.h"
+#include "render/layers.h"
 #include "render/result.h"
 
 namespace dicsynth::cli {
@@ -55,6 +56,7 @@ struct RenderJob {
   bool verbose = true;            // print one line per written camera and the calibration files
   std::string progressLabel;      // prefix of the terminal progress (render: "rendering"); "" = none
   std::string exrCompression = "zip";  // --exr-compression (io/outputs.h, kExrCompressions)
+  LayerSet layers = LayerSet::all();   // --layers (render/layers.h)
 };
 
 struct RenderJobResult {

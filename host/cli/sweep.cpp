@@ -38,6 +38,7 @@ struct SweepCommand {
   SweepOptions sweep;
   std::string shard;  // "I/N"
   std::string exrCompression = "zip";
+  std::string layers = "all";
   bool seedPerPoint = false;
   bool mergeOnly = false;
   bool list = false;
@@ -139,6 +140,7 @@ class Progress {
 int runSweep(const SweepCommand& cmd) {
   const auto defines = parseDefines(cmd.args.defines);
   renderOptions(cmd.args, 0);  // validate the sampling options before any work
+  const LayerSet layers = LayerSet::parse(cmd.layers);
   const bool numbered = !cmd.frames.empty();
   const std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
   const SweepPlan plan = planSweep(cmd.args.scenePath, defines, cmd.sweep);
@@ -163,7 +165,7 @@ int runSweep(const SweepCommand& cmd) {
       "scene_crc32=" + std::to_string(sweep::crc32Of(sceneText)) + " spp=" + std::to_string(cmd.args.spp) +
       " precision=" + cmd.args.precision + " max_error_px=" + exactNumber(cmd.args.maxErrorPx) +
       " downscale=" + std::to_string(cmd.args.downscale) + " backend=" + cmd.backend + " frames=" + cmd.frames +
-      " defines=" + definesText + " exr_compression=" + cmd.exrCompression;
+      " defines=" + definesText + " exr_compression=" + cmd.exrCompression + " layers=" + layers.text();
   auto seedOf = [&](const SweepPoint& p) {
     return cmd.seedPerPoint ? ds_hash_combine(ds_hash(cmd.args.seed), std::uint32_t(p.index)) : cmd.args.seed;
   };
@@ -233,6 +235,7 @@ int runSweep(const SweepCommand& cmd) {
     job->seed = seedOf(p);
     job->verbose = false;
     job->exrCompression = cmd.exrCompression;
+    job->layers = layers;
     RenderedJob result;
     try {
       result = renderJob(session, *job);
@@ -300,6 +303,7 @@ void addSweepCommand(CLI::App& root, RunFn& run) {
       ->capture_default_str();
   sub->add_option("--frames", cmd->frames, "Frames A:B or N of every point (as render --frames)");
   addExrCompressionOption(*sub, cmd->exrCompression);
+  addLayersOption(*sub, cmd->layers);
   addSweepOptions(*sub, cmd->sweep, "; replaces the scene's `sweep`");
   sub->add_option("--shard", cmd->shard,
                   "I/N: render the points whose index mod N is I (default: from SLURM_ARRAY_TASK_ID/COUNT/MIN)");

@@ -8,6 +8,7 @@
 #include <future>
 #include <type_traits>
 
+#include "core/phase_timer.h"
 #include "gpu/buffer.h"
 #include "gpu/pack.h"
 #include "shared/bindings.h"
@@ -143,11 +144,12 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   // second thread while this one packs and uploads the scene: on a CPU device the render's own
   // threads are idle until the first dispatch, so the two phases overlap instead of adding up.
   result.cameras.resize(scene.cameras.size());
-  std::future<void> images = std::async(std::launch::async, [&scene, &result] {
+  const bool geometry = options.geometry;
+  std::future<void> images = std::async(std::launch::async, [&scene, &result, geometry] {
     for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
       const Camera& cam = scene.cameras[ci].camera;
       result.cameras[ci].cameraName = cam.name;
-      result.cameras[ci].resize(cam.width_px, cam.height_px);
+      result.cameras[ci].resize(cam.width_px, cam.height_px, geometry);
     }
   });
   const PackedScene<Layout> packed = packScene<Layout>(scene);
@@ -213,6 +215,7 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
             const auto id = std::uint32_t(std::lround(component(p.uvRadianceId, 3)));
             if (id == 0) continue;  // background keeps NaN ground truth (CameraImage::resize)
             image.objectId[i] = id;
+            if (!geometry) continue;  // not asked for: not converted
             image.depth_m[i] = component(p.positionDepth, 3);
             image.uv[i] = {component(p.uvRadianceId, 0), component(p.uvRadianceId, 1)};
             // Camera-relative on the GPU (PackedFrame): the centre goes back in, in double.
@@ -311,6 +314,7 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
     throw InputError("tile size must be 0 (automatic) or a positive multiple of 8");
   const SceneResidency where = residency(options.precision, scene, rendererOptions);
   const ComputePipeline& pipe = pipeline(options.precision, scene.features, rendererOptions.specialize, df64Fma, where);
+  phaseDone("pipeline");
   RenderResult result;
   result.backend = "gpu";
   result.precision = toString(options.precision);

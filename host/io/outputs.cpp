@@ -53,6 +53,7 @@
 #include <algorithm>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <filesystem>
 #include <system_error>
 
@@ -116,7 +117,7 @@ ExrChannel uintChannel(std::string name, Get get) {
 
 // The channels of the file: the backend's layers, then the derived ones that `truth` holds.
 std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth* truth,
-                                    const SensorImage* sensor) {
+                                    const SensorImage* sensor, const LayerSet& layers) {
   std::vector<ExrChannel> ch;
   auto addVec2 = [&](const std::string& layer, const std::vector<dvec2>& v, const char* x, const char* y) {
     if (v.empty()) return;
@@ -135,25 +136,33 @@ std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth
   auto addDoubles = [&](const std::string& name, const std::vector<double>& v) {
     if (!v.empty()) ch.push_back(floatChannel(name, [&v](std::size_t i) { return float(v[i]); }));
   };
-  addDoubles("Y", image.radiance);
-  addDoubles("Z", image.depth_m);
-  addVec3("P", image.position_m);
-  addVec3("N", image.normal);
-  addVec2("uv", image.uv, "U", "V");
-  ch.push_back(uintChannel("objectId", [&](std::size_t i) { return image.objectId[i]; }));
-  ch.push_back(floatChannel("mask", [&](std::size_t i) { return image.objectId[i] > 0 ? 1.0f : 0.0f; }));
+  if (layers.has(Layer::Radiance)) addDoubles("Y", image.radiance);
+  if (layers.has(Layer::Depth)) addDoubles("Z", image.depth_m);
+  if (layers.has(Layer::P)) addVec3("P", image.position_m);
+  if (layers.has(Layer::Normal)) addVec3("N", image.normal);
+  if (layers.has(Layer::Uv)) addVec2("uv", image.uv, "U", "V");
+  if (layers.has(Layer::Mask)) {
+    ch.push_back(uintChannel("objectId", [&](std::size_t i) { return image.objectId[i]; }));
+    ch.push_back(floatChannel("mask", [&](std::size_t i) { return image.objectId[i] > 0 ? 1.0f : 0.0f; }));
+  }
   if (truth) {
-    addVec3("disp", truth->displacement_m);
-    addVec2("flow", truth->flow_px, "X", "Y");
-    addFloats("flow.mask", truth->flowMask);
-    addVec2("disparity", truth->disparity_px, "X", "Y");
-    addFloats("disparity.mask", truth->disparityMask);
-    addVec2("distortion", truth->distortion_px, "X", "Y");
+    if (layers.has(Layer::Disp)) addVec3("disp", truth->displacement_m);
+    if (layers.has(Layer::Flow)) {
+      addVec2("flow", truth->flow_px, "X", "Y");
+      addFloats("flow.mask", truth->flowMask);
+    }
+    if (layers.has(Layer::Disparity)) {
+      addVec2("disparity", truth->disparity_px, "X", "Y");
+      addFloats("disparity.mask", truth->disparityMask);
+    }
+    if (layers.has(Layer::Distortion)) addVec2("distortion", truth->distortion_px, "X", "Y");
   }
   if (sensor) {
-    addDoubles("noiseFree", sensor->noiseFree_DN);
-    addDoubles("noise", sensor->noise_DN);
-    if (!sensor->defects.empty())
+    if (layers.has(Layer::Noise)) {
+      addDoubles("noiseFree", sensor->noiseFree_DN);
+      addDoubles("noise", sensor->noise_DN);
+    }
+    if (layers.has(Layer::Defects) && !sensor->defects.empty())
       ch.push_back(uintChannel("defects", [sensor](std::size_t i) { return std::uint32_t(sensor->defects[i]); }));
   }
   return ch;
@@ -237,9 +246,9 @@ void useAllCoresForExr() {
 }
 
 void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraImage& image,
-                         const DerivedTruth* truth, const SensorImage* sensor, const OutputInfo& info) {
+                         const DerivedTruth* truth, const SensorImage* sensor, const OutputInfo& info,
+                         const std::vector<ExrChannel>& channels) {
   const std::string& path = file.finalPath();
-  const std::vector<ExrChannel> channels = exrChannels(image, truth, sensor);
   const int channelCount = int(channels.size());
   const int width = image.width_px;
   Imf::Header header(width, image.height_px);
@@ -292,10 +301,10 @@ OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, 
   const std::size_t n = image.pixelCount();
   DS_CHECK(image.width_px == camera.width_px && image.height_px == camera.height_px && n > 0,
            "camera " + camera.name + ": image size differs from the camera's");
-  DS_CHECK(image.radiance.size() == n && image.depth_m.size() == n && image.position_m.size() == n &&
-               image.normal.size() == n && image.uv.size() == n && image.objectId.size() == n &&
-               digital.size() == n,
+  DS_CHECK(image.radiance.size() == n && image.objectId.size() == n && digital.size() == n,
            "camera " + camera.name + ": a layer has the wrong pixel count");
+  for (std::size_t size : {image.depth_m.size(), image.position_m.size(), image.normal.size(), image.uv.size()})
+    DS_CHECK(size == 0 || size == n, "camera " + camera.name + ": a geometry layer has the wrong pixel count");
   if (truth) {
     for (std::size_t size : {truth->displacement_m.size(), truth->flow_px.size(), truth->flowMask.size(),
                              truth->disparity_px.size(), truth->disparityMask.size(), truth->distortion_px.size()})
@@ -311,24 +320,30 @@ OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, 
   if (!std::filesystem::is_directory(dir, ec))
     throw Error("output folder '" + dir + "' does not exist or is not a folder");
 
+  const std::vector<ExrChannel> channels = exrChannels(image, truth, sensor, info.layers);
+  const bool tiffWanted = info.layers.has(Layer::Image), exrWanted = !channels.empty();
   OutputFiles files;
-  files.image = (std::filesystem::path(dir) / (stem + ".tif")).string();
-  files.groundTruth = (std::filesystem::path(dir) / (stem + ".exr")).string();
+  if (tiffWanted) files.image = (std::filesystem::path(dir) / (stem + ".tif")).string();
+  if (exrWanted) files.groundTruth = (std::filesystem::path(dir) / (stem + ".exr")).string();
 
   // Write both to temporary files first, then rename both: a failure while writing leaves neither.
-  AtomicFile tiff(files.image);
-  AtomicFile exr(files.groundTruth);
-  writeGrayTiff(tiff, camera.width_px, camera.height_px, digital, camera.bitsPerPixel,
-                tiffDescription(camera, info));
-  writeGroundTruthExr(exr, camera, image, truth, sensor, info);
-  tiff.commit();
+  std::optional<AtomicFile> tiff, exr;
+  if (tiffWanted) {
+    tiff.emplace(files.image);
+    writeGrayTiff(*tiff, camera.width_px, camera.height_px, digital, camera.bitsPerPixel, tiffDescription(camera, info));
+  }
+  if (exrWanted) {
+    exr.emplace(files.groundTruth);
+    writeGroundTruthExr(*exr, camera, image, truth, sensor, info, channels);
+  }
+  if (tiff) tiff->commit();
   try {
-    exr.commit();
+    if (exr) exr->commit();
   } catch (...) {
     // Only the second rename failed (rare: both live in one folder). Remove the TIFF so that no
     // image exists without its ground truth; an older EXR of the same name, if any, stays.
     std::error_code ignored;
-    std::filesystem::remove(files.image, ignored);
+    if (tiff) std::filesystem::remove(files.image, ignored);
     throw;
   }
   return files;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "render/ground_truth.h"
+#include "render/layers.h"
 #include "render/result.h"
 #include "scene/scene.h"
 #include "sensor/sensor.h"
@@ -24,14 +25,16 @@ struct OutputInfo {
   // OpenEXR compression of the ground truth (kExrCompressions); every one is lossless for float32
   // and uint32 channels. Only size and writing time differ (README, "Output files").
   std::string exrCompression = "zip";
+  // What is written (--layers): the TIFF with `image`, the EXR's channels by layer (render/layers.h).
+  LayerSet layers = LayerSet::all();
 };
 
 // The --exr-compression values: lossless OpenEXR compressions.
 inline const std::vector<std::string> kExrCompressions = {"zip", "zips", "piz", "rle", "none"};
 
 struct OutputFiles {
-  std::string image;        // DIR/<stem>.tif
-  std::string groundTruth;  // DIR/<stem>.exr
+  std::string image;        // DIR/<stem>.tif; empty when info.layers has no `image`
+  std::string groundTruth;  // DIR/<stem>.exr; empty when no channel of info.layers exists for this camera
 };
 
 // `digital` holds one digital number per pixel (host/sensor), < 2^camera.bitsPerPixel.
@@ -42,6 +45,8 @@ struct OutputFiles {
 // and, from `sensor` when given (host/sensor), the layers it holds: noiseFree, noise (float32, DN)
 // and defects (uint32 DefectCode), with the attribute dicsynth:sensor;
 // header attributes dicsynth:* (run facts, camera in OpenCV terms): the list is in outputs.cpp.
+// Only the layers of info.layers are written: a layer whose data was not computed (an empty vector:
+// derived layers not asked for, geometry of a render without it) is skipped.
 // `dir` must exist (the caller creates it); otherwise, or if it is not writable, throws Error naming
 // it. Both files are written to temporary names first and renamed only when both are complete; if
 // the second rename fails the TIFF is removed again, so no image exists without its ground truth.

@@ -91,11 +91,14 @@ Sighting sight(const PreparedScene& scene, const PreparedCamera& camera, int obj
 
 }  // namespace
 
-ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result, bool otherFrames)
+ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result, bool otherFrames,
+                               bool motion)
     : frame_(frame), scene_(std::move(scene)) {
   DS_CHECK(result.cameras.size() == scene_.cameras.size(), "reference render and scene disagree");
+  if (!motion) return;
   for (std::size_t c = 0; c < result.cameras.size(); ++c) {
     const CameraImage& image = result.cameras[c];
+    DS_CHECK(image.hasGeometry(), "motion truth of a render without geometry (RenderOptions::geometry)");
     View v;
     v.camera = image.cameraName;
     v.width_px = image.width_px;
@@ -129,16 +132,18 @@ const ReferenceFrame::View* ReferenceFrame::view(const std::string& camera) cons
 }
 
 DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const PreparedScene& scene,
-                         const RenderResult& result, std::size_t cameraIndex) {
+                         const RenderResult& result, std::size_t cameraIndex, const LayerSet& layers) {
   const PreparedCamera& camera = scene.cameras[cameraIndex];
   const CameraImage& image = result.cameras[cameraIndex];
   DerivedTruth truth;
   truth.referenceFrame = reference.frame();
-  truth.distortion_px = distortionField(camera);
+  if (layers.has(Layer::Distortion)) truth.distortion_px = distortionField(camera);
 
   // Motion: follow each reference pixel's material point into this frame.
   const ReferenceFrame::View* view = reference.view(camera.camera.name);
-  if (view && view->width_px == image.width_px && view->height_px == image.height_px) {
+  const bool flow = layers.has(Layer::Flow);
+  if ((flow || layers.has(Layer::Disp)) && view && view->width_px == image.width_px &&
+      view->height_px == image.height_px) {
     const std::size_t n = image.pixelCount();
     truth.displacement_m.assign(n, dvec3(kNaN));
     truth.flow_px.assign(n, kNaN2);
@@ -162,6 +167,7 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       const auto p = worldPointOfMaterial(scene.objects[std::size_t(o)], view->material[i]);
       if (!p) return;
       truth.displacement_m[i] = *p - view->position_m[i];
+      if (!flow) return;  // its visibility is the costly part: traced only when asked for
       const Sighting s = sight(scene, camera, o, *p);
       truth.flow_px[i] = s.pixel_px - view->pixel_px[i];
       truth.flowMask[i] = s.visible ? 1.0f : 0.0f;
@@ -174,7 +180,8 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
     if (rig.left == int(cameraIndex)) other = rig.right;
     if (rig.right == int(cameraIndex)) other = rig.left;
   }
-  if (other >= 0) {
+  if (other >= 0 && layers.has(Layer::Disparity)) {
+    DS_CHECK(image.hasGeometry(), "disparity of a render without geometry (RenderOptions::geometry)");
     const PreparedCamera& otherCamera = scene.cameras[std::size_t(other)];
     truth.disparityCamera = otherCamera.camera.name;
     const std::size_t n = image.pixelCount();

@@ -24,6 +24,7 @@
 
 #include "core/math.h"
 #include "geometry/prepared_scene.h"
+#include "render/layers.h"
 #include "render/result.h"
 
 namespace dicsynth {
@@ -55,7 +56,10 @@ class ReferenceFrame {
   // `otherFrames` false: only the reference frame itself will be derived (a single-frame render, every
   // sweep point), so the projections x_ref(m), which only other frames' flow uses, are not computed
   // (a distortion inversion per pixel in projectToImage's fold test: ~5 % of a sweep point's CPU).
-  ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result, bool otherFrames = true);
+  // `motion` false: no layer derived from it is asked for (--layers without disp and flow): it only
+  // keeps the scene, and deriveTruth finds no view.
+  ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result, bool otherFrames = true,
+                 bool motion = true);
   int frame() const { return frame_; }
 
   struct View {
@@ -78,7 +82,9 @@ class ReferenceFrame {
 // The derived layers of camera `camera` (index into scene.cameras and result.cameras) of frame
 // `frame`. For the reference frame itself disp = flow = 0 and flow.mask = 1 wherever the reference
 // pixel sees an object (it is visible there by construction), without tracing.
+// Only the layers in `layers` are derived: without flow no visibility is traced for it, without
+// disparity nothing is projected into the other camera, without distortion no field is computed.
 DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const PreparedScene& scene,
-                         const RenderResult& result, std::size_t camera);
+                         const RenderResult& result, std::size_t camera, const LayerSet& layers = LayerSet::all());
 
 }  // namespace dicsynth

@@ -18,6 +18,10 @@ struct RenderOptions {
   std::uint32_t seed = 1;
   int frame = 0;
   Precision precision = Precision::Fp32;  // GPU only; the CPU reference is always double
+  // false: the GPU backend hands back only radiance and objectId (--layers without P, N, uv, depth
+  // or the layers derived from them: render/layers.h); the ground-truth vectors of CameraImage stay
+  // empty. The CPU reference computes them anyway (they are its trace).
+  bool geometry = true;
   // Called from the rendering thread with the fraction of all cameras' pixels done, in [0, 1].
   std::function<void(double)> progress;
 };

@@ -15,6 +15,7 @@ struct CameraImage {
   // Row-major, top row first; index = y * width + x, pixel (x, y) centred at (x, y) (OpenCV).
   std::vector<double> radiance;  // mean over the pixel's samples, before the sensor (full scale = 1/exposure)
   // Ground truth of the single ray through the exact pixel centre. NaN where objectId == 0.
+  // Empty when the render was asked for no geometry (RenderOptions::geometry).
   std::vector<double> depth_m;   // Z: depth along the camera's optical axis
   std::vector<dvec3> position_m; // P: world position of the surface point
   std::vector<dvec3> normal;     // N: unit world normal, oriented towards the camera
@@ -22,7 +23,9 @@ struct CameraImage {
   std::vector<std::uint32_t> objectId;  // 0 = background, else index of the object + 1
 
   std::size_t pixelCount() const { return std::size_t(width_px) * std::size_t(height_px); }
-  void resize(int width, int height);
+  // NaN-filled ground truth; `geometry` false leaves depth, P, N and uv empty.
+  void resize(int width, int height, bool geometry = true);
+  bool hasGeometry() const { return position_m.size() == pixelCount(); }
 };
 
 struct RenderResult {

@@ -47,7 +47,7 @@ void checkSameValues(const test::ExrContents& part, const test::ExrContents& who
 
 }  // namespace
 
-TEST_CASE("layers: names parse to a closed set; unknown, empty and misplaced names are refused") {
+TEST_CASE("layers: names parse to a closed set, unknown, empty and misplaced names are refused") {
   const LayerSet all = LayerSet::parse("all");
   CHECK(all.isAll());
   for (std::uint32_t l = 0; l < std::uint32_t(Layer::Count); ++l) CHECK(all.has(Layer(l)));

@@ -14,7 +14,7 @@ packages=(
   libvulkan-dev glslc                # Vulkan headers/loader, GLSL → SPIR-V compiler
   mesa-vulkan-drivers                # lavapipe: Vulkan on the CPU when there is no GPU
   vulkan-validationlayers            # the test suite runs with validation on
-  libopenimageio-dev libopenexr-dev  # image and ground-truth files
+  libopenimageio-dev libopenexr-dev libtiff-dev  # image and ground-truth files
   zlib1g-dev                         # CRC-32 of sweep points' files (host/sweep/point_record.cpp)
   libglm-dev libcli11-dev liblua5.4-dev doctest-dev
   libopencv-calib3d-dev libopencv-features2d-dev libopencv-video-dev  # tests only: OpenCV calibrates

@@ -8,12 +8,15 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "core/error.h"
 #include "core/math.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
+#include "io/oiio_reader.h"
+#include "io/tiff_io.h"
 #include "temp_folder.h"
 
 using namespace dicsynth;
@@ -299,4 +302,73 @@ TEST_CASE("io: readGrayImage of a missing, corrupt or empty file throws InputErr
 
   CHECK_THROWS_WITH_AS(readGrayImage(folder.path().string()),
                        containsText(folder.path().string() + ": "), InputError);
+}
+
+TEST_CASE("io: the libtiff reader gives OpenImageIO's values on every common TIFF kind, and hands it the rest") {
+  TempFolder folder;
+  const int width = 37, height = 19, n = width * height;  // odd sizes: rows not multiples of strips
+  std::uint32_t state = 12345;
+  auto next = [&state] { return state = state * 1664525u + 1013904223u; };
+  int kinds = 0;
+  for (int channels : {1, 2, 3, 4})
+    for (const char* compression : {"none", "zip", "lzw"}) {
+      CAPTURE(channels);
+      CAPTURE(compression);
+      auto write = [&](const std::string& name, OIIO::TypeDesc type, const void* data) {
+        auto out = OIIO::ImageOutput::create(folder.file(name));
+        REQUIRE(out);
+        OIIO::ImageSpec spec(width, height, channels, type);
+        spec.attribute("compression", compression);
+        REQUIRE_MESSAGE(out->open(folder.file(name), spec), out->geterror());
+        REQUIRE(out->write_image(type, data));
+        REQUIRE(out->close());
+        return folder.file(name);
+      };
+      std::vector<std::uint8_t> u8(std::size_t(n * channels));
+      std::vector<std::uint16_t> u16(u8.size());
+      std::vector<float> f32(u8.size());
+      for (std::size_t i = 0; i < u8.size(); ++i) {
+        u8[i] = std::uint8_t(next() >> 24);
+        u16[i] = std::uint16_t(next() >> 16);
+        f32[i] = float(int(next() >> 8) - (1 << 23)) * 1e-5f;  // negative and > 1 too: stored as is
+      }
+      const std::string tag = std::to_string(channels) + compression;
+      for (const std::string& path : {write("u8_" + tag + ".tif", OIIO::TypeDesc::UINT8, u8.data()),
+                                      write("u16_" + tag + ".tif", OIIO::TypeDesc::UINT16, u16.data()),
+                                      write("f32_" + tag + ".tif", OIIO::TypeDesc::FLOAT, f32.data())}) {
+        CAPTURE(path);
+        REQUIRE(looksLikeTiff(path));
+        const std::optional<GrayImage> native = readCommonTiff(path);
+        REQUIRE(native.has_value());
+        const GrayImage viaOiio = readGrayImageWithOiio(path);
+        CHECK(native->width == viaOiio.width);
+        CHECK(native->height == viaOiio.height);
+        CHECK(native->pixels == viaOiio.pixels);  // the same doubles, bit for bit
+        ++kinds;
+      }
+    }
+  CHECK(kinds == 36);
+
+  // Tiled and 32-bit integer TIFFs: not the libtiff path's kinds; readGrayImage reads them through
+  // OpenImageIO all the same.
+  std::vector<std::uint32_t> u32(static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < u32.size(); ++i) u32[i] = next();
+  const std::string int32 = folder.file("u32.tif");
+  writeWithOiio(int32, width, height, 1, OIIO::TypeDesc::UINT32, u32);
+  CHECK_FALSE(readCommonTiff(int32).has_value());
+  CHECK(readGrayImage(int32).pixels == readGrayImageWithOiio(int32).pixels);
+  const std::string tiled = folder.file("tiled.tif");
+  {
+    auto out = OIIO::ImageOutput::create(tiled);
+    OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::UINT8);
+    spec.tile_width = spec.tile_height = 16;
+    REQUIRE(out->open(tiled, spec));
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(n));
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = std::uint8_t(i * 7);
+    REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, bytes.data()));
+    REQUIRE(out->close());
+    CHECK_FALSE(readCommonTiff(tiled).has_value());
+    const GrayImage image = readGrayImage(tiled);
+    for (std::size_t i = 0; i < bytes.size(); ++i) CHECK(image.pixels[i] == bytes[i] / 255.0);
+  }
 }

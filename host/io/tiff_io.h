@@ -1,0 +1,29 @@
+#pragma once
+// TIFF through libtiff directly: the sensor images dicsynth writes and the plain TIFF textures it
+// reads most, without OpenImageIO, whose ~250 shared libraries cost every process ~0.18 s of
+// dynamic linking at start (README, "Speed as a user times it"). Other formats and unusual TIFF
+// variants go through OpenImageIO, loaded only when needed (io/oiio_reader.h).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/image_io.h"
+
+namespace dicsynth {
+
+// True when the file starts with a TIFF header (II*\0 or MM\0*; BigTIFF included).
+bool looksLikeTiff(const std::string& path);
+
+// A TIFF of the common kinds: strips, 1 (gray), 2 (gray + alpha), 3 or 4 (RGB[A]) interleaved
+// samples of 8 or 16 bits unsigned or 32-bit float, gray or RGB. Values as readGrayImage documents.
+// nullopt for any other kind (tiles, palettes, other bit depths, YCbCr, CMYK, ...): the caller
+// reads it through OpenImageIO. Throws InputError("PATH: reason") for a damaged file.
+std::optional<GrayImage> readCommonTiff(const std::string& path);
+
+// The single-channel zip-compressed TIFF of writeGrayTiff (io/image_io.h) at `tempPath`; errors
+// name `finalPath`.
+void writeGrayTiffFile(const std::string& tempPath, const std::string& finalPath, int width, int height,
+                       const std::vector<std::uint16_t>& values, int bits, const std::string& description);
+
+}  // namespace dicsynth

@@ -1,4 +1,5 @@
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 // Entry point of the renderer: one invocation per pixel of one tile of one camera.
 // Writes the mean radiance over the pixel's stratified samples and the ground truth of the ray
 // through the pixel centre (host/render/result.h). Compiled once per precision (DS_FP32, DS_FP64,
@@ -57,7 +58,10 @@ layout(std430, set = 0, binding = DS_BINDING_TEXTURES) readonly buffer Textures 
 // a storage-buffer read at a per-lane index is a loop over the lanes. In fp64 the storage buffer is
 // used (the texel buffer would need two 32-bit halves per double and measured slower).
 layout(std430, set = 0, binding = DS_BINDING_TEXELS) readonly buffer Texels { real texels[]; };
-layout(set = 0, binding = DS_BINDING_TEXEL_VIEW) uniform samplerBuffer texelView;
+// A textureBuffer (an image without sampler: what a uniform texel buffer is), not a samplerBuffer:
+// SPIR-V 1.6 forbids a sampled-image type of a buffer, and the validation layers under a Vulkan 1.4
+// driver (Mesa 25's lavapipe) report it. texelFetch on it: GL_EXT_samplerless_texture_functions.
+layout(set = 0, binding = DS_BINDING_TEXEL_VIEW) uniform textureBuffer texelView;
 #if defined(DS_FP64)
 #define DS_TEXEL(i) texels[i]
 #else

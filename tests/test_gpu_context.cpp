@@ -434,7 +434,23 @@ TEST_CASE("gpu: a render that runs into lavapipe's loop limit is refused, not re
     CHECK_NOTHROW(renderer.render(scene, options));
     return;
   }
-  CHECK_THROWS_WITH(renderer.render(scene, options), doctest::Contains("cut the shader's loops short"));
+  // Measured: Mesa 22.3 (Debian 12) limits the loops; Mesa 25.0 (bookworm-backports) does not, and
+  // renders the same scene in full. Versions between: either outcome, never a silent cut.
+  const std::string& driver = test::gpuContext().info().driver;
+  const std::size_t at = driver.find("Mesa ");
+  const int mesaMajor = at == std::string::npos ? 0 : std::atoi(driver.c_str() + at + 5);
+  INFO("driver: " << driver);
+  if (mesaMajor <= 22) {
+    CHECK_THROWS_WITH(renderer.render(scene, options), doctest::Contains("cut the shader's loops short"));
+  } else if (mesaMajor >= 25) {
+    CHECK_NOTHROW(renderer.render(scene, options));
+  } else {
+    try {
+      renderer.render(scene, options);
+    } catch (const std::exception& e) {
+      CHECK(std::string(e.what()).find("cut the shader's loops short") != std::string::npos);
+    }
+  }
   // Below the limit the same scene renders.
   options.samplesPerPixel = 16;
   CHECK_NOTHROW(renderer.render(scene, options));

@@ -232,9 +232,10 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   // Nothing cut short is returned as if it were an answer.
   if (cutShort > 0)
     throw Error("the Vulkan driver cut the shader's loops short on " + std::to_string(cutShort) +
-                " pixels (first: " + firstCutShort + "): Mesa's lavapipe ends all loops of a batch of pixels "
+                " pixels (first: " + firstCutShort + "): Mesa 22's lavapipe ends all loops of a batch of pixels "
                 "after 65535 iterations in total, so their results would be wrong. Render with "
-                "--backend cpu, or on a GPU; fewer samples per pixel or a NURBS surface with fewer folds "
+                "--backend cpu, on a GPU, or with Mesa 25's lavapipe (scripts/install-deps.sh --backports-mesa), "
+                "which has no such limit; fewer samples per pixel or a NURBS surface with fewer folds "
                 "also need fewer iterations");
 }
 

@@ -2,9 +2,12 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <utility>
 
 #include "core/error.h"
 #include "core/phase_timer.h"
+#include "core/serial_worker.h"
 #include "cpu/reference_renderer.h"
 #include "io/calibration_files.h"
 #include "io/feature_files.h"
@@ -153,10 +156,30 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   phaseDone("device");
   RenderJobResult summary;
   std::unique_ptr<ReferenceFrame> reference;
+  // Frame i is derived and written on a worker thread while frame i + 1 renders, as a sweep writes
+  // its points: at most one frame waits to be written. The frames are written in order, so the
+  // reference frame (the first) is written, and its ReferenceFrame built, before any other.
+  SerialWorker writer;
+  bool writing = false;
+  auto finishWriting = [&] {
+    if (!std::exchange(writing, false)) return;
+    writer.wait();  // rethrows the writer's error
+  };
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
-    RenderedFrame rendered = renderFrame(session, job, scenes[fi], job.frames[fi], summary);
-    writeFrame(job, rendered, fi == 0, calibrationPerFrame, reference);
+    std::shared_ptr<RenderedFrame> rendered;
+    try {
+      rendered = std::make_shared<RenderedFrame>(renderFrame(session, job, scenes[fi], job.frames[fi], summary));
+    } catch (...) {
+      finishWriting();  // the previous frame still completes (its own error, if any, wins)
+      throw;
+    }
+    finishWriting();
+    writer.start([&job, &reference, rendered, first = fi == 0, calibrationPerFrame] {
+      writeFrame(job, *rendered, first, calibrationPerFrame, reference);
+    });
+    writing = true;
   }
+  finishWriting();
   return summary;
 }
 

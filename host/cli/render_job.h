@@ -1,8 +1,8 @@
 #pragma once
 // The work of `dicsynth render` for one scene evaluation: every frame's scene is loaded, prepared,
 // rendered, its ground truth derived, and the sensor images, ground truth, calibration and feature
-// files written into one folder. `render` runs it once (runRenderJob: render a frame, write it,
-// next frame); `sweep` runs it once per point, keeping the RenderSession (Vulkan device, pipelines,
+// files written into one folder. `render` runs it once (runRenderJob: frame i is written on a
+// worker thread while frame i + 1 renders); `sweep` runs it once per point, keeping the RenderSession (Vulkan device, pipelines,
 // resolved precision, prepared textures) alive across points, and writes a point's files
 // (writeRenderedJob) on a worker thread while the next point renders.
 #include <memory>
@@ -79,7 +79,7 @@ struct RenderedJob {
   RenderJobResult summary;
 };
 
-// Runs the job: frame by frame, render then write. Throws InputError for scene errors (before any
+// Runs the job: frame by frame, each written while the next renders. Throws InputError for scene errors (before any
 // file is written), Error for device and I/O failures.
 RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job);
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <mutex>
 
 namespace dicsynth {
 
@@ -18,6 +19,8 @@ inline void phaseDone(const char* phase) {
     return v && *v && *v != '0';
   }();
   if (!enabled) return;
+  static std::mutex mutex;  // a render's frames are written on a worker thread
+  std::lock_guard lock(mutex);
   static const Clock::time_point start = Clock::now();
   static Clock::time_point last = start;
   const Clock::time_point now = Clock::now();

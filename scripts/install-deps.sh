@@ -4,7 +4,7 @@
 #
 #   scripts/install-deps.sh                  # Debian 12's own packages (lavapipe from Mesa 22.3)
 #   scripts/install-deps.sh --backports-mesa # also lavapipe from bookworm-backports (Mesa 25):
-#                                            # about 2.5x faster fp32 rendering on a CPU
+#                                            # about 1.6x faster fp32 rendering on a CPU
 #                                            # (bench/RESULTS.md); adds bookworm-backports to
 #                                            # the apt sources if it is not there.
 set -euo pipefail

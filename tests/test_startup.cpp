@@ -56,7 +56,7 @@ TEST_CASE("startup: the dicsynth binary links neither OpenImageIO nor OpenCV") {
   CHECK(needed.find("opencv") == std::string::npos);
 }
 
-TEST_CASE("startup: a PNG texture is read through the module; without the module the error names it") {
+TEST_CASE("startup: a PNG texture is read through the module, and without the module the error names it") {
   TempFolder dir;
   const std::string scene = pngScene(dir);
   const dicsynth::test::CliResult ok = runCli("render " + scene + " -o " + dir.file("out") + " --spp 1 --backend cpu");

@@ -1,4 +1,5 @@
 #include "geometry/nurbs.h"
+#include "geometry/nurbs_basis.h"
 
 #include "core/error.h"
 
@@ -8,57 +9,8 @@
 namespace dicsynth {
 namespace {
 
-constexpr int kMaxOrder = kMaxNurbsDegree + 1;
+constexpr int kMaxOrder = kMaxNurbsOrder;
 
-// The span s (degree p ≤ s ≤ n − 1) with U[s] ≤ t < U[s + 1]: the largest s with U[s] ≤ t is
-// automatically non-empty. At the domain's end (t = U[n]) the last non-empty span, so that the
-// surface is closed on [0, 1]² (the basis of that span, evaluated at its right end, is continuous).
-template <class Real>
-int findSpan(const std::vector<double>& U, int p, int n, Real t) {
-  int last = n - 1;
-  while (last > p && !(U[std::size_t(last)] < U[std::size_t(last) + 1])) --last;
-  if (t >= Real(U[std::size_t(last)])) return last;
-  int lo = p, hi = last;  // invariant: U[lo] ≤ t < U[hi] (t ≥ U[p] by the caller's clamp)
-  while (hi - lo > 1) {
-    const int mid = (lo + hi) / 2;
-    if (Real(U[std::size_t(mid)]) <= t) lo = mid; else hi = mid;
-  }
-  return lo;
-}
-
-// The p + 1 basis functions N_{s−p..s, p}(t) that are non-zero on span s, and their derivatives
-// dN/dt, by the triangular recurrence of the header (degree by degree, each N_{i,k−1} feeding
-// N_{i−1,k} and N_{i,k}). Every denominator U[i+k] − U[i] spans [U[s], U[s+1]], so it is > 0.
-// Derivative: N'_{j,p} = p N_{j,p−1}/(U[j+p] − U[j]) − p N_{j+1,p−1}/(U[j+p+1] − U[j+1]) from the
-// degree-(p − 1) row (the NURBS Book, eq. 2.7).
-template <class Real>
-void basisFunctions(const std::vector<double>& U, int p, int s, Real t, Real* N, Real* dN) {
-  auto knot = [&](int i) { return Real(U[std::size_t(i)]); };
-  std::array<Real, kMaxOrder> row{};  // row[r] = N_{s−k+r, k}
-  row[0] = 1;
-  for (int k = 1; k <= p; ++k) {
-    if (k == p) {
-      for (int r = 0; r <= p; ++r) {
-        const int j = s - p + r;
-        Real d = 0;
-        if (r >= 1) d += row[std::size_t(r) - 1] / (knot(j + p) - knot(j));
-        if (r <= p - 1) d -= row[std::size_t(r)] / (knot(j + p + 1) - knot(j + 1));
-        dN[r] = Real(p) * d;
-      }
-    }
-    std::array<Real, kMaxOrder> next{};
-    Real saved = 0;
-    for (int r = 0; r < k; ++r) {
-      const int i = s - k + 1 + r;  // row[r] = N_{i, k−1}
-      const Real temp = row[std::size_t(r)] / (knot(i + k) - knot(i));
-      next[std::size_t(r)] = saved + (knot(i + k) - t) * temp;  // into N_{i−1, k}
-      saved = (t - knot(i)) * temp;                             // into N_{i, k}
-    }
-    next[std::size_t(k)] = saved;
-    row = next;
-  }
-  for (int r = 0; r <= p; ++r) N[r] = row[std::size_t(r)];
-}
 
 // Boehm's insertion of knot x into the curve (knots L[0..], points C[0..count−1], degree p) inside
 // span k (L[k] ≤ x ≤ L[k+1], L[k] < L[k+1]):

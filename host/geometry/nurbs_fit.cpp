@@ -1,0 +1,298 @@
+#include "geometry/nurbs_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/exact_number.h"
+#include "geometry/nurbs.h"
+#include "geometry/nurbs_basis.h"
+
+namespace dicsynth {
+namespace {
+
+// The homogeneous control net (w P, w) of a surface, index i * m + j (i along u).
+struct Net {
+  int p = 0, q = 0, n = 0, m = 0;
+  std::vector<double> U, V;
+  std::vector<dvec4> H;
+};
+
+Net netOf(const NurbsSurface& s) {
+  Net net{s.degreeU, s.degreeV, s.countU, s.countV, s.knotsU, s.knotsV, {}};
+  net.H.resize(s.controlPoints.size());
+  for (std::size_t k = 0; k < net.H.size(); ++k) net.H[k] = dvec4(s.weights[k] * s.controlPoints[k], s.weights[k]);
+  return net;
+}
+
+// Boehm's insertion of knot x (strictly inside a non-empty span) along u (alongU) or v, applied to
+// every row of control points across the other direction (geometry/nurbs.cpp, insertKnot, has the
+// formula): the surface, and so its denominator W, are unchanged.
+void insertKnot(Net& net, bool alongU, double x) {
+  std::vector<double>& L = alongU ? net.U : net.V;
+  const int p = alongU ? net.p : net.q, count = alongU ? net.n : net.m, rows = alongU ? net.m : net.n;
+  int k = p;
+  while (!(L[std::size_t(k)] <= x && x < L[std::size_t(k) + 1])) ++k;
+  const int newCount = count + 1;
+  std::vector<dvec4> H(std::size_t(newCount) * std::size_t(rows));
+  for (int r = 0; r < rows; ++r) {
+    auto at = [&](int i) -> const dvec4& {
+      return alongU ? net.H[std::size_t(i) * std::size_t(net.m) + std::size_t(r)]
+                    : net.H[std::size_t(r) * std::size_t(net.m) + std::size_t(i)];
+    };
+    for (int i = 0; i < newCount; ++i) {
+      dvec4 value;
+      if (i <= k - p) value = at(i);
+      else if (i <= k) {
+        const double alpha = (x - L[std::size_t(i)]) / (L[std::size_t(i + p)] - L[std::size_t(i)]);
+        value = alpha * at(i) + (1 - alpha) * at(i - 1);
+      } else value = at(i - 1);
+      const std::size_t index = alongU ? std::size_t(i) * std::size_t(rows) + std::size_t(r)
+                                       : std::size_t(r) * std::size_t(newCount) + std::size_t(i);
+      H[index] = value;
+    }
+  }
+  L.insert(L.begin() + k + 1, x);
+  (alongU ? net.n : net.m) = newCount;
+  net.H = std::move(H);
+}
+
+// The non-empty spans [U[s], U[s+1]] of a knot vector: their first knot indices s.
+std::vector<int> spansOf(const std::vector<double>& U, int p, int n) {
+  std::vector<int> spans;
+  for (int s = p; s < n; ++s)
+    if (U[std::size_t(s)] < U[std::size_t(s) + 1]) spans.push_back(s);
+  return spans;
+}
+
+// A dense symmetric positive definite system solved by Cholesky (the normal matrices are banded of
+// half-width p and at most a few hundred wide: dense is simple and fast enough).
+class Cholesky {
+ public:
+  explicit Cholesky(std::vector<double> a, int n) : n_(n), l_(std::move(a)) {
+    for (int j = 0; j < n_; ++j) {
+      double d = at(j, j);
+      for (int k = 0; k < j; ++k) d -= at(j, k) * at(j, k);
+      if (!(d > 0)) throw InputError("the fit's normal matrix is not positive definite (degenerate knot spans)");
+      at(j, j) = std::sqrt(d);
+      for (int i = j + 1; i < n_; ++i) {
+        double s = at(i, j);
+        for (int k = 0; k < j; ++k) s -= at(i, k) * at(j, k);
+        at(i, j) = s / at(j, j);
+      }
+    }
+  }
+  // Solves in place for one right-hand side of dvec3 entries with the given stride.
+  void solve(dvec3* b, std::size_t stride) const {
+    for (int i = 0; i < n_; ++i) {
+      dvec3 s = b[std::size_t(i) * stride];
+      for (int k = 0; k < i; ++k) s -= at(i, k) * b[std::size_t(k) * stride];
+      b[std::size_t(i) * stride] = s / at(i, i);
+    }
+    for (int i = n_ - 1; i >= 0; --i) {
+      dvec3 s = b[std::size_t(i) * stride];
+      for (int k = i + 1; k < n_; ++k) s -= at(k, i) * b[std::size_t(k) * stride];
+      b[std::size_t(i) * stride] = s / at(i, i);
+    }
+  }
+
+ private:
+  double& at(int i, int j) { return l_[std::size_t(i) * std::size_t(n_) + std::size_t(j)]; }
+  double at(int i, int j) const { return l_[std::size_t(i) * std::size_t(n_) + std::size_t(j)]; }
+  int n_;
+  std::vector<double> l_;
+};
+
+// Samples of one direction: knot parameters t, their spans and the p + 1 basis values there.
+struct Samples {
+  std::vector<double> t;
+  std::vector<int> span;
+  std::vector<std::array<double, kMaxNurbsOrder>> basis;
+};
+
+Samples fitSamples(const std::vector<double>& U, int p, int n) {
+  Samples s;
+  for (int span : spansOf(U, p, n))
+    for (int k = 0; k <= p; ++k) {
+      const double t = U[std::size_t(span)] + (k + 0.5) / (p + 1) * (U[std::size_t(span) + 1] - U[std::size_t(span)]);
+      std::array<double, kMaxNurbsOrder> N{}, dN{};
+      basisFunctions(U, p, span, t, N.data(), dN.data());
+      s.t.push_back(t);
+      s.span.push_back(span);
+      s.basis.push_back(N);
+    }
+  return s;
+}
+
+// Auᵀ Au of a direction's samples (count × count, dense).
+std::vector<double> normalMatrix(const Samples& s, int p, int count) {
+  std::vector<double> g(std::size_t(count) * std::size_t(count), 0.0);
+  for (std::size_t a = 0; a < s.t.size(); ++a)
+    for (int r = 0; r <= p; ++r)
+      for (int c = 0; c <= p; ++c)
+        g[std::size_t(s.span[a] - p + r) * std::size_t(count) + std::size_t(s.span[a] - p + c)] +=
+            s.basis[a][std::size_t(r)] * s.basis[a][std::size_t(c)];
+  return g;
+}
+
+double normalized(const std::vector<double>& U, int p, int n, double t) {
+  return (t - U[std::size_t(p)]) / (U[std::size_t(n)] - U[std::size_t(p)]);
+}
+
+// W(t_u, t_v) of the reference: the last coordinate of its homogeneous point.
+double denominator(const Net& ref, double tu, double tv) {
+  const int su = findSpan(ref.U, ref.p, ref.n, tu), sv = findSpan(ref.V, ref.q, ref.m, tv);
+  std::array<double, kMaxNurbsOrder> Nu{}, dNu{}, Nv{}, dNv{};
+  basisFunctions(ref.U, ref.p, su, tu, Nu.data(), dNu.data());
+  basisFunctions(ref.V, ref.q, sv, tv, Nv.data(), dNv.data());
+  double w = 0;
+  for (int r = 0; r <= ref.p; ++r)
+    for (int c = 0; c <= ref.q; ++c)
+      w += Nu[std::size_t(r)] * Nv[std::size_t(c)] *
+           ref.H[std::size_t(su - ref.p + r) * std::size_t(ref.m) + std::size_t(sv - ref.q + c)].w;
+  return w;
+}
+
+// The least-squares fit on the refined net's knots (weights: the refined net's).
+NurbsSurface fitOnce(const NurbsSurface& reference, const Net& ref, const Net& refined,
+                     const DisplacementField& displacement) {
+  const Samples su = fitSamples(refined.U, refined.p, refined.n), sv = fitSamples(refined.V, refined.q, refined.m);
+  const std::size_t mu = su.t.size(), mv = sv.t.size(), nu = std::size_t(refined.n), nv = std::size_t(refined.m);
+  // T[a][b] = W (S + d(S)) at the samples.
+  std::vector<dvec3> T(mu * mv);
+  for (std::size_t a = 0; a < mu; ++a)
+    for (std::size_t b = 0; b < mv; ++b) {
+      const double u = normalized(refined.U, refined.p, refined.n, su.t[a]);
+      const double v = normalized(refined.V, refined.q, refined.m, sv.t[b]);
+      const dvec3 s = evaluateNurbs(reference, u, v).point;
+      T[a * mv + b] = denominator(ref, su.t[a], sv.t[b]) * (s + displacement(s));
+    }
+  // R = Auᵀ T (nu × mv), then Gu X = R.
+  std::vector<dvec3> R(nu * mv, dvec3(0));
+  for (std::size_t a = 0; a < mu; ++a)
+    for (int r = 0; r <= refined.p; ++r) {
+      const std::size_t i = std::size_t(su.span[a] - refined.p + r);
+      for (std::size_t b = 0; b < mv; ++b) R[i * mv + b] += su.basis[a][std::size_t(r)] * T[a * mv + b];
+    }
+  const Cholesky gu(normalMatrix(su, refined.p, refined.n), refined.n);
+  for (std::size_t b = 0; b < mv; ++b) gu.solve(R.data() + b, mv);
+  // Y = X Av (nu × nv), then Z Gv = Y row by row.
+  std::vector<dvec3> Z(nu * nv, dvec3(0));
+  for (std::size_t i = 0; i < nu; ++i)
+    for (std::size_t b = 0; b < mv; ++b)
+      for (int c = 0; c <= refined.q; ++c)
+        Z[i * nv + std::size_t(sv.span[b] - refined.q + c)] += sv.basis[b][std::size_t(c)] * R[i * mv + b];
+  const Cholesky gv(normalMatrix(sv, refined.q, refined.m), refined.m);
+  for (std::size_t i = 0; i < nu; ++i) gv.solve(Z.data() + i * nv, 1);
+
+  NurbsSurface fitted;
+  fitted.degreeU = refined.p;
+  fitted.degreeV = refined.q;
+  fitted.knotsU = refined.U;
+  fitted.knotsV = refined.V;
+  fitted.countU = refined.n;
+  fitted.countV = refined.m;
+  fitted.controlPoints.resize(nu * nv);
+  fitted.weights.resize(nu * nv);
+  for (std::size_t k = 0; k < nu * nv; ++k) {
+    fitted.weights[k] = refined.H[k].w;
+    fitted.controlPoints[k] = Z[k] / refined.H[k].w;
+  }
+  return fitted;
+}
+
+// Check-grid parameters of one direction (span ends included) and the span index of each.
+void checkGrid(const std::vector<double>& U, int p, int n, std::vector<double>& t, std::vector<int>& spanIndex) {
+  const int c = 2 * (p + 1) + 1;
+  const std::vector<int> spans = spansOf(U, p, n);
+  for (std::size_t k = 0; k < spans.size(); ++k) {
+    const double a = U[std::size_t(spans[k])], b = U[std::size_t(spans[k]) + 1];
+    for (int j = 0; j < c; ++j) {
+      if (k > 0 && j == 0) continue;  // the previous span's end
+      t.push_back(a + (b - a) * j / (c - 1));
+      spanIndex.push_back(int(k));
+    }
+  }
+}
+
+}  // namespace
+
+NurbsSurface fitDeformedNurbs(const NurbsSurface& reference, const DisplacementField& displacement,
+                              double tolerance_m, NurbsFitReport& report, std::size_t maxControlPoints) {
+  validateNurbs(reference);
+  if (!(tolerance_m > 0)) throw InputError("tolerance must be > 0 (metres), got " + exactNumber(tolerance_m));
+  const Net ref = netOf(reference);
+  Net refined = ref;
+  constexpr int kMaxRounds = 16;
+  for (int round = 0;; ++round) {
+    NurbsSurface fitted = fitOnce(reference, ref, refined, displacement);
+    std::vector<double> tu, tv;
+    std::vector<int> spanU, spanV;
+    checkGrid(refined.U, refined.p, refined.n, tu, spanU);
+    checkGrid(refined.V, refined.q, refined.m, tv, spanV);
+    const std::size_t nsu = std::size_t(spanU.back() + 1), nsv = std::size_t(spanV.back() + 1);
+    std::vector<double> error(tu.size() * tv.size());
+    double worst = 0;
+    for (std::size_t a = 0; a < tu.size(); ++a)
+      for (std::size_t b = 0; b < tv.size(); ++b) {
+        const double u = normalized(refined.U, refined.p, refined.n, tu[a]);
+        const double v = normalized(refined.V, refined.q, refined.m, tv[b]);
+        const dvec3 s = evaluateNurbs(reference, u, v).point;
+        const double e = glm::length(evaluateNurbs(fitted, u, v).point - (s + displacement(s)));
+        if (!std::isfinite(e)) throw InputError("the displacement is not finite at (" + exactNumber(s.x) + ", " +
+                                                exactNumber(s.y) + ", " + exactNumber(s.z) + ")");
+        worst = std::max(worst, e);
+        error[a * tv.size() + b] = e;
+      }
+    report = {worst, int(tu.size()), int(tv.size()), fitted.controlPoints.size(), round};
+    if (worst <= tolerance_m) return fitted;
+
+    // Which spans to halve. A span of u is too coarse where the error, on some line of constant v,
+    // both exceeds the tolerance and varies across the span by more than half of it: an error that
+    // does not vary along u inside the span (it comes from v's resolution) is not cured by u knots.
+    // Likewise for v. If no span qualifies that way, every span with an error over the tolerance.
+    auto spansToHalve = [&](bool alongU, bool anyOver) {
+      const std::size_t spans = alongU ? nsu : nsv, lines = alongU ? tv.size() : tu.size();
+      const std::size_t points = alongU ? tu.size() : tv.size();
+      std::vector<char> halve(spans, 0);
+      for (std::size_t line = 0; line < lines; ++line) {
+        std::vector<double> lo(spans, 1e300), hi(spans, 0.0);
+        for (std::size_t k = 0; k < points; ++k) {
+          const double e = alongU ? error[k * tv.size() + line] : error[line * tv.size() + k];
+          const std::size_t span = std::size_t(alongU ? spanU[k] : spanV[k]);
+          lo[span] = std::min(lo[span], e);
+          hi[span] = std::max(hi[span], e);
+        }
+        for (std::size_t k = 0; k < spans; ++k)
+          if (hi[k] > tolerance_m && (anyOver || hi[k] - lo[k] > 0.5 * tolerance_m)) halve[k] = 1;
+      }
+      return halve;
+    };
+    std::vector<char> halveU = spansToHalve(true, false), halveV = spansToHalve(false, false);
+    if (std::count(halveU.begin(), halveU.end(), 1) + std::count(halveV.begin(), halveV.end(), 1) == 0) {
+      halveU = spansToHalve(true, true);
+      halveV = spansToHalve(false, true);
+    }
+    std::vector<double> insertU, insertV;
+    const std::vector<int> spansU = spansOf(refined.U, refined.p, refined.n), spansV = spansOf(refined.V, refined.q, refined.m);
+    for (std::size_t k = 0; k < spansU.size(); ++k)
+      if (halveU[k]) insertU.push_back(0.5 * (refined.U[std::size_t(spansU[k])] + refined.U[std::size_t(spansU[k]) + 1]));
+    for (std::size_t k = 0; k < spansV.size(); ++k)
+      if (halveV[k]) insertV.push_back(0.5 * (refined.V[std::size_t(spansV[k])] + refined.V[std::size_t(spansV[k]) + 1]));
+    const std::size_t next = (std::size_t(refined.n) + insertU.size()) * (std::size_t(refined.m) + insertV.size());
+    auto best = [&] {
+      return "best reached " + exactNumber(worst) + " m (tolerance " + exactNumber(tolerance_m) + " m) with " +
+             std::to_string(fitted.controlPoints.size()) + " control points after " + std::to_string(round) +
+             " refinements: ";
+    };
+    if (next > maxControlPoints)
+      throw InputError(best() + "the next refinement needs " + std::to_string(next) +
+                       " control points, over the budget of " + std::to_string(maxControlPoints));
+    if (round + 1 >= kMaxRounds) throw InputError(best() + "the refinement limit (" + std::to_string(kMaxRounds) + " rounds)");
+    for (double x : insertU) insertKnot(refined, true, x);
+    for (double x : insertV) insertKnot(refined, false, x);
+  }
+}
+
+}  // namespace dicsynth

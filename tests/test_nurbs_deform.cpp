@@ -1,0 +1,198 @@
+// Nurbs.deform (geometry/nurbs_fit.h): a NURBS moved by a displacement field keeps its (u, v)
+// material parametrization. Checked against the field evaluated by the test itself at random
+// material points, with the fitted surface evaluated through its Bézier patches (toBezierPatches +
+// evaluateBezier), a code path the fit does not use (it measures its error with evaluateNurbs).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "core/error.h"
+#include "exr_test_util.h"
+#include "geometry/nurbs.h"
+#include "geometry/nurbs_fit.h"
+#include "run_cli.h"
+#include "scene/lua_values.h"
+#include "scene/nurbs_specimens.h"
+#include "scene/scene.h"
+
+using namespace dicsynth;
+using namespace dicsynth::scene;
+
+namespace {
+
+// F(u, v) through the Bézier patch that covers (u, v).
+dvec3 bezierPoint(const std::vector<BezierPatch>& patches, double u, double v) {
+  for (const BezierPatch& b : patches)
+    if (u >= b.uvMin.x && u <= b.uvMax.x && v >= b.uvMin.y && v <= b.uvMax.y)
+      return evaluateBezier(b, (u - b.uvMin.x) / (b.uvMax.x - b.uvMin.x), (v - b.uvMin.y) / (b.uvMax.y - b.uvMin.y)).point;
+  FAIL("no patch covers (" << u << ", " << v << ")");
+  return dvec3(0);
+}
+
+// The largest |F(u, v) − (S + d(S))(u, v)| over `count` random (u, v), corners and edges included.
+double worstDeviation(const NurbsSurface& reference, const NurbsSurface& fitted, const DisplacementField& d,
+                      int count, std::uint32_t seed) {
+  const std::vector<BezierPatch> patches = toBezierPatches(fitted);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst = 0;
+  for (int k = 0; k < count; ++k) {
+    double u = unit(rng), v = unit(rng);
+    if (k < 4) u = k % 2, v = k / 2;  // corners
+    if (k >= 4 && k < 8) u = (k % 2 == 0) ? 0.0 : 1.0;  // edges
+    const dvec3 s = evaluateNurbs(reference, u, v).point;
+    worst = std::max(worst, glm::length(bezierPoint(patches, u, v) - (s + d(s))));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("nurbs-deform: affine fields are reproduced exactly, on a polynomial plate and a rational cylinder") {
+  PlateSpec plate;
+  plate.size_m = {0.1, 0.05};
+  plate.spans = {5, 3};
+  plate.curvature_per_m = 4;
+  CylinderSegmentSpec cylinder;
+  cylinder.radius_m = 0.03;
+  cylinder.angle_rad = 2.5;
+  cylinder.height_m = 0.08;
+  cylinder.arcs = 2;
+  // A strain-like linear map plus a rigid translation (metres).
+  const DisplacementField affine = [](const dvec3& x) {
+    return dvec3(2e-3 * x.x - 1e-3 * x.y + 5e-6, 7e-4 * x.x + 3e-3 * x.z, -1e-3 * x.y + 2e-6);
+  };
+  for (const NurbsSurface& reference : {makePlate(plate), makeCylinderSegment(cylinder)}) {
+    NurbsFitReport report;
+    const NurbsSurface fitted = fitDeformedNurbs(reference, affine, 1e-9, report);
+    CHECK(report.refinements == 0);  // in the spline space: no knot needed
+    CHECK(fitted.countU == reference.countU);
+    CHECK(fitted.countV == reference.countV);
+    CHECK(fitted.weights == reference.weights);
+    // Exact up to rounding: control points ~0.1 m, normal matrices of condition < 1e3 for these
+    // degrees: ~1e3 × 2^-52 × 0.1 m ≈ 2e-14 m; 1e-12 m (the bound) leaves room.
+    CHECK(report.maxError_m <= 1e-12);
+    CHECK(worstDeviation(reference, fitted, affine, 2000, 1) <= 1e-12);
+  }
+}
+
+TEST_CASE("nurbs-deform: a sinusoid converges to the tolerance by refining where the error is") {
+  PlateSpec plate;
+  plate.size_m = {0.1, 0.05};
+  plate.spans = {4, 2};
+  // DIC-Challenge-like: a 20 µm wave along y whose period grows along x (4 to 10 mm).
+  const DisplacementField wave = [](const dvec3& x) {
+    const double period = 0.004 + 0.06 * (x.x + 0.05);
+    return dvec3(0, 2e-5 * std::sin(2 * 3.141592653589793 * x.x / period), 0);
+  };
+  for (double tolerance : {1e-7, 1e-9}) {
+    CAPTURE(tolerance);
+    NurbsFitReport report;
+    const NurbsSurface fitted = fitDeformedNurbs(makePlate(plate), wave, tolerance, report);
+    MESSAGE("tolerance " << tolerance << " m: error " << report.maxError_m << " m, " << report.controlPoints
+                         << " control points (" << fitted.countU << " x " << fitted.countV << "), "
+                         << report.refinements << " refinements");
+    CHECK(report.maxError_m <= tolerance);
+    CHECK(report.refinements > 0);
+    // The wave varies along x only: v needs no refinement beyond the plate's own spans... unless
+    // the x-dependent error leaks through the tensor fit; it must at least refine u more than v.
+    CHECK(fitted.countU > fitted.countV);
+    // Between check points: the check grid has 2(p + 1) + 1 points per span, the error of a
+    // degree-3 fit oscillates at most ~p + 1 times per span, so the sampled maximum is close to the
+    // true one; 2000 random points must stay within 1.5 × the tolerance.
+    CHECK(worstDeviation(makePlate(plate), fitted, wave, 2000, 2) <= 1.5 * tolerance);
+  }
+}
+
+TEST_CASE("nurbs-deform: a budget too small says the best error reached and why") {
+  PlateSpec plate;
+  plate.size_m = {0.1, 0.05};
+  const DisplacementField wave = [](const dvec3& x) { return dvec3(0, 0, 1e-5 * std::sin(800 * x.x)); };
+  NurbsFitReport report;
+  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), wave, 1e-12, report, 100),
+                       doctest::Contains("best reached"), InputError);
+  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), wave, 1e-12, report, 100),
+                       doctest::Contains("over the budget of 100"), InputError);
+  const DisplacementField notFinite = [](const dvec3&) { return dvec3(std::nan(""), 0, 0); };
+  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), notFinite, 1e-9, report), doctest::Contains("not finite"),
+                       InputError);
+}
+
+TEST_CASE("nurbs-deform: the scene constructor fits, reports on stderr, and refuses bad input with file:line") {
+  test::TempFolder dir;
+  const std::string head =
+      "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n"
+      "plate = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n";
+  const std::string good = dir.write(
+      "good.lua", head +
+                      "wave = Nurbs.deform { surface = plate; tolerance = 1e-8;\n"
+                      "  displacement = function(x, y, z) return 0, 0, 1e-5 * math.sin(2 * math.pi * x / 0.05) end }\n"
+                      "o = Object.Simple { shape = wave }\n");
+  const test::CliResult r = test::runCli("render " + good + " -o " + dir.file("out") + " --spp 1 --backend cpu");
+  INFO(r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(r.err.find(good + ":3: Nurbs.deform: fit error") != std::string::npos);
+
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"w = Nurbs.deform { surface = plate }\n", ":3: Nurbs.deform: missing required 'displacement'"},
+      {"w = Nurbs.deform { surface = Shape.Sphere { radius = 1 }; displacement = function() return 0, 0, 0 end }\n",
+       ":3: Nurbs.deform: 'surface' must be a NURBS shape"},
+      {"w = Nurbs.deform { surface = plate; displacement = function(x) return 0, 'a', 0 end }\n",
+       ":3: Nurbs.deform: 'displacement' must return three numbers"},
+      {"w = Nurbs.deform { surface = plate; displacement = function(x) error('boom') end }\n", "boom"},
+      {"w = Nurbs.deform { surface = plate; tolerance = 0; displacement = function() return 0, 0, 0 end }\n",
+       ":3: Nurbs.deform: 'tolerance'"},
+      {"w = Nurbs.deform { surface = plate; tolerance = 1e-15; maxControlPoints = 64;\n"
+       "  displacement = function(x) return 0, 0, 1e-4 * math.sin(900 * x) end }\n",
+       "best reached"},
+  };
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    const std::string scene = dir.write("bad" + std::to_string(i) + ".lua", head + bad[i].first);
+    const test::CliResult e = test::runCli("render " + scene + " -o " + dir.file("no") + " --backend cpu");
+    INFO(bad[i].first << "\nstderr: " << e.err);
+    CHECK(e.exitCode == 2);
+    CHECK(e.err.find(bad[i].second) != std::string::npos);
+  }
+}
+
+TEST_CASE("nurbs-deform: scenes/sinusoid_plate.lua, disp equals the requested wave, GPU equals CPU") {
+  test::TempFolder dir;
+  const std::string scene = std::string(DS_SOURCE_DIR) + "/scenes/sinusoid_plate.lua";
+  const test::CliResult r =
+      test::runCli("render " + scene + " -o " + dir.file("out") + " --frames 0:1 --downscale 8 --spp 1 --precision fp64");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const test::ExrContents ref = test::readExr(dir.file("out/camera_0000.exr"));
+  const test::ExrContents now = test::readExr(dir.file("out/camera_0001.exr"));
+  // The scene's wave, evaluated here from its definition: x is the plate's own coordinate, which
+  // is world x (the plate is centred on x = 0 and not rotated).
+  auto wave = [](double x) {
+    const double period = 0.004 + 0.06 * (x + 0.05);
+    return 2e-5 * std::sin(2 * 3.141592653589793 * x / period);
+  };
+  // Bound: the fit tolerance 1e-9 m (times 1.5 between check points, as measured on random points
+  // in the test above), plus the wave's change over the float32 rounding of P.X (|x| ≤ 0.05 m:
+  // half an ulp 1.9e-9 m, slope |d'| ≤ 0.055: 1e-10 m), plus float32 rounding of disp (1e-12 m).
+  const double bound = 1.5e-9 + 1.1e-10;
+  std::size_t compared = 0;
+  double worst = 0;
+  const std::vector<float>& px = ref.floats.at("P.X");
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    if (ref.objectId[i] == 0 || std::isnan(now.floats.at("disp.Y")[i])) continue;
+    ++compared;
+    const double expected[3] = {0, wave(px[i]), 0};
+    const char* names[3] = {"disp.X", "disp.Y", "disp.Z"};
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(now.floats.at(names[c])[i] - expected[c]));
+  }
+  MESSAGE("disp vs the wave on " << compared << " reference pixels: worst " << worst << " m (bound " << bound << ")");
+  CHECK(compared > 10000);
+  CHECK(worst <= bound);
+  // The deformed plate on the GPU, every precision, against the CPU reference.
+  for (const char* precision : {"fp64", "df64", "fp32"}) {
+    const test::CliResult c = test::runCli("compare " + scene + " --frame 1 --downscale 8 --spp 1 --precision " + precision);
+    INFO(precision << "\n" << c.out << c.err);
+    CHECK(c.exitCode == 0);
+  }
+}

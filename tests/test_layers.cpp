@@ -86,6 +86,12 @@ TEST_CASE("cli: --layers image writes the sensor image alone, the same pixels as
   CHECK(r.out.find("camera1.exr") == std::string::npos);
   const GrayImage a = readGrayImage(dir.file("all/camera1.tif")), b = readGrayImage(dir.file("image/camera1.tif"));
   CHECK(a.pixels == b.pixels);
+  // The CPU reference honours the same layers: the TIFF alone, the same pixels as its full run.
+  const std::string cpu = " --downscale 8 --spp 2 --backend cpu";
+  REQUIRE(runCli("render " + kScenes + "figure1.lua -o " + dir.file("cpu_all") + cpu).exitCode == 0);
+  REQUIRE(runCli("render " + kScenes + "figure1.lua -o " + dir.file("cpu_image") + cpu + " --layers image").exitCode == 0);
+  CHECK(filesIn(dir.file("cpu_image")) == std::set<std::string>{"camera1.tif", "camera1.yml"});
+  CHECK(readGrayImage(dir.file("cpu_all/camera1.tif")).pixels == readGrayImage(dir.file("cpu_image/camera1.tif")).pixels);
 }
 
 TEST_CASE("cli: --layers writes exactly the channels asked for, with a full run's values") {

@@ -9,9 +9,6 @@
 namespace dicsynth {
 namespace {
 
-constexpr int kMaxOrder = kMaxNurbsOrder;
-
-
 // Boehm's insertion of knot x into the curve (knots L[0..], points C[0..count−1], degree p) inside
 // span k (L[k] ≤ x ≤ L[k+1], L[k] < L[k+1]):
 //   C'_i = C_i                             for i ≤ k − p,
@@ -20,7 +17,7 @@ constexpr int kMaxOrder = kMaxNurbsOrder;
 // and x enters the knot vector after L[k]. The formula is a polynomial identity on the span, so it
 // also holds at its closed right end x = L[k+1]. Denominators: L_{i+p} ≥ L_{k+1} > L_k ≥ L_i.
 void insertKnot(double* L, int& knotCount, dvec4* C, int& count, int p, int k, double x) {
-  std::array<dvec4, 4 * kMaxOrder> next;
+  std::array<dvec4, 4 * kMaxNurbsOrder> next;
   for (int i = 0; i <= count; ++i) {
     if (i <= k - p) {
       next[std::size_t(i)] = C[i];
@@ -46,8 +43,8 @@ void insertKnot(double* L, int& knotCount, dvec4* C, int& count, int p, int k, d
 // reads a…a b…b). The window's own knots outside the span may be anything (unclamped vectors).
 template <class GetPoint>
 void spanToBezier(const double* knots, int p, GetPoint Q, dvec4* out) {
-  std::array<double, 6 * kMaxOrder> L{};
-  std::array<dvec4, 4 * kMaxOrder> C{};
+  std::array<double, 6 * kMaxNurbsOrder> L{};
+  std::array<dvec4, 4 * kMaxNurbsOrder> C{};
   int knotCount = 2 * p + 2, count = p + 1;
   std::copy(knots, knots + knotCount, L.begin());
   for (int r = 0; r <= p; ++r) C[std::size_t(r)] = Q(r);
@@ -83,7 +80,7 @@ SurfacePoint<Real> evaluateNurbs(const NurbsSurface& surface, Real u, Real v) {
   const Real tu = std::clamp(u0 + std::clamp(u, Real(0), Real(1)) * (u1 - u0), u0, u1);
   const Real tv = std::clamp(v0 + std::clamp(v, Real(0), Real(1)) * (v1 - v0), v0, v1);
   const int su = findSpan(surface.knotsU, p, n, tu), sv = findSpan(surface.knotsV, q, m, tv);
-  std::array<Real, kMaxOrder> Nu{}, dNu{}, Nv{}, dNv{};
+  std::array<Real, kMaxNurbsOrder> Nu{}, dNu{}, Nv{}, dNv{};
   basisFunctions(surface.knotsU, p, su, tu, Nu.data(), dNu.data());
   basisFunctions(surface.knotsV, q, sv, tv, Nv.data(), dNv.data());
   HomogeneousPoint<Real> h;
@@ -121,7 +118,7 @@ std::vector<BezierPatch> toBezierPatches(const NurbsSurface& surface) {
     if (!(U[std::size_t(su)] < U[std::size_t(su) + 1])) continue;  // zero-width span
     // Bézier in u for every column j: strip[r * m + j], r = 0..p.
     for (int j = 0; j < m; ++j) {
-      std::array<dvec4, kMaxOrder> out;
+      std::array<dvec4, kMaxNurbsOrder> out;
       spanToBezier(&U[std::size_t(su - p)], p,
                    [&](int r) { return H[std::size_t(su - p + r) * std::size_t(m) + std::size_t(j)]; },
                    out.data());
@@ -150,9 +147,9 @@ std::vector<BezierPatch> toBezierPatches(const NurbsSurface& surface) {
 template <class Real>
 HomogeneousPoint<Real> evaluateBezierHomogeneous(const dvec4* P, int p, int q, Real a, Real b) {
   using V4 = glm::vec<4, Real>;
-  std::array<V4, kMaxOrder> C, D;  // per column j: value at a and ∂/∂a
+  std::array<V4, kMaxNurbsOrder> C, D;  // per column j: value at a and ∂/∂a
   for (int j = 0; j <= q; ++j) {
-    std::array<V4, kMaxOrder> T;
+    std::array<V4, kMaxNurbsOrder> T;
     for (int i = 0; i <= p; ++i) T[std::size_t(i)] = V4(P[i * (q + 1) + j]);
     for (int level = 1; level < p; ++level)
       for (int i = 0; i + level <= p; ++i) T[std::size_t(i)] = (1 - a) * T[std::size_t(i)] + a * T[std::size_t(i) + 1];
@@ -187,7 +184,7 @@ void splitBezier(const dvec4* in, int p, int q, int direction, double t, dvec4* 
   const int lines = direction == 0 ? q + 1 : p + 1;
   for (int line = 0; line < lines; ++line) {
     auto at = [&](int k) { return direction == 0 ? k * (q + 1) + line : line * (q + 1) + k; };
-    std::array<dvec4, kMaxOrder> T;
+    std::array<dvec4, kMaxNurbsOrder> T;
     for (int k = 0; k <= n; ++k) T[std::size_t(k)] = in[at(k)];
     lo[at(0)] = T[0];
     hi[at(n)] = T[std::size_t(n)];

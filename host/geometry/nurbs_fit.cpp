@@ -140,23 +140,23 @@ double normalized(const std::vector<double>& U, int p, int n, double t) {
   return (t - U[std::size_t(p)]) / (U[std::size_t(n)] - U[std::size_t(p)]);
 }
 
-// W(t_u, t_v) of the reference: the last coordinate of its homogeneous point.
-double denominator(const Net& ref, double tu, double tv) {
-  const int su = findSpan(ref.U, ref.p, ref.n, tu), sv = findSpan(ref.V, ref.q, ref.m, tv);
+// W(t_u, t_v): the last coordinate of the net's homogeneous point (the same function for the
+// reference and every refinement of it).
+double denominator(const Net& net, double tu, double tv) {
+  const int su = findSpan(net.U, net.p, net.n, tu), sv = findSpan(net.V, net.q, net.m, tv);
   std::array<double, kMaxNurbsOrder> Nu{}, dNu{}, Nv{}, dNv{};
-  basisFunctions(ref.U, ref.p, su, tu, Nu.data(), dNu.data());
-  basisFunctions(ref.V, ref.q, sv, tv, Nv.data(), dNv.data());
+  basisFunctions(net.U, net.p, su, tu, Nu.data(), dNu.data());
+  basisFunctions(net.V, net.q, sv, tv, Nv.data(), dNv.data());
   double w = 0;
-  for (int r = 0; r <= ref.p; ++r)
-    for (int c = 0; c <= ref.q; ++c)
+  for (int r = 0; r <= net.p; ++r)
+    for (int c = 0; c <= net.q; ++c)
       w += Nu[std::size_t(r)] * Nv[std::size_t(c)] *
-           ref.H[std::size_t(su - ref.p + r) * std::size_t(ref.m) + std::size_t(sv - ref.q + c)].w;
+           net.H[std::size_t(su - net.p + r) * std::size_t(net.m) + std::size_t(sv - net.q + c)].w;
   return w;
 }
 
 // The least-squares fit on the refined net's knots (weights: the refined net's).
-NurbsSurface fitOnce(const NurbsSurface& reference, const Net& ref, const Net& refined,
-                     const DisplacementField& displacement) {
+NurbsSurface fitOnce(const NurbsSurface& reference, const Net& refined, const DisplacementField& displacement) {
   const Samples su = fitSamples(refined.U, refined.p, refined.n), sv = fitSamples(refined.V, refined.q, refined.m);
   const std::size_t mu = su.t.size(), mv = sv.t.size(), nu = std::size_t(refined.n), nv = std::size_t(refined.m);
   // T[a][b] = W (S + d(S)) at the samples.
@@ -166,7 +166,7 @@ NurbsSurface fitOnce(const NurbsSurface& reference, const Net& ref, const Net& r
       const double u = normalized(refined.U, refined.p, refined.n, su.t[a]);
       const double v = normalized(refined.V, refined.q, refined.m, sv.t[b]);
       const dvec3 s = evaluateNurbs(reference, u, v).point;
-      T[a * mv + b] = denominator(ref, su.t[a], sv.t[b]) * (s + displacement(s));
+      T[a * mv + b] = denominator(refined, su.t[a], sv.t[b]) * (s + displacement(s));
     }
   // R = Auᵀ T (nu × mv), then Gu X = R.
   std::vector<dvec3> R(nu * mv, dvec3(0));
@@ -222,11 +222,10 @@ NurbsSurface fitDeformedNurbs(const NurbsSurface& reference, const DisplacementF
                               double tolerance_m, NurbsFitReport& report, std::size_t maxControlPoints) {
   validateNurbs(reference);
   if (!(tolerance_m > 0)) throw InputError("tolerance must be > 0 (metres), got " + exactNumber(tolerance_m));
-  const Net ref = netOf(reference);
-  Net refined = ref;
+  Net refined = netOf(reference);
   constexpr int kMaxRounds = 16;
   for (int round = 0;; ++round) {
-    NurbsSurface fitted = fitOnce(reference, ref, refined, displacement);
+    NurbsSurface fitted = fitOnce(reference, refined, displacement);
     std::vector<double> tu, tv;
     std::vector<int> spanU, spanV;
     checkGrid(refined.U, refined.p, refined.n, tu, spanU);

@@ -32,7 +32,7 @@ dvec3 bezierPoint(const std::vector<BezierPatch>& patches, double u, double v) {
 }
 
 // The largest |F(u, v) − (S + d(S))(u, v)| over `count` random (u, v), corners and edges included.
-double worstDeviation(const NurbsSurface& reference, const NurbsSurface& fitted, const DisplacementField& d,
+double worstDeviation(const NurbsSurface& reference, const NurbsSurface& fitted, const PointDisplacement& d,
                       int count, std::uint32_t seed) {
   const std::vector<BezierPatch> patches = toBezierPatches(fitted);
   std::mt19937 rng(seed);
@@ -61,12 +61,12 @@ TEST_CASE("nurbs-deform: affine fields are reproduced exactly, on a polynomial p
   cylinder.height_m = 0.08;
   cylinder.arcs = 2;
   // A strain-like linear map plus a rigid translation (metres).
-  const DisplacementField affine = [](const dvec3& x) {
+  const PointDisplacement affine = [](const dvec3& x) {
     return dvec3(2e-3 * x.x - 1e-3 * x.y + 5e-6, 7e-4 * x.x + 3e-3 * x.z, -1e-3 * x.y + 2e-6);
   };
   for (const NurbsSurface& reference : {makePlate(plate), makeCylinderSegment(cylinder)}) {
     NurbsFitReport report;
-    const NurbsSurface fitted = fitDeformedNurbs(reference, affine, 1e-9, report);
+    const NurbsSurface fitted = fitDeformedNurbs(reference, pointwise(affine), 1e-9, report);
     CHECK(report.refinements == 0);  // in the spline space: no knot needed
     CHECK(fitted.countU == reference.countU);
     CHECK(fitted.countV == reference.countV);
@@ -83,14 +83,14 @@ TEST_CASE("nurbs-deform: a sinusoid converges to the tolerance by refining where
   plate.size_m = {0.1, 0.05};
   plate.spans = {4, 2};
   // DIC-Challenge-like: a 20 µm wave along y whose period grows along x (4 to 10 mm).
-  const DisplacementField wave = [](const dvec3& x) {
+  const PointDisplacement wave = [](const dvec3& x) {
     const double period = 0.004 + 0.06 * (x.x + 0.05);
     return dvec3(0, 2e-5 * std::sin(2 * 3.141592653589793 * x.x / period), 0);
   };
   for (double tolerance : {1e-7, 1e-9}) {
     CAPTURE(tolerance);
     NurbsFitReport report;
-    const NurbsSurface fitted = fitDeformedNurbs(makePlate(plate), wave, tolerance, report);
+    const NurbsSurface fitted = fitDeformedNurbs(makePlate(plate), pointwise(wave), tolerance, report);
     MESSAGE("tolerance " << tolerance << " m: error " << report.maxError_m << " m, " << report.controlPoints
                          << " control points (" << fitted.countU << " x " << fitted.countV << "), "
                          << report.refinements << " refinements");
@@ -109,14 +109,14 @@ TEST_CASE("nurbs-deform: a sinusoid converges to the tolerance by refining where
 TEST_CASE("nurbs-deform: a budget too small says the best error reached and why") {
   PlateSpec plate;
   plate.size_m = {0.1, 0.05};
-  const DisplacementField wave = [](const dvec3& x) { return dvec3(0, 0, 1e-5 * std::sin(800 * x.x)); };
+  const PointDisplacement wave = [](const dvec3& x) { return dvec3(0, 0, 1e-5 * std::sin(800 * x.x)); };
   NurbsFitReport report;
-  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), wave, 1e-12, report, 100),
+  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), pointwise(wave), 1e-12, report, 100),
                        doctest::Contains("best reached"), InputError);
-  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), wave, 1e-12, report, 100),
+  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), pointwise(wave), 1e-12, report, 100),
                        doctest::Contains("over the budget of 100"), InputError);
-  const DisplacementField notFinite = [](const dvec3&) { return dvec3(std::nan(""), 0, 0); };
-  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), notFinite, 1e-9, report), doctest::Contains("not finite"),
+  const PointDisplacement notFinite = [](const dvec3&) { return dvec3(std::nan(""), 0, 0); };
+  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), pointwise(notFinite), 1e-9, report), doctest::Contains("not finite"),
                        InputError);
 }
 
@@ -134,6 +134,23 @@ TEST_CASE("nurbs-deform: the scene constructor fits, reports on stderr, and refu
   INFO(r.err);
   CHECK(r.exitCode == 0);
   CHECK(r.err.find(good + ":3: Nurbs.deform: fit error") != std::string::npos);
+  // Frames evaluate the scene again: an unchanged field is not refitted, a changed one is.
+  const std::string frames = dir.write(
+      "frames.lua", head +
+                        "local amplitude = frame < 2 and 1e-5 or 2e-5\n"
+                        "wave = Nurbs.deform { surface = plate; tolerance = 7e-9;\n"
+                        "  displacement = function(x, y, z) return 0, 0, amplitude * math.sin(2 * math.pi * x / 0.05) end }\n"
+                        "o = Object.Simple { shape = wave }\n");
+  const test::CliResult f = test::runCli("render " + frames + " -o " + dir.file("frames") + " --frames 0:2 --spp 1 --backend cpu --layers image");
+  INFO(f.err);
+  REQUIRE(f.exitCode == 0);
+  auto countOf = [&](const std::string& text) {
+    std::size_t count = 0;
+    for (std::size_t at = f.err.find(text); at != std::string::npos; at = f.err.find(text, at + 1)) ++count;
+    return count;
+  };
+  CHECK(countOf("Nurbs.deform: fit error") == 3);
+  CHECK(countOf("reused from an earlier frame") == 1);  // frame 1 reuses frame 0's fit; frame 2 refits
 
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"w = Nurbs.deform { surface = plate }\n", ":3: Nurbs.deform: missing required 'displacement'"},
@@ -189,10 +206,69 @@ TEST_CASE("nurbs-deform: scenes/sinusoid_plate.lua, disp equals the requested wa
   MESSAGE("disp vs the wave on " << compared << " reference pixels: worst " << worst << " m (bound " << bound << ")");
   CHECK(compared > 10000);
   CHECK(worst <= bound);
+  // fieldError = rendered − requested position, computed by the renderer in double from the
+  // material point; here from the files: disp − (0, wave(P.X), 0). They differ by the float32
+  // roundings above (1.1e-10 m through P.X, 1e-12 m of disp) and fieldError's own (1e-25 m).
+  REQUIRE(now.floats.count("fieldError.Y") == 1);
+  CHECK(ref.floats.count("fieldError.Y") == 0);  // frame 0 shows the plate itself
+  double worstFieldError = 0, worstMismatch = 0;
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    if (ref.objectId[i] == 0) continue;
+    const double expected[3] = {0, wave(px[i]), 0};
+    const char* disp[3] = {"disp.X", "disp.Y", "disp.Z"};
+    const char* fieldError[3] = {"fieldError.X", "fieldError.Y", "fieldError.Z"};
+    for (int c = 0; c < 3; ++c) {
+      const double e = now.floats.at(fieldError[c])[i];
+      worstFieldError = std::max(worstFieldError, std::abs(e));
+      worstMismatch = std::max(worstMismatch, std::abs(e - (now.floats.at(disp[c])[i] - expected[c])));
+    }
+  }
+  MESSAGE("fieldError: worst " << worstFieldError << " m; against disp - wave: " << worstMismatch << " m");
+  CHECK(worstFieldError <= 1.5e-9);  // the fit tolerance 1e-9 m, 1.5x between check points (above)
+  CHECK(worstFieldError > 0);        // a fit, not the field itself: the layer must show its error
+  CHECK(worstMismatch <= 1.2e-10);
+  const std::string deformation = now.spec.get_string_attribute("dicsynth:deformation:plate");
+  INFO(deformation);
+  CHECK(deformation.rfind("field: Lua function (", 0) == 0);
   // The deformed plate on the GPU, every precision, against the CPU reference.
   for (const char* precision : {"fp64", "df64", "fp32"}) {
     const test::CliResult c = test::runCli("compare " + scene + " --frame 1 --downscale 8 --spp 1 --precision " + precision);
     INFO(precision << "\n" << c.out << c.err);
     CHECK(c.exitCode == 0);
   }
+}
+
+TEST_CASE("nurbs-deform: the fit memory returns a remembered fit only when it meets the tolerance for the new field") {
+  PlateSpec plate;
+  plate.size_m = {0.1, 0.05};
+  plate.spans = {3, 2};
+  const NurbsSurface reference = makePlate(plate);
+  const double tolerance = 3.3e-9;  // unlike any other test's: the memory is process-wide
+  long long calls = 0;
+  auto wave = [&](double amplitude) {
+    return DisplacementField([&calls, amplitude](const std::vector<dvec3>& points) {
+      calls += static_cast<long long>(points.size());
+      std::vector<dvec3> d;
+      for (const dvec3& x : points) d.push_back(dvec3(0, 0, amplitude * std::sin(200 * x.x)));
+      return d;
+    });
+  };
+  NurbsFitReport first, again, other;
+  bool cached = true;
+  const NurbsSurface a = fitDeformedNurbsCached(reference, wave(1e-5), tolerance, first, cached);
+  CHECK_FALSE(cached);
+  const long long fresh = calls;
+  calls = 0;
+  const NurbsSurface b = fitDeformedNurbsCached(reference, wave(1e-5), tolerance, again, cached);
+  CHECK(cached);
+  CHECK(b.controlPoints == a.controlPoints);
+  CHECK(b.knotsU == a.knotsU);
+  CHECK(again.maxError_m == first.maxError_m);
+  MESSAGE("field evaluations: fresh fit " << fresh << ", reuse " << calls);
+  CHECK(calls < fresh / 2);
+  // A field 1 % larger is off by ~1e-7 m: refitted, and the same as a fit without the memory.
+  const NurbsSurface c = fitDeformedNurbsCached(reference, wave(1.01e-5), tolerance, other, cached);
+  CHECK_FALSE(cached);
+  NurbsFitReport plain;
+  CHECK(c.controlPoints == fitDeformedNurbs(reference, wave(1.01e-5), tolerance, plain).controlPoints);
 }

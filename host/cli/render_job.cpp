@@ -77,7 +77,7 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
   const int frame = rendered.frame;
   const RenderResult& result = rendered.result;
   const RenderOptions& options = rendered.options;
-  const bool motion = job.layers.has(Layer::Disp) || job.layers.has(Layer::Flow);
+  const bool motion = job.layers.has(Layer::Disp) || job.layers.has(Layer::Flow) || job.layers.has(Layer::FieldError);
   if (first) reference = std::make_unique<ReferenceFrame>(frame, std::move(rendered.scene), result, otherFrames, motion);
   // The reference frame's scene now lives in `reference` (moved: its textures are not copied).
   const PreparedScene& scene = first ? reference->scene() : rendered.scene;
@@ -92,7 +92,10 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
   info.device = result.device;
   info.exrCompression = job.exrCompression;
   info.layers = job.layers;
-  for (const auto& o : scene.objects) info.objectNames.push_back(o.name);
+  for (const auto& o : scene.objects) {
+    info.objectNames.push_back(o.name);
+    if (o.deformation) info.deformations.emplace_back(o.name, describeDeformation(*o.deformation));
+  }
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
   if (first || calibrationPerFrame)
     writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "", job.verbose);

@@ -13,4 +13,11 @@ inline std::string exactNumber(double value) {
   return std::string(buffer, result.ptr);
 }
 
+// The shortest text that reads back as the same double ("0.04", "-3", "inf", "nan"): for messages.
+inline std::string shortestNumber(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
 }  // namespace dicsynth

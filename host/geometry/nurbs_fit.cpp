@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <string>
 
 #include "core/error.h"
@@ -155,6 +158,17 @@ double denominator(const Net& net, double tu, double tv) {
   return w;
 }
 
+// The field at `points`, which must give one finite vector per point.
+std::vector<dvec3> checkedDisplacement(const DisplacementField& displacement, const std::vector<dvec3>& points) {
+  std::vector<dvec3> d = displacement(points);
+  DS_CHECK(d.size() == points.size(), "a displacement field returned the wrong number of values");
+  for (std::size_t k = 0; k < d.size(); ++k)
+    if (!std::isfinite(d[k].x) || !std::isfinite(d[k].y) || !std::isfinite(d[k].z))
+      throw InputError("the displacement is not finite at (" + exactNumber(points[k].x) + ", " +
+                       exactNumber(points[k].y) + ", " + exactNumber(points[k].z) + ")");
+  return d;
+}
+
 // The least-squares fit on the refined net's knots (weights: the refined net's).
 NurbsSurface fitOnce(const NurbsSurface& reference, const Net& refined, const DisplacementField& displacement) {
   const Samples su = fitSamples(refined.U, refined.p, refined.n), sv = fitSamples(refined.V, refined.q, refined.m);
@@ -165,9 +179,12 @@ NurbsSurface fitOnce(const NurbsSurface& reference, const Net& refined, const Di
     for (std::size_t b = 0; b < mv; ++b) {
       const double u = normalized(refined.U, refined.p, refined.n, su.t[a]);
       const double v = normalized(refined.V, refined.q, refined.m, sv.t[b]);
-      const dvec3 s = evaluateNurbs(reference, u, v).point;
-      T[a * mv + b] = denominator(refined, su.t[a], sv.t[b]) * (s + displacement(s));
+      T[a * mv + b] = evaluateNurbs(reference, u, v).point;
     }
+  const std::vector<dvec3> d = checkedDisplacement(displacement, T);
+  for (std::size_t a = 0; a < mu; ++a)
+    for (std::size_t b = 0; b < mv; ++b)
+      T[a * mv + b] = denominator(refined, su.t[a], sv.t[b]) * (T[a * mv + b] + d[a * mv + b]);
   // R = Auᵀ T (nu × mv), then Gu X = R.
   std::vector<dvec3> R(nu * mv, dvec3(0));
   for (std::size_t a = 0; a < mu; ++a)
@@ -216,6 +233,43 @@ void checkGrid(const std::vector<double>& U, int p, int n, std::vector<double>& 
   }
 }
 
+// |F − (S + d(S))| on the check grid of F's knots (every `stride`-th point of it in each direction,
+// the last included, for a quick look).
+struct CheckGrid {
+  std::vector<double> tu, tv;        // knot parameters
+  std::vector<int> spanU, spanV;     // span index of each
+  std::vector<double> error;         // tu.size() × tv.size(), row-major in u
+  double worst = 0;
+};
+
+CheckGrid measure(const NurbsSurface& reference, const NurbsSurface& fitted, const DisplacementField& displacement,
+                  std::size_t stride = 1) {
+  CheckGrid g;
+  std::vector<double> tu, tv;
+  std::vector<int> su, sv;
+  checkGrid(fitted.knotsU, fitted.degreeU, fitted.countU, tu, su);
+  checkGrid(fitted.knotsV, fitted.degreeV, fitted.countV, tv, sv);
+  for (std::size_t k = 0; k < tu.size(); ++k)
+    if (k % stride == 0 || k + 1 == tu.size()) g.tu.push_back(tu[k]), g.spanU.push_back(su[k]);
+  for (std::size_t k = 0; k < tv.size(); ++k)
+    if (k % stride == 0 || k + 1 == tv.size()) g.tv.push_back(tv[k]), g.spanV.push_back(sv[k]);
+  std::vector<dvec3> S(g.tu.size() * g.tv.size()), F(S.size());
+  for (std::size_t a = 0; a < g.tu.size(); ++a)
+    for (std::size_t b = 0; b < g.tv.size(); ++b) {
+      const double u = normalized(fitted.knotsU, fitted.degreeU, fitted.countU, g.tu[a]);
+      const double v = normalized(fitted.knotsV, fitted.degreeV, fitted.countV, g.tv[b]);
+      S[a * g.tv.size() + b] = evaluateNurbs(reference, u, v).point;
+      F[a * g.tv.size() + b] = evaluateNurbs(fitted, u, v).point;
+    }
+  const std::vector<dvec3> d = checkedDisplacement(displacement, S);
+  g.error.resize(S.size());
+  for (std::size_t k = 0; k < S.size(); ++k) {
+    g.error[k] = glm::length(F[k] - (S[k] + d[k]));
+    g.worst = std::max(g.worst, g.error[k]);
+  }
+  return g;
+}
+
 }  // namespace
 
 NurbsSurface fitDeformedNurbs(const NurbsSurface& reference, const DisplacementField& displacement,
@@ -226,24 +280,14 @@ NurbsSurface fitDeformedNurbs(const NurbsSurface& reference, const DisplacementF
   constexpr int kMaxRounds = 16;
   for (int round = 0;; ++round) {
     NurbsSurface fitted = fitOnce(reference, refined, displacement);
-    std::vector<double> tu, tv;
-    std::vector<int> spanU, spanV;
-    checkGrid(refined.U, refined.p, refined.n, tu, spanU);
-    checkGrid(refined.V, refined.q, refined.m, tv, spanV);
+    const CheckGrid check = measure(reference, fitted, displacement);
+    const std::vector<double>& tu = check.tu;
+    const std::vector<double>& tv = check.tv;
+    const std::vector<int>& spanU = check.spanU;
+    const std::vector<int>& spanV = check.spanV;
+    const std::vector<double>& error = check.error;
+    const double worst = check.worst;
     const std::size_t nsu = std::size_t(spanU.back() + 1), nsv = std::size_t(spanV.back() + 1);
-    std::vector<double> error(tu.size() * tv.size());
-    double worst = 0;
-    for (std::size_t a = 0; a < tu.size(); ++a)
-      for (std::size_t b = 0; b < tv.size(); ++b) {
-        const double u = normalized(refined.U, refined.p, refined.n, tu[a]);
-        const double v = normalized(refined.V, refined.q, refined.m, tv[b]);
-        const dvec3 s = evaluateNurbs(reference, u, v).point;
-        const double e = glm::length(evaluateNurbs(fitted, u, v).point - (s + displacement(s)));
-        if (!std::isfinite(e)) throw InputError("the displacement is not finite at (" + exactNumber(s.x) + ", " +
-                                                exactNumber(s.y) + ", " + exactNumber(s.z) + ")");
-        worst = std::max(worst, e);
-        error[a * tv.size() + b] = e;
-      }
     report = {worst, int(tu.size()), int(tv.size()), fitted.controlPoints.size(), round};
     if (worst <= tolerance_m) return fitted;
 
@@ -292,6 +336,53 @@ NurbsSurface fitDeformedNurbs(const NurbsSurface& reference, const DisplacementF
     for (double x : insertU) insertKnot(refined, true, x);
     for (double x : insertV) insertKnot(refined, false, x);
   }
+}
+
+namespace {
+
+struct RememberedFit {
+  NurbsSurface reference;
+  double tolerance_m;
+  std::size_t budget;
+  NurbsSurface fitted;
+  NurbsFitReport report;
+};
+
+bool sameSurface(const NurbsSurface& a, const NurbsSurface& b) {
+  return a.degreeU == b.degreeU && a.degreeV == b.degreeV && a.countU == b.countU && a.countV == b.countV &&
+         a.knotsU == b.knotsU && a.knotsV == b.knotsV && a.controlPoints == b.controlPoints && a.weights == b.weights;
+}
+
+}  // namespace
+
+NurbsSurface fitDeformedNurbsCached(const NurbsSurface& reference, const DisplacementField& displacement,
+                                    double tolerance_m, NurbsFitReport& report, bool& fromCache,
+                                    std::size_t maxControlPoints) {
+  static std::mutex mutex;
+  static std::deque<std::shared_ptr<const RememberedFit>> memory;  // most recent first
+  std::vector<std::shared_ptr<const RememberedFit>> candidates;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& m : memory)
+      if (m->tolerance_m == tolerance_m && m->budget == maxControlPoints && sameSurface(m->reference, reference))
+        candidates.push_back(m);
+  }
+  for (const auto& m : candidates) {
+    if (measure(reference, m->fitted, displacement, 7).worst > tolerance_m) continue;
+    const CheckGrid check = measure(reference, m->fitted, displacement);
+    if (check.worst > tolerance_m) continue;
+    report = m->report;
+    report.maxError_m = check.worst;
+    fromCache = true;
+    return m->fitted;
+  }
+  fromCache = false;
+  NurbsSurface fitted = fitDeformedNurbs(reference, displacement, tolerance_m, report, maxControlPoints);
+  auto remembered = std::make_shared<const RememberedFit>(RememberedFit{reference, tolerance_m, maxControlPoints, fitted, report});
+  std::lock_guard<std::mutex> lock(mutex);
+  memory.push_front(std::move(remembered));
+  if (memory.size() > kFitMemory) memory.pop_back();
+  return fitted;
 }
 
 }  // namespace dicsynth

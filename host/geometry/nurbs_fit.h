@@ -24,14 +24,28 @@
 // then InputError("best reached ... m with N control points after K refinements: reason").
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 #include "core/math.h"
 #include "geometry/nurbs_surface.h"
 
 namespace dicsynth {
 
-// d at a point of the reference surface, both in the shape's own frame (metres).
-using DisplacementField = std::function<dvec3(const dvec3&)>;
+// d at points of the reference surface, both in the shape's own frame (metres): one call per batch
+// of points (a fit round's samples, its check grid), so that a field read from a mesh can say how
+// many points lie off it, and a Lua function is called in order.
+using DisplacementField = std::function<std::vector<dvec3>(const std::vector<dvec3>& points_m)>;
+using PointDisplacement = std::function<dvec3(const dvec3& point_m)>;
+
+// A DisplacementField calling `d` point by point, in order.
+inline DisplacementField pointwise(PointDisplacement d) {
+  return [d = std::move(d)](const std::vector<dvec3>& points) {
+    std::vector<dvec3> out;
+    out.reserve(points.size());
+    for (const dvec3& x : points) out.push_back(d(x));
+    return out;
+  };
+}
 
 struct NurbsFitReport {
   double maxError_m = 0;          // max |F − (S + d(S))| over the check grid
@@ -43,5 +57,17 @@ struct NurbsFitReport {
 NurbsSurface fitDeformedNurbs(const NurbsSurface& reference, const DisplacementField& displacement,
                               double tolerance_m, NurbsFitReport& report,
                               std::size_t maxControlPoints = kMaxNurbsControlPoints);
+
+// fitDeformedNurbs with a process-wide memory of the last kFitMemory fits. Every frame of a
+// `render --frames` evaluates its scene, and so Nurbs.deform, again: when `reference`, the
+// tolerance and the budget equal an earlier call's, that fit is measured against this call's field
+// on its own check grid (every 7th point first, to reject a changed field cheaply, then the whole
+// grid) and returned, with fromCache = true, if it is within the tolerance: the same guarantee a
+// fresh fit gives, and for an unchanged field the very surface a fresh fit would give (the fit is
+// deterministic). Otherwise a fresh fit is made and remembered. Thread-safe.
+inline constexpr std::size_t kFitMemory = 8;
+NurbsSurface fitDeformedNurbsCached(const NurbsSurface& reference, const DisplacementField& displacement,
+                                    double tolerance_m, NurbsFitReport& report, bool& fromCache,
+                                    std::size_t maxControlPoints = kMaxNurbsControlPoints);
 
 }  // namespace dicsynth

@@ -229,6 +229,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     if (so.shape.kind == ShapeKind::Nurbs) {
       o.nurbs = prepareNurbsShape(so.shape, o.shapeOffset_m);
       o.surface = so.shape.nurbs;
+      o.deformation = so.shape.deformation;
       o.geometry.nurbs = o.nurbs.get();
     }
     o.shader = so.shader.kind;

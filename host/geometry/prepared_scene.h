@@ -33,6 +33,7 @@ struct PreparedObject {
   ShapeGeometry<double> geometry;  // for a NURBS shape, geometry.nurbs == nurbs.get()
   std::shared_ptr<const PreparedNurbs> nurbs;  // Bézier patches, sub-patches, BVH (Nurbs only)
   std::shared_ptr<const NurbsSurface> surface; // the scene's surface (Nurbs only; scene shape frame)
+  std::shared_ptr<const Deformation> deformation;  // Nurbs.deform only: S, d, the fit (scene.h)
   ShaderKind shader = ShaderKind::Constant;
   double albedo = 1;          // luminance of the shader colour
   // Specular parameters (cpu/shading.h): Phong, BlinnPhong: ks, n; GGX: α, F0.

@@ -16,6 +16,8 @@
 //   disparity.X/Y    float   position in the rig's other camera minus this one (px)
 //   disparity.mask   float   1 where the other camera sees this pixel's point
 //   distortion.X/Y   float   distorted minus undistorted position of the pixel centre (px)
+//   fieldError.X/Y/Z float   rendered minus requested position of the material point (m, world
+//                            axes), reference pixels; frames with a Nurbs.deform surface only
 // and the sensor's layers (host/sensor/sensor.h), only when the camera has a sensor model:
 //   noiseFree        float   the image without temporal noise (DN), before rounding and clipping
 //   noise            float   the noise added (DN), with Sensor.Emva only:
@@ -35,6 +37,7 @@
 //   dicsynth:bits_per_pixel, :exposure, :fill_factor
 //   dicsynth:reference_frame, :disparity_camera   with the derived layers
 //   dicsynth:sensor                   the sensor model's resolved parameters, with its layers
+//   dicsynth:deformation:<object>     a Nurbs.deform surface: its field and fit (describeDeformation)
 // Plus OpenEXR's standard worldToCamera (float 4x4, Imath row-vector convention, camera frame
 // x right, y UP, z forward as the OpenEXR standard defines it, i.e. OpenCV's frame with y negated)
 // and PixelAspectRatio = pixelSize.x / pixelSize.y. No DateTime: the same render gives the same file.
@@ -156,6 +159,7 @@ std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth
       addFloats("disparity.mask", truth->disparityMask);
     }
     if (layers.has(Layer::Distortion)) addVec2("distortion", truth->distortion_px, "X", "Y");
+    if (layers.has(Layer::FieldError)) addVec3("fieldError", truth->fieldError_m);
   }
   if (sensor) {
     if (layers.has(Layer::Noise)) {
@@ -186,6 +190,7 @@ void addMetadata(Imf::Header& header, const Camera& camera, const OutputInfo& in
   attribute("dicsynth:device", info.device);
   attribute("dicsynth:camera", camera.name);
   attribute("dicsynth:objects", objects);
+  for (const auto& [object, text] : info.deformations) attribute(("dicsynth:deformation:" + object).c_str(), text);
   attribute("dicsynth:camera_matrix", formatNumbers(cv.cameraMatrix));
   attribute("dicsynth:distortion_coefficients", formatNumbers(cv.distortion));
   // The camera kind and what OpenCV's matrix cannot say (README "Outputs"; camera/pinhole.h).
@@ -319,7 +324,8 @@ OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, 
     DS_CHECK(size == 0 || size == n, "camera " + camera.name + ": a geometry layer has the wrong pixel count");
   if (truth) {
     for (std::size_t size : {truth->displacement_m.size(), truth->flow_px.size(), truth->flowMask.size(),
-                             truth->disparity_px.size(), truth->disparityMask.size(), truth->distortion_px.size()})
+                             truth->disparity_px.size(), truth->disparityMask.size(), truth->distortion_px.size(),
+                             truth->fieldError_m.size()})
       DS_CHECK(size == 0 || size == n, "camera " + camera.name + ": a derived layer has the wrong pixel count");
   }
   if (sensor) {

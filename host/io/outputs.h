@@ -22,6 +22,9 @@ struct OutputInfo {
   int samplesPerPixel = 0;
   std::string backend, precision, device;
   std::vector<std::string> objectNames;  // objectNames[id - 1] is the object with objectId == id
+  // Objects whose surface is a Nurbs.deform fit: name → describeDeformation(), stored in the EXR
+  // header as dicsynth:deformation:<name>.
+  std::vector<std::pair<std::string, std::string>> deformations;
   // OpenEXR compression of the ground truth (kExrCompressions); every one is lossless for float32
   // and uint32 channels. Only size and writing time differ (README, "Output files").
   std::string exrCompression = "zip";

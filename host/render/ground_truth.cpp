@@ -9,6 +9,7 @@
 
 #include "core/parallel.h"
 #include "geometry/material_point.h"
+#include "geometry/nurbs.h"
 #include "render/image_point.h"
 
 namespace dicsynth {
@@ -131,6 +132,42 @@ const ReferenceFrame::View* ReferenceFrame::view(const std::string& camera) cons
   return nullptr;
 }
 
+// fieldError (ground_truth.h) at the reference view's pixels. The field is called once per
+// deformed object with all its pixels' points, in pixel order (a Lua function runs serially).
+std::vector<dvec3> fieldErrors(const ReferenceFrame::View& view, const std::vector<int>& objectNow,
+                               const PreparedScene& scene) {
+  const std::size_t n = view.object.size();
+  std::vector<dvec3> error(n, dvec3(kNaN));
+  std::vector<std::vector<std::size_t>> pixels(scene.objects.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (view.object[i] < 0) continue;
+    const int o = objectNow[std::size_t(view.object[i])];
+    if (o < 0) continue;
+    if (scene.objects[std::size_t(o)].deformation) pixels[std::size_t(o)].push_back(i);
+    else error[i] = dvec3(0);
+  }
+  for (std::size_t o = 0; o < pixels.size(); ++o) {
+    if (pixels[o].empty()) continue;
+    const PreparedObject& object = scene.objects[o];
+    const Deformation& deformation = *object.deformation;
+    const std::size_t k = pixels[o].size();
+    std::vector<dvec3> S(k), F(k);
+    parallelFor(k, [&](std::size_t j) {
+      const dvec2 m = view.material[pixels[o][j]];
+      S[j] = evaluateNurbs<double>(*deformation.reference, m.x, m.y).point;
+      F[j] = evaluateNurbs<double>(*object.surface, m.x, m.y).point;
+    });
+    const std::vector<dvec3> d = deformation.field(S);
+    // Both points through the object's transform (a homography in general: no linear shortcut).
+    auto world = [&](const dvec3& shapePoint) {
+      const dvec4 h = object.worldFromObject * dvec4(shapePoint - object.shapeOffset_m, 1);
+      return dvec3(h) / h.w;
+    };
+    parallelFor(k, [&](std::size_t j) { error[pixels[o][j]] = world(F[j]) - world(S[j] + d[j]); });
+  }
+  return error;
+}
+
 DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const PreparedScene& scene,
                          const RenderResult& result, std::size_t cameraIndex, const LayerSet& layers) {
   const PreparedCamera& camera = scene.cameras[cameraIndex];
@@ -142,7 +179,7 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
   // Motion: follow each reference pixel's material point into this frame.
   const ReferenceFrame::View* view = reference.view(camera.camera.name);
   const bool flow = layers.has(Layer::Flow);
-  if ((flow || layers.has(Layer::Disp)) && view && view->width_px == image.width_px &&
+  if ((flow || layers.has(Layer::Disp) || layers.has(Layer::FieldError)) && view && view->width_px == image.width_px &&
       view->height_px == image.height_px) {
     const std::size_t n = image.pixelCount();
     truth.displacement_m.assign(n, dvec3(kNaN));
@@ -172,6 +209,15 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       truth.flow_px[i] = s.pixel_px - view->pixel_px[i];
       truth.flowMask[i] = s.visible ? 1.0f : 0.0f;
     });
+  }
+
+  if (layers.has(Layer::FieldError) && !truth.displacement_m.empty()) {
+    bool deformed = false;
+    for (const PreparedObject& o : scene.objects) deformed = deformed || o.deformation != nullptr;
+    std::vector<int> objectNow(reference.scene().objects.size());
+    for (std::size_t o = 0; o < objectNow.size(); ++o)
+      objectNow[o] = objectIndexByName(scene, reference.scene().objects[o].name);
+    if (deformed) truth.fieldError_m = fieldErrors(*view, objectNow, scene);
   }
 
   // Disparity: this pixel's material point seen by the rig's other camera.

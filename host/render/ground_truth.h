@@ -38,6 +38,11 @@ struct DerivedTruth {
   std::vector<dvec3> displacement_m;  // disp.X/Y/Z: world displacement (m)
   std::vector<dvec2> flow_px;         // flow.X/Y: image motion (px, this frame's camera model)
   std::vector<float> flowMask;        // flow.mask: 1 where the material point is visible now
+  // fieldError.X/Y/Z (m, world axes), reference pixels: where the material point is rendered minus
+  // where the requested field puts it, T(F(m)) − T(S(m) + d(S(m))), for an object whose surface is
+  // a Nurbs.deform fit F of S moved by d (T: the object's transform in this frame); 0 for other
+  // objects (rendered as requested), NaN where disp is. Empty when no object of this frame is a fit.
+  std::vector<dvec3> fieldError_m;
   // Correspondence to the other camera of the rig this camera belongs to, indexed by THIS image's
   // pixels. NaN where this pixel sees no object. Empty when the camera is in no rig.
   std::string disparityCamera;

@@ -10,7 +10,8 @@ namespace dicsynth {
 namespace {
 
 constexpr const char* kNames[] = {"image", "radiance", "depth", "P", "normal", "uv", "mask",
-                                  "disp", "flow", "disparity", "distortion", "noise", "defects"};
+                                  "disp", "flow", "disparity", "distortion", "noise", "defects",
+                                  "fieldError"};
 static_assert(std::size(kNames) == std::size_t(Layer::Count), "one name per layer");
 
 std::string knownNames() {
@@ -55,7 +56,8 @@ LayerSet LayerSet::parse(const std::string& text, const std::string& option) {
 }
 
 bool LayerSet::needsGeometry() const {
-  for (Layer l : {Layer::Depth, Layer::P, Layer::Normal, Layer::Uv, Layer::Disp, Layer::Flow, Layer::Disparity})
+  for (Layer l : {Layer::Depth, Layer::P, Layer::Normal, Layer::Uv, Layer::Disp, Layer::Flow, Layer::Disparity,
+                  Layer::FieldError})
     if (has(l)) return true;
   return false;
 }
@@ -70,9 +72,10 @@ std::string LayerSet::text() const {
 
 void checkLayersProducible(const LayerSet& layers, const std::vector<Scene>& scenes, const std::string& option) {
   if (layers.isAll()) return;
-  bool rig = false, sensor = false, defects = false;
+  bool rig = false, sensor = false, defects = false, deformed = false;
   for (const Scene& scene : scenes) {
     rig = rig || !scene.rigs.empty();
+    for (const Object& object : scene.objects) deformed = deformed || object.shape.deformation != nullptr;
     for (const Camera& camera : scene.cameras) {
       sensor = sensor || !camera.sensor.empty();
       defects = defects || camera.sensor.defects.has_value();
@@ -85,6 +88,8 @@ void checkLayersProducible(const LayerSet& layers, const std::vector<Scene>& sce
   if (layers.has(Layer::Noise) && !sensor) refuse(Layer::Noise, "no camera of the scene has a sensor model (a camera's sensor = Sensor.Emva { ... } or postProcessing)");
   if (layers.has(Layer::Defects) && !defects)
     refuse(Layer::Defects, "no camera of the scene has defective pixels (DefectivePixels { ... } in a camera's postProcessing)");
+  if (layers.has(Layer::FieldError) && !deformed)
+    refuse(Layer::FieldError, "no object of the scene has a Nurbs.deform surface in any frame rendered");
 }
 
 }  // namespace dicsynth

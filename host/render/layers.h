@@ -18,6 +18,7 @@
 //   distortion  distortion.X distortion.Y
 //   noise       noiseFree noise                           (cameras with a sensor model)
 //   defects     defects                                   (cameras with DefectivePixels)
+//   fieldError  fieldError.X fieldError.Y fieldError.Z    (frames with a Nurbs.deform surface)
 // `all` is every layer the scene can produce: the default, so that a run without --layers keeps the
 // complete ground truth the tool exists for.
 #include <cstdint>
@@ -29,7 +30,8 @@ namespace dicsynth {
 struct Scene;
 
 enum class Layer : std::uint32_t {
-  Image, Radiance, Depth, P, Normal, Uv, Mask, Disp, Flow, Disparity, Distortion, Noise, Defects, Count
+  Image, Radiance, Depth, P, Normal, Uv, Mask, Disp, Flow, Disparity, Distortion, Noise, Defects, FieldError,
+  Count
 };
 
 class LayerSet {
@@ -63,7 +65,8 @@ class LayerSet {
 const char* layerName(Layer layer);
 
 // Throws InputError when `layers` names a layer that no camera of any of `scenes` can produce
-// (disparity without a stereo rig, noise without a sensor model, defects without DefectivePixels).
+// (disparity without a stereo rig, noise without a sensor model, defects without DefectivePixels,
+// fieldError without a Nurbs.deform surface).
 void checkLayersProducible(const LayerSet& layers, const std::vector<Scene>& scenes, const std::string& option = "--layers");
 
 }  // namespace dicsynth

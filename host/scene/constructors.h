@@ -13,6 +13,8 @@ void registerCameraConstructors(lua_State* L);  // camera_constructors.cpp: Came
 void registerShapeConstructors(lua_State* L);   // shape_constructors.cpp: Shape
 void registerNurbsConstructors(lua_State* L);   // nurbs_constructors.cpp: Shape.Nurbs, Nurbs
                                                 //   (after registerShapeConstructors)
+void registerDeformConstructors(lua_State* L); // deform_constructors.cpp: Field, Nurbs.deform
+                                                //   (after registerNurbsConstructors)
 void registerObjectConstructors(lua_State* L);  // object_constructors.cpp: Texture, Object
 void registerShadingConstructors(lua_State* L); // shading_constructors.cpp: Shader, Light
 void registerTransformFunctions(lua_State* L);  // transform_functions.cpp: translate, ...

@@ -2,6 +2,8 @@
 // restricted library set and the one-line error format. See lua_sandbox.h for the rules.
 #include "scene/lua_sandbox.h"
 
+#include "core/exact_number.h"
+
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
@@ -45,11 +47,7 @@ constexpr bool kCanReadLineWhileAllocating = false;
 
 }  // namespace
 
-std::string formatNumber(double value) {
-  char buffer[64];
-  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return ec == std::errc() ? std::string(buffer, end) : std::to_string(value);
-}
+std::string formatNumber(double value) { return shortestNumber(value); }
 
 LuaSandbox::LuaSandbox(std::string scenePath, SandboxLimits limits)
     : scenePath_(std::move(scenePath)),
@@ -287,6 +285,49 @@ void LuaSandbox::run(const std::string& sourceText) {
   if (status == LUA_ERRMEM)
     throw InputError(scenePath_ + ": out of memory while running the scene");
   if (status != LUA_OK) throw InputError(formatMessage(message, currentLine(L)));
+}
+
+void LuaSandbox::callAfterRun(const std::function<void()>& body) {
+  std::lock_guard<std::mutex> lock(afterRun_);
+  lua_State* L = L_;
+  struct Limits {
+    LuaSandbox& s;
+    explicit Limits(LuaSandbox& sandbox) : s(sandbox) {
+      s.instructions_ = 0;
+      s.exceeded_ = Limit::None;
+      lua_sethook(s.L_, &LuaSandbox::countHook, LUA_MASKCOUNT, kHookInterval);
+      s.enforceMemory_ = true;
+    }
+    ~Limits() {
+      s.enforceMemory_ = false;
+      lua_sethook(s.L_, nullptr, 0, 0);
+      lua_settop(s.L_, 0);
+    }
+  } limits(*this);
+  lua_settop(L, 0);
+  body();
+}
+
+void LuaSandbox::call(int nargs, int nresults) {
+  lua_State* L = L_;
+  const int base = lua_gettop(L) - nargs;  // the function's index
+  lua_pushcfunction(L, &LuaSandbox::messageHandler);
+  lua_insert(L, base);
+  const int status = lua_pcall(L, nargs, nresults, base);
+  lua_remove(L, base);
+  if (status == LUA_OK) return;
+  std::string message;
+  if (lua_type(L, -1) == LUA_TSTRING) message = lua_tostring(L, -1);
+  lua_settop(L, base - 1);
+  const std::string at = scenePath_ + ":" + std::to_string(exceededLine_) + ": ";
+  if (exceeded_ == Limit::Instructions)
+    throw InputError(at + "exceeded the instruction limit (" + std::to_string(limits_.maxInstructions) +
+                     " instructions) in one batch of calls after the scene ran");
+  if (exceeded_ == Limit::Memory)
+    throw InputError(at + "exceeded the memory limit (" +
+                     formatNumber(static_cast<double>(limits_.maxMemoryBytes) / (1 << 20)) + " MiB)");
+  if (status == LUA_ERRMEM) throw InputError(scenePath_ + ": out of memory in a call after the scene ran");
+  throw InputError(formatMessage(message, currentLine(L)));
 }
 
 }  // namespace dicsynth::scene

@@ -29,6 +29,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
 
 #include "core/error.h"
@@ -52,7 +55,9 @@ inline constexpr std::int64_t kRandomSeed = 20240101;
 // Shortest text that reads back as the same double ("0.1", "-3", "inf", "nan"), for messages.
 std::string formatNumber(double value);
 
-class LuaSandbox {
+// Made by std::make_shared when values of the scene call back into Lua after the run (a
+// Nurbs.deform field): they hold a weak_ptr and the Scene the owning pointer (Scene::keepAlive).
+class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
  public:
   LuaSandbox(std::string scenePath, SandboxLimits limits);
   ~LuaSandbox();
@@ -66,6 +71,15 @@ class LuaSandbox {
   // Loads `source` (text only) as the scene's main chunk and runs it under the limits.
   // Throws InputError("PATH:LINE: message") on a syntax error, a runtime error or a limit.
   void run(const std::string& source);
+
+  // After run(): runs `body`, which calls into the state with call(), under fresh limits (the same
+  // instruction and memory limits as the scene, counted from zero for this body). Serialized:
+  // safe from any thread. Throws what body throws, or InputError for a limit.
+  void callAfterRun(const std::function<void()>& body);
+  // Inside callAfterRun's body: lua_pcall of the function and nargs arguments on the stack, with
+  // the scene's message handler. On error pops everything it pushed and throws
+  // InputError("PATH:LINE: message").
+  void call(int nargs, int nresults);
 
   // The sandbox owning L (L may be any thread of the state).
   static LuaSandbox& of(lua_State* L);
@@ -111,6 +125,7 @@ class LuaSandbox {
   bool enforceMemory_ = false;  // only while the scene runs
   bool unlimited_ = false;      // UnlimitedScope
   std::uint64_t instructions_ = 0;
+  std::mutex afterRun_;  // callAfterRun
   Limit exceeded_ = Limit::None;  // first limit the scene ran into
   int exceededLine_ = 0;
   int lastHookLine_ = 0;  // for Lua versions where the allocator cannot read the line

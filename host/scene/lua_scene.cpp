@@ -31,6 +31,7 @@ void registerSceneLanguage(lua_State* L) {
   registerCameraConstructors(L);
   registerShapeConstructors(L);
   registerNurbsConstructors(L);
+  registerDeformConstructors(L);
   registerObjectConstructors(L);
   registerShadingConstructors(L);
   registerTransformFunctions(L);
@@ -268,18 +269,21 @@ Scene loadScene(const std::string& path, const SceneParams& params) {
 Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& params,
                                  const std::function<void(lua_State*)>& inspect) {
   const std::string source = scene::readSceneFile(path);
-  scene::LuaSandbox sandbox(path, {params.maxInstructions, params.maxMemoryBytes});
-  lua_State* L = sandbox.state();
+  // Shared: a Nurbs.deform field keeps a weak_ptr to call it again, the Scene the owning pointer.
+  const auto sandbox = std::make_shared<scene::LuaSandbox>(path, scene::SandboxLimits{params.maxInstructions, params.maxMemoryBytes});
+  lua_State* L = sandbox->state();
   scene::registerSceneLanguage(L);
   lua_pushinteger(L, params.frame);
   lua_setglobal(L, "frame");
   scene::installDefines(L, params.defines);
 
-  sandbox.run(source);
+  sandbox->run(source);
 
   scene::checkDefinesRead(L, params.defines, params.sweepParameters);
   if (inspect) inspect(L);
   Scene scene = scene::collectGlobals(L, path);
+  for (const Object& object : scene.objects)
+    if (object.shape.deformation && !scene.keepAlive) scene.keepAlive = sandbox;
   if (scene.cameras.empty())
     throw InputError(path + ": the scene defines no camera (assign Camera.Pinhole{…} to a global)");
   return scene;

@@ -11,6 +11,7 @@
 // every C++ object is destroyed (see the error-safety note in lua_sandbox.h).
 #include <initializer_list>
 #include <lua.hpp>
+#include <memory>
 #include <new>
 #include <optional>
 #include <stdexcept>
@@ -22,6 +23,10 @@
 #include "core/math.h"
 #include "scene/lua_sandbox.h"
 #include "scene/scene.h"
+
+namespace dicsynth {
+class MeshField;  // io/mesh_field.h
+}
 
 namespace dicsynth::scene {
 
@@ -52,6 +57,12 @@ enum RigUserValue : int {
   kRigUserValueCount = 4
 };
 
+// The value of Field.load (deform_constructors.cpp): a displacement field on a finite-element mesh.
+struct FieldValue {
+  SourceLoc where;
+  std::shared_ptr<const MeshField> mesh;
+};
+
 // The type name of each userdata kind, as error messages and tostring() show it.
 template <class T>
 inline constexpr const char* kUserdataName = nullptr;
@@ -73,6 +84,8 @@ template <>
 inline constexpr const char* kUserdataName<TransformValue> = "Transform";
 template <>
 inline constexpr const char* kUserdataName<StereoRigValue> = "Rig";
+template <>
+inline constexpr const char* kUserdataName<FieldValue> = "Field";
 
 // The metatable of T lives in the registry under the address of this variable: lookups by a light
 // userdata key allocate nothing, so they cannot raise a Lua error.

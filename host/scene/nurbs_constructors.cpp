@@ -1,5 +1,5 @@
 // Shape.Nurbs, and the specimens built as NURBS surfaces: Nurbs.plate, Nurbs.cylinderSegment,
-// Nurbs.dogbone. Like every shape, a NURBS surface is defined in its own frame; `location` places
+// Nurbs.dogbone (Nurbs.deform: deform_constructors.cpp). Like every shape, a NURBS surface is defined in its own frame; `location` places
 // that frame's origin (the control points are relative to it), and an Object's transform acts
 // about the location (worldFromShape = translate(location) * transform).
 //
@@ -16,7 +16,6 @@
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
 #include "scene/nurbs_specimens.h"
-#include "geometry/nurbs_fit.h"
 
 namespace dicsynth::scene {
 
@@ -363,87 +362,6 @@ int nurbsDogbone(lua_State* L) {
   return 1;
 }
 
-/* ------------------------------------------------------------------------------------------------
-Nurbs.deform: a NURBS surface moved by a displacement field, with the same (u, v) material
-parametrization: every point S(u, v) of `surface` goes to S(u, v) + d(S(u, v)), up to the fit
-error. The result is a NURBS whose control points are fitted by least squares, its knots refined
-(both directions, where the error is) until the largest deviation on a check grid of 2(p + 1) + 1
-points per knot span and direction is <= tolerance (geometry/nurbs_fit.h has the method). Fields
-affine in x, y, z are reproduced exactly (up to rounding). The achieved error, the check grid and
-the control-point count are printed on stderr.
-
-  Parameter    | Value               | Default  | Meaning
-  -------------+---------------------+----------+--------------------------------------------------
-  surface      | a NURBS shape       | required | Shape.Nurbs, Nurbs.plate, ...: the reference
-  displacement | function(x, y, z)   | required | returns dx, dy, dz (metres) at the reference
-               |                     |          | point (x, y, z) in the surface's own frame
-               |                     |          | (relative to its location, metres)
-  tolerance    | number, m           | 1e-9     | largest fit error allowed; > 0
-  maxControlPoints | integer         | 2^20     | budget of the refinement
-
-The result keeps the surface's location. Too small a tolerance for the budget, or 16 rounds of
-refinement, is an error that says the best error reached and why.
-
-Example: wave = Nurbs.deform { surface = plate; tolerance = 1e-9;
-  displacement = function(x, y, z) return 0, 2e-5 * math.sin(2 * math.pi * x / 0.02), 0 end }
------------------------------------------------------------------------------------------------- */
-int nurbsDeform(lua_State* L) {
-  Params p(L, "Nurbs.deform", {"surface", "displacement", "tolerance", "maxControlPoints"});
-  const Shape* surface = p.userdata<Shape>("surface", "a NURBS shape (Shape.Nurbs, Nurbs.plate, ...)");
-  if (!surface) p.fail("missing required 'surface' (a NURBS shape)");
-  if (surface->kind != ShapeKind::Nurbs || !surface->nurbs) p.fail("'surface' must be a NURBS shape (Shape.Nurbs, Nurbs.plate, ...)");
-  if (p.luaType("displacement") != LUA_TFUNCTION)
-    p.fail("missing required 'displacement' = function(x, y, z) return dx, dy, dz end");
-  const double tolerance = p.number("tolerance", 1e-9);
-  p.require(tolerance > 0, "tolerance", "> 0 (metres)", tolerance);
-  const long long budget = p.integer("maxControlPoints").value_or(static_cast<long long>(kMaxNurbsControlPoints));
-  p.require(budget >= 4 && budget <= static_cast<long long>(kMaxNurbsControlPoints), "maxControlPoints",
-            "in 4..2^20", double(budget));
-  // The function stays on the stack while the fit calls it: one call per sample point.
-  lua_getfield(L, 1, "displacement");
-  const int function = lua_gettop(L);
-  long long calls = 0;
-  auto displacement = [&](const dvec3& x) {
-    ++calls;
-    lua_pushvalue(L, function);
-    lua_pushnumber(L, x.x);
-    lua_pushnumber(L, x.y);
-    lua_pushnumber(L, x.z);
-    if (lua_pcall(L, 3, 3, 0) != LUA_OK) {
-      std::string message = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error";
-      lua_pop(L, 1);
-      p.fail("'displacement' failed at (" + formatNumber(x.x) + ", " + formatNumber(x.y) + ", " +
-             formatNumber(x.z) + "): " + message);
-    }
-    dvec3 d;
-    for (int k = 0; k < 3; ++k) {
-      if (!lua_isnumber(L, -3 + k))
-        p.fail("'displacement' must return three numbers dx, dy, dz; at (" + formatNumber(x.x) + ", " +
-               formatNumber(x.y) + ", " + formatNumber(x.z) + ") value " + std::to_string(k + 1) + " is " +
-               typeName(L, -3 + k));
-      d[k] = lua_tonumber(L, -3 + k);
-    }
-    lua_pop(L, 3);
-    return d;
-  };
-  NurbsFitReport report;
-  NurbsSurface fitted;
-  checked(p, [&] { fitted = fitDeformedNurbs(*surface->nurbs, displacement, tolerance, report, std::size_t(budget)); });
-  lua_pop(L, 1);
-  const SourceLoc where = LuaSandbox::of(L).here(L);
-  std::fprintf(stderr, "%s: Nurbs.deform: fit error %.3g m (tolerance %.3g m) on a %d x %d check grid, "
-               "%zu control points, %d refinements, %lld field evaluations\n",
-               where.str().c_str(), report.maxError_m, tolerance, report.checkU, report.checkV,
-               report.controlPoints, report.refinements, calls);
-  Shape shape;
-  shape.kind = ShapeKind::Nurbs;
-  shape.where = where;
-  shape.location_m = surface->location_m;
-  shape.nurbs = std::make_shared<const NurbsSurface>(std::move(fitted));
-  pushUserdata(L, std::move(shape));
-  return 1;
-}
-
 }  // namespace
 
 void registerNurbsConstructors(lua_State* L) {
@@ -455,8 +373,7 @@ void registerNurbsConstructors(lua_State* L) {
   setConstructorTable(L, "Nurbs",
                       {{"plate", &protectedCall<nurbsPlate>},
                        {"cylinderSegment", &protectedCall<nurbsCylinderSegment>},
-                       {"dogbone", &protectedCall<nurbsDogbone>},
-                       {"deform", &protectedCall<nurbsDeform>}});
+                       {"dogbone", &protectedCall<nurbsDogbone>}});
 }
 
 }  // namespace dicsynth::scene

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/math.h"
+#include "geometry/nurbs_fit.h"
 #include "geometry/nurbs_surface.h"
 #include "sensor/sensor_model.h"
 #include "shared/kinds.h"
@@ -64,6 +65,20 @@ struct Camera {
 //   Plane:     size_m.x, size_m.y = texture tile size (u, v repeat every tile)
 //   Triangle:  vertices_m[3] (relative to location), vertexUV[3]
 //   Nurbs:     nurbs (control points relative to location)
+// How a Nurbs.deform surface was made (scene/deform_constructors.cpp): the EXR header records it,
+// the fieldError layer evaluates the requested field again at each pixel's material point.
+struct Deformation {
+  std::shared_ptr<const NurbsSurface> reference;  // S: the surface that was deformed (shape frame)
+  DisplacementField field;  // d, callable after the scene ran (it keeps what it needs alive)
+  std::string source;       // "Lua function (scene.lua:12)", or the mesh file, array and step
+  double tolerance_m = 0;
+  NurbsFitReport report;
+  bool fromCache = false;   // the fit of an earlier frame, verified against this frame's field
+};
+// One line for the EXR header: "field: ...; fit error E m (tolerance T m) on a U x V check grid;
+// N control points; K refinements" (numbers with 17 significant digits).
+std::string describeDeformation(const Deformation& deformation);
+
 struct Shape {
   ShapeKind kind = ShapeKind::Sphere;
   SourceLoc where;
@@ -73,6 +88,7 @@ struct Shape {
   std::array<dvec3, 3> vertices_m{};
   std::array<dvec2, 3> vertexUV{dvec2{0, 0}, dvec2{1, 0}, dvec2{0, 1}};
   std::shared_ptr<const NurbsSurface> nurbs;  // validated (validateNurbs)
+  std::shared_ptr<const Deformation> deformation;  // Nurbs.deform only: S, d and the fit's report
 };
 
 struct Shader {
@@ -147,6 +163,9 @@ struct Scene {
   std::vector<StereoRig> rigs;    // sorted by name
   std::vector<Object> objects;    // sorted by name; objectId = index + 1 (0 = background)
   std::vector<Light> lights;      // sorted by name
+  // What the scene's values still need after loading: the Lua state of a scene whose Nurbs.deform
+  // took a Lua function (the fieldError layer calls it again). Null for most scenes.
+  std::shared_ptr<const void> keepAlive;
 };
 
 // Values set as Lua globals before the scene runs.

@@ -1,0 +1,268 @@
+// Field.load (io/mesh_field.h, scene/deform_constructors.cpp): displacement fields on
+// finite-element meshes, read with VTK and interpolated with the cells' shape functions. Checked
+// against fields the test writes itself (ASCII .vtu text, no VTK on the writing side) and against
+// Kirsch's closed form, evaluated here from the formula, for the shipped plate-with-hole mesh.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "exr_test_util.h"
+#include "io/mesh_field.h"
+#include "run_cli.h"
+
+using namespace dicsynth;
+
+namespace {
+
+
+// Kirsch's displacement (plane stress) around a hole of radius a under a far-field stress along x,
+// as scripts/make_kirsch_field.py documents it; lengths in mm, as the shipped mesh.
+struct Kirsch {
+  double a = 5, E = 70e9, nu = 0.33, sigma = 70e6;
+  dvec2 operator()(double x, double y) const {
+    const double r = std::hypot(x, y), t = std::atan2(y, x);
+    const double mu = E / (2 * (1 + nu)), kappa = (3 - nu) / (1 + nu), c = sigma * a / (8 * mu), q = a / r;
+    return {c * (r / a * (kappa + 1) * std::cos(t) + 2 * q * ((1 + kappa) * std::cos(t) + std::cos(3 * t)) -
+                 2 * q * q * q * std::cos(3 * t)),
+            c * (r / a * (kappa - 3) * std::sin(t) + 2 * q * ((1 - kappa) * std::sin(t) + std::sin(3 * t)) -
+                 2 * q * q * q * std::sin(3 * t))};
+  }
+};
+// The shipped mesh's layout (the script's constants): radii a q^i, i = 0..kRings, q = (30/5)^(1/32).
+constexpr int kAround = 128, kRings = 32;
+constexpr double kOuterMm = 30;
+
+// The largest Frobenius norm of each component's Hessian over the band r in [r0, r1] (all angles),
+// by central differences on a polar sample grid, times 1.25 for the maxima between samples.
+dvec2 hessianBound(const Kirsch& k, double r0, double r1) {
+  const double h = 1e-3;  // mm: differences accurate to ~1e-7 relative here, far below the margin
+  dvec2 worst(0);
+  for (int i = 0; i <= 8; ++i)
+    for (int j = 0; j < 256; ++j) {
+      const double r = r0 + (r1 - r0) * i / 8, t = 2 * kPi * j / 256;
+      const double x = r * std::cos(t), y = r * std::sin(t);
+      const dvec2 f = k(x, y);
+      const dvec2 fxx = (k(x + h, y) - 2.0 * f + k(x - h, y)) / (h * h);
+      const dvec2 fyy = (k(x, y + h) - 2.0 * f + k(x, y - h)) / (h * h);
+      const dvec2 fxy = (k(x + h, y + h) - k(x + h, y - h) - k(x - h, y + h) + k(x - h, y - h)) / (4 * h * h);
+      for (int c = 0; c < 2; ++c)
+        worst[c] = std::max(worst[c], std::sqrt(fxx[c] * fxx[c] + 2 * fxy[c] * fxy[c] + fyy[c] * fyy[c]));
+    }
+  return 1.25 * worst;
+}
+
+// An ASCII VTK XML unstructured grid: points (x y z each), cells (connectivity per cell), one cell
+// type for all, and a point array of `components` values per point.
+std::string vtu(const std::vector<dvec3>& points, const std::vector<std::vector<int>>& cells, int cellType,
+                const std::string& arrayName, int components, const std::vector<std::string>& values) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+    << "<UnstructuredGrid><Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << cells.size() << "\">\n"
+    << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">";
+  for (const dvec3& p : points) s << p.x << ' ' << p.y << ' ' << p.z << ' ';
+  s << "</DataArray></Points>\n<Cells><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">";
+  for (const auto& c : cells)
+    for (int id : c) s << id << ' ';
+  s << "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">";
+  std::size_t offset = 0;
+  for (const auto& c : cells) s << (offset += c.size()) << ' ';
+  s << "</DataArray><DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">";
+  for (std::size_t k = 0; k < cells.size(); ++k) s << cellType << ' ';
+  s << "</DataArray></Cells>\n<PointData><DataArray type=\"Float64\" Name=\"" << arrayName
+    << "\" NumberOfComponents=\"" << components << "\" format=\"ascii\">";
+  for (const std::string& v : values) s << v << ' ';
+  s << "</DataArray></PointData></Piece></UnstructuredGrid></VTKFile>\n";
+  return s.str();
+}
+
+// A grid of n × n quads (VTK_QUAD = 9) over [x0, x1] × [y0, y1] at z = 0, with the point array
+// given by f(x, y) (3 components).
+template <class F>
+std::string quadGrid(int n, double x0, double x1, double y0, double y1, F f, const std::string& name = "displacement") {
+  std::vector<dvec3> points;
+  std::vector<std::string> values;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const dvec3 p(x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * j / n, 0);
+      points.push_back(p);
+      const dvec3 d = f(p.x, p.y);
+      std::ostringstream v;
+      v.precision(17);
+      v << d.x << ' ' << d.y << ' ' << d.z;
+      values.push_back(v.str());
+    }
+  std::vector<std::vector<int>> cells;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int k = j * (n + 1) + i;
+      cells.push_back({k, k + 1, k + n + 2, k + n + 1});
+    }
+  return vtu(points, cells, 9, name, 3, values);
+}
+
+}  // namespace
+
+TEST_CASE("field-load: the shipped Kirsch mesh gives the closed form at its nodes and within the bilinear bound between") {
+  const Kirsch kirsch;
+  MeshFieldOptions options;
+  options.path = std::string(DS_SOURCE_DIR) + "/scenes/data/plate_hole.vtu";
+  options.scale = 1e-3;  // the mesh is in mm
+  const MeshField field(options);
+  CHECK(field.info().points == std::size_t(kAround * (kRings + 1)));
+  CHECK(field.info().cells == std::size_t(kAround * kRings));
+  CHECK(field.describe().find("Quad 4096") != std::string::npos);
+  const double q = std::pow(kOuterMm / kirsch.a, 1.0 / kRings);
+
+  // Nodes: the closed form itself (stored as float64), up to the rounding of x / scale.
+  std::vector<dvec3> nodes;
+  for (int i = 0; i <= kRings; i += 4)
+    for (int j = 0; j < kAround; j += 3) {
+      const double r = kirsch.a * std::pow(q, i), t = 2 * kPi * j / kAround;
+      nodes.push_back(1e-3 * dvec3(r * std::cos(t), r * std::sin(t), 0));
+    }
+  const std::vector<dvec3> atNodes = field.at(nodes);
+  double worstNode = 0;
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const dvec2 exact = 1e-3 * kirsch(1e3 * nodes[k].x, 1e3 * nodes[k].y);
+    worstNode = std::max(worstNode, glm::length(dvec2(atNodes[k]) - exact));
+    CHECK(atNodes[k].z == 0);
+  }
+  // A displacement ≤ 3.4e-5 m is held to 1e-15 m: its double rounding and x's (slope ≤ 2e-3).
+  CHECK(worstNode <= 1e-15);
+
+  // Between nodes: for an isoparametric bilinear quad the weights N_i ≥ 0 sum to 1 and reproduce x
+  // (x = Σ N_i v_i), so the interpolation error Σ N_i [u(v_i) − u(x) − ∇u(x)·(v_i − x)] is at most
+  // (M / 2) max|v_i − x|² ≤ (M / 2) h², with M the Hessian's norm on the cell and h its diameter.
+  std::vector<dvec2> bandBound(kRings);
+  for (int i = 0; i < kRings; ++i) {
+    const double r0 = kirsch.a * std::pow(q, i), r1 = r0 * q, dt = 2 * kPi / kAround;
+    const double h = std::sqrt(r0 * r0 + r1 * r1 - 2 * r0 * r1 * std::cos(dt));  // the longer diagonal
+    bandBound[std::size_t(i)] = 0.5 * h * h * hessianBound(kirsch, r0 * std::cos(dt / 2), r1);
+  }
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<dvec3> points;
+  for (int k = 0; k < 20000; ++k) {
+    const double r = kirsch.a + (25 - kirsch.a) * unit(rng), t = 2 * kPi * unit(rng);
+    points.push_back(1e-3 * dvec3(r * std::cos(t), r * std::sin(t), 0));
+  }
+  const std::vector<dvec3> values = field.at(points);
+  double worstRatio = 0, worstError = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double x = 1e3 * points[k].x, y = 1e3 * points[k].y, r = std::hypot(x, y);
+    // The cell holding the point lies in the band of r or, near a band's edge (chords), the next.
+    const int band = std::clamp(int(std::floor(std::log(r / kirsch.a) / std::log(q))), 0, kRings - 1);
+    dvec2 bound = bandBound[std::size_t(band)];
+    if (band + 1 < kRings) bound = glm::max(bound, bandBound[std::size_t(band + 1)]);
+    const dvec2 exact = kirsch(x, y);
+    for (int c = 0; c < 2; ++c) {
+      const double error = std::abs(1e3 * values[k][c] - exact[c]);  // mm
+      worstError = std::max(worstError, error);
+      worstRatio = std::max(worstRatio, error / bound[c]);
+    }
+  }
+  MESSAGE("Kirsch mesh: worst interpolation error " << worstError * 1e6 << " nm, " << worstRatio
+                                                     << " of the bilinear bound");
+  CHECK(worstRatio <= 1.0);
+  CHECK(worstError > 0);  // interpolated, not the closed form: the test would see a mix-up
+}
+
+TEST_CASE("field-load: a field affine in x and y goes through Nurbs.deform exactly: disp is the field, fieldError ~ 0") {
+  test::TempFolder dir;
+  // d = A (x, y) + b on a 3 × 3 quad mesh around the plate (bilinear cells reproduce it exactly).
+  auto affine = [](double x, double y) { return dvec3(1e-4 * x + 3e-5 * y + 2e-6, -5e-5 * x + 2e-4 * y, 4e-4 * x - 1e-4 * y + 1e-6); };
+  dir.write("affine.vtu", quadGrid(3, -0.06, 0.06, -0.04, 0.04, affine));
+  const std::string scene = dir.write(
+      "affine.lua",
+      "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.012; pixelSize = {4e-5, 4e-5} }\n"
+      "ref = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n"
+      "plate = Object.Simple { shape = frame == 0 and ref or Nurbs.deform { surface = ref; tolerance = 1e-12;\n"
+      "  displacement = Field.load { fileName = 'affine.vtu' } } }\n");
+  const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") + " --frames 0:1 --spp 1 --backend cpu");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.err.find("affine.lua:3: Nurbs.deform: fit error") != std::string::npos);
+  const test::ExrContents ref = test::readExr(dir.file("out/cam_0000.exr"));
+  const test::ExrContents now = test::readExr(dir.file("out/cam_0001.exr"));
+  CHECK(ref.floats.count("fieldError.X") == 0);  // frame 0 has no Nurbs.deform surface
+  REQUIRE(now.floats.count("fieldError.X") == 1);
+  CHECK(now.spec.get_string_attribute("dicsynth:deformation:plate").find("affine.vtu 'displacement' step 0") !=
+        std::string::npos);
+  std::size_t compared = 0;
+  double worstDisp = 0, worstFieldError = 0;
+  const char* disp[3] = {"disp.X", "disp.Y", "disp.Z"};
+  const char* fieldError[3] = {"fieldError.X", "fieldError.Y", "fieldError.Z"};
+  for (std::size_t i = 0; i < ref.objectId.size(); ++i) {
+    if (ref.objectId[i] == 0) continue;
+    ++compared;
+    // The plate's own frame is the world's shifted by its location (0, 0, 0.4): x, y are P's.
+    const dvec3 expected = affine(ref.floats.at("P.X")[i], ref.floats.at("P.Y")[i]);
+    for (int c = 0; c < 3; ++c) {
+      worstDisp = std::max(worstDisp, std::abs(now.floats.at(disp[c])[i] - expected[c]));
+      worstFieldError = std::max(worstFieldError, double(std::abs(now.floats.at(fieldError[c])[i])));
+    }
+  }
+  CHECK(compared > 2000);
+  // disp: float32 rounding of P (|x| ≤ 0.05: 1.9e-9 m, times the slope ≤ 4e-4) and of disp (2e-11).
+  CHECK(worstDisp <= 1e-11);
+  // fieldError: an affine field is in the spline space; the fit reproduces it to rounding.
+  CHECK(worstFieldError <= 1e-15);
+}
+
+TEST_CASE("field-load: unreadable, malformed and unsuitable meshes, and points off the mesh, are errors naming the file") {
+  test::TempFolder dir;
+  auto zero = [](double, double) { return dvec3(0); };
+  dir.write("good.vtu", quadGrid(2, -0.06, 0.06, -0.04, 0.04, zero));
+  dir.write("small.vtu", quadGrid(2, -0.02, 0.02, -0.04, 0.04, zero));
+  dir.write("named.vtu", quadGrid(2, -0.06, 0.06, -0.04, 0.04, zero, "U"));
+  const std::vector<dvec3> corners = {{-0.06, -0.04, 0}, {0.06, -0.04, 0}, {0.06, 0.04, 0}, {-0.06, 0.04, 0}};
+  dir.write("scalar.vtu", vtu(corners, {{0, 1, 2, 3}}, 9, "displacement", 1, {"0", "0", "0", "0"}));
+  dir.write("nan.vtu", vtu(corners, {{0, 1, 2, 3}}, 9, "displacement", 3, {"0 0 0", "0 nan 0", "0 0 0", "0 0 0"}));
+  dir.write("lines.vtu", vtu(corners, {{0, 1}, {1, 2}}, 3, "displacement", 3, {"0 0 0", "0 0 0", "0 0 0", "0 0 0"}));
+  dir.write("broken.vtu", "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\"");
+  dir.write("mesh.stl", "solid x\nendsolid x\n");
+  const std::string head =
+      "cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n"
+      "ref = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"Field.load { fileName = 'missing.vtu' }", ":3: Field.load: " + dir.file("missing.vtu") + ": cannot read the mesh: no such file"},
+      {"Field.load { fileName = '/dev/null' }", ":3: Field.load: /dev/null: cannot read the mesh: not a regular file"},
+      {"Field.load { fileName = 'mesh.stl' }", "mesh.stl: unknown mesh format '.stl'"},
+      {"Field.load { fileName = 'broken.vtu' }", "broken.vtu: "},
+      {"Field.load { fileName = 'named.vtu' }", "named.vtu: no point array 'displacement'; its point arrays are 'U'"},
+      {"Field.load { fileName = 'scalar.vtu' }", "scalar.vtu: point array 'displacement' has 1 components"},
+      {"Field.load { fileName = 'nan.vtu' }", "nan.vtu: point array 'displacement' is not finite at point 1"},
+      {"Field.load { fileName = 'lines.vtu' }", "lines.vtu: cells of kind Line (2) cannot interpolate"},
+      {"Field.load { fileName = 'good.vtu'; step = 1 }", "good.vtu: step 1 does not exist"},
+      {"Field.load { fileName = 'good.vtu'; scale = 0 }", ":3: Field.load: 'scale'"},
+      {"Field.load { fileName = 'good.vtu'; colour = 1 }", ":3: Field.load: unknown key 'colour'"},
+      {"Field.load { fileName = 'small.vtu' }", "small.vtu: "},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string scene = dir.write("bad" + std::to_string(k) + ".lua",
+                                        head + "w = Nurbs.deform { surface = ref; displacement = " + cases[k].first + " }\n");
+    const test::CliResult e = test::runCli("render " + scene + " -o " + dir.file("no") + " --backend cpu");
+    INFO(cases[k].first << "\nstderr: " << e.err);
+    CHECK(e.exitCode == 2);
+    CHECK(e.err.find(cases[k].second) != std::string::npos);
+    CHECK(e.err.find("ERR|") == std::string::npos);  // VTK's own log lines stay quiet
+    CHECK(e.err.find("WARN|") == std::string::npos);
+  }
+  // Off the mesh: how many, the first, and the mesh's extent.
+  const std::string scene = dir.write("off.lua", head + "w = Nurbs.deform { surface = ref; displacement = Field.load { fileName = 'small.vtu' } }\n");
+  const test::CliResult e = test::runCli("render " + scene + " -o " + dir.file("no") + " --backend cpu");
+  INFO(e.err);
+  CHECK(e.err.find("points are off the mesh (farther than maxDistance = ") != std::string::npos);
+  CHECK(e.err.find("; the first at (-0.0") != std::string::npos);  // the plate's left part: x < -0.02
+  CHECK(e.err.find(" m; the mesh spans x -0.02..0.02, y -0.04..0.04, z 0..0 m") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("no")));
+}

@@ -266,3 +266,53 @@ TEST_CASE("field-load: unreadable, malformed and unsuitable meshes, and points o
   CHECK(e.err.find(" m; the mesh spans x -0.02..0.02, y -0.04..0.04, z 0..0 m") != std::string::npos);
   CHECK(!std::filesystem::exists(dir.file("no")));
 }
+
+TEST_CASE("field-load: scenes/plate_hole.lua, disp minus fieldError is Kirsch's field within the mesh's bound; GPU equals CPU") {
+  test::TempFolder dir;
+  const std::string scene = std::string(DS_SOURCE_DIR) + "/scenes/plate_hole.lua";
+  const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") +
+                                         " --frames 0:1 --downscale 4 --spp 1 --precision fp64 --layers P,mask,disp,fieldError");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const test::ExrContents ref = test::readExr(dir.file("out/camera_0000.exr"));
+  const test::ExrContents now = test::readExr(dir.file("out/camera_0001.exr"));
+  const Kirsch kirsch;
+  const double q = std::pow(kOuterMm / kirsch.a, 1.0 / kRings);
+  std::vector<dvec2> bandBound(kRings);
+  for (int i = 0; i < kRings; ++i) {
+    const double r0 = kirsch.a * std::pow(q, i), r1 = r0 * q, dt = 2 * kPi / kAround;
+    const double h = std::sqrt(r0 * r0 + r1 * r1 - 2 * r0 * r1 * std::cos(dt));
+    bandBound[std::size_t(i)] = 0.5 * h * h * hessianBound(kirsch, r0 * std::cos(dt / 2), r1);
+  }
+  std::size_t compared = 0;
+  double worstRatio = 0, worstFieldError = 0;
+  for (std::size_t i = 0; i < ref.objectId.size(); ++i) {
+    if (ref.objectId[i] == 0) continue;
+    ++compared;
+    // The ring's own frame is the world's shifted by its location (0, 0, 0.2); the mesh is in mm.
+    const double x = 1e3 * ref.floats.at("P.X")[i], y = 1e3 * ref.floats.at("P.Y")[i], rr = std::hypot(x, y);
+    const int band = std::clamp(int(std::floor(std::log(rr / kirsch.a) / std::log(q))), 0, kRings - 1);
+    dvec2 bound = bandBound[std::size_t(band)];
+    if (band + 1 < kRings) bound = glm::max(bound, bandBound[std::size_t(band + 1)]);
+    const dvec2 exact = kirsch(x, y);
+    const double requested[2] = {now.floats.at("disp.X")[i] - now.floats.at("fieldError.X")[i],
+                                 now.floats.at("disp.Y")[i] - now.floats.at("fieldError.Y")[i]};
+    for (int c = 0; c < 2; ++c) {
+      // Plus float32 roundings: of disp and fieldError (2e-12 m), and of P (|x| ≤ 25 mm: 1e-9 m,
+      // times the field's slope ≤ 3e-3): 5e-12 m in all, 5e-9 mm.
+      worstRatio = std::max(worstRatio, std::abs(1e3 * requested[c] - exact[c]) / (bound[c] + 5e-9));
+    }
+    for (const char* c : {"fieldError.X", "fieldError.Y", "fieldError.Z"})
+      worstFieldError = std::max(worstFieldError, double(std::abs(now.floats.at(c)[i])));
+  }
+  MESSAGE("plate_hole: " << compared << " pixels, disp - fieldError vs Kirsch at " << worstRatio
+                         << " of the mesh's bound; worst |fieldError| " << worstFieldError << " m");
+  CHECK(compared > 5000);
+  CHECK(worstRatio <= 1.0);
+  // The fit's tolerance 2e-8 m, 1.5x between its check points (as for the Lua wave,
+  // test_nurbs_deform.cpp): the FE field's kinks at element edges stay inside it here.
+  CHECK(worstFieldError <= 1.5 * 2e-8);
+  const test::CliResult c = test::runCli("compare " + scene + " --frame 1 --downscale 4 --spp 1 --precision fp32");
+  INFO(c.out << c.err);
+  CHECK(c.exitCode == 0);
+}

@@ -1,5 +1,5 @@
-// Shape.Nurbs, and the specimens built as NURBS surfaces: Nurbs.plate, Nurbs.cylinderSegment,
-// Nurbs.dogbone (Nurbs.deform: deform_constructors.cpp). Like every shape, a NURBS surface is defined in its own frame; `location` places
+// Shape.Nurbs, the specimens built as NURBS surfaces: Nurbs.plate, Nurbs.cylinderSegment,
+// Nurbs.dogbone, and Nurbs.from (analytic shapes' NURBS forms; Nurbs.deform: deform_constructors.cpp). Like every shape, a NURBS surface is defined in its own frame; `location` places
 // that frame's origin (the control points are relative to it), and an Object's transform acts
 // about the location (worldFromShape = translate(location) * transform).
 //
@@ -362,6 +362,67 @@ int nurbsDogbone(lua_State* L) {
   return 1;
 }
 
+/* ------------------------------------------------------------------------------------------------
+Nurbs.from: the exact NURBS form of an analytic shape, e.g. to deform it with Nurbs.deform. The
+result keeps the shape's location; its (u, v) are:
+
+  Shape         | NURBS                                   | (u, v)
+  --------------+-----------------------------------------+------------------------------------------
+  Rectangle     | one Bézier patch of `degree`, evenly     | the rectangle's own: u = x/w + 1/2,
+                | spaced control points                   | v = y/h + 1/2
+  Box (`face`)  | the face "-z", "+x", "+z", "-x", "-y" or | the face's (s, t) in the box's 3 × 2
+                | "+y" as such a patch                     | texture atlas (u = (col + s)/3, ...)
+  Sphere        | rational biquadratic, 4 arcs around, 2   | the sphere's poles and seam; equal to the
+                | from pole to pole (9 × 5 points)         | sphere's (u, v) every 90°, not in between
+                |                                         | (a rational arc is not uniform in angle)
+
+Plane (infinite), Triangle and NURBS shapes have no such form here (a NURBS is already one).
+
+  Parameter | Value                  | Default  | Meaning
+  ----------+------------------------+----------+--------------------------------------------------
+  shape     | Shape                  | required | Shape.Rectangle, Shape.Box, Shape.Sphere
+  face      | string                 | required | Box only: which face
+            |                        | for Box  |
+  degree    | {p, q}                 | {3, 3}   | Rectangle and box faces: degrees 1..5 (flat
+            |                        |          | either way; higher degrees fit smooth
+            |                        |          | deformations with fewer control points)
+
+Example: skin = Nurbs.from { shape = Shape.Sphere { radius = 0.02; location = {0, 0, 0.3} } }
+------------------------------------------------------------------------------------------------ */
+int nurbsFrom(lua_State* L) {
+  Params p(L, "Nurbs.from", {"shape", "face", "degree"});
+  const Shape* shape = p.userdata<Shape>("shape", "a Shape (Shape.Rectangle, Shape.Box, Shape.Sphere)");
+  if (!shape) p.fail("missing required 'shape' (Shape.Rectangle, Shape.Box, Shape.Sphere)");
+  const ivec2 degree = integerPair(p, "degree", "{p, q}", 1, kMaxNurbsDegree, {3, 3});
+  const std::optional<std::string> face = p.string("face");
+  if (face && shape->kind != ShapeKind::Box) p.fail("'face' is for a Shape.Box only");
+  if (p.has("degree") && shape->kind == ShapeKind::Sphere) p.fail("'degree' is for a Rectangle or a box face (the sphere is biquadratic)");
+  NurbsSurface surface;
+  switch (shape->kind) {
+    case ShapeKind::Rectangle:
+      surface = makeParallelogram(dvec3(-0.5 * shape->size_m.x, -0.5 * shape->size_m.y, 0), dvec3(shape->size_m.x, 0, 0),
+                                  dvec3(0, shape->size_m.y, 0), degree);
+      break;
+    case ShapeKind::Box:
+      if (!face) p.fail("missing required 'face' for a Shape.Box: \"-z\", \"+x\", \"+z\", \"-x\", \"-y\" or \"+y\"");
+      checked(p, [&] { surface = makeBoxFace(0.5 * shape->size_m, *face, degree); });
+      break;
+    case ShapeKind::Sphere: surface = makeSphereNurbs(shape->radius_m); break;
+    case ShapeKind::Plane: p.fail("a Shape.Plane is infinite: use a Shape.Rectangle"); break;
+    case ShapeKind::Triangle: p.fail("a Shape.Triangle has no NURBS form here (use Shape.Nurbs with a degenerate patch)"); break;
+    case ShapeKind::Nurbs: p.fail("'shape' is already a NURBS surface"); break;
+    default: p.fail("this shape kind has no NURBS form"); break;
+  }
+  checked(p, [&] { validateNurbs(surface); });
+  Shape result;
+  result.kind = ShapeKind::Nurbs;
+  result.where = LuaSandbox::of(L).here(L);
+  result.location_m = shape->location_m;
+  result.nurbs = std::make_shared<const NurbsSurface>(std::move(surface));
+  pushUserdata(L, std::move(result));
+  return 1;
+}
+
 }  // namespace
 
 void registerNurbsConstructors(lua_State* L) {
@@ -373,7 +434,8 @@ void registerNurbsConstructors(lua_State* L) {
   setConstructorTable(L, "Nurbs",
                       {{"plate", &protectedCall<nurbsPlate>},
                        {"cylinderSegment", &protectedCall<nurbsCylinderSegment>},
-                       {"dogbone", &protectedCall<nurbsDogbone>}});
+                       {"dogbone", &protectedCall<nurbsDogbone>},
+                       {"from", &protectedCall<nurbsFrom>}});
 }
 
 }  // namespace dicsynth::scene

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <numbers>
 #include <vector>
 
 #include "core/error.h"
@@ -274,6 +276,73 @@ NurbsSurface makeDogbone(const DogboneSpec& spec) {
   const std::vector<double> h = interpolateAtGreville(s.knotsU, 3, xi, halfWidth);
   const std::vector<double> zero(s.countU, 0.0), ones(s.countU, 1.0);
   fillControlNet(s, x, zero, ones, [&](int i, int j) { return (2 * eta[j] - 1) * h[i]; });
+  return s;
+}
+
+NurbsSurface makeParallelogram(const dvec3& origin, const dvec3& U, const dvec3& V, ivec2 degree) {
+  NurbsSurface s;
+  s.degreeU = degree.x;
+  s.degreeV = degree.y;
+  s.countU = degree.x + 1;
+  s.countV = degree.y + 1;
+  s.knotsU = clampedKnots(degree.x, {});
+  s.knotsV = clampedKnots(degree.y, {});
+  // A Bézier curve with control points b_i = f(i / p) of an affine f is f itself (linear
+  // precision of the Bernstein basis: Σ B_i,p(t) i/p = t), so P(u, v) = origin + u U + v V.
+  for (int i = 0; i <= degree.x; ++i)
+    for (int j = 0; j <= degree.y; ++j) {
+      s.controlPoints.push_back(origin + (double(i) / degree.x) * U + (double(j) / degree.y) * V);
+      s.weights.push_back(1);
+    }
+  return s;
+}
+
+NurbsSurface makeBoxFace(const dvec3& halfSize, const std::string& face, ivec2 degree) {
+  // a(s, t): the face point over halfSize, as geometry/material_point.cpp's boxPoint inverts boxUV.
+  std::function<dvec3(double, double)> a;
+  if (face == "-z") a = [](double s, double t) { return dvec3(2 * s - 1, 2 * t - 1, -1); };
+  else if (face == "+x") a = [](double s, double t) { return dvec3(1, 2 * t - 1, 2 * s - 1); };
+  else if (face == "+z") a = [](double s, double t) { return dvec3(1 - 2 * s, 2 * t - 1, 1); };
+  else if (face == "-x") a = [](double s, double t) { return dvec3(-1, 2 * t - 1, 1 - 2 * s); };
+  else if (face == "-y") a = [](double s, double t) { return dvec3(2 * s - 1, -1, 1 - 2 * t); };
+  else if (face == "+y") a = [](double s, double t) { return dvec3(2 * s - 1, 1, 2 * t - 1); };
+  else throw InputError("face must be \"-z\", \"+x\", \"+z\", \"-x\", \"-y\" or \"+y\", got \"" + face + "\"");
+  const dvec3 origin = a(0, 0) * halfSize;
+  return makeParallelogram(origin, a(1, 0) * halfSize - origin, a(0, 1) * halfSize - origin, degree);
+}
+
+NurbsSurface makeSphereNurbs(double radius_m) {
+  // Around: the full circle of makeCylinderSegment (angle 2π in four arcs; phi = −π at u = 0 is
+  // +z, phi = 0 at u = 1/2 is −z, as the analytic sphere's u = 1/2 + atan2(x, −z)/2π), unit radius.
+  CylinderSegmentSpec around;
+  around.radius_m = 1;
+  around.angle_rad = 2 * std::numbers::pi;
+  around.height_m = 1;
+  around.arcs = 4;
+  around.degreeV = 1;
+  const NurbsSurface ring = makeCylinderSegment(around);
+  // Pole to pole: the half circle (rho, y) = r (sin θ, −cos θ), θ from 0 (v = 0, −y) to π, in two
+  // quarter arcs: ends on the circle (weight 1), corners (r, ∓r) at weight cos 45°.
+  const double c = std::sqrt(0.5);
+  const double rho[5] = {0, radius_m, radius_m, radius_m, 0}, y[5] = {-radius_m, -radius_m, 0, radius_m, radius_m};
+  const double wv[5] = {1, c, 1, c, 1};
+  NurbsSurface s;
+  s.degreeU = 2;
+  s.degreeV = 2;
+  s.countU = ring.countU;
+  s.countV = 5;
+  s.knotsU = ring.knotsU;
+  s.knotsV = clampedKnots(2, {0.5, 0.5});
+  // Surface of revolution: P_ij = (rho_j x_i, y_j, rho_j z_i), w_ij = w_i w_j (x_i, z_i: the unit
+  // circle's control points, corners at distance 1 / cos 45°).
+  for (int i = 0; i < s.countU; ++i) {
+    const std::size_t k = std::size_t(i) * std::size_t(ring.countV);  // ring's j = 0 row
+    const dvec3 p = ring.controlPoints[k];
+    for (int j = 0; j < 5; ++j) {
+      s.controlPoints.push_back(dvec3(rho[j] * p.x, y[j], rho[j] * p.z));
+      s.weights.push_back(ring.weights[k] * wv[j]);
+    }
+  }
   return s;
 }
 

@@ -7,6 +7,7 @@
 // parameters that are not deformations: a deformation (strain, necking, curvature) moves control
 // points, and the same (u, v) stays the same material point. The specs must be valid (the scene
 // reader checks them); the result passes validateNurbs.
+#include <string>
 #include <vector>
 
 #include "core/math.h"
@@ -41,6 +42,21 @@ struct CylinderSegmentSpec {
   int degreeV = 3;
 };
 NurbsSurface makeCylinderSegment(const CylinderSegmentSpec& spec);
+
+// Exact NURBS forms of analytic shapes (Nurbs.from), in the shape's own frame.
+// A flat parallelogram P(u, v) = origin + u·U + v·V, u, v in [0, 1]: one Bézier patch of the given
+// degrees with evenly spaced control points, so the parametrization is exactly this linear one
+// (Rectangle: origin (−w/2, −h/2, 0), U = (w, 0, 0), V = (0, h, 0): the rectangle's own (u, v)).
+NurbsSurface makeParallelogram(const dvec3& origin, const dvec3& U, const dvec3& V, ivec2 degree);
+// Face `face` ("-z", "+x", "+z", "-x", "-y", "+y": the 3 × 2 atlas cells of geometry/shapes.h's
+// boxUV, row by row) of a box of half edge lengths `halfSize`: the parallelogram whose (u, v) are
+// the atlas cell's (s, t). Throws InputError for another face name.
+NurbsSurface makeBoxFace(const dvec3& halfSize, const std::string& face, ivec2 degree);
+// The sphere of radius r about the origin with the analytic sphere's poles (v = 0 at −y, 1 at +y)
+// and seam (u = 0 and 1 at +z, u = 1/2 facing −z): four rational quadratic arcs around (u), two
+// from pole to pole (v). Points are exactly on the sphere; (u, v) equal the analytic sphere's at
+// the arcs' ends (every 90°) and differ in between (a rational arc is not uniform in angle).
+NurbsSurface makeSphereNurbs(double radius_m);
 
 // A flat dogbone specimen in the xy-plane (facing -z), length along x, centred on the origin.
 struct DogboneSpec {

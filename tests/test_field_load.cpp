@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 #include <random>
@@ -315,4 +316,94 @@ TEST_CASE("field-load: scenes/plate_hole.lua, disp minus fieldError is Kirsch's 
   const test::CliResult c = test::runCli("compare " + scene + " --frame 1 --downscale 4 --spp 1 --precision fp32");
   INFO(c.out << c.err);
   CHECK(c.exitCode == 0);
+}
+
+TEST_CASE("field-load: an Exodus II file's time steps are the `step`s, read with node coordinates as meshed") {
+  test::TempFolder dir;
+  // Written with VTK's Exodus writer from Python (Debian's python3-vtk9, which libvtk9-dev brings):
+  // 2 quads over [-1, 1] x [-0.5, 0.5] (m), nodal DISPL = t (0.1 x, 0.2 y, 0.05) at times t = 0, 1, 2.
+  const std::string script = dir.write("exodus.py", R"(import sys, vtk
+from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
+points = vtk.vtkPoints()
+points.SetDataTypeToDouble()
+for y in (-0.5, 0.5):
+    for x in (-1.0, 0.0, 1.0):
+        points.InsertNextPoint(x, y, 0)
+grid = vtk.vtkUnstructuredGrid()
+grid.SetPoints(points)
+for cell in ((0, 1, 4, 3), (1, 2, 5, 4)):
+    quad = vtk.vtkQuad()
+    for i, k in enumerate(cell):
+        quad.GetPointIds().SetId(i, k)
+    grid.InsertNextCell(quad.GetCellType(), quad.GetPointIds())
+class Steps(VTKPythonAlgorithmBase):
+    def __init__(self):
+        VTKPythonAlgorithmBase.__init__(self, nInputPorts=0, nOutputPorts=1, outputType='vtkUnstructuredGrid')
+    def RequestInformation(self, request, inInfo, outInfo):
+        info = outInfo.GetInformationObject(0)
+        info.Set(SDDP.TIME_STEPS(), [0.0, 1.0, 2.0], 3)
+        info.Set(SDDP.TIME_RANGE(), [0.0, 2.0], 2)
+        return 1
+    def RequestData(self, request, inInfo, outInfo):
+        info = outInfo.GetInformationObject(0)
+        t = info.Get(SDDP.UPDATE_TIME_STEP())
+        out = vtk.vtkUnstructuredGrid.GetData(outInfo)
+        out.ShallowCopy(grid)
+        d = vtk.vtkDoubleArray()
+        d.SetName("DISPL")
+        d.SetNumberOfComponents(3)
+        for k in range(grid.GetNumberOfPoints()):
+            x, y, z = grid.GetPoint(k)
+            d.InsertNextTuple3(t * 0.1 * x, t * 0.2 * y, t * 0.05)
+        out.GetPointData().AddArray(d)
+        ids = vtk.vtkIntArray()
+        ids.SetName("ObjectId")
+        for c in range(grid.GetNumberOfCells()):
+            ids.InsertNextValue(1)
+        out.GetCellData().AddArray(ids)
+        return 1
+steps = Steps()
+writer = vtk.vtkExodusIIWriter()
+writer.SetFileName(sys.argv[1])
+writer.SetInputConnection(steps.GetOutputPort())
+writer.WriteAllTimeStepsOn()
+writer.Write()
+)");
+  REQUIRE(std::system(("/usr/bin/python3 " + script + " " + dir.file("steps.e")).c_str()) == 0);
+  for (int step : {1, 2}) {
+    const std::string scene = dir.write(
+        "s" + std::to_string(step) + ".lua",
+        "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n"
+        "ref = Nurbs.plate { size = {1.0, 0.6}; location = {0, 0, 2} }\n"
+        "o = Object.Simple { shape = frame == 0 and ref or Nurbs.deform { surface = ref; tolerance = 1e-12;\n"
+        "  displacement = Field.load { fileName = 'steps.e'; array = 'DISPL'; step = " + std::to_string(step) + " } } }\n");
+    const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out" + std::to_string(step)) +
+                                           " --frames 0:1 --spp 1 --backend cpu --layers P,mask,disp");
+    INFO(r.err);
+    REQUIRE(r.exitCode == 0);
+    const test::ExrContents ref = test::readExr(dir.file("out" + std::to_string(step) + "/cam_0000.exr"));
+    const test::ExrContents now = test::readExr(dir.file("out" + std::to_string(step) + "/cam_0001.exr"));
+    CHECK(now.spec.get_string_attribute("dicsynth:deformation:o").find("steps.e 'DISPL' step " + std::to_string(step)) != std::string::npos);
+    double worst = 0;
+    std::size_t compared = 0;
+    for (std::size_t i = 0; i < ref.objectId.size(); ++i) {
+      if (ref.objectId[i] == 0) continue;
+      ++compared;
+      const double x = ref.floats.at("P.X")[i], y = ref.floats.at("P.Y")[i];
+      const double expected[3] = {step * 0.1 * x, step * 0.2 * y, step * 0.05};
+      const char* names[3] = {"disp.X", "disp.Y", "disp.Z"};
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(now.floats.at(names[c])[i] - expected[c]));
+    }
+    CHECK(compared > 300);
+    // float32 roundings: of P (|x| ≤ 0.5 m: 3e-8 m, times the slope ≤ 0.4) and of disp (6e-9 m).
+    CHECK(worst <= 2e-8);
+  }
+  const std::string beyond = dir.write(
+      "beyond.lua", "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n"
+                    "f = Field.load { fileName = 'steps.e'; array = 'DISPL'; step = 3 }\n");
+  const test::CliResult e = test::runCli("render " + beyond + " -o " + dir.file("no") + " --backend cpu");
+  CHECK(e.exitCode == 2);
+  CHECK(e.err.find("beyond.lua:2: Field.load: " + dir.file("steps.e") + ": step 3 does not exist: the file has 3 time step(s), 0..2") !=
+        std::string::npos);
 }

@@ -272,3 +272,43 @@ TEST_CASE("nurbs-deform: the fit memory returns a remembered fit only when it me
   NurbsFitReport plain;
   CHECK(c.controlPoints == fitDeformedNurbs(reference, wave(1.01e-5), tolerance, plain).controlPoints);
 }
+
+TEST_CASE("nurbs-deform: scenes/stereo_sinusoid.lua, the out-of-plane chirp as rendered for both cameras of the rig") {
+  test::TempFolder dir;
+  const std::string scene = std::string(DS_SOURCE_DIR) + "/scenes/stereo_sinusoid.lua";
+  const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") +
+                                         " --frames 0:1 --downscale 8 --spp 1 --precision fp64 --layers P,mask,disp,disparity,fieldError");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  // The scene's chirp, from its definition: period 5 mm + 0.2 (x + 0.05), phase = ∫ 2π / period.
+  auto wave = [](double x) {
+    return 5e-5 * std::sin(2 * 3.141592653589793 / 0.2 * std::log((0.005 + 0.2 * (x + 0.05)) / 0.005));
+  };
+  for (const char* camera : {"rig.left", "rig.right"}) {
+    INFO(camera);
+    const test::ExrContents ref = test::readExr(dir.file(std::string("out/") + camera + "_0000.exr"));
+    const test::ExrContents now = test::readExr(dir.file(std::string("out/") + camera + "_0001.exr"));
+    std::size_t compared = 0, seenByOther = 0;
+    double worst = 0, worstFieldError = 0;
+    for (std::size_t i = 0; i < ref.objectId.size(); ++i) {
+      if (ref.objectId[i] == 0) continue;
+      ++compared;
+      // The plate's own frame is the world's shifted by (0, 0, 0.5): x is P.X.
+      const double expected[3] = {0, 0, wave(ref.floats.at("P.X")[i])};
+      const char* disp[3] = {"disp.X", "disp.Y", "disp.Z"};
+      const char* fieldError[3] = {"fieldError.X", "fieldError.Y", "fieldError.Z"};
+      for (int c = 0; c < 3; ++c) {
+        worst = std::max(worst, std::abs(now.floats.at(disp[c])[i] - expected[c]));
+        worstFieldError = std::max(worstFieldError, double(std::abs(now.floats.at(fieldError[c])[i])));
+      }
+      if (now.floats.at("disparity.mask")[i] > 0) ++seenByOther;
+    }
+    MESSAGE(std::string(camera) << ": " << compared << " pixels, disp vs the chirp " << worst << " m, |fieldError| " << worstFieldError << " m");
+    CHECK(compared > 2000);
+    CHECK(seenByOther > compared / 2);
+    // The fit tolerance 1e-9 m, 1.5x between check points (above), plus P.X's float32 rounding
+    // (1.9e-9 m) times the chirp's slope (≤ 5e-5 · 2π / 5 mm = 0.063): 1.2e-10 m.
+    CHECK(worst <= 1.5e-9 + 1.2e-10);
+    CHECK(worstFieldError <= 1.5e-9);
+  }
+}

@@ -50,7 +50,7 @@ double worstDeviation(const NurbsSurface& reference, const NurbsSurface& fitted,
 
 }  // namespace
 
-TEST_CASE("nurbs-deform: affine fields are reproduced exactly, on a polynomial plate and a rational cylinder") {
+TEST_CASE("nurbs-deform: affine fields are reproduced exactly, on a polynomial plate and a rational cylinder, quadratic ones on a flat plate") {
   PlateSpec plate;
   plate.size_m = {0.1, 0.05};
   plate.spans = {5, 3};
@@ -76,6 +76,19 @@ TEST_CASE("nurbs-deform: affine fields are reproduced exactly, on a polynomial p
     CHECK(report.maxError_m <= 1e-12);
     CHECK(worstDeviation(reference, fitted, affine, 2000, 1) <= 1e-12);
   }
+  // On a flat plate x and y are linear in u and v, so a field quadratic in x, y is a biquadratic
+  // polynomial in (u, v), inside the cubic spline space: reproduced without refinement too.
+  PlateSpec flat;
+  flat.size_m = {0.1, 0.05};
+  flat.spans = {4, 2};
+  const PointDisplacement quadratic = [](const dvec3& x) {
+    return dvec3(3e-2 * x.x * x.x - 1e-2 * x.x * x.y, 2e-2 * x.y * x.y + 4e-3 * x.x, 5e-2 * x.x * x.y - 1e-2 * x.y * x.y);
+  };
+  NurbsFitReport report;
+  const NurbsSurface fitted = fitDeformedNurbs(makePlate(flat), pointwise(quadratic), 1e-9, report);
+  CHECK(report.refinements == 0);
+  CHECK(report.maxError_m <= 1e-12);
+  CHECK(worstDeviation(makePlate(flat), fitted, quadratic, 2000, 4) <= 1e-12);
 }
 
 TEST_CASE("nurbs-deform: a sinusoid converges to the tolerance by refining where the error is") {

@@ -268,7 +268,7 @@ TEST_CASE("field-load: unreadable, malformed and unsuitable meshes, and points o
   CHECK(!std::filesystem::exists(dir.file("no")));
 }
 
-TEST_CASE("field-load: scenes/plate_hole.lua, disp minus fieldError is Kirsch's field within the mesh's bound; GPU equals CPU") {
+TEST_CASE("field-load: scenes/plate_hole.lua, disp minus fieldError is Kirsch's field within the mesh's bound, and GPU equals CPU") {
   test::TempFolder dir;
   const std::string scene = std::string(DS_SOURCE_DIR) + "/scenes/plate_hole.lua";
   const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") +

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -406,4 +407,57 @@ writer.Write()
   CHECK(e.exitCode == 2);
   CHECK(e.err.find("beyond.lua:2: Field.load: " + dir.file("steps.e") + ": step 3 does not exist: the file has 3 time step(s), 0..2") !=
         std::string::npos);
+}
+
+TEST_CASE("field-load: quadratic triangles reproduce a quadratic field, hexahedra and wedges a trilinear one, exactly") {
+  test::TempFolder dir;
+  auto text = [](const dvec3& d) {
+    std::ostringstream v;
+    v.precision(17);
+    v << d.x << ' ' << d.y << ' ' << d.z;
+    return v.str();
+  };
+  struct Mesh {
+    std::string name;
+    std::vector<dvec3> points;
+    std::vector<std::vector<int>> cells;
+    int type;
+    std::function<dvec3(const dvec3&)> field;
+    double zSpan;  // random points' z range (0: the mesh's plane)
+  };
+  // Two 6-node triangles (VTK_QUADRATIC_TRIANGLE = 22: corners, then mid-edge nodes 01, 12, 20)
+  // over [0, 2] × [0, 1]; their shape functions span the quadratics.
+  const std::vector<dvec3> q = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, {1, 0, 0}, {2, 0.5, 0}, {1, 0.5, 0}, {1, 1, 0}, {0, 0.5, 0}};
+  // Two hexahedra (12) over [0, 2] × [0, 1] × [-1, 1] and two wedges (13) over the same box.
+  const std::vector<dvec3> box = {{0, 0, -1}, {1, 0, -1}, {2, 0, -1}, {0, 1, -1}, {1, 1, -1}, {2, 1, -1},
+                                  {0, 0, 1},  {1, 0, 1},  {2, 0, 1},  {0, 1, 1},  {1, 1, 1},  {2, 1, 1}};
+  const auto quadratic = [](const dvec3& p) { return dvec3(p.x * p.x - 0.5 * p.x * p.y, 0.3 * p.y * p.y + p.x, 0.2 * p.x * p.y - p.y); };
+  // Trilinear: products of at most one power of each coordinate (what hexahedra span; wedges span
+  // linear × linear-in-z, so their field is affine in x, y times affine in z).
+  const auto trilinear = [](const dvec3& p) { return dvec3(p.x * p.y * p.z + p.x, 0.5 * p.y * p.z - p.z, p.x * p.z + 2); };
+  const auto wedgeField = [](const dvec3& p) { return dvec3(p.x * p.z + p.y, 0.5 * p.y * p.z - p.z, p.x - 3 * p.y * p.z); };
+  const std::vector<Mesh> meshes = {
+      {"tri6.vtu", q, {{0, 1, 2, 4, 5, 6}, {0, 2, 3, 6, 7, 8}}, 22, quadratic, 0},
+      {"hex.vtu", box, {{0, 1, 4, 3, 6, 7, 10, 9}, {1, 2, 5, 4, 7, 8, 11, 10}}, 12, trilinear, 1.8},
+      {"wedge.vtu", box, {{0, 2, 5, 6, 8, 11}, {0, 5, 3, 6, 11, 9}}, 13, wedgeField, 1.8},
+  };
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const Mesh& m : meshes) {
+    INFO(m.name);
+    std::vector<std::string> values;
+    for (const dvec3& p : m.points) values.push_back(text(m.field(p)));
+    dir.write(m.name, vtu(m.points, m.cells, m.type, "displacement", 3, values));
+    MeshFieldOptions options;
+    options.path = dir.file(m.name);
+    const MeshField field(options);
+    std::vector<dvec3> points;
+    for (int k = 0; k < 2000; ++k) points.push_back(dvec3(2 * unit(rng), unit(rng), m.zSpan * (unit(rng) - 0.5)));
+    const std::vector<dvec3> got = field.at(points);
+    double worst = 0;
+    for (std::size_t k = 0; k < points.size(); ++k) worst = std::max(worst, glm::length(got[k] - m.field(points[k])));
+    MESSAGE(m.name << ": worst " << worst);
+    // Exact up to rounding: values ~1, a dozen shape-function terms, the locator's nearest point.
+    CHECK(worst <= 1e-13);
+  }
 }

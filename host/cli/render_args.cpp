@@ -1,5 +1,6 @@
 #include "cli/render_args.h"
 
+#include <cctype>
 #include <unistd.h>
 
 #include <cstdio>
@@ -69,22 +70,29 @@ std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<
 std::vector<int> parseFrames(const std::string& text) {
   auto parseInt = [&](const std::string& s) {
     std::size_t used = 0;
-    int v = 0;
+    long long v = 0;
     try {
-      v = std::stoi(s, &used);
+      v = std::stoll(s, &used);
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != s.size() || s.empty() || v < 0)
+    if (used != s.size() || s.empty() || v < 0 || !std::isdigit(static_cast<unsigned char>(s[0])))
       throw InputError("--frames " + text + ": expected A:B or N with non-negative integers");
-    return v;
+    if (v > kMaxFrameNumber)
+      throw InputError("--frames " + text + ": frame numbers go up to " + std::to_string(kMaxFrameNumber));
+    return int(v);
   };
   const auto colon = text.find(':');
   if (colon == std::string::npos) return {parseInt(text)};
   const int a = parseInt(text.substr(0, colon)), b = parseInt(text.substr(colon + 1));
   if (b < a) throw InputError("--frames " + text + ": empty range (the range A:B includes both ends)");
+  const long long count = static_cast<long long>(b) - a + 1;
+  if (count > kMaxFramesPerRun)
+    throw InputError("--frames " + text + ": " + std::to_string(count) + " frames, over the limit of " +
+                     std::to_string(kMaxFramesPerRun) + " per run: split the range into several runs");
   std::vector<int> frames;
-  for (int f = a; f <= b; ++f) frames.push_back(f);
+  frames.reserve(std::size_t(count));
+  for (long long f = a; f <= b; ++f) frames.push_back(int(f));
   return frames;
 }
 

@@ -41,7 +41,12 @@ void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& ef
 // -D name=value list → SceneParams::defines. Throws InputError for a malformed entry.
 std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<std::string>& defines);
 
-// "A:B" (inclusive) or "N" → the list of frames. Throws InputError.
+// "A:B" (inclusive) or "N" → the list of frames. Throws InputError, also beyond the limits: frame
+// numbers up to kMaxFrameNumber (they are Lua integers and file-name numbers), at most
+// kMaxFramesPerRun frames in one run (each is evaluated, rendered and written: a million frames is
+// days of work; a range past it is a typo, or work for several runs or a sweep).
+inline constexpr long long kMaxFrameNumber = 999'999'999;
+inline constexpr long long kMaxFramesPerRun = 1'000'000;
 std::vector<int> parseFrames(const std::string& text);
 
 // Validates spp and seed, returns RenderOptions (precision resolved by resolvePrecision).

@@ -90,5 +90,8 @@ void writeRenderedJob(RenderedJob rendered, const RenderJob& job);
 
 // Creates `dir` (and parents); throws InputError naming it when that fails.
 void createOutputDir(const std::string& dir);
+// Throws InputError("-o DIR: ...") unless DIR, or the nearest existing folder above it, takes a new
+// file (tried with a temporary file, removed at once). Nothing else is created.
+void checkOutputWritable(const std::string& dir);
 
 }  // namespace dicsynth::cli

@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "core/exact_number.h"
 #include "geometry/homography.h"
 #include "geometry/prepared_scene.h"
 #include "io/image_io.h"
@@ -150,6 +151,16 @@ int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::m
   } catch (const InputError& e) {
     throw InputError(t.where, std::string("Texture.File: ") + e.what());
   }
+  // Texels are reflectances: finite and >= 0 (as Texture.Speckle's dark and light). One NaN would
+  // spread through the B-spline prefilter into every pixel of the image.
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const double v = image.pixels[i];
+    if (std::isfinite(v) && v >= 0) continue;
+    const std::size_t x = i % std::size_t(image.width), y = i / std::size_t(image.width);
+    throw InputError(t.where, "Texture.File: " + t.path + ": " + (std::isfinite(v) ? "negative texel " + shortestNumber(v) : std::string("non-finite texel")) +
+                                  " at (" + std::to_string(x) + ", " + std::to_string(y) +
+                                  ") (x, y from the top-left; texels are reflectances: finite and >= 0)");
+  }
   PreparedTexture pt;
   pt.path = t.path;
   pt.width = image.width;
@@ -194,6 +205,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   if (options.downscale < 1) throw InputError("--downscale must be >= 1");
   PreparedScene ps;
   ps.file = scene.file;
+  ps.keepAlive = scene.keepAlive;
   for (const Camera& c : scene.cameras) ps.cameras.push_back(prepareCamera(c, options.downscale));
   for (const Light& l : scene.lights) {
     PreparedLight pl;

@@ -111,6 +111,8 @@ struct PreparedScene {
   std::vector<PreparedLight> lights;
   std::vector<PreparedTexture> textures;
   SceneFeatures features;
+  // Scene::keepAlive: what objects' deformations call after the scene's own lifetime (fieldError).
+  std::shared_ptr<const void> keepAlive;
 };
 
 // The pinhole model (intrinsics in px, distortion, pose) of a scene camera, as rendered.

@@ -6,9 +6,11 @@
 #include "io/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -34,6 +36,29 @@ std::string tempName(const std::filesystem::path& finalPath, unsigned long long 
 }
 
 }  // namespace
+
+std::size_t removeStaleTemporaries(const std::string& dir) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() < 2 || name[0] != '.') continue;
+    // ".<name>.tmp<pid>_<counter><.ext>": find ".tmp" followed by digits, '_' and digits.
+    for (std::size_t at = name.find(".tmp", 1); at != std::string::npos; at = name.find(".tmp", at + 1)) {
+      std::size_t i = at + 4, pidEnd = i;
+      while (pidEnd < name.size() && std::isdigit(static_cast<unsigned char>(name[pidEnd]))) ++pidEnd;
+      if (pidEnd == i || pidEnd >= name.size() || name[pidEnd] != '_' || pidEnd - i > 9) continue;
+      std::size_t counterEnd = pidEnd + 1;
+      while (counterEnd < name.size() && std::isdigit(static_cast<unsigned char>(name[counterEnd]))) ++counterEnd;
+      if (counterEnd == pidEnd + 1) continue;
+      const pid_t pid = static_cast<pid_t>(std::stol(name.substr(i, pidEnd - i)));
+      const bool gone = ::kill(pid, 0) != 0 && errno == ESRCH;
+      if (gone && entry.is_regular_file(ec) && std::filesystem::remove(entry.path(), ec)) ++removed;
+      break;
+    }
+  }
+  return removed;
+}
 
 AtomicFile::AtomicFile(std::string finalPath) : final_(std::move(finalPath)) {
   const std::filesystem::path target(final_);

@@ -1,5 +1,6 @@
 #pragma once
 // Write-then-rename: a file appears under its final name complete or not at all.
+#include <cstddef>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -23,6 +24,11 @@ class AtomicFile {
   std::string final_, temp_;
   bool committed_ = false;
 };
+
+// Removes from `dir` (not below) the temporary files of AtomicFiles whose process is gone (a run
+// killed while writing): ".<name>.tmp<pid>_<n><.ext>" with no live process <pid> on this machine.
+// Returns how many were removed; errors are ignored (another run may clean at the same time).
+std::size_t removeStaleTemporaries(const std::string& dir);
 
 // Writes `file`'s temporary file piece by piece, for text too large to build in memory first (a
 // sweep's manifest grows with its points). Commit the AtomicFile after close().

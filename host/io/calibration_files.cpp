@@ -241,17 +241,18 @@ std::vector<CalibrationFile> calibrationFiles(const PreparedScene& scene, const 
   return calibrationFiles(cameras, rigs, suffix);
 }
 
+std::vector<std::string> calibrationSignature(const Scene& scene) {
+  std::vector<std::string> texts;
+  for (const CalibrationFile& file : calibrationFiles(scene.cameras, scene.rigs, ""))
+    texts.push_back(file.name + '\n' + file.text);
+  return texts;
+}
+
 bool sameCalibration(const std::vector<Scene>& scenes) {
   if (scenes.empty()) return true;
-  auto contents = [](const Scene& scene) {
-    std::vector<std::string> texts;
-    for (const CalibrationFile& file : calibrationFiles(scene.cameras, scene.rigs, ""))
-      texts.push_back(file.name + '\n' + file.text);
-    return texts;
-  };
-  const std::vector<std::string> first = contents(scenes.front());
+  const std::vector<std::string> first = calibrationSignature(scenes.front());
   for (std::size_t i = 1; i < scenes.size(); ++i)
-    if (contents(scenes[i]) != first) return false;
+    if (calibrationSignature(scenes[i]) != first) return false;
   return true;
 }
 

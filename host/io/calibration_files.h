@@ -49,6 +49,9 @@ std::vector<CalibrationFile> calibrationFiles(const PreparedScene& scene, const 
 // True when all scenes (frames) give the same calibration files: same cameras, rigs, image sizes,
 // intrinsics, distortion and poses, compared exactly. Then a run writes them once, unnumbered.
 bool sameCalibration(const std::vector<Scene>& scenes);
+// The calibration files' names and texts of one scene: equal for two scenes exactly when their
+// calibrations are (what sameCalibration compares, for callers that hold one scene at a time).
+std::vector<std::string> calibrationSignature(const Scene& scene);
 
 // Writes the files into `dir` (which must exist) and returns their paths. All of them are written
 // to temporary files first and renamed only once all are complete; should a rename fail, the files

@@ -19,6 +19,8 @@ GrayImage readGrayImage(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a folder, not an image");
+  // Devices and pipes are refused: reading /dev/zero as an image never ends.
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": not a regular file");
   if (looksLikeTiff(path))
     if (std::optional<GrayImage> image = readCommonTiff(path)) return std::move(*image);
   return readGrayImageWithOiio(path);

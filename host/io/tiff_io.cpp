@@ -1,5 +1,7 @@
 #include "io/tiff_io.h"
 
+#include "io/image_limits.h"
+
 #include <tiffio.h>
 
 #include <algorithm>
@@ -86,6 +88,7 @@ std::optional<GrayImage> readCommonTiff(const std::string& path) {
   if (TIFFIsTiled(t) || !(uintKind || floatKind) || !(gray || rgb) || (samples > 1 && planar != PLANARCONFIG_CONTIG))
     return std::nullopt;  // OpenImageIO reads it
   if (width == 0 || height == 0) throw InputError(path + ": the image is empty");
+  if (const auto problem = imageSizeProblem(width, height, 0)) throw InputError(path + ": " + *problem);
 
   // Channels used as readGrayImage says: 1 → itself, 2 → the first, 3 or 4 → Rec. 709 luminance.
   const std::size_t w = width, n = std::size_t(width) * std::size_t(height);

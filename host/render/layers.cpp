@@ -70,26 +70,32 @@ std::string LayerSet::text() const {
   return out;
 }
 
-void checkLayersProducible(const LayerSet& layers, const std::vector<Scene>& scenes, const std::string& option) {
-  if (layers.isAll()) return;
-  bool rig = false, sensor = false, defects = false, deformed = false;
-  for (const Scene& scene : scenes) {
-    rig = rig || !scene.rigs.empty();
-    for (const Object& object : scene.objects) deformed = deformed || object.shape.deformation != nullptr;
-    for (const Camera& camera : scene.cameras) {
-      sensor = sensor || !camera.sensor.empty();
-      defects = defects || camera.sensor.defects.has_value();
-    }
+void LayerSources::add(const Scene& scene) {
+  rig = rig || !scene.rigs.empty();
+  for (const Object& object : scene.objects) deformed = deformed || object.shape.deformation != nullptr;
+  for (const Camera& camera : scene.cameras) {
+    sensor = sensor || !camera.sensor.empty();
+    defects = defects || camera.sensor.defects.has_value();
   }
+}
+
+void checkLayersProducible(const LayerSet& layers, const LayerSources& sources, const std::string& option) {
+  if (layers.isAll()) return;
   auto refuse = [&](Layer layer, const std::string& why) {
     throw InputError(option + ": layer '" + layerName(layer) + "' cannot be produced: " + why);
   };
-  if (layers.has(Layer::Disparity) && !rig) refuse(Layer::Disparity, "no camera of the scene belongs to a stereo rig (Rig.Stereo)");
-  if (layers.has(Layer::Noise) && !sensor) refuse(Layer::Noise, "no camera of the scene has a sensor model (a camera's sensor = Sensor.Emva { ... } or postProcessing)");
-  if (layers.has(Layer::Defects) && !defects)
+  if (layers.has(Layer::Disparity) && !sources.rig) refuse(Layer::Disparity, "no camera of the scene belongs to a stereo rig (Rig.Stereo)");
+  if (layers.has(Layer::Noise) && !sources.sensor) refuse(Layer::Noise, "no camera of the scene has a sensor model (a camera's sensor = Sensor.Emva { ... } or postProcessing)");
+  if (layers.has(Layer::Defects) && !sources.defects)
     refuse(Layer::Defects, "no camera of the scene has defective pixels (DefectivePixels { ... } in a camera's postProcessing)");
-  if (layers.has(Layer::FieldError) && !deformed)
+  if (layers.has(Layer::FieldError) && !sources.deformed)
     refuse(Layer::FieldError, "no object of the scene has a Nurbs.deform surface in any frame rendered");
+}
+
+void checkLayersProducible(const LayerSet& layers, const std::vector<Scene>& scenes, const std::string& option) {
+  LayerSources sources;
+  for (const Scene& scene : scenes) sources.add(scene);
+  checkLayersProducible(layers, sources, option);
 }
 
 }  // namespace dicsynth

@@ -64,6 +64,13 @@ class LayerSet {
 
 const char* layerName(Layer layer);
 
+// What of the scenes of a run decides which layers it can produce, gathered frame by frame.
+struct LayerSources {
+  bool rig = false, sensor = false, defects = false, deformed = false;
+  void add(const Scene& scene);
+};
+void checkLayersProducible(const LayerSet& layers, const LayerSources& sources, const std::string& option = "--layers");
+
 // Throws InputError when `layers` names a layer that no camera of any of `scenes` can produce
 // (disparity without a stereo rig, noise without a sensor model, defects without DefectivePixels,
 // fieldError without a Nurbs.deform surface).

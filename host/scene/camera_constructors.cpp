@@ -146,7 +146,8 @@ readCommonCamera below); the models are defined in host/camera/pinhole.h.
   principalPoint | {cx, cy}, px           | {(w-1)/2, (h-1)/2} | where the optical axis meets the
                  |                        |                    | image (default: geometric centre)
   focalLength    | number, m              | required           | > 0
-  pixelSize      | {sx, sy}, m            | required           | pixel pitch, each > 0
+  pixelSize      | {sx, sy}, m            | required           | pixel pitch, each > 0, sx / sy
+                 |                        |                    | in 1e-3..1e3
   fillFactor     | number                 | 1                  | sensitive fraction of a pixel's
                  |                        |                    | area, in (0, 1]
   bitsPerPixel   | integer                | 8                  | 1..16
@@ -205,6 +206,11 @@ Camera readCommonCamera(lua_State* L, const Params& p, CameraKind kind) {
   if (!pixelSize) p.fail("missing required 'pixelSize' = {sx, sy} (metres)");
   for (double s : {pixelSize->x, pixelSize->y})
     p.require(s > 0, "pixelSize", "> 0 (metres) in x and y", s);
+  // No sensor has pixels a thousand times longer than wide; OpenEXR refuses aspects beyond 1e6.
+  const double aspect = pixelSize->x / pixelSize->y;
+  if (!(aspect >= 1e-3 && aspect <= 1e3))
+    p.fail("'pixelSize' = {" + formatNumber(pixelSize->x) + ", " + formatNumber(pixelSize->y) +
+           "}: the pixel aspect sx / sy = " + formatNumber(aspect) + " must be in 1e-3..1e3");
   camera.pixelSize_m = *pixelSize;
   camera.fillFactor = p.number("fillFactor", 1.0);
   p.require(camera.fillFactor > 0 && camera.fillFactor <= 1, "fillFactor", "in (0, 1]",

@@ -153,7 +153,9 @@ class LuaFunctionField {
   }
 
   static std::string at(const dvec3& x) {
-    return "(" + formatNumber(x.x) + ", " + formatNumber(x.y) + ", " + formatNumber(x.z) + ")";
+    std::string text = "(";  // appended, not "(" + ...: GCC 12 warns falsely (-Wrestrict) on that
+    text += formatNumber(x.x) + ", " + formatNumber(x.y) + ", " + formatNumber(x.z) + ")";
+    return text;
   }
 
   std::weak_ptr<LuaSandbox> sandbox_;

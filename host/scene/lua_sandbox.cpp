@@ -5,6 +5,8 @@
 #include "core/exact_number.h"
 
 #include <charconv>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -128,11 +130,67 @@ void LuaSandbox::countHook(lua_State* L, lua_Debug*) {
   if constexpr (!kCanReadLineWhileAllocating) sandbox.lastHookLine_ = currentLine(L);
   if (sandbox.instructions_ > sandbox.limits_.maxInstructions)
     sandbox.recordLimit(Limit::Instructions, currentLine(L));
+  if (sandbox.limits_.maxSeconds > 0 && sandbox.elapsedSeconds() > sandbox.limits_.maxSeconds)
+    sandbox.recordLimit(Limit::Time, currentLine(L));
   if (sandbox.exceeded_ == Limit::None) return;
   lua_sethook(L, &LuaSandbox::countHook, LUA_MASKCOUNT, 1);
   // run() replaces this message by the limit's own, with the line recorded first.
   lua_pushfstring(L, "%s:%d: scene exceeded a limit", kChunkToken, currentLine(L));
   lua_error(L);
+}
+
+void LuaSandbox::startClock() {
+  startNanoseconds_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                          std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double LuaSandbox::elapsedSeconds() const {
+  const std::int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                               std::chrono::steady_clock::now().time_since_epoch()).count();
+  return 1e-9 * double(now - startNanoseconds_);
+}
+
+// string.find / match / gmatch / gsub with the pattern-work bound of the header comment; the
+// original function is upvalue 1. Plain Lua values only: a Lua error may longjmp from here.
+int LuaSandbox::boundedPattern(lua_State* L) {
+  const bool plainFind = lua_toboolean(L, lua_upvalueindex(2)) && lua_toboolean(L, 4);
+  if (!plainFind && lua_type(L, 1) == LUA_TSTRING && lua_type(L, 2) == LUA_TSTRING) {
+    std::size_t n = 0, m = 0;
+    lua_tolstring(L, 1, &n);
+    const char* pattern = lua_tolstring(L, 2, &m);
+    int quantifiers = 0;
+    bool inSet = false;
+    for (std::size_t i = 0; i < m; ++i) {
+      const char c = pattern[i];
+      if (c == '%') {
+        ++i;  // an escaped character, or a class (%a, %b xy: its two delimiters are literal)
+        if (i < m && pattern[i] == 'b') i += 2;
+        continue;
+      }
+      if (inSet) {
+        if (c == ']') inSet = false;
+        continue;
+      }
+      if (c == '[') {
+        inSet = true;
+        if (i + 1 < m && pattern[i + 1] == '^') ++i;
+        if (i + 1 < m && pattern[i + 1] == ']') ++i;  // a leading ] is literal
+        continue;
+      }
+      if (c == '*' || c == '+' || c == '-' || c == '?') ++quantifiers;
+    }
+    const bool anchored = m > 0 && pattern[0] == '^';
+    const double work = std::pow(double(n) + 1, quantifiers + (anchored ? 0 : 1));
+    if (work > kMaxPatternWork)
+      return luaL_error(L, "%s: a pattern with %d quantifiers on a subject of %d characters may take ~%f steps, over the "
+                           "limit of %f (split the subject, anchor the pattern with ^, or use fewer * + - ?)",
+                        lua_tostring(L, lua_upvalueindex(3)), quantifiers, int(n), lua_Number(work),
+                        lua_Number(kMaxPatternWork));
+  }
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+  return lua_gettop(L);
 }
 
 // Message handler of the scene's pcall: makes sure the message is a string with a position.
@@ -212,6 +270,15 @@ void LuaSandbox::openLibraries() {
   lua_getglobal(L, LUA_STRLIBNAME);
   lua_pushnil(L);
   lua_setfield(L, -2, "dump");
+  // Pattern functions with a work bound (header comment). Strings' methods (s:find) use this same
+  // table through the string metatable's __index.
+  for (const char* name : {"find", "match", "gmatch", "gsub"}) {
+    lua_getfield(L, -1, name);
+    lua_pushboolean(L, std::strcmp(name, "find") == 0);  // find's 4th argument: plain
+    lua_pushfstring(L, "string.%s", name);
+    lua_pushcclosure(L, &LuaSandbox::boundedPattern, 3);
+    lua_setfield(L, -2, name);
+  }
   lua_pop(L, 1);
 
   lua_pushcfunction(L, &LuaSandbox::print);
@@ -265,6 +332,7 @@ void LuaSandbox::run(const std::string& sourceText) {
 
   instructions_ = 0;
   exceeded_ = Limit::None;
+  startClock();
   lua_sethook(L, &LuaSandbox::countHook, LUA_MASKCOUNT, kHookInterval);
   enforceMemory_ = true;
   status = lua_pcall(L, 0, 0, 1);
@@ -278,6 +346,9 @@ void LuaSandbox::run(const std::string& sourceText) {
   if (exceeded_ == Limit::Instructions)
     throw InputError(at + "scene exceeded the instruction limit (" +
                      std::to_string(limits_.maxInstructions) + " instructions)");
+  if (exceeded_ == Limit::Time)
+    throw InputError(at + "scene exceeded the time limit (" + formatNumber(limits_.maxSeconds) +
+                     " s of evaluation; DICSYNTH_SCENE_SECONDS sets another)");
   if (exceeded_ == Limit::Memory)
     throw InputError(at + "scene exceeded the memory limit (" +
                      formatNumber(static_cast<double>(limits_.maxMemoryBytes) / (1 << 20)) +
@@ -295,6 +366,7 @@ void LuaSandbox::callAfterRun(const std::function<void()>& body) {
     explicit Limits(LuaSandbox& sandbox) : s(sandbox) {
       s.instructions_ = 0;
       s.exceeded_ = Limit::None;
+      s.startClock();
       lua_sethook(s.L_, &LuaSandbox::countHook, LUA_MASKCOUNT, kHookInterval);
       s.enforceMemory_ = true;
     }
@@ -323,6 +395,9 @@ void LuaSandbox::call(int nargs, int nresults) {
   if (exceeded_ == Limit::Instructions)
     throw InputError(at + "exceeded the instruction limit (" + std::to_string(limits_.maxInstructions) +
                      " instructions) in one batch of calls after the scene ran");
+  if (exceeded_ == Limit::Time)
+    throw InputError(at + "exceeded the time limit (" + formatNumber(limits_.maxSeconds) +
+                     " s) in one batch of calls after the scene ran");
   if (exceeded_ == Limit::Memory)
     throw InputError(at + "exceeded the memory limit (" +
                      formatNumber(static_cast<double>(limits_.maxMemoryBytes) / (1 << 20)) + " MiB)");

@@ -15,11 +15,17 @@
 //    "scene exceeded the instruction limit (N instructions)" once the total passes the limit;
 //  - memory: the allocator refuses growth beyond the limit; Lua then raises a memory error (its
 //    message handler is not called for those, so the allocator records the line itself; exact up
-//    to Lua 5.4.4, approximate on later versions, see allocate()).
+//    to Lua 5.4.4, approximate on later versions, see allocate());
+//  - time: the count hook also compares the wall-clock time since the run started with the limit,
+//    which bounds loops of calls that are one instruction each but long (string.rep, string.format,
+//    table.concat; each is also bounded by the memory limit, which caps its result);
+//  - pattern work: string.find, match, gmatch and gsub are wrapped: a pattern with q quantifiers
+//    (* + - ?) can take ~n^(q+1) steps on a subject of n characters (n^q when anchored with ^),
+//    inside one C call that no hook interrupts, so a call whose bound exceeds kMaxPatternWork is
+//    refused with an error at its line. A plain find (4th argument true) is linear and never
+//    refused.
 // Both are sticky: once exceeded, the hook raises at every instruction, so a scene's pcall cannot
 // swallow the error and carry on, and the load fails even if the scene caught the error.
-// Known gap: C library functions that run long without allocating (a pathological string.find
-// pattern) are not interrupted: hooks only run between VM instructions.
 //
 // Error safety: Lua errors are longjmps, which must not cross C++ frames holding objects with
 // destructors. C functions written in C++ therefore go through protectedCall() (lua_values.h):
@@ -44,6 +50,7 @@ namespace dicsynth::scene {
 struct SandboxLimits {
   std::uint64_t maxInstructions = 0;
   std::size_t maxMemoryBytes = 0;
+  double maxSeconds = 0;  // wall-clock time of one run (or one callAfterRun); 0: none
 };
 
 // The chunk name under which the scene runs. Lua's own messages then read "<scene>:12: ...";
@@ -51,6 +58,7 @@ struct SandboxLimits {
 inline constexpr const char* kChunkToken = "<scene>";
 inline constexpr int kHookInterval = 1000;  // VM instructions between two count-hook calls
 inline constexpr std::int64_t kRandomSeed = 20240101;
+inline constexpr double kMaxPatternWork = 1e9;  // steps (see the header comment): ~1 s at most
 
 // Shortest text that reads back as the same double ("0.1", "-3", "inf", "nan"), for messages.
 std::string formatNumber(double value);
@@ -102,13 +110,16 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   };
 
  private:
-  enum class Limit { None, Instructions, Memory };
+  enum class Limit { None, Instructions, Memory, Time };
 
   static void* allocate(void* ud, void* ptr, std::size_t oldSize, std::size_t newSize);
   static void countHook(lua_State* L, lua_Debug* ar);
   static int messageHandler(lua_State* L);
   static int print(lua_State* L);
   static int setmetatableNoGc(lua_State* L);
+  static int boundedPattern(lua_State* L);
+  void startClock();
+  double elapsedSeconds() const;
 
   void openLibraries();
   void recordLimit(Limit which, int line);
@@ -125,6 +136,7 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   bool enforceMemory_ = false;  // only while the scene runs
   bool unlimited_ = false;      // UnlimitedScope
   std::uint64_t instructions_ = 0;
+  std::int64_t startNanoseconds_ = 0;  // steady clock at the start of the run
   std::mutex afterRun_;  // callAfterRun
   Limit exceeded_ = Limit::None;  // first limit the scene ran into
   int exceededLine_ = 0;

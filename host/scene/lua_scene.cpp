@@ -13,6 +13,8 @@
 // Lua reads the whole text as one, true/false as booleans, otherwise a string.
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <set>
@@ -49,6 +51,13 @@ std::string readSceneFile(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError(path + ": cannot read the scene file: it is a folder");
+  // Devices and pipes are refused (reading /dev/zero never ends), and so are files beyond
+  // kMaxSceneFileBytes: a scene is a program; data belongs in the files it names.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path + ": cannot read the scene file: not a regular file");
+  if (const auto size = std::filesystem::file_size(path, ec); !ec && size > kMaxSceneFileBytes)
+    throw InputError(path + ": cannot read the scene file: " + std::to_string(size) + " bytes, over the limit of " +
+                     std::to_string(kMaxSceneFileBytes) + " (16 MiB)");
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr)
     throw InputError(path + ": cannot read the scene file: " + std::strerror(errno));
@@ -256,11 +265,31 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
       throw InputError(scene.cameras[i].where,
                        "two cameras are named '" + scene.cameras[i].name +
                            "' (a rig names its cameras <rig>.left and <rig>.right): rename the global");
+  // Camera names become file names (<camera>_<frame>.exr plus a temporary suffix while written):
+  // kMaxCameraNameBytes leaves room under the file systems' 255 bytes.
+  for (const Camera& camera : scene.cameras)
+    if (camera.name.size() > kMaxCameraNameBytes)
+      throw InputError(camera.where, "the camera name '" + camera.name.substr(0, 40) + "...' is " +
+                                         std::to_string(camera.name.size()) + " bytes long; names become file names: at most " +
+                                         std::to_string(kMaxCameraNameBytes));
   return scene;
 }
 
 }  // namespace
 }  // namespace scene
+
+// The time limit of an evaluation: SceneParams::maxSeconds, else $DICSYNTH_SCENE_SECONDS, else 60 s.
+static double sceneSeconds(const SceneParams& params) {
+  if (params.maxSeconds > 0) return params.maxSeconds;
+  if (const char* text = std::getenv("DICSYNTH_SCENE_SECONDS")) {
+    char* end = nullptr;
+    const double seconds = std::strtod(text, &end);
+    if (end == text || *end != '\0' || !(seconds > 0) || !std::isfinite(seconds))
+      throw InputError(std::string("DICSYNTH_SCENE_SECONDS=") + text + ": expected a number of seconds > 0");
+    return seconds;
+  }
+  return 60;
+}
 
 Scene loadScene(const std::string& path, const SceneParams& params) {
   return scene::loadSceneInspecting(path, params, nullptr);
@@ -270,7 +299,8 @@ Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& par
                                  const std::function<void(lua_State*)>& inspect) {
   const std::string source = scene::readSceneFile(path);
   // Shared: a Nurbs.deform field keeps a weak_ptr to call it again, the Scene the owning pointer.
-  const auto sandbox = std::make_shared<scene::LuaSandbox>(path, scene::SandboxLimits{params.maxInstructions, params.maxMemoryBytes});
+  const auto sandbox = std::make_shared<scene::LuaSandbox>(
+      path, scene::SandboxLimits{params.maxInstructions, params.maxMemoryBytes, sceneSeconds(params)});
   lua_State* L = sandbox->state();
   scene::registerSceneLanguage(L);
   lua_pushinteger(L, params.frame);

@@ -75,6 +75,8 @@ int textureFile(lua_State* L) {
   std::error_code ec;
   if (std::filesystem::is_directory(resolved, ec))
     p.fail("cannot read " + name + ": it is a folder");
+  if (std::filesystem::exists(resolved, ec) && !std::filesystem::is_regular_file(resolved, ec))
+    p.fail("cannot read " + name + ": not a regular file");
   std::FILE* file = std::fopen(texture.path.c_str(), "rb");
   if (file == nullptr) p.fail("cannot read " + name + ": " + std::strerror(errno));
   std::fclose(file);

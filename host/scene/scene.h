@@ -185,7 +185,17 @@ struct SceneParams {
   // Memory: bytes of the Lua heap. A scene value is under 1 KiB, so 256 MiB holds well over
   // 100 000 objects; far beyond what the renderers take, far below the machine's memory.
   std::size_t maxMemoryBytes = std::size_t{256} << 20;
+  // Wall-clock time of the evaluation (seconds). Real scenes take milliseconds, Nurbs.deform fits
+  // up to a few seconds (bench/RESULTS.md); a minute stops a runaway scene whose loop of long
+  // calls the instruction limit cannot see. 0: the environment's DICSYNTH_SCENE_SECONDS, else 60.
+  double maxSeconds = 0;
 };
+
+// The longest camera name (with a rig's ".left"/".right"): names become output file names.
+inline constexpr std::size_t kMaxCameraNameBytes = 128;
+
+// The largest scene file loadScene reads (README, "Limits").
+inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t(16) << 20;
 
 // Loads and validates a scene. Throws InputError("file:line: message") on any error.
 Scene loadScene(const std::string& path, const SceneParams& params);

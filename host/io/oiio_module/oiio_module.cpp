@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "core/math.h"
+#include "io/image_limits.h"
 
 namespace {
 
@@ -49,6 +50,10 @@ bool readGray(const std::string& path, GrayImage& image, std::string& error) {
   }
   // Channels used: 1 → itself, 2 → the first (gray + alpha), ≥ 3 → the first three as RGB.
   const int nchannels = spec.nchannels >= 3 ? 3 : 1;
+  if (const auto problem = dicsynth::imageSizeProblem(std::uint64_t(spec.width), std::uint64_t(spec.height), nchannels)) {
+    error = *problem;
+    return false;
+  }
   const std::size_t npixels = std::size_t(spec.width) * std::size_t(spec.height);
   std::vector<double> values(npixels * std::size_t(nchannels));
   const bool perChannelFormats = !spec.channelformats.empty();

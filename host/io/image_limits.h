@@ -1,0 +1,52 @@
+#pragma once
+// The size an input image may declare (Texture.File), checked from its header before any pixel
+// buffer exists: a few hundred bytes of a compressed or header-only file can claim 20000 × 20000
+// pixels (a "decompression bomb"). Header-only: used by the libtiff reader and by the OpenImageIO
+// module (io/oiio_module/), which do not link the same libraries.
+//
+// Limits (README, "Limits"):
+//  - at most kMaxImagePixels pixels (16384 × 16384): a texture samples a speckle a few texels per
+//    image pixel, and 16k² already covers a 1600 × 1200 image at ten texels per pixel;
+//  - the reading's peak memory, 8 bytes per pixel for the gray image (doubles) plus the reader's
+//    buffer (8 bytes per channel per pixel), within the memory the system says is available.
+#include <cstdint>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+
+namespace dicsynth {
+
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(16384) * 16384;
+
+// Bytes the system can still give (MemAvailable of /proc/meminfo), or nullopt where unknown.
+inline std::optional<std::uint64_t> availableMemoryBytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  std::uint64_t kib = 0;
+  std::string unit;
+  while (in >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024;
+  return std::nullopt;
+}
+
+// Why a width × height image with `channels` channels (those the reader keeps) cannot be read, or
+// nullopt when it can.
+inline std::optional<std::string> imageSizeProblem(std::uint64_t width, std::uint64_t height, int channels) {
+  const std::uint64_t pixels = width * height;  // both < 2^32: no overflow
+  if (pixels > kMaxImagePixels)
+    return "the image declares " + std::to_string(width) + " x " + std::to_string(height) + " = " +
+           std::to_string(pixels) + " pixels, over the limit of " + std::to_string(kMaxImagePixels) +
+           " (16384 x 16384)";
+  const std::uint64_t bytes = pixels * 8 * (1 + std::uint64_t(channels));
+  if (const auto available = availableMemoryBytes(); available && bytes > *available) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "reading the " << width << " x " << height << " image needs about " << double(bytes) / (1 << 30)
+      << " GiB, more than the " << double(*available) / (1 << 30) << " GiB of memory available";
+    return s.str();
+  }
+  return std::nullopt;
+}
+
+}  // namespace dicsynth

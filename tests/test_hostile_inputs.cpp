@@ -1,0 +1,253 @@
+// Careless and hostile inputs (README, "Limits" and the exit-code table): every reproduction of the
+// reliability probe is refused early with exit 2 and a message naming the file, the line or the
+// option, and a run that fails leaves the output folder as it found it. The inputs are made here:
+// textures written with OpenImageIO and libtiff, a PNG header assembled byte by byte.
+#include <doctest/doctest.h>
+#include <OpenImageIO/imageio.h>
+#include <signal.h>
+#include <tiffio.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "run_cli.h"
+
+using namespace dicsynth;
+
+namespace {
+
+const std::string kCamera =
+    "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n";
+
+// A plate filling the view with the given texture expression.
+std::string plateWith(const std::string& texture) {
+  return kCamera + "plate = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} };\n"
+                   "  texture = " + texture + " }\n";
+}
+
+// A 64 × 64 float EXR of 0.5 with `value` at texel (10, 10).
+void writeFloatTexture(const std::string& path, float value) {
+  std::vector<float> texels(64 * 64, 0.5f);
+  texels[10 * 64 + 10] = value;
+  auto out = OIIO::ImageOutput::create(path);
+  REQUIRE(out);
+  REQUIRE(out->open(path, OIIO::ImageSpec(64, 64, 1, OIIO::TypeDesc::FLOAT)));
+  REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, texels.data()));
+  REQUIRE(out->close());
+}
+
+void writeBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// A PNG whose IHDR declares width × height (8-bit gray), with an empty IDAT and IEND: a header
+// with nothing behind it, as a hostile file would be.
+std::string pngHeader(std::uint32_t width, std::uint32_t height) {
+  auto be32 = [](std::uint32_t v) {
+    return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+  };
+  auto chunk = [&](const std::string& type, const std::string& data) {
+    const std::string body = type + data;
+    const auto crc = std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size())));
+    return be32(std::uint32_t(data.size())) + body + be32(crc);
+  };
+  const std::string ihdr = be32(width) + be32(height) + std::string{8, 0, 0, 0, 0};
+  // A valid deflate stream of nothing: libpng's header reading stops at the first IDAT.
+  unsigned char empty[16];
+  uLongf size = sizeof empty;
+  compress(empty, &size, reinterpret_cast<const Bytef*>(""), 0);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) +
+         chunk("IDAT", std::string(reinterpret_cast<char*>(empty), size)) + chunk("IEND", "");
+}
+
+}  // namespace
+
+TEST_CASE("hostile: non-finite and negative texels are refused with the scene line and the texel, on both backends") {
+  test::TempFolder dir;
+  struct Case {
+    float value;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {{std::numeric_limits<float>::quiet_NaN(), "non-finite texel at (10, 10)"},
+                                   {std::numeric_limits<float>::infinity(), "non-finite texel at (10, 10)"},
+                                   {-0.25f, "negative texel -0.25 at (10, 10)"}};
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string texture = dir.file("t" + std::to_string(k) + ".exr");
+    writeFloatTexture(texture, cases[k].value);
+    const std::string scene = dir.write("s" + std::to_string(k) + ".lua", plateWith("Texture.File { fileName = '" + texture + "' }"));
+    for (const char* backend : {"cpu", "gpu"}) {
+      const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") + " --backend " + backend);
+      INFO(backend << ": " << r.err);
+      CHECK(r.exitCode == 2);
+      CHECK(r.err.find(scene + ":3: Texture.File: " + texture + ": " + cases[k].expected) != std::string::npos);
+      CHECK(!std::filesystem::exists(dir.file("out")));
+    }
+  }
+}
+
+TEST_CASE("hostile: images declaring more pixels than the limit are refused before any pixel buffer exists") {
+  test::TempFolder dir;
+  // A zip TIFF of 20000 × 20000 zeros in one strip: 400 MB of pixels in ~400 KB of file (the
+  // deflate stream is made here in 1 MB pieces, never the image itself).
+  const std::string tiff = dir.file("bomb.tif");
+  {
+    std::string compressed;
+    z_stream z{};
+    REQUIRE(deflateInit(&z, 9) == Z_OK);
+    const std::vector<unsigned char> zeros(1 << 20, 0);
+    std::vector<unsigned char> piece(1 << 16);
+    const std::size_t total = std::size_t(20000) * 20000;
+    for (std::size_t done = 0; done < total;) {
+      const std::size_t n = std::min(zeros.size(), total - done);
+      done += n;
+      z.next_in = const_cast<unsigned char*>(zeros.data());
+      z.avail_in = uInt(n);
+      const int flush = done == total ? Z_FINISH : Z_NO_FLUSH;
+      do {
+        z.next_out = piece.data();
+        z.avail_out = uInt(piece.size());
+        deflate(&z, flush);
+        compressed.append(reinterpret_cast<char*>(piece.data()), piece.size() - z.avail_out);
+      } while (z.avail_out == 0);
+    }
+    deflateEnd(&z);
+    TIFF* t = TIFFOpen(tiff.c_str(), "w");
+    REQUIRE(t);
+    TIFFSetField(t, TIFFTAG_IMAGEWIDTH, 20000u);
+    TIFFSetField(t, TIFFTAG_IMAGELENGTH, 20000u);
+    TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 8);
+    TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, 1);
+    TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+    TIFFSetField(t, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
+    TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, 20000u);
+    REQUIRE(TIFFWriteRawStrip(t, 0, compressed.data(), tmsize_t(compressed.size())) == tmsize_t(compressed.size()));
+    TIFFClose(t);
+  }
+  CHECK(std::filesystem::file_size(tiff) < 1000000);
+  const std::string png = dir.file("bomb.png");
+  writeBytes(png, pngHeader(65535, 65535));
+  for (const std::string& file : {tiff, png}) {
+    const std::string scene = dir.write("s.lua", plateWith("Texture.File { fileName = '" + file + "' }"));
+    const auto start = std::chrono::steady_clock::now();
+    const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") + " --backend cpu");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    INFO(r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.find(scene + ":3: Texture.File: " + file + ": the image declares ") != std::string::npos);
+    CHECK(r.err.find("pixels, over the limit of 268435456 (16384 x 16384)") != std::string::npos);
+    CHECK(seconds < 20);  // refused from the header, not after reading (a generous bound on a loaded machine)
+  }
+}
+
+TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme pixels and unwritable outputs fail before any work") {
+  test::TempFolder dir;
+  const std::string scene = dir.write("s.lua", plateWith("Texture.Constant { value = 0.5 }"));
+  const std::string out = dir.file("out");
+  struct Case {
+    std::string arguments, expected;
+  };
+  const std::string big = dir.file("big.lua");
+  writeBytes(big, std::string((16u << 20) + 1, ' '));
+  const std::string longName = dir.write("long.lua", std::string(200, 'c') + " = Camera.Pinhole { resolution = {16, 12}; "
+                                                                          "focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n");
+  const std::string aspect = dir.write("aspect.lua", "cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0.012; "
+                                                     "pixelSize = {2e-4, 2e3} }\n");
+  const std::string huge = dir.write("huge.lua", "cam = Camera.Pinhole { resolution = {65535, 65535}; focalLength = 0.012; "
+                                                 "pixelSize = {2e-6, 2e-6} }\n");
+  const std::string device = dir.write("device.lua", plateWith("Texture.File { fileName = '/dev/zero' }"));
+  const std::vector<Case> cases = {
+      {"render " + scene + " -o " + out + " --frames 0:2147483647", "--frames 0:2147483647: frame numbers go up to 999999999"},
+      {"render " + scene + " -o " + out + " --frames 0:1000000", "1000001 frames, over the limit of 1000000 per run"},
+      {"render /dev/zero -o " + out, "/dev/zero: cannot read the scene file: not a regular file"},
+      {"render " + big + " -o " + out, "big.lua: cannot read the scene file: 16777217 bytes, over the limit of 16777216"},
+      {"render " + device + " -o " + out, "device.lua:3: Texture.File: cannot read '/dev/zero': not a regular file"},
+      {"render " + longName + " -o " + out, "long.lua:1: the camera name 'cccc"},
+      {"render " + aspect + " -o " + out, "aspect.lua:1: Camera.Pinhole: 'pixelSize' = {2e-04, 2000}: the pixel aspect sx / sy = "},
+      {"render " + huge + " -o " + out, "huge.lua: a frame of 4294836225 pixels (all cameras) needs about"},
+      {"render " + scene + " -o /proc/dicsynth-test", "-o /proc/dicsynth-test: /proc is not writable"},
+      {"render " + scene + " -o " + scene + "/sub", "is not a folder"},
+  };
+  for (const Case& c : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const test::CliResult r = test::runCli(c.arguments);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    INFO(c.arguments << "\nstderr: " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.find(c.expected) != std::string::npos);
+    CHECK(!std::filesystem::exists(out));
+    CHECK(seconds < 20);  // before any rendering (generous on a loaded 2-core machine)
+  }
+}
+
+TEST_CASE("hostile: scene evaluation is bounded in time, and pattern matching by its work") {
+  test::TempFolder dir;
+  const std::string slow = dir.write("slow.lua", kCamera + "for i = 1, 1e9 do local s = string.rep('x', 1e6) end\n");
+  setenv("DICSYNTH_SCENE_SECONDS", "1", 1);
+  const auto start = std::chrono::steady_clock::now();
+  const test::CliResult r = test::runCli("render " + slow + " -o " + dir.file("out"));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  unsetenv("DICSYNTH_SCENE_SECONDS");
+  INFO(r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("slow.lua:2: scene exceeded the time limit (1 s of evaluation; DICSYNTH_SCENE_SECONDS sets another)") !=
+        std::string::npos);
+  CHECK(seconds < 15);
+  setenv("DICSYNTH_SCENE_SECONDS", "zero", 1);
+  CHECK(test::runCli("render " + slow + " -o " + dir.file("out")).err.find("DICSYNTH_SCENE_SECONDS=zero: expected") != std::string::npos);
+  unsetenv("DICSYNTH_SCENE_SECONDS");
+
+  const std::string pattern = dir.write("pattern.lua", kCamera +
+                                                           "local s = string.rep('a', 100000)\n"
+                                                           "assert(s:find('aaa', 1, true) == 1)\n"  // plain: linear, allowed
+                                                           "assert(('x.lua'):match('^(.*)%.lua$') == 'x')\n"
+                                                           "local r = s:find('.-.-.-b')\n");
+  const test::CliResult p = test::runCli("render " + pattern + " -o " + dir.file("out"));
+  INFO(p.err);
+  CHECK(p.exitCode == 2);
+  CHECK(p.err.find("pattern.lua:5: string.find: a pattern with 3 quantifiers on a subject of 100000 characters") != std::string::npos);
+  const std::string gsub = dir.write("gsub.lua", kCamera + "local s = string.rep('ab', 50000)\nlocal t = s:gsub('(a*)*b', 'x')\n");
+  CHECK(test::runCli("render " + gsub + " -o " + dir.file("out")).err.find("gsub.lua:3: string.gsub: a pattern with 2 quantifiers") !=
+        std::string::npos);
+}
+
+TEST_CASE("hostile: a run that fails leaves the folder as it found it, and stale temporaries of dead runs are removed") {
+  test::TempFolder dir;
+  const std::string nan = dir.file("nan.exr");
+  writeFloatTexture(nan, std::numeric_limits<float>::quiet_NaN());
+  // Frame 0 renders and is written; frame 1's texture is refused when frame 1 is prepared.
+  const std::string scene = dir.write(
+      "late.lua", plateWith("frame == 0 and Texture.Constant { value = 0.5 } or Texture.File { fileName = '" + nan + "' }"));
+  const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("fresh") + " --frames 0:1 --backend cpu");
+  INFO(r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("non-finite texel") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("fresh")));  // created by the run: gone with it
+
+  // A folder that existed keeps what it held; the run's new files go; a dead run's temporary goes,
+  // a live process's stays.
+  const std::string kept = dir.file("kept");
+  std::filesystem::create_directories(kept);
+  dir.write("kept/notes.txt", "mine");
+  pid_t dead = 4000000;
+  while (::kill(dead, 0) == 0 || errno != ESRCH) ++dead;
+  const std::string stale = ".cam_0000.exr.tmp" + std::to_string(dead) + "_3.exr";
+  const std::string live = ".cam_0000.exr.tmp" + std::to_string(::getpid()) + "_3.exr";
+  dir.write("kept/" + stale, "half");
+  dir.write("kept/" + live, "busy");
+  const test::CliResult k = test::runCli("render " + scene + " -o " + kept + " --frames 0:1 --backend cpu");
+  CHECK(k.exitCode == 2);
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(kept)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{live, "notes.txt"});
+}

@@ -1,12 +1,14 @@
 #include "cli/render_args.h"
 
 #include <cctype>
+#include <cmath>
 #include <unistd.h>
 
 #include <cstdio>
 #include <memory>
 
 #include "core/error.h"
+#include "core/exact_number.h"
 #include "io/outputs.h"
 #include "render/precision_calibration.h"
 
@@ -99,6 +101,9 @@ std::vector<int> parseFrames(const std::string& text) {
 RenderOptions renderOptions(const RenderArgs& args, int frame) {
   if (args.spp < 1 || args.spp > 65536) throw InputError("--spp " + std::to_string(args.spp) + ": must be in 1..65536");
   if (args.downscale < 1) throw InputError("--downscale must be >= 1");
+  // Checked with the other options, before work: the precision calibration it steers takes seconds.
+  if (!(args.maxErrorPx > 0) || !std::isfinite(args.maxErrorPx))
+    throw InputError("--max-error-px " + shortestNumber(args.maxErrorPx) + ": must be a finite number > 0 (px)");
   RenderOptions o;
   o.samplesPerPixel = args.spp;
   o.seed = args.seed;

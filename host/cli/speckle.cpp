@@ -30,6 +30,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -86,6 +87,12 @@ int runSpeckle(SpeckleOptions options) {
     throw InputError("speckle: --bits must be 8 or 16 (got " + std::to_string(options.bits) + ")");
   if (!hasTiffExtension(options.output))
     throw InputError("speckle: " + options.output + ": the output must be a .tif or .tiff file");
+  {
+    std::error_code ec;
+    const std::filesystem::path folder = std::filesystem::path(options.output).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+      throw InputError("speckle: -o " + options.output + ": the folder " + folder.string() + " does not exist");
+  }
   SpeckleParams& p = options.params;
   p.width_px = options.size.at(0);
   p.height_px = options.size.at(1);
@@ -126,6 +133,12 @@ int runSpeckle(SpeckleOptions options) {
   writeGrayTiff(options.output, p.width_px, p.height_px, values, options.bits, description);
 
   const double coverage = 1.0 - sum / double(image.pixels.size());
+  // Disks as large as the image are few: their coverage is a coin toss, not the density asked for.
+  if (p.pattern == SpecklePattern::Disks && p.disksPerPx2 == 0 && std::abs(coverage - p.density) > 0.05)
+    std::fprintf(stderr,
+                 "speckle: warning: the measured coverage %.4f differs from --density %.4f by more than 0.05: "
+                 "with disks of radius %s px on %d x %d px the image holds too few of them (use a smaller radius)\n",
+                 coverage, p.density, shortest(p.radius_px).c_str(), p.width_px, p.height_px);
   std::printf("speckle: wrote %s (%d x %d, %d-bit, measured coverage %.4f)\n", options.output.c_str(),
               p.width_px, p.height_px, options.bits, coverage);
   return kExitOk;

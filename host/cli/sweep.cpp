@@ -173,6 +173,14 @@ int runSweep(const SweepCommand& cmd) {
     return commonKey + " seed=" + std::to_string(seedOf(p)) + " parameters=" + parametersJson(p);
   };
 
+  // Before anything is created: the output folder can be written, and the first point's scene
+  // evaluates (a --sweep value the scene cannot take, e.g. a string for a coordinate, stops here).
+  checkOutputWritable(cmd.outputDir);
+  {
+    SceneParams first{pointDefines(defines, plan.point(0)), frames.front()};
+    first.sweepParameters = plan.names;
+    loadScene(cmd.args.scenePath, first);
+  }
   createOutputDir(cmd.outputDir);
   if (::access(cmd.outputDir.c_str(), W_OK | X_OK) != 0)
     throw InputError("-o " + cmd.outputDir + ": the output folder is not writable");

@@ -41,6 +41,43 @@ Buffer& cachedInput(Context& context, Renderer::InputCache& cache, int binding, 
   return *slot.buffer;
 }
 
+// The device's buffer limits against the packed scene, before any buffer exists: exceeding one is
+// the scene's doing (too many NURBS spans, too large a texture), so the error is an InputError that
+// names the object or texture to change, not a device failure deep in the upload.
+template <class Layout>
+void checkDeviceCapacity(const Context& context, const PreparedScene& scene, const PackedScene<Layout>& packed) {
+  const VkDeviceSize limit = context.properties().limits.maxStorageBufferRange;
+  const std::string device = context.info().name;
+  auto mib = [](double bytes) { return std::to_string(std::llround(bytes / (1 << 20))) + " MiB"; };
+  const double nurbsBytes[] = {double(packed.nurbsNodes.size() * sizeof(typename Layout::GpuNurbsNode)),
+                               double(packed.nurbsSubPatches.size() * sizeof(typename Layout::GpuNurbsSubPatch)),
+                               double(packed.nurbsPatches.size() * sizeof(typename Layout::GpuNurbsPatch)),
+                               double(packed.nurbsPoints.size() * sizeof(typename Layout::hreal4))};
+  const double worst = *std::max_element(std::begin(nurbsBytes), std::end(nurbsBytes));
+  if (worst > double(limit)) {
+    const PreparedObject* largest = nullptr;
+    for (const PreparedObject& o : scene.objects)
+      if (o.nurbs && (!largest || o.nurbs->patches.size() > largest->nurbs->patches.size())) largest = &o;
+    throw InputError(scene.file + ": the scene's NURBS surfaces need " + mib(worst) + " in one GPU buffer, more than " +
+                     "the device's maxStorageBufferRange of " + mib(double(limit)) + " (" + device + ")" +
+                     (largest ? "; the largest is object '" + largest->name + "' with " +
+                                    std::to_string(largest->nurbs->patches.size()) + " Bézier patches" : std::string()) +
+                     ": use fewer knot spans, or --backend cpu");
+  }
+  const std::size_t texelLimit = context.properties().limits.maxTexelBufferElements;
+  std::size_t texels = 0;
+  for (const PreparedTexture& t : scene.textures) texels += t.coefficients->size();
+  if (texels > texelLimit || double(texels) * sizeof(typename Layout::real) > double(limit)) {
+    const PreparedTexture* largest = nullptr;
+    for (const PreparedTexture& t : scene.textures)
+      if (!largest || t.coefficients->size() > largest->coefficients->size()) largest = &t;
+    throw InputError(scene.file + ": the scene's textures hold " + std::to_string(texels) + " texels, more than the device " +
+                     "takes in one texel buffer (" + std::to_string(texelLimit) + " texels, " + mib(double(limit)) + ", " + device +
+                     "); the largest is " + largest->path + " (" + std::to_string(largest->width) + " x " +
+                     std::to_string(largest->height) + "): use a smaller texture, or --backend cpu");
+  }
+}
+
 // The texel buffer of `scene` in `Layout`: the cached one when it was packed from the same shared
 // coefficient arrays (Renderer::CachedTexels).
 template <class Layout>
@@ -153,6 +190,7 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
     }
   });
   const PackedScene<Layout> packed = packScene<Layout>(scene);
+  checkDeviceCapacity(context, scene, packed);
   Buffer& textures = cachedInput(context, cache, DS_BINDING_TEXTURES, packed.textures);
   Buffer& texels = cachedTexels<Layout>(context, caches.texels, scene);
   Buffer& nurbsNodes = cachedInput(context, cache, DS_BINDING_NURBS_NODES, packed.nurbsNodes);

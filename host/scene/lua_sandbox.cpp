@@ -222,8 +222,16 @@ int LuaSandbox::print(lua_State* L) {
   luaL_addvalue(&b);
   for (int i = 1; i <= n; ++i) {
     if (i > 1) luaL_addchar(&b, '\t');
-    luaL_tolstring(L, i, nullptr);
-    luaL_addvalue(&b);
+    // One line per print: a newline or carriage return inside a value is written as \n or \r, so
+    // that scene output can never look like a line of its own (an error line, say).
+    std::size_t length = 0;
+    const char* value = luaL_tolstring(L, i, &length);
+    for (std::size_t k = 0; k < length; ++k) {
+      if (value[k] == '\n') luaL_addstring(&b, "\\n");
+      else if (value[k] == '\r') luaL_addstring(&b, "\\r");
+      else luaL_addchar(&b, value[k]);
+    }
+    lua_pop(L, 1);
   }
   luaL_addchar(&b, '\n');
   luaL_pushresult(&b);

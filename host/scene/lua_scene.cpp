@@ -291,6 +291,17 @@ static double sceneSeconds(const SceneParams& params) {
   return 60;
 }
 
+bool isSceneLanguageName(const std::string& name) {
+  if (scene::isLuaKeyword(name)) return true;
+  scene::LuaSandbox sandbox("<names>", {0, 0, 0});
+  lua_State* L = sandbox.state();
+  scene::registerSceneLanguage(L);
+  lua_pushglobaltable(L);
+  const bool builtIn = lua_getfield(L, -1, name.c_str()) != LUA_TNIL || name == "frame";
+  lua_pop(L, 2);
+  return builtIn;
+}
+
 Scene loadScene(const std::string& path, const SceneParams& params) {
   return scene::loadSceneInspecting(path, params, nullptr);
 }

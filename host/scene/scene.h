@@ -197,6 +197,10 @@ inline constexpr std::size_t kMaxCameraNameBytes = 128;
 // The largest scene file loadScene reads (README, "Limits").
 inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t(16) << 20;
 
+// Whether `name` is taken by the scene language (a constructor table, a function, a Lua library,
+// a keyword, `frame`): a -D option or a sweep parameter cannot use it.
+bool isSceneLanguageName(const std::string& name);
+
 // Loads and validates a scene. Throws InputError("file:line: message") on any error.
 Scene loadScene(const std::string& path, const SceneParams& params);
 

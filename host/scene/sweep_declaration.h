@@ -6,6 +6,7 @@
 //   Random: sweep = random { n = 1000, seed = 7, strain = {0, 0.01} }  uniform in [lo, hi)
 // The scene functions linspace, points and random are registered by registerSweepFunctions
 // (sweep_functions.cpp, which documents them).
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -26,10 +27,15 @@ inline constexpr std::int64_t kMaxSweepPoints = 10'000'000;
 
 // The i-th of n values evenly spaced from a to b (n >= 1): linspace(a, b, n) in a scene and
 // --sweep NAME=A:B:N both use it, so the two spell the same points. The last value is b itself
-// (a + (n-1)·(b-a)/(n-1) may round off b by an ulp); n = 1 gives a.
+// (a + (n-1)·(b-a)/(n-1) may round off b by an ulp); n = 1 gives a. Where b − a overflows (a and
+// b near ±1.8e308 with opposite signs), (1 − t)·a + t·b, which does not, gives the same points.
 inline double linspaceValue(double a, double b, std::int64_t n, std::int64_t i) {
   if (n == 1) return a;
-  return i == n - 1 ? b : a + double(i) * (b - a) / double(n - 1);
+  if (i == n - 1) return b;
+  const double span = b - a;
+  if (std::isfinite(span)) return a + double(i) * span / double(n - 1);
+  const double t = double(i) / double(n - 1);
+  return (1 - t) * a + t * b;
 }
 
 struct SweepValue {

@@ -48,7 +48,8 @@ std::string seconds(double s) {
 }  // namespace
 
 FileLock::FileLock(const std::string& path, bool blocking) {
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  // O_NOFOLLOW: a symbolic link planted under the lock's name is refused, not followed.
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
   if (fd_ < 0) throw Error("cannot create the lock file '" + path + "': " + std::strerror(errno));
   int rc;
   do rc = ::flock(fd_, LOCK_EX | (blocking ? 0 : LOCK_NB));

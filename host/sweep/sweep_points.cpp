@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "scene/scene.h"
 #include "shared/rng.h"
 
 namespace dicsynth {
@@ -182,6 +183,8 @@ SweepPlan planSweep(const std::string& scenePath, const std::vector<std::pair<st
     const std::string what = plan.declaration.origin + ": sweep parameter '" + name + "': ";
     if (!isIdentifier(name)) throw InputError(what + "not a Lua identifier (letters, digits and _, not starting with a digit)");
     if (name == "frame") throw InputError(what + "'frame' is reserved (use --frames)");
+    if (isSceneLanguageName(name))
+      throw InputError(what + "a built-in name of the scene language (like Shape, linspace, _G, string): choose another name");
     for (const auto& define : defines)
       if (define.first == name) throw InputError(what + "also given by -D " + name + "; give it in one place");
   }

@@ -18,6 +18,7 @@ packages=(
   zlib1g-dev                         # CRC-32 of sweep points' files (host/sweep/point_record.cpp)
   libglm-dev libcli11-dev liblua5.4-dev doctest-dev
   libvtk9-dev                        # finite-element meshes (Field.load), read in a module loaded on use
+  fonts-dejavu-core                  # the labels of `dicsynth preview` pictures
   libopencv-calib3d-dev libopencv-features2d-dev libopencv-video-dev  # tests only: OpenCV calibrates
                                                                       # our images, ECC registers them
 )

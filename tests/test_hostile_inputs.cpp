@@ -251,3 +251,71 @@ TEST_CASE("hostile: a run that fails leaves the folder as it found it, and stale
   std::sort(names.begin(), names.end());
   CHECK(names == std::vector<std::string>{live, "notes.txt"});
 }
+
+TEST_CASE("hostile: the smaller inconsistencies of the probe") {
+  test::TempFolder dir;
+  const std::string scene = dir.write("s.lua", plateWith("Texture.Constant { value = 0.5 }"));
+  // speckle into a missing folder: bad input (2), like every other bad path.
+  const test::CliResult speckle = test::runCli("speckle -o " + dir.file("missing/s.tif") + " --size 16 16");
+  CHECK(speckle.exitCode == 2);
+  CHECK(speckle.err.find("the folder " + dir.file("missing") + " does not exist") != std::string::npos);
+  // A disk radius far beyond the image: the density cannot be met, and the user is told.
+  const test::CliResult huge = test::runCli("speckle -o " + dir.file("s.tif") + " --size 16 16 --radius 1e9");
+  CHECK(huge.exitCode == 0);
+  CHECK(huge.err.find("warning: the measured coverage") != std::string::npos);
+  // --max-error-px nan: refused with the options, before the precision calibration.
+  const test::CliResult nan = test::runCli("render " + scene + " -o " + dir.file("out") + " --max-error-px nan");
+  CHECK(nan.exitCode == 2);
+  CHECK(nan.err.find("--max-error-px nan: must be a finite number > 0") != std::string::npos);
+  // Sweeps: a value the scene cannot take, and names of the scene language, before any file.
+  const std::string sweepScene = dir.write("sweep.lua", kCamera + "shift = shift or 0\n"
+                                                                  "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {shift, 0, 1} } }\n");
+  for (const std::string& option : {std::string("shift=a,b"), std::string("Shape=1,2"), std::string("linspace=1,2"), std::string("_G=1,2")}) {
+    const test::CliResult r = test::runCli("sweep " + sweepScene + " -o " + dir.file("sweep") + " --sweep " + option);
+    INFO(option << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(!std::filesystem::exists(dir.file("sweep")));
+    if (option != "shift=a,b") CHECK(r.err.find("a built-in name of the scene language") != std::string::npos);
+  }
+  // linspace over the whole double range: its own arithmetic does not overflow into NaN.
+  const std::string range = dir.write("range.lua", kCamera + "x = x or 0\nsweep = { x = linspace(1e308, -1e308, 3) }\n");
+  const test::CliResult list = test::runCli("sweep " + range + " -o " + dir.file("range") + " --list");
+  CHECK(list.exitCode == 0);
+  CHECK(list.out == "0 point_00000 x=1e+308\n1 point_00001 x=0\n2 point_00002 x=-1e+308\n");
+  // print keeps one line per call: a value cannot imitate an error line.
+  const std::string printer = dir.write("print.lua", kCamera + "print('a\\n' .. 'x.lua:3: fake error')\n");
+  const test::CliResult printed = test::runCli("render " + printer + " -o " + dir.file("p") + " --backend cpu");
+  CHECK(printed.exitCode == 0);
+  CHECK(printed.err.find(printer + ":2: a\\nx.lua:3: fake error\n") != std::string::npos);
+  // A lock file replaced by a symbolic link is refused, not followed.
+  const std::string locked = dir.file("locked");
+  std::filesystem::create_directories(locked + "/.locks");
+  const std::string victim = dir.write("victim.txt", "keep me");
+  for (int i = 0; i < 3; ++i)
+    std::filesystem::create_symlink(victim, locked + "/.locks/point_0000" + std::to_string(i) + ".lock");
+  const std::string three = dir.write("three.lua", kCamera + "shift = shift or 0\nsweep = { shift = linspace(0, 0.01, 3) }\n"
+                                                             "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {shift, 0, 1} } }\n");
+  const test::CliResult lock = test::runCli("sweep " + three + " -o " + locked + " --backend cpu");
+  INFO(lock.err);
+  CHECK(lock.exitCode != 0);
+  CHECK(lock.err.find("Too many levels of symbolic links") != std::string::npos);
+  CHECK(test::readBytes(victim) == "keep me");
+}
+
+TEST_CASE("hostile: NURBS data over the device's storage-buffer limit is exit 2 naming the object") {
+  // 400 × 400 spans: 160,000 cubic patches, 164 MB of control points in fp64: over lavapipe's
+  // 128 MiB maxStorageBufferRange (CI's device). A device that takes it renders it instead.
+  test::TempFolder dir;
+  const std::string scene = dir.write("big.lua", kCamera + "big = Object.Simple { shape = Nurbs.plate { size = {0.1, 0.1}; "
+                                                           "spans = {400, 400}; location = {0, 0, 0.5} } }\n");
+  const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") + " --precision fp64 --layers image");
+  INFO(r.err);
+  if (r.exitCode == 0) {
+    MESSAGE("this device takes 164 MB storage buffers: nothing to refuse");
+    return;
+  }
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find(scene + ": the scene's NURBS surfaces need ") != std::string::npos);
+  CHECK(r.err.find("the largest is object 'big' with 160000 Bézier patches: use fewer knot spans, or --backend cpu") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("out")));
+}

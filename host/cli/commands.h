@@ -1,5 +1,5 @@
 #pragma once
-// One subcommand per file (render.cpp, compare.cpp, devices.cpp, speckle.cpp, bench.cpp). Each add*Command
+// One subcommand per file (render.cpp, compare.cpp, devices.cpp, speckle.cpp, bench.cpp, sweep.cpp, preview.cpp). Each add*Command
 // registers its CLI11 subcommand and, when that subcommand is parsed, stores in `run` the function
 // that does the work and returns the process exit code.
 #include <CLI/CLI.hpp>
@@ -22,5 +22,6 @@ void addDevicesCommand(CLI::App& root, RunFn& run);
 void addSpeckleCommand(CLI::App& root, RunFn& run);
 void addBenchCommand(CLI::App& root, RunFn& run);
 void addSweepCommand(CLI::App& root, RunFn& run);
+void addPreviewCommand(CLI::App& root, RunFn& run);
 
 }  // namespace dicsynth::cli

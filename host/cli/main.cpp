@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   cli::addCompareCommand(app, run);
   cli::addDevicesCommand(app, run);
   cli::addSpeckleCommand(app, run);
+  cli::addPreviewCommand(app, run);
   cli::addBenchCommand(app, run);
   cli::addSweepCommand(app, run);
   try {

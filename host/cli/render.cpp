@@ -20,6 +20,7 @@ struct RenderCommand {
   std::optional<int> referenceFrame;  // default: the first of --frames
   std::string exrCompression = "zip";
   std::string layers = "all";
+  bool preview = false;
 };
 
 int runRender(const RenderCommand& cmd) {
@@ -43,6 +44,7 @@ int runRender(const RenderCommand& cmd) {
   job.progressLabel = "rendering";
   job.exrCompression = cmd.exrCompression;
   job.layers = layers;
+  job.preview = cmd.preview;
   runRenderJob(session, job);
   return kExitOk;
 }
@@ -65,6 +67,8 @@ void addRenderCommand(CLI::App& root, RunFn& run) {
   sub->add_option("--reference-frame", cmd->referenceFrame,
                   "Frame whose pixels the motion ground truth (disp, flow) starts from; one of --frames "
                   "(default: the first)");
+  sub->add_flag("--preview", cmd->preview,
+                "Also write PNG pictures of each EXR's layers into DIR/preview/ (as `dicsynth preview`)");
   sub->callback([cmd, &run] { run = [cmd] { return runRender(*cmd); }; });
 }
 

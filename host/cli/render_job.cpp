@@ -4,15 +4,18 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <set>
 #include <utility>
 
 #include "core/error.h"
+#include "core/exact_number.h"
 #include "core/phase_timer.h"
 #include "core/serial_worker.h"
 #include "cpu/reference_renderer.h"
@@ -21,6 +24,7 @@
 #include "io/feature_files.h"
 #include "io/image_limits.h"
 #include "io/outputs.h"
+#include "io/preview.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth::cli {
@@ -137,6 +141,17 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
     info.objectNames.push_back(o.name);
     if (o.deformation) info.deformations.emplace_back(o.name, describeDeformation(*o.deformation));
   }
+  // One guard for every cause (a colour, an intensity, an exposure near the double range): the
+  // radiance must survive the float32 of the EXR and the sensor, or the run stops before writing.
+  for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
+    const CameraImage& image = result.cameras[c];
+    for (std::size_t i = 0; i < image.radiance.size(); ++i)
+      if (!(std::abs(image.radiance[i]) <= double(std::numeric_limits<float>::max())))
+        throw InputError(job.sceneFile + ": frame " + std::to_string(frame) + ", camera " + scene.cameras[c].camera.name +
+                         ": the radiance at pixel (" + std::to_string(i % std::size_t(image.width_px)) + ", " +
+                         std::to_string(i / std::size_t(image.width_px)) + ") is " + shortestNumber(image.radiance[i]) +
+                         ", beyond float32 (a shader colour or light intensity near the double range?)");
+  }
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
   if (first || calibrationPerFrame)
     writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "", job.verbose);
@@ -155,6 +170,11 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
         writeCameraOutputs(job.outputDir, stem, cam, image, sensed.digital, info, &truth, &sensed);
     phaseDone("write");
     writeFeatureFiles(job.outputDir, stem, scene, c, frame);
+    if (job.preview && !files.groundTruth.empty()) {
+      const std::string previewDir = (std::filesystem::path(job.outputDir) / "preview").string();
+      createOutputDir(previewDir);
+      previewExr(files.groundTruth, previewDir, stem);
+    }
     const std::string written =
         files.image + (files.image.empty() || files.groundTruth.empty() ? "" : ", ") + files.groundTruth;
     if (job.verbose && written.empty())
@@ -224,10 +244,10 @@ class OutputRollback {
     if (kept_) return;
     std::error_code ec;
     if (!std::filesystem::is_directory(dir_, ec)) return;
-    std::vector<std::filesystem::path> added;
+    std::vector<std::filesystem::path> added;  // files, and folders the run made (preview/)
     for (const auto& entry : std::filesystem::directory_iterator(dir_, ec))
-      if (!before_.count(entry.path().filename().string()) && entry.is_regular_file(ec)) added.push_back(entry.path());
-    for (const auto& path : added) std::filesystem::remove(path, ec);
+      if (!before_.count(entry.path().filename().string()) && !entry.is_symlink(ec)) added.push_back(entry.path());
+    for (const auto& path : added) std::filesystem::remove_all(path, ec);
     if (!existed_) std::filesystem::remove(dir_, ec);  // only when empty: remove() does not recurse
   }
   void keep() { kept_ = true; }

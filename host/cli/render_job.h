@@ -57,6 +57,7 @@ struct RenderJob {
   std::string progressLabel;      // prefix of the terminal progress (render: "rendering"); "" = none
   std::string exrCompression = "zip";  // --exr-compression (io/outputs.h, kExrCompressions)
   LayerSet layers = LayerSet::all();   // --layers (render/layers.h)
+  bool preview = false;           // --preview: PNGs of each EXR into <outputDir>/preview (io/preview.h)
 };
 
 struct RenderJobResult {

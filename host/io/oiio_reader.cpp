@@ -21,26 +21,35 @@ std::string modulePath() {
 }
 
 // Loaded once per process, on first use, and never unloaded (OpenImageIO keeps threads and caches).
-ReadGrayFn loadModule(std::string& failure) {
+void* moduleHandle(std::string& failure) {
   static std::once_flag once;
-  static ReadGrayFn fn = nullptr;
+  static void* handle = nullptr;
   static std::string why;
   std::call_once(once, [] {
     const std::string path = modulePath();
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
       const char* e = dlerror();
       why = "cannot load " + path + " (" + (e ? e : "unknown reason") + ")";
-      return;
     }
-    fn = reinterpret_cast<ReadGrayFn>(dlsym(handle, kOiioReadGraySymbol));
-    if (!fn) why = path + " lacks " + kOiioReadGraySymbol;
   });
   failure = why;
-  return fn;
+  return handle;
+}
+
+ReadGrayFn loadModule(std::string& failure) {
+  return reinterpret_cast<ReadGrayFn>(oiioModuleSymbol(kOiioReadGraySymbol, failure));
 }
 
 }  // namespace
+
+void* oiioModuleSymbol(const char* symbol, std::string& failure) {
+  void* handle = moduleHandle(failure);
+  if (!handle) return nullptr;
+  void* function = dlsym(handle, symbol);
+  if (!function) failure = modulePath() + " lacks " + symbol + " (a stale build?)";
+  return function;
+}
 
 GrayImage readGrayImageWithOiio(const std::string& path) {
   std::string failure;

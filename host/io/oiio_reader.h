@@ -13,4 +13,7 @@ namespace dicsynth {
 // when the module cannot be loaded (then naming it and why).
 GrayImage readGrayImageWithOiio(const std::string& path);
 
+// A function of the module by name (io/oiio_module/oiio_module.h), or null with `failure` saying why.
+void* oiioModuleSymbol(const char* symbol, std::string& failure);
+
 }  // namespace dicsynth

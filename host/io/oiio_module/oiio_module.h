@@ -1,7 +1,8 @@
 #pragma once
-// The interface of libdicsynth_oiio.so (io/oiio_reader.h loads it): one C-named function, built by
-// the same compiler and standard library as its callers, so it may take C++ objects.
+// The interface of libdicsynth_oiio.so (io/oiio_reader.h, io/preview.h load it): C-named functions,
+// built by the same compiler and standard library as their callers, so they may take C++ objects.
 #include <string>
+#include <vector>
 
 #include "io/image_io.h"
 
@@ -13,5 +14,21 @@ inline constexpr const char* kOiioReadGraySymbol = "dicsynth_oiio_read_gray";
 // Fills `image` per readGrayImage's contract and returns true, or sets `error` ("cannot read image:
 // ...", without the path) and returns false. Never throws.
 using ReadGrayFn = bool (*)(const char* path, GrayImage* image, std::string* error);
+
+inline constexpr const char* kOiioPreviewSymbol = "dicsynth_oiio_preview";
+
+// Pictures of the layers of an EXR (io/preview.h has the contract).
+struct PreviewRequest {
+  std::string exrPath;    // the EXR to show
+  std::string outputDir;  // existing folder for the PNGs
+  std::string stem;       // PNG names: <stem>.<layer>.png
+  int maxWidth = 800;     // the picture's image part is at most this wide (px), decimated by an integer
+  std::string fontPath;   // TrueType font for the labels; "" or missing: OpenImageIO's own search
+};
+struct PreviewResult {
+  std::vector<std::string> written;  // paths of the PNGs
+  std::vector<std::string> skipped;  // "channel or layer: why"
+};
+using PreviewFn = bool (*)(const PreviewRequest* request, PreviewResult* result, std::string* error);
 
 }  // namespace dicsynth

@@ -1,0 +1,56 @@
+// dicsynth preview FILE.exr... [-o DIR] [--width PX]: PNG pictures of every ground-truth layer of
+// each file (io/preview.h): DIR/<file stem>.<layer>.png. DIR defaults to a folder "preview" beside
+// the first file, created if missing. Prints each picture written and what was skipped, and why.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/render_job.h"
+#include "core/error.h"
+#include "io/preview.h"
+
+namespace dicsynth::cli {
+namespace {
+
+struct PreviewOptions {
+  std::vector<std::string> files;
+  std::string outputDir;
+  int width = 800;
+};
+
+int runPreview(const PreviewOptions& options) {
+  if (options.width < 16 || options.width > 16384)
+    throw InputError("preview: --width " + std::to_string(options.width) + ": must be in 16..16384 (px)");
+  for (const std::string& file : options.files) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) throw InputError(file + ": no such file (or not a regular file)");
+  }
+  const std::string dir = options.outputDir.empty()
+                              ? (std::filesystem::path(options.files.front()).parent_path() / "preview").string()
+                              : options.outputDir;
+  checkOutputWritable(dir);
+  createOutputDir(dir);
+  for (const std::string& file : options.files) {
+    const PreviewFiles files = previewExr(file, dir, std::filesystem::path(file).stem().string(), options.width);
+    for (const std::string& png : files.written) std::printf("%s\n", png.c_str());
+    for (const std::string& why : files.skipped) std::printf("%s: skipped %s\n", file.c_str(), why.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void addPreviewCommand(CLI::App& root, RunFn& run) {
+  auto options = std::make_shared<PreviewOptions>();
+  auto* sub = root.add_subcommand("preview", "PNG pictures of the ground-truth layers of EXR files");
+  sub->add_option("files", options->files, "EXR files (dicsynth's, or any: each float channel is shown)")->required();
+  sub->add_option("-o,--output", options->outputDir, "Folder for the PNGs (default: preview/ beside the first file)");
+  sub->add_option("--width", options->width, "Largest width of a picture's image part, px (every k-th pixel shown)")
+      ->capture_default_str();
+  sub->callback([&run, options] { run = [options] { return runPreview(*options); }; });
+}
+
+}  // namespace dicsynth::cli

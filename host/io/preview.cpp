@@ -1,0 +1,26 @@
+#include "io/preview.h"
+
+#include "core/error.h"
+#include "io/oiio_module/oiio_module.h"
+#include "io/oiio_reader.h"
+
+namespace dicsynth {
+
+PreviewFiles previewExr(const std::string& exrPath, const std::string& outputDir, const std::string& stem, int maxWidth) {
+  std::string failure;
+  const auto preview = reinterpret_cast<PreviewFn>(oiioModuleSymbol(kOiioPreviewSymbol, failure));
+  if (!preview) throw InputError(exrPath + ": a preview needs OpenImageIO's module: " + failure);
+  PreviewRequest request;
+  request.exrPath = exrPath;
+  request.outputDir = outputDir;
+  request.stem = stem;
+  request.maxWidth = maxWidth;
+  // Debian's fonts-dejavu-core (scripts/install-deps.sh); OpenImageIO searches its own otherwise.
+  request.fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  PreviewResult result;
+  std::string error;
+  if (!preview(&request, &result, &error)) throw InputError(error);
+  return {std::move(result.written), std::move(result.skipped)};
+}
+
+}  // namespace dicsynth

@@ -1,0 +1,136 @@
+// dicsynth preview and render --preview (io/preview.h): PNG pictures of ground-truth layers. The
+// pictures are read back with OpenImageIO and checked against the EXR's values: NaN pixels in the
+// neutral gray, the extremes in viridis' published end colours (#440154, #FDE725: constants of the
+// map's definition, not taken from the code under test), colour ordered as the values.
+#include <doctest/doctest.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "exr_test_util.h"
+#include "run_cli.h"
+
+using namespace dicsynth;
+
+namespace {
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  const unsigned char* at(int x, int y) const { return &rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3]; }
+};
+
+Png readPng(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  REQUIRE_MESSAGE(in, path);
+  Png png{in->spec().width, in->spec().height, {}};
+  REQUIRE(in->spec().nchannels == 3);
+  png.rgb.resize(std::size_t(png.width) * std::size_t(png.height) * 3);
+  REQUIRE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, png.rgb.data()));
+  return png;
+}
+
+bool near(const unsigned char* p, int r, int g, int b, int tolerance) {
+  return std::abs(p[0] - r) <= tolerance && std::abs(p[1] - g) <= tolerance && std::abs(p[2] - b) <= tolerance;
+}
+
+void writeExr(const std::string& path, int width, int height, const std::vector<std::string>& channels,
+              const std::vector<float>& values) {
+  auto out = OIIO::ImageOutput::create(path);
+  REQUIRE(out);
+  OIIO::ImageSpec spec(width, height, int(channels.size()), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = channels;
+  REQUIRE(out->open(path, spec));
+  REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
+  REQUIRE(out->close());
+}
+
+}  // namespace
+
+TEST_CASE("preview: render --preview draws every layer of a stereo frame, values in viridis, NaN in gray") {
+  test::TempFolder dir;
+  const std::string scene = std::string(DS_SOURCE_DIR) + "/scenes/stereo_plate.lua";
+  const test::CliResult r =
+      test::runCli("render " + scene + " -o " + dir.file("out") + " --frames 0:1 --downscale 8 --spp 1 --preview");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  for (const char* layer : {"radiance", "depth", "disp", "disp.X", "disp.Y", "disp.Z", "flow", "flow.X", "flow.Y",
+                            "flow.mask", "disparity.X", "disparity.Y", "disparity.mask", "objectId", "distortion"})
+    CHECK_MESSAGE(std::filesystem::exists(dir.file(std::string("out/preview/rig.left_0001.") + layer + ".png")), layer);
+
+  const test::ExrContents exr = test::readExr(dir.file("out/rig.left_0001.exr"));
+  const std::vector<float>& dx = exr.floats.at("disp.X");
+  const int w = exr.spec.width, h = exr.spec.height;
+  const Png png = readPng(dir.file("out/preview/rig.left_0001.disp.X.png"));
+  const int top = 30;  // the title band (io/oiio_module/preview.cpp); the picture below it, unscaled
+  REQUIRE(png.width == w + 110);
+  REQUIRE(png.height == h + top);
+  float lo = INFINITY, hi = -INFINITY;
+  for (float v : dx)
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  std::size_t nanPixels = 0;
+  std::vector<std::pair<float, double>> valueLuminance;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float v = dx[std::size_t(y) * std::size_t(w) + std::size_t(x)];
+      const unsigned char* p = png.at(x, y + top);
+      if (std::isnan(v)) {
+        ++nanPixels;
+        CHECK(near(p, 128, 128, 128, 1));
+        continue;
+      }
+      // sRGB 8-bit of OpenImageIO's map: within 3 levels of the published end colours.
+      if (v == lo) CHECK(near(p, 0x44, 0x01, 0x54, 3));
+      if (v == hi) CHECK(near(p, 0xFD, 0xE7, 0x25, 3));
+      valueLuminance.emplace_back(v, 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]);
+    }
+  CHECK(nanPixels > 1000);           // the background around the plate
+  CHECK(valueLuminance.size() > 5000);
+  // Viridis rises in luminance with the value: sorted by value, the luminance never drops by more
+  // than the 8-bit rounding of a neighbouring colour.
+  std::sort(valueLuminance.begin(), valueLuminance.end());
+  double worstDrop = 0, running = 0;
+  for (const auto& [v, l] : valueLuminance) {
+    worstDrop = std::max(worstDrop, running - l);
+    running = std::max(running, l);
+  }
+  CHECK(worstDrop <= 2.0);
+  // The colour bar: the maximum's colour at its top, the minimum's at its bottom.
+  CHECK(near(png.at(w + 12, top), 0xFD, 0xE7, 0x25, 3));
+  CHECK(near(png.at(w + 12, top + h - 1), 0x44, 0x01, 0x54, 3));
+}
+
+TEST_CASE("preview: any EXR shows what it can and says what it skips; wide images keep every k-th pixel; bad files are exit 2") {
+  test::TempFolder dir;
+  // Not dicsynth's: a custom channel, a coordinate channel and a channel of NaN only.
+  const int w = 1700, h = 12;
+  std::vector<float> values;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) values.insert(values.end(), {float(x), 0.5f, NAN});
+  writeExr(dir.file("other.exr"), w, h, {"temperature", "P.X", "void"}, values);
+  const test::CliResult r = test::runCli("preview " + dir.file("other.exr") + " -o " + dir.file("pictures") + " --width 800");
+  INFO(r.out << r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.out.find(dir.file("pictures/other.temperature.png")) != std::string::npos);
+  CHECK(r.out.find("skipped P.X: a coordinate of the scene") != std::string::npos);
+  CHECK(r.out.find("skipped void: no finite value") != std::string::npos);
+  const Png png = readPng(dir.file("pictures/other.temperature.png"));
+  CHECK(png.width == (w + 2) / 3 + 110);  // 1700 px at most 800: every 3rd pixel, 567 shown
+  // Shown pixel i is the file's pixel 3i: value 3i of 0..1699, so its colour is the map at 3i/1698.
+  CHECK(near(png.at(0, 30), 0x44, 0x01, 0x54, 3));
+  CHECK(near(png.at(566, 30), 0xFD, 0xE7, 0x25, 3));  // 3 · 566 = 1698, the largest shown
+
+  std::filesystem::create_directories(dir.file("empty"));
+  dir.write("text.exr", "not an image");
+  for (const std::string& arguments : {"preview " + dir.file("missing.exr"), "preview " + dir.file("text.exr") + " -o " + dir.file("p2"),
+                                       "preview " + dir.file("other.exr") + " --width 2"}) {
+    const test::CliResult e = test::runCli(arguments);
+    INFO(arguments << ": " << e.err);
+    CHECK(e.exitCode == 2);
+  }
+  CHECK(!std::filesystem::exists(dir.file("p2/text.temperature.png")));
+}

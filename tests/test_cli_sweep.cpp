@@ -185,7 +185,8 @@ TEST_CASE("cli: sweep bad input: one line, exit code 2") {
   bad(randomZero + " -o " + dir.file("o3"),
       randomZero + ":7: random: 'n' must be >= 1 (a sweep needs at least one point), got 0");
   dir.write("afile", "x");
-  bad(scene + " -o " + dir.file("afile/sub"), "-o " + dir.file("afile/sub") + ": cannot create the output folder: Not a directory");
+  bad(scene + " -o " + dir.file("afile/sub"),
+      "-o " + dir.file("afile/sub") + ": cannot create the output folder: " + dir.file("afile") + " is not a folder");
   bad(scene + " -o " + dir.file("o4") + " --shard 3/3", "--shard 3/3: expected I/N with 0 <= I < N");
 }
 

@@ -104,7 +104,7 @@ TEST_CASE("preview: render --preview draws every layer of a stereo frame, values
   CHECK(near(png.at(w + 12, top + h - 1), 0x44, 0x01, 0x54, 3));
 }
 
-TEST_CASE("preview: any EXR shows what it can and says what it skips; wide images keep every k-th pixel; bad files are exit 2") {
+TEST_CASE("preview: any EXR shows what it can and says what it skips, wide images keep every k-th pixel, bad files are exit 2") {
   test::TempFolder dir;
   // Not dicsynth's: a custom channel, a coordinate channel and a channel of NaN only.
   const int w = 1700, h = 12;

@@ -11,12 +11,14 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
 #include <utility>
 
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/phase_timer.h"
+#include "core/progress.h"
 #include "core/serial_worker.h"
 #include "cpu/reference_renderer.h"
 #include "io/atomic_file.h"
@@ -46,9 +48,11 @@ void writeCalibration(const std::string& dir, const PreparedScene& prepared, con
   if (verbose) std::printf("calibration: %s\n", list.c_str());
 }
 
-Scene loadFrameScene(const RenderSession& session, const RenderJob& job, int frame) {
+// `again`: the frame was evaluated by checkFrames already, whose prints the user saw.
+Scene loadFrameScene(const RenderSession& session, const RenderJob& job, int frame, bool again) {
   SceneParams params{job.defines, frame};
   params.sweepParameters = job.sweepParameters;
+  params.quiet = again;
   return loadScene(session.args().scenePath, params);
 }
 
@@ -66,7 +70,7 @@ FramesChecked checkFrames(const RenderSession& session, const RenderJob& job) {
   LayerSources sources;
   std::vector<std::string> firstCalibration;
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
-    const Scene scene = loadFrameScene(session, job, job.frames[fi]);
+    const Scene scene = loadFrameScene(session, job, job.frames[fi], false);
     sources.add(scene);
     std::uint64_t pixels = 0;
     const auto k = std::uint64_t(std::max(1, session.args().downscale));
@@ -101,8 +105,8 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   options.geometry = job.layers.needsGeometry();
   options.precision = session.precision();  // resolved after the first frame is prepared (its errors first)
   phaseDone("precision");
-  if (!job.progressLabel.empty())
-    options.progress = progressPrinter(job.progressLabel + (job.numbered ? " frame " + std::to_string(frame) : ""));
+  // One frame: its tiles' progress; several: the frames' bar (runRenderJob) instead.
+  if (!job.progressLabel.empty() && job.frames.size() == 1) options.progress = progressPrinter(job.progressLabel);
   gpu::Renderer* renderer = session.renderer();
   out.result = renderer ? renderer->render(out.scene, options) : cpu::render(out.scene, options);
   phaseDone("render");
@@ -279,10 +283,13 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
     if (!std::exchange(writing, false)) return;
     writer.wait();  // rethrows the writer's error
   };
+  std::optional<ProgressBar> bar;
+  if (!job.progressLabel.empty() && job.frames.size() > 1) bar.emplace("render", "frames", std::int64_t(job.frames.size()), stderrIsTerminal());
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
+    if (bar && fi > 0) bar->update(std::int64_t(fi));
     std::shared_ptr<RenderedFrame> rendered;
     try {
-      const Scene scene = loadFrameScene(session, job, job.frames[fi]);
+      const Scene scene = loadFrameScene(session, job, job.frames[fi], true);
       rendered = std::make_shared<RenderedFrame>(renderFrame(session, job, scene, job.frames[fi], summary));
     } catch (...) {
       finishWriting();  // the previous frame still completes (its own error, if any, wins)
@@ -295,6 +302,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
     writing = true;
   }
   finishWriting();
+  if (bar) bar->update(std::int64_t(job.frames.size()));
   rollback.keep();
   return summary;
 }
@@ -305,7 +313,7 @@ RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
   out.calibrationPerFrame = checkFrames(session, job).calibrationPerFrame;
   session.startDevice();
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi)
-    out.frames.push_back(renderFrame(session, job, loadFrameScene(session, job, job.frames[fi]), job.frames[fi], out.summary));
+    out.frames.push_back(renderFrame(session, job, loadFrameScene(session, job, job.frames[fi], true), job.frames[fi], out.summary));
   return out;
 }
 

@@ -18,6 +18,7 @@
 #include "cli/render_args.h"
 #include "cli/render_job.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/exact_number.h"
 #include "core/json.h"
 #include "core/serial_worker.h"
@@ -115,25 +116,19 @@ std::string readWholeFile(const std::string& path) {
   return text;
 }
 
-// Terminal progress: "sweep: 12/50 points, 0.83 img/s, ETA 0:00:42" (stderr, only on a TTY).
+// Progress (core/progress.h): the points done of this shard, and the images written per second.
 class Progress {
  public:
-  Progress(std::int64_t total, bool enabled) : total_(total), enabled_(enabled) {}
-  void update(std::int64_t done, std::int64_t rendered, std::int64_t images) {
-    if (!enabled_) return;
+  Progress(std::int64_t total, bool terminal) : bar_("sweep", "points", total, terminal) {}
+  void update(std::int64_t done, std::int64_t /*rendered*/, std::int64_t images) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double rate = elapsed > 0 ? double(images) / elapsed : 0;
-    const double perPoint = rendered > 0 ? elapsed / double(rendered) : 0;
-    const auto eta = std::int64_t(perPoint * double(total_ - done));
-    std::fprintf(stderr, "\rsweep: %lld/%lld points, %.2f img/s, ETA %lld:%02lld:%02lld   ", (long long)done,
-                 (long long)total_, rate, (long long)(eta / 3600), (long long)(eta / 60 % 60), (long long)(eta % 60));
-    if (done == total_) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
+    char rate[48];
+    std::snprintf(rate, sizeof rate, "%.2f img/s", elapsed > 0 ? double(images) / elapsed : 0.0);
+    bar_.update(done, rate);
   }
 
  private:
-  std::int64_t total_;
-  bool enabled_;
+  ProgressBar bar_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
@@ -179,6 +174,7 @@ int runSweep(const SweepCommand& cmd) {
   {
     SceneParams first{pointDefines(defines, plan.point(0)), frames.front()};
     first.sweepParameters = plan.names;
+    first.quiet = true;  // a check: the point's own evaluation prints when it renders
     loadScene(cmd.args.scenePath, first);
   }
   createOutputDir(cmd.outputDir);

@@ -235,7 +235,8 @@ int nurbsDeform(lua_State* L) {
   }
   if (function) function->sceneFinished();  // from now on, only through callAfterRun
   const NurbsFitReport& report = deformation->report;
-  std::fprintf(stderr, "%s: Nurbs.deform: fit error %.3g m (tolerance %.3g m) on a %d x %d check grid, "
+  if (!LuaSandbox::of(L).quiet())
+    std::fprintf(stderr, "%s: Nurbs.deform: fit error %.3g m (tolerance %.3g m) on a %d x %d check grid, "
                "%zu control points, %d refinements%s%s\n",
                where.str().c_str(), report.maxError_m, tolerance, report.checkU, report.checkV,
                report.controlPoints, report.refinements, deformation->fromCache ? ", reused from an earlier frame" : "",

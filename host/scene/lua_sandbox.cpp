@@ -214,6 +214,7 @@ int LuaSandbox::messageHandler(lua_State* L) {
 // print(...): one line "PATH:LINE: v1<TAB>v2..." on stderr, written at once.
 int LuaSandbox::print(lua_State* L) {
   LuaSandbox& sandbox = of(L);
+  if (sandbox.quiet()) return 0;
   const int n = lua_gettop(L);
   luaL_Buffer b;
   luaL_buffinit(L, &b);

@@ -51,6 +51,7 @@ struct SandboxLimits {
   std::uint64_t maxInstructions = 0;
   std::size_t maxMemoryBytes = 0;
   double maxSeconds = 0;  // wall-clock time of one run (or one callAfterRun); 0: none
+  bool quiet = false;     // print writes nothing (a scene evaluated again, whose output was seen)
 };
 
 // The chunk name under which the scene runs. Lua's own messages then read "<scene>:12: ...";
@@ -73,6 +74,7 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   LuaSandbox& operator=(const LuaSandbox&) = delete;
 
   lua_State* state() const { return L_; }
+  bool quiet() const { return limits_.quiet; }  // SandboxLimits::quiet: constructors report nothing either
   const std::string& scenePath() const { return scenePath_; }          // as given by the user
   const std::filesystem::path& sceneDir() const { return sceneDir_; }  // folder of the scene file
 

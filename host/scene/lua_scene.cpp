@@ -311,7 +311,7 @@ Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& par
   const std::string source = scene::readSceneFile(path);
   // Shared: a Nurbs.deform field keeps a weak_ptr to call it again, the Scene the owning pointer.
   const auto sandbox = std::make_shared<scene::LuaSandbox>(
-      path, scene::SandboxLimits{params.maxInstructions, params.maxMemoryBytes, sceneSeconds(params)});
+      path, scene::SandboxLimits{params.maxInstructions, params.maxMemoryBytes, sceneSeconds(params), params.quiet});
   lua_State* L = sandbox->state();
   scene::registerSceneLanguage(L);
   lua_pushinteger(L, params.frame);

@@ -189,6 +189,9 @@ struct SceneParams {
   // up to a few seconds (bench/RESULTS.md); a minute stops a runaway scene whose loop of long
   // calls the instruction limit cannot see. 0: the environment's DICSYNTH_SCENE_SECONDS, else 60.
   double maxSeconds = 0;
+  // The scene's print and constructors' reports (Nurbs.deform's fit) write nothing: set when a
+  // scene is evaluated again after a first evaluation whose output the user saw (render, sweep).
+  bool quiet = false;
 };
 
 // The longest camera name (with a rig's ".left"/".right"): names become output file names.

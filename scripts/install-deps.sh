@@ -19,6 +19,8 @@ packages=(
   libglm-dev libcli11-dev liblua5.4-dev doctest-dev
   libvtk9-dev                        # finite-element meshes (Field.load), read in a module loaded on use
   fonts-dejavu-core                  # the labels of `dicsynth preview` pictures
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
+  python3-openimageio                # tests: an independent reader of the CLI's files from Python
   libopencv-calib3d-dev libopencv-features2d-dev libopencv-video-dev  # tests only: OpenCV calibrates
                                                                       # our images, ECC registers them
 )

@@ -53,7 +53,7 @@ Scene loadFrameScene(const RenderSession& session, const RenderJob& job, int fra
   SceneParams params{job.defines, frame};
   params.sweepParameters = job.sweepParameters;
   params.quiet = again;
-  return loadScene(session.args().scenePath, params);
+  return loadScene(job.sceneFile, params);
 }
 
 // Every frame's scene is evaluated before any work, so that a scene error in any frame stops the
@@ -87,7 +87,7 @@ FramesChecked checkFrames(const RenderSession& session, const RenderJob& job) {
   // written while the next renders, so two frames' worth, at 256 bytes per pixel.
   const std::uint64_t need = 2 * out.maxPixelsPerFrame * 256;
   if (const auto available = availableMemoryBytes(); available && need > *available)
-    throw InputError(session.args().scenePath + ": a frame of " + std::to_string(out.maxPixelsPerFrame) +
+    throw InputError(job.sceneFile + ": a frame of " + std::to_string(out.maxPixelsPerFrame) +
                      " pixels (all cameras) needs about " + std::to_string(need >> 20) + " MiB to render and write, more than the " +
                      std::to_string(*available >> 20) + " MiB of memory available (--downscale, or fewer pixels)");
   return out;
@@ -102,6 +102,7 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   phaseDone("prepare");
   RenderOptions options = renderOptions(args, frame);
   if (job.seed) options.seed = *job.seed;
+  if (job.spp) options.samplesPerPixel = *job.spp;
   options.geometry = job.layers.needsGeometry();
   options.precision = session.precision();  // resolved after the first frame is prepared (its errors first)
   phaseDone("precision");
@@ -122,56 +123,21 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
 // Writes one frame's files. `reference` is created from the first frame written (moved from it).
 void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool calibrationPerFrame,
                 std::unique_ptr<ReferenceFrame>& reference) {
-  const bool otherFrames = job.frames.size() > 1;
   const int frame = rendered.frame;
   const RenderResult& result = rendered.result;
   const RenderOptions& options = rendered.options;
-  const bool motion = job.layers.has(Layer::Disp) || job.layers.has(Layer::Flow) || job.layers.has(Layer::FieldError);
-  if (first) reference = std::make_unique<ReferenceFrame>(frame, std::move(rendered.scene), result, otherFrames, motion);
-  // The reference frame's scene now lives in `reference` (moved: its textures are not copied).
-  const PreparedScene& scene = first ? reference->scene() : rendered.scene;
-
-  OutputInfo info;
-  info.sceneFile = job.sceneFile;
-  info.frame = frame;
-  info.seed = options.seed;
-  info.samplesPerPixel = options.samplesPerPixel;
-  info.backend = result.backend;
-  info.precision = result.precision;
-  info.device = result.device;
-  info.exrCompression = job.exrCompression;
-  info.layers = job.layers;
-  for (const auto& o : scene.objects) {
-    info.objectNames.push_back(o.name);
-    if (o.deformation) info.deformations.emplace_back(o.name, describeDeformation(*o.deformation));
-  }
-  // One guard for every cause (a colour, an intensity, an exposure near the double range): the
-  // radiance must survive the float32 of the EXR and the sensor, or the run stops before writing.
-  for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
-    const CameraImage& image = result.cameras[c];
-    for (std::size_t i = 0; i < image.radiance.size(); ++i)
-      if (!(std::abs(image.radiance[i]) <= double(std::numeric_limits<float>::max())))
-        throw InputError(job.sceneFile + ": frame " + std::to_string(frame) + ", camera " + scene.cameras[c].camera.name +
-                         ": the radiance at pixel (" + std::to_string(i % std::size_t(image.width_px)) + ", " +
-                         std::to_string(i / std::size_t(image.width_px)) + ") is " + shortestNumber(image.radiance[i]) +
-                         ", beyond float32 (a shader colour or light intensity near the double range?)");
-  }
+  const PreparedScene& scene = frameScene(job, rendered, first, reference);
+  const OutputInfo info = frameInfo(job, rendered, scene);
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
   if (first || calibrationPerFrame)
     writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "", job.verbose);
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
     const Camera& cam = scene.cameras[c].camera;
     const CameraImage& image = result.cameras[c];
-    const DerivedTruth truth = deriveTruth(*reference, frame, scene, result, c, job.layers);
-    phaseDone("truth");
-    if (!truth.disparityCamera.empty() && truth.disparityVisibleCount == 0)
-      std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
-                   truth.disparityCamera.c_str(), cam.name.c_str());
+    const CameraFrame derived = deriveCamera(job, rendered, scene, c, *reference);
     const std::string stem = outputStem(cam.name, job.numbered, frame);
-    const SensorImage sensed = applySensor(image.radiance, cam, {options.seed, frame, std::uint32_t(c)});
-    phaseDone("sensor");
     const OutputFiles files =
-        writeCameraOutputs(job.outputDir, stem, cam, image, sensed.digital, info, &truth, &sensed);
+        writeCameraOutputs(job.outputDir, stem, cam, image, derived.sensed.digital, info, &derived.truth, &derived.sensed);
     phaseDone("write");
     writeFeatureFiles(job.outputDir, stem, scene, c, frame);
     if (job.preview && !files.groundTruth.empty()) {
@@ -192,6 +158,61 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
 }
 
 }  // namespace
+
+const PreparedScene& frameScene(const RenderJob& job, RenderedFrame& rendered, bool first,
+                                std::unique_ptr<ReferenceFrame>& reference) {
+  const bool otherFrames = job.frames.size() > 1;
+  const bool motion = job.layers.has(Layer::Disp) || job.layers.has(Layer::Flow) || job.layers.has(Layer::FieldError);
+  if (first)
+    reference = std::make_unique<ReferenceFrame>(rendered.frame, std::move(rendered.scene), rendered.result, otherFrames, motion);
+  // The reference frame's scene now lives in `reference` (moved: its textures are not copied).
+  const PreparedScene& scene = first ? reference->scene() : rendered.scene;
+  // One guard for every cause (a colour, an intensity, an exposure near the double range): the
+  // radiance must survive the float32 of the EXR and the sensor, or the run stops before writing.
+  for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
+    const CameraImage& image = rendered.result.cameras[c];
+    for (std::size_t i = 0; i < image.radiance.size(); ++i)
+      if (!(std::abs(image.radiance[i]) <= double(std::numeric_limits<float>::max())))
+        throw InputError(job.sceneFile + ": frame " + std::to_string(rendered.frame) + ", camera " +
+                         scene.cameras[c].camera.name + ": the radiance at pixel (" +
+                         std::to_string(i % std::size_t(image.width_px)) + ", " +
+                         std::to_string(i / std::size_t(image.width_px)) + ") is " + shortestNumber(image.radiance[i]) +
+                         ", beyond float32 (a shader colour or light intensity near the double range?)");
+  }
+  return scene;
+}
+
+OutputInfo frameInfo(const RenderJob& job, const RenderedFrame& rendered, const PreparedScene& scene) {
+  OutputInfo info;
+  info.sceneFile = job.sceneFile;
+  info.frame = rendered.frame;
+  info.seed = rendered.options.seed;
+  info.samplesPerPixel = rendered.options.samplesPerPixel;
+  info.backend = rendered.result.backend;
+  info.precision = rendered.result.precision;
+  info.device = rendered.result.device;
+  info.exrCompression = job.exrCompression;
+  info.layers = job.layers;
+  for (const auto& o : scene.objects) {
+    info.objectNames.push_back(o.name);
+    if (o.deformation) info.deformations.emplace_back(o.name, describeDeformation(*o.deformation));
+  }
+  return info;
+}
+
+CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, const PreparedScene& scene, std::size_t c,
+                         const ReferenceFrame& reference) {
+  const Camera& cam = scene.cameras[c].camera;
+  CameraFrame out;
+  out.truth = deriveTruth(reference, rendered.frame, scene, rendered.result, c, job.layers);
+  phaseDone("truth");
+  if (!out.truth.disparityCamera.empty() && out.truth.disparityVisibleCount == 0)
+    std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
+                 out.truth.disparityCamera.c_str(), cam.name.c_str());
+  out.sensed = applySensor(rendered.result.cameras[c].radiance, cam, {rendered.options.seed, rendered.frame, std::uint32_t(c)});
+  phaseDone("sensor");
+  return out;
+}
 
 void checkOutputWritable(const std::string& dir) {
   // The folder, or the nearest existing folder above it (where it would be created), must take a

@@ -19,6 +19,8 @@
 #include "render/ground_truth.h"
 #include "render/layers.h"
 #include "render/result.h"
+#include "io/outputs.h"
+#include "sensor/sensor.h"
 
 namespace dicsynth::cli {
 
@@ -53,6 +55,7 @@ struct RenderJob {
   std::vector<std::pair<std::string, std::string>> defines;  // -D (and a sweep point's values)
   std::vector<std::string> sweepParameters;                  // which defines come from a sweep
   std::optional<std::uint32_t> seed;                         // overrides --seed (sweep --seed-per-point)
+  std::optional<int> spp;                                    // overrides --spp (the Python module)
   bool verbose = true;            // print one line per written camera and the calibration files
   std::string progressLabel;      // prefix of the terminal progress (render: "rendering"); "" = none
   std::string exrCompression = "zip";  // --exr-compression (io/outputs.h, kExrCompressions)
@@ -88,6 +91,22 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job);
 // writeRenderedJob uses no session state, so it may run on another thread.
 RenderedJob renderJob(RenderSession& session, const RenderJob& job);
 void writeRenderedJob(RenderedJob rendered, const RenderJob& job);
+
+// The pieces of writing a frame, shared with the Python module (host/python), which returns the
+// same values as arrays instead of files.
+// The frame's scene; the first frame of a job builds `reference` from itself (its scene moves
+// there). Throws InputError when a radiance is beyond float32.
+const PreparedScene& frameScene(const RenderJob& job, RenderedFrame& rendered, bool first,
+                                std::unique_ptr<ReferenceFrame>& reference);
+// The EXR header's facts of the frame.
+OutputInfo frameInfo(const RenderJob& job, const RenderedFrame& rendered, const PreparedScene& scene);
+// Camera c of the frame: its derived truth and its sensor image.
+struct CameraFrame {
+  DerivedTruth truth;
+  SensorImage sensed;
+};
+CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, const PreparedScene& scene, std::size_t c,
+                         const ReferenceFrame& reference);
 
 // Creates `dir` (and parents); throws InputError naming it when that fails.
 void createOutputDir(const std::string& dir);

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/module_folder.h"
 
 namespace dicsynth {
 namespace {
@@ -17,14 +18,12 @@ struct VtkModule {
   std::string failure;  // why the module is unusable, when it is
 };
 
-// Loaded once per process, on first use, beside the executable (as io/oiio_reader.cpp does), and
+// Loaded once per process, on first use, beside the binary (core/module_folder.h), and
 // never unloaded (VTK keeps singletons).
 const VtkModule& vtkModule() {
   static const VtkModule module = [] {
     VtkModule m;
-    std::error_code ec;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    const std::string path = ((ec ? std::filesystem::path(".") : exe.parent_path()) / kVtkModuleFile).string();
+    const std::string path = (codeFolder() / kVtkModuleFile).string();
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
       const char* e = dlerror();

@@ -6,19 +6,14 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "core/module_folder.h"
 #include "io/oiio_module/oiio_module.h"
 
 namespace dicsynth {
 namespace {
 
-// The module lives beside the executable that uses it (dicsynth, dicsynth_tests and the benches all
-// sit in the build folder).
-std::string modulePath() {
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const std::filesystem::path folder = ec ? std::filesystem::path(".") : exe.parent_path();
-  return (folder / kOiioModuleFile).string();
-}
+// The module lives beside the binary that holds this code (core/module_folder.h).
+std::string modulePath() { return (codeFolder() / kOiioModuleFile).string(); }
 
 // Loaded once per process, on first use, and never unloaded (OpenImageIO keeps threads and caches).
 void* moduleHandle(std::string& failure) {

@@ -311,6 +311,28 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
 
 }  // namespace
 
+std::vector<ChannelValues> groundTruthChannels(const CameraImage& image, const DerivedTruth* truth,
+                                               const SensorImage* sensor, const LayerSet& layers) {
+  const std::size_t n = image.pixelCount();
+  std::vector<ChannelValues> out;
+  for (const ExrChannel& c : exrChannels(image, truth, sensor, layers)) {
+    ChannelValues v;
+    v.name = c.name;
+    v.isUint = c.uintValue;
+    // The very conversion the EXR writer runs: 32-bit words, float32 or uint32 by channel.
+    std::vector<std::uint32_t> words(n);
+    c.fill(0, n, words.data(), 1);
+    if (v.isUint) {
+      v.uints = std::move(words);
+    } else {
+      v.floats.resize(n);
+      std::memcpy(v.floats.data(), words.data(), n * sizeof(float));
+    }
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
 OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, const Camera& camera,
                                const CameraImage& image, const std::vector<std::uint16_t>& digital,
                                const OutputInfo& info, const DerivedTruth* truth, const SensorImage* sensor) {

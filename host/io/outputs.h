@@ -40,6 +40,18 @@ struct OutputFiles {
   std::string groundTruth;  // DIR/<stem>.exr; empty when no channel of info.layers exists for this camera
 };
 
+// The EXR's channels of one camera as values, converted exactly as writeCameraOutputs converts them
+// (float32, or uint32 for objectId and defects), in the file's channel list: for callers that want
+// the ground truth in memory (the Python module).
+struct ChannelValues {
+  std::string name;                  // "Y", "disp.X", "objectId", ...
+  bool isUint = false;
+  std::vector<float> floats;         // isUint false
+  std::vector<std::uint32_t> uints;  // isUint true
+};
+std::vector<ChannelValues> groundTruthChannels(const CameraImage& image, const DerivedTruth* truth,
+                                               const SensorImage* sensor, const LayerSet& layers);
+
 // `digital` holds one digital number per pixel (host/sensor), < 2^camera.bitsPerPixel.
 // TIFF: 8-bit when bitsPerPixel <= 8, else 16-bit holding the raw digital number (not rescaled).
 // EXR channels: Y (radiance), Z, P.X/Y/Z, N.X/Y/Z, uv.U/V (float32), objectId (uint32), mask (float32),

@@ -1,0 +1,227 @@
+// The Python module `dicsynth` (pybind11): the renderer kept warm in a Python process, the ground
+// truth returned as numpy arrays holding the very values the CLI's files hold.
+//
+//   r = dicsynth.Renderer(backend="gpu", precision="auto")   # the device starts on first use
+//   scene = dicsynth.Scene("scenes/stereo_plate.lua", defines={"strain": 0.003})
+//   out = r.render(scene, frames=[0, 1], spp=4, layers=["image", "disp", "disparity"])
+//   out["rig.left", 1]["disp"]                                # float32 (H, W, 3)
+//
+// Arrays by name (README, "Python"): "image" uint16 (H, W), the sensor's digital numbers (the TIFF);
+// every EXR channel of the render, float32 (H, W) or uint32 for objectId and defects, with the
+// vector groups stacked: P, N, disp, fieldError (H, W, 3); uv, flow, disparity, distortion
+// (H, W, 2); the masks "flow.mask", "disparity.mask" and "mask", and "Y", "Z", "noiseFree",
+// "noise", "defects", "objectId" as themselves. Scalar channels are handed over without a copy;
+// the stacked groups are interleaved once.
+// Errors: dicsynth.InputError (a ValueError; scene errors carry FILE:LINE) for bad input,
+// RuntimeError for failures of the device or the machine. render() releases the GIL.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/render_job.h"
+#include "core/error.h"
+#include "core/exact_number.h"
+#include "core/version.h"
+#include "io/outputs.h"
+#include "scene/scene.h"
+
+namespace py = pybind11;
+using namespace dicsynth;
+
+namespace {
+
+struct PyScene {
+  std::string path;
+  std::vector<std::pair<std::string, std::string>> defines;  // as -D name=value
+};
+
+// A Python value as the text of a -D define (number, true/false, or string).
+std::string defineText(const py::handle& value, const std::string& name) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::int_>(value)) return std::to_string(value.cast<long long>());
+  if (py::isinstance<py::float_>(value)) return exactNumber(value.cast<double>());
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  throw InputError("defines['" + name + "']: a number, a bool or a str, got " + std::string(py::str(value.get_type())));
+}
+
+// Owns `values` and hands its buffer to numpy: no copy.
+template <class T>
+py::array_t<T> arrayOf(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  auto* owned = new std::vector<T>(std::move(values));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(shape, owned->data(), owner);
+}
+
+// The groups stacked into (H, W, k): their components in order.
+const std::map<std::string, std::vector<std::string>>& stackedGroups() {
+  static const std::map<std::string, std::vector<std::string>> groups = {
+      {"P", {"X", "Y", "Z"}},        {"N", {"X", "Y", "Z"}},         {"disp", {"X", "Y", "Z"}},
+      {"fieldError", {"X", "Y", "Z"}}, {"uv", {"U", "V"}},         {"flow", {"X", "Y"}},
+      {"disparity", {"X", "Y"}},     {"distortion", {"X", "Y"}}};
+  return groups;
+}
+
+py::dict cameraArrays(std::vector<ChannelValues>&& channels, std::vector<std::uint16_t>&& digital, bool image, int w, int h) {
+  py::dict out;
+  if (image) out["image"] = arrayOf(std::move(digital), {h, w});
+  std::map<std::string, ChannelValues*> byName;
+  for (ChannelValues& c : channels) byName[c.name] = &c;
+  std::map<std::string, bool> taken;
+  for (const auto& [group, components] : stackedGroups()) {
+    bool all = true;
+    for (const std::string& c : components) all = all && byName.count(group + "." + c);
+    if (!all) continue;
+    const std::size_t n = std::size_t(w) * std::size_t(h), k = components.size();
+    std::vector<float> stacked(n * k);
+    for (std::size_t j = 0; j < k; ++j) {
+      const std::vector<float>& v = byName[group + "." + components[j]]->floats;
+      for (std::size_t i = 0; i < n; ++i) stacked[i * k + j] = v[i];
+      taken[group + "." + components[j]] = true;
+    }
+    out[py::str(group)] = arrayOf(std::move(stacked), {h, w, py::ssize_t(k)});
+  }
+  for (ChannelValues& c : channels) {
+    if (taken.count(c.name)) continue;
+    if (c.isUint) out[py::str(c.name)] = arrayOf(std::move(c.uints), {h, w});
+    else out[py::str(c.name)] = arrayOf(std::move(c.floats), {h, w});
+  }
+  return out;
+}
+
+class PyRenderer {
+ public:
+  PyRenderer(const std::string& backend, const std::string& precision, const std::string& device, std::uint32_t seed,
+             int downscale, double maxErrorPx) {
+    if (backend != "gpu" && backend != "cpu") throw InputError("backend must be \"gpu\" or \"cpu\", got \"" + backend + "\"");
+    if (precision != "auto" && precision != "fp32" && precision != "df64" && precision != "fp64")
+      throw InputError("precision must be \"auto\", \"fp32\", \"df64\" or \"fp64\", got \"" + precision + "\"");
+    cli::RenderArgs args;
+    args.precision = precision;
+    args.device = device;
+    args.seed = seed;
+    args.downscale = downscale;
+    args.maxErrorPx = maxErrorPx;
+    cli::renderOptions(args, 0);  // the same checks as the CLI's options
+    session_ = std::make_unique<cli::RenderSession>(args, backend);
+  }
+
+  py::dict render(const PyScene& scene, std::vector<int> frames, int spp, const std::vector<std::string>& layers,
+                  std::optional<int> referenceFrame) {
+    if (frames.empty()) throw InputError("frames: at least one frame");
+    for (int f : frames)
+      if (f < 0) throw InputError("frames: frame numbers are >= 0, got " + std::to_string(f));
+    if (spp < 1 || spp > 65536) throw InputError("spp " + std::to_string(spp) + ": must be in 1..65536");
+    std::string layerText;
+    for (const std::string& l : layers) layerText += (layerText.empty() ? "" : ",") + l;
+    cli::RenderJob job;
+    job.sceneFile = scene.path;
+    job.defines = scene.defines;
+    job.layers = LayerSet::parse(layerText, "layers");
+    job.spp = spp;
+    job.verbose = false;
+    job.numbered = true;
+    // The reference frame first: every frame's motion truth is measured from it.
+    const int reference = referenceFrame.value_or(frames.front());
+    const auto at = std::find(frames.begin(), frames.end(), reference);
+    if (at == frames.end()) throw InputError("reference_frame " + std::to_string(reference) + " is not among the frames");
+    std::rotate(frames.begin(), at, at + 1);
+    job.frames = frames;
+
+    struct CameraResult {
+      std::string camera;
+      int frame, w, h;
+      std::vector<ChannelValues> channels;
+      std::vector<std::uint16_t> digital;
+    };
+    std::vector<CameraResult> results;
+    {
+      py::gil_scoped_release release;
+      cli::RenderedJob rendered = cli::renderJob(*session_, job);
+      std::unique_ptr<ReferenceFrame> referenceData;
+      for (std::size_t fi = 0; fi < rendered.frames.size(); ++fi) {
+        cli::RenderedFrame& frame = rendered.frames[fi];
+        const PreparedScene& prepared = cli::frameScene(job, frame, fi == 0, referenceData);
+        for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
+          cli::CameraFrame derived = cli::deriveCamera(job, frame, prepared, c, *referenceData);
+          const CameraImage& image = frame.result.cameras[c];
+          results.push_back({prepared.cameras[c].camera.name, frame.frame, image.width_px, image.height_px,
+                             groundTruthChannels(image, &derived.truth, &derived.sensed, job.layers),
+                             std::move(derived.sensed.digital)});
+        }
+        frame.result = RenderResult();  // this frame's images are converted: free them
+      }
+      backend_ = rendered.summary.backend;
+      precision_ = rendered.summary.precision;
+      device_ = rendered.summary.device;
+    }
+    py::dict out;
+    for (CameraResult& r : results)
+      out[py::make_tuple(r.camera, r.frame)] =
+          cameraArrays(std::move(r.channels), std::move(r.digital), job.layers.has(Layer::Image), r.w, r.h);
+    return out;
+  }
+
+  std::string backend() const { return backend_; }
+  std::string precision() const { return precision_; }
+  std::string device() const { return device_; }
+
+ private:
+  std::unique_ptr<cli::RenderSession> session_;
+  std::string backend_, precision_, device_;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(dicsynth, m) {
+  m.doc() = "dicsynth: synthetic images with exact ground truth for experimental mechanics";
+  m.attr("__version__") = kVersion;
+  static py::exception<InputError> inputError(m, "InputError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      PyErr_SetString(inputError.ptr(), e.what());
+    } catch (const Error& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());
+    }
+  });
+
+  py::class_<PyScene>(m, "Scene", "A scene file and its defines (the CLI's -D name=value)")
+      .def(py::init([](const std::string& path, const py::dict& defines) {
+             PyScene s{path, {}};
+             for (const auto& [key, value] : defines) {
+               const std::string name = py::str(key);
+               s.defines.emplace_back(name, defineText(value, name));
+             }
+             // Evaluated once now, so that a scene error is raised here, with its FILE:LINE.
+             SceneParams params{s.defines, 0};
+             params.quiet = true;
+             loadScene(path, params);
+             return s;
+           }),
+           py::arg("path"), py::arg("defines") = py::dict())
+      .def_readonly("path", &PyScene::path)
+      .def_property_readonly("defines", [](const PyScene& s) {
+        py::dict d;
+        for (const auto& [k, v] : s.defines) d[py::str(k)] = v;
+        return d;
+      })
+      .def("__repr__", [](const PyScene& s) { return "dicsynth.Scene('" + s.path + "')"; });
+
+  py::class_<PyRenderer>(m, "Renderer", "The renderer, its device kept warm between renders")
+      .def(py::init<const std::string&, const std::string&, const std::string&, std::uint32_t, int, double>(),
+           py::arg("backend") = "gpu", py::arg("precision") = "auto", py::arg("device") = "", py::arg("seed") = 1,
+           py::arg("downscale") = 1, py::arg("max_error_px") = 1e-6)
+      .def("render", &PyRenderer::render, py::arg("scene"), py::arg("frames") = std::vector<int>{0},
+           py::arg("spp") = 4, py::arg("layers") = std::vector<std::string>{"all"},
+           py::arg("reference_frame") = py::none(),
+           "Renders the frames; returns {(camera, frame): {name: numpy array}} (module docstring)")
+      .def_property_readonly("backend", &PyRenderer::backend)
+      .def_property_readonly("precision", &PyRenderer::precision, "the precision of the last render")
+      .def_property_readonly("device", &PyRenderer::device);
+}

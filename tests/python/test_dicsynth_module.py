@@ -1,0 +1,105 @@
+"""The Python module `dicsynth` (host/python/dicsynth_module.cpp), run by ctest with Debian's
+python3-pytest (PYTHONPATH=build, DICSYNTH_BINARY=the CLI). Its arrays are checked against the files
+the CLI writes for the same scene, read back with OpenImageIO's own Python binding (an independent
+reader), value for value."""
+import os
+import subprocess
+import tempfile
+import time
+
+import numpy as np
+import OpenImageIO as oiio
+import pytest
+
+import dicsynth
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENES = os.path.join(ROOT, "scenes")
+BINARY = os.environ["DICSYNTH_BINARY"]
+
+
+def read_channels(path):
+    """Every channel of an image file as float32 (H, W) arrays by name (objectId, defects as uint32)."""
+    image = oiio.ImageInput.open(path)
+    assert image, oiio.geterror()
+    spec = image.spec()
+    out = {}
+    for c, name in enumerate(spec.channelnames):
+        kind = oiio.UINT if name in ("objectId", "defects") else oiio.FLOAT
+        out[name] = image.read_image(0, 0, c, c + 1, kind)[:, :, 0]
+    image.close()
+    return out
+
+
+def read_tiff(path):
+    image = oiio.ImageInput.open(path)
+    assert image, oiio.geterror()
+    pixels = image.read_image(0, 0, 0, 1, oiio.UINT16)[:, :, 0]
+    image.close()
+    return pixels
+
+
+@pytest.mark.parametrize("backend", ["cpu", "gpu"])
+def test_arrays_equal_the_cli_files(backend):
+    scene_path = os.path.join(SCENES, "stereo_plate.lua")
+    renderer = dicsynth.Renderer(backend=backend, precision="fp64", downscale=16)
+    scene = dicsynth.Scene(scene_path, defines={"strain": 0.003})
+    out = renderer.render(scene, frames=[0, 1], spp=2)
+    assert set(out.keys()) == {("rig.left", 0), ("rig.right", 0), ("rig.left", 1), ("rig.right", 1)}
+    with tempfile.TemporaryDirectory() as folder:
+        subprocess.run([BINARY, "render", scene_path, "-o", folder, "--backend", backend, "--precision", "fp64",
+                        "--downscale", "16", "--spp", "2", "--frames", "0:1", "-D", "strain=0.003"],
+                       check=True, capture_output=True)
+        for (camera, frame), arrays in out.items():
+            stem = os.path.join(folder, "%s_%04d" % (camera, frame))
+            files = read_channels(stem + ".exr")
+            assert len(files) >= 20  # Y Z P N uv objectId mask disp flow disparity distortion
+            np.testing.assert_array_equal(arrays["image"], read_tiff(stem + ".tif"))
+            assert arrays["image"].dtype == np.uint16
+            h, w = arrays["image"].shape
+            groups = {"P": "XYZ", "N": "XYZ", "disp": "XYZ", "uv": "UV", "flow": "XY", "disparity": "XY",
+                      "distortion": "XY"}
+            for name, values in files.items():
+                group, _, component = name.partition(".")
+                if group in groups and component in groups[group]:
+                    array = arrays[group][:, :, groups[group].index(component)]
+                else:
+                    array = arrays[name]
+                assert array.shape == (h, w), name
+                # Bit for bit, NaN where the file has NaN.
+                np.testing.assert_array_equal(array, values, err_msg="%s %d %s" % (camera, frame, name))
+            assert arrays["disp"].shape == (h, w, 3) and arrays["disp"].dtype == np.float32
+            assert np.isfinite(arrays["disp"]).any()
+            assert arrays["objectId"].dtype == np.uint32
+
+
+def test_layers_errors_and_a_warm_loop():
+    renderer = dicsynth.Renderer(backend="cpu", downscale=16)
+    scene = dicsynth.Scene(os.path.join(SCENES, "rectangle.lua"))
+    out = renderer.render(scene, layers=["image", "P"])
+    arrays = next(iter(out.values()))
+    assert sorted(arrays.keys()) == ["P", "image"]
+    with pytest.raises(dicsynth.InputError, match="unknown layer 'bogus'"):
+        renderer.render(scene, layers=["bogus"])
+    with pytest.raises(dicsynth.InputError, match="no such file|cannot read the scene file"):
+        dicsynth.Scene(os.path.join(SCENES, "missing.lua"))
+    with tempfile.NamedTemporaryFile("w", suffix=".lua", delete=False) as bad:
+        bad.write("cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n"
+                  "x = Shape.Sphere { radius = -1 }\n")
+    try:
+        with pytest.raises(dicsynth.InputError, match=":2: Shape.Sphere"):
+            dicsynth.Scene(bad.name)
+    finally:
+        os.unlink(bad.name)
+    with pytest.raises(ValueError):  # InputError is a ValueError
+        dicsynth.Renderer(backend="vulkan")
+    with pytest.raises(TypeError):
+        renderer.render("not a scene")
+    with pytest.raises(dicsynth.InputError, match="a number, a bool or a str"):
+        dicsynth.Scene(os.path.join(SCENES, "rectangle.lua"), defines={"x": [1, 2]})
+    # A loop of renders pays the start-up once: later renders reuse the session (a figure, not a
+    # bound: the benchmark compares with processes, bench/RESULTS.md).
+    start = time.perf_counter()
+    for _ in range(3):
+        renderer.render(scene, layers=["image"])
+    assert time.perf_counter() - start < 60

@@ -61,6 +61,34 @@ dvec2 hessianBound(const Kirsch& k, double r0, double r1) {
   return 1.25 * worst;
 }
 
+// The bilinear interpolation bound of the shipped mesh per component, at a point (x, y) in mm: for
+// an isoparametric bilinear quad the weights N_i >= 0 sum to 1 and reproduce x (x = sum N_i v_i), so
+// the error sum N_i [u(v_i) - u(x) - grad u(x).(v_i - x)] is at most (M / 2) max|v_i - x|^2 <=
+// (M / 2) h^2, with M the Hessian's norm on the cell and h its diameter (the longer diagonal). The
+// cell holding a point lies in the band of its radius or, near a band's edge (chords), the next.
+class KirschBound {
+ public:
+  KirschBound() : q_(std::pow(kOuterMm / Kirsch{}.a, 1.0 / kRings)), bands_(kRings) {
+    const Kirsch kirsch;
+    for (int i = 0; i < kRings; ++i) {
+      const double r0 = kirsch.a * std::pow(q_, i), r1 = r0 * q_, dt = 2 * kPi / kAround;
+      const double h = std::sqrt(r0 * r0 + r1 * r1 - 2 * r0 * r1 * std::cos(dt));
+      bands_[std::size_t(i)] = 0.5 * h * h * hessianBound(kirsch, r0 * std::cos(dt / 2), r1);
+    }
+  }
+  dvec2 at(double x, double y) const {
+    const int band = std::clamp(int(std::floor(std::log(std::hypot(x, y) / Kirsch{}.a) / std::log(q_))), 0, kRings - 1);
+    dvec2 bound = bands_[std::size_t(band)];
+    if (band + 1 < kRings) bound = glm::max(bound, bands_[std::size_t(band + 1)]);
+    return bound;
+  }
+  double ratio() const { return q_; }
+
+ private:
+  double q_;
+  std::vector<dvec2> bands_;
+};
+
 // An ASCII VTK XML unstructured grid: points (x y z each), cells (connectivity per cell), one cell
 // type for all, and a point array of `components` values per point.
 std::string vtu(const std::vector<dvec3>& points, const std::vector<std::vector<int>>& cells, int cellType,
@@ -141,15 +169,8 @@ TEST_CASE("field-load: the shipped Kirsch mesh gives the closed form at its node
   // A displacement ≤ 3.4e-5 m is held to 1e-15 m: its double rounding and x's (slope ≤ 2e-3).
   CHECK(worstNode <= 1e-15);
 
-  // Between nodes: for an isoparametric bilinear quad the weights N_i ≥ 0 sum to 1 and reproduce x
-  // (x = Σ N_i v_i), so the interpolation error Σ N_i [u(v_i) − u(x) − ∇u(x)·(v_i − x)] is at most
-  // (M / 2) max|v_i − x|² ≤ (M / 2) h², with M the Hessian's norm on the cell and h its diameter.
-  std::vector<dvec2> bandBound(kRings);
-  for (int i = 0; i < kRings; ++i) {
-    const double r0 = kirsch.a * std::pow(q, i), r1 = r0 * q, dt = 2 * kPi / kAround;
-    const double h = std::sqrt(r0 * r0 + r1 * r1 - 2 * r0 * r1 * std::cos(dt));  // the longer diagonal
-    bandBound[std::size_t(i)] = 0.5 * h * h * hessianBound(kirsch, r0 * std::cos(dt / 2), r1);
-  }
+  // Between nodes: within the bilinear bound (KirschBound).
+  const KirschBound bilinear;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> unit(0, 1);
   std::vector<dvec3> points;
@@ -160,11 +181,8 @@ TEST_CASE("field-load: the shipped Kirsch mesh gives the closed form at its node
   const std::vector<dvec3> values = field.at(points);
   double worstRatio = 0, worstError = 0;
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const double x = 1e3 * points[k].x, y = 1e3 * points[k].y, r = std::hypot(x, y);
-    // The cell holding the point lies in the band of r or, near a band's edge (chords), the next.
-    const int band = std::clamp(int(std::floor(std::log(r / kirsch.a) / std::log(q))), 0, kRings - 1);
-    dvec2 bound = bandBound[std::size_t(band)];
-    if (band + 1 < kRings) bound = glm::max(bound, bandBound[std::size_t(band + 1)]);
+    const double x = 1e3 * points[k].x, y = 1e3 * points[k].y;
+    const dvec2 bound = bilinear.at(x, y);
     const dvec2 exact = kirsch(x, y);
     for (int c = 0; c < 2; ++c) {
       const double error = std::abs(1e3 * values[k][c] - exact[c]);  // mm
@@ -279,23 +297,15 @@ TEST_CASE("field-load: scenes/plate_hole.lua, disp minus fieldError is Kirsch's 
   const test::ExrContents ref = test::readExr(dir.file("out/camera_0000.exr"));
   const test::ExrContents now = test::readExr(dir.file("out/camera_0001.exr"));
   const Kirsch kirsch;
-  const double q = std::pow(kOuterMm / kirsch.a, 1.0 / kRings);
-  std::vector<dvec2> bandBound(kRings);
-  for (int i = 0; i < kRings; ++i) {
-    const double r0 = kirsch.a * std::pow(q, i), r1 = r0 * q, dt = 2 * kPi / kAround;
-    const double h = std::sqrt(r0 * r0 + r1 * r1 - 2 * r0 * r1 * std::cos(dt));
-    bandBound[std::size_t(i)] = 0.5 * h * h * hessianBound(kirsch, r0 * std::cos(dt / 2), r1);
-  }
+  const KirschBound bilinear;
   std::size_t compared = 0;
   double worstRatio = 0, worstFieldError = 0;
   for (std::size_t i = 0; i < ref.objectId.size(); ++i) {
     if (ref.objectId[i] == 0) continue;
     ++compared;
     // The ring's own frame is the world's shifted by its location (0, 0, 0.2); the mesh is in mm.
-    const double x = 1e3 * ref.floats.at("P.X")[i], y = 1e3 * ref.floats.at("P.Y")[i], rr = std::hypot(x, y);
-    const int band = std::clamp(int(std::floor(std::log(rr / kirsch.a) / std::log(q))), 0, kRings - 1);
-    dvec2 bound = bandBound[std::size_t(band)];
-    if (band + 1 < kRings) bound = glm::max(bound, bandBound[std::size_t(band + 1)]);
+    const double x = 1e3 * ref.floats.at("P.X")[i], y = 1e3 * ref.floats.at("P.Y")[i];
+    const dvec2 bound = bilinear.at(x, y);
     const dvec2 exact = kirsch(x, y);
     const double requested[2] = {now.floats.at("disp.X")[i] - now.floats.at("fieldError.X")[i],
                                  now.floats.at("disp.Y")[i] - now.floats.at("fieldError.Y")[i]};

@@ -36,6 +36,8 @@ void ProgressBar::update(std::int64_t done, const std::string& extra) {
     std::fprintf(stderr, "\r%s: [%s%s] %s   %s", label_.c_str(), std::string(std::size_t(filled), '#').c_str(),
                  std::string(std::size_t(kWidth - filled), '.').c_str(), tail.c_str(), finished ? "\n" : "");
   } else {
+    // Quiet: nothing for work done within kQuietSeconds (a short run's log stays its own output).
+    if (elapsed < kQuietSeconds) return;
     const int tenth = int(10 * std::min(done, total_) / total_);
     if (tenth == lastTenth_ && !finished) return;
     if (finished && lastTenth_ == 10) return;

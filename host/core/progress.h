@@ -3,7 +3,7 @@
 // bar redrawn in place, at most 5 times a second,
 //   render: [#########...........] 7/15 frames, 0.84 frames/s, ETA 0:00:09
 // and otherwise (a log file, a cluster job) one quiet line at each tenth of the work and at the
-// end, so that logs stay short:
+// end, once the work has taken kQuietSeconds (short runs print nothing), so that logs stay short:
 //   render: 7/15 frames (46%), 0.84 frames/s, ETA 0:00:09
 #include <chrono>
 #include <cstdint>
@@ -13,6 +13,7 @@ namespace dicsynth {
 
 class ProgressBar {
  public:
+  static constexpr double kQuietSeconds = 10;
   // `unit`: what is counted, plural ("frames", "points"). `terminal`: stderr is a terminal.
   ProgressBar(std::string label, std::string unit, std::int64_t total, bool terminal);
   // `done` of the total are finished; `extra` is appended (e.g. "12.3 img/s").

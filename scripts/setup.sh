@@ -5,3 +5,4 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 build/dicsynth render scenes/figure1.lua -o out
+echo "dicsynth: built; the Python module: PYTHONPATH=$PWD/build /usr/bin/python3 -c 'import dicsynth'" >&2

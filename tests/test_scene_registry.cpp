@@ -1,6 +1,6 @@
 // The scene language's registry against its documentation: every constructor and function the
-// language adds to Lua appears exactly once in README's constructor table ("The scene language"),
-// and the table names nothing the language lacks. The registry is read from a Lua state: the
+// language adds to Lua appears exactly once in the manual's constructor table
+// (docs/scene-language.md), and the table names nothing the language lacks. The registry is read from a Lua state: the
 // globals registerSceneLanguage adds to a bare sandbox, and the functions in its constructor tables.
 #include <doctest/doctest.h>
 
@@ -59,8 +59,8 @@ std::set<std::string> registry() {
 
 }  // namespace
 
-TEST_CASE("scene-registry: README's constructor table lists every constructor of the scene language once, and nothing else") {
-  std::ifstream in(std::string(DS_SOURCE_DIR) + "/README.md");
+TEST_CASE("scene-registry: the manual's constructor table lists every constructor of the scene language once, and nothing else") {
+  std::ifstream in(std::string(DS_SOURCE_DIR) + "/docs/scene-language.md");
   std::stringstream text;
   text << in.rdbuf();
   const std::string readme = text.str();

@@ -1,0 +1,126 @@
+// The manual's snippets are executed (a doc test), so that README.md and docs/*.md cannot drift
+// from the program. Each fenced block, by its info string:
+//   ```lua           a scene: rendered by the CLI (CPU reference, 1/16 of the resolution, 1 sample),
+//                    with a default camera added when the block has none; it must succeed;
+//   ```lua fragment  a part of a scene that needs more around it: compiled by Lua only;
+//   ```sh            each command line starting with build/dicsynth or PYTHONPATH=build runs from a
+//                    temporary folder where build/, scenes/, examples/ and bench/ are the
+//                    repository's; render, sweep and compare get --downscale 16 --spp 1 unless the
+//                    line sets them; it must exit 0. Lines starting with ./scripts/ are the quick
+//                    start, which CI itself runs (.ci/run); comments and blank lines are skipped;
+//   ```sh cluster    needs Slurm or GNU parallel: not run here (tests/test_slurm_scripts.cpp runs
+//                    the Slurm scripts with bash);
+//   ```sh slow       run only with DICSYNTH_DOC_SLOW=1 (minutes of rendering);
+//   other blocks (python, plain text) are not executed (the Python examples run in tests/python).
+#include <doctest/doctest.h>
+
+#include <lua.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_cli.h"
+
+using namespace dicsynth;
+
+namespace {
+
+struct Block {
+  std::string file;
+  int line = 0;      // of the opening fence
+  std::string info;  // "lua", "lua fragment", "sh", ...
+  std::string text;
+};
+
+std::vector<Block> blocks() {
+  std::vector<std::filesystem::path> files = {std::filesystem::path(DS_SOURCE_DIR) / "README.md"};
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(DS_SOURCE_DIR) / "docs"))
+    if (e.path().extension() == ".md") files.push_back(e.path());
+  std::sort(files.begin() + 1, files.end());
+  std::vector<Block> out;
+  for (const auto& path : files) {
+    std::ifstream in(path);
+    std::string line;
+    int number = 0;
+    Block* open = nullptr;
+    while (std::getline(in, line)) {
+      ++number;
+      if (line.rfind("```", 0) == 0) {
+        if (open) {
+          open = nullptr;
+        } else {
+          out.push_back({path.filename().string(), number, line.substr(3), ""});
+          open = &out.back();
+        }
+        continue;
+      }
+      if (open) open->text += line + "\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("docs: every lua and sh snippet of README.md and docs/ runs") {
+  const std::vector<Block> all = blocks();
+  const bool slow = std::getenv("DICSYNTH_DOC_SLOW") != nullptr;
+  std::size_t scenes = 0, fragments = 0, commands = 0;
+  for (const Block& b : all) {
+    const std::string where = b.file + ":" + std::to_string(b.line);
+    INFO(where << " ```" << b.info << "\n" << b.text);
+    if (b.info == "lua fragment") {
+      lua_State* L = luaL_newstate();
+      const int status = luaL_loadbufferx(L, b.text.data(), b.text.size(), where.c_str(), "t");
+      CHECK_MESSAGE(status == LUA_OK, (lua_tostring(L, -1) ? lua_tostring(L, -1) : ""));
+      lua_close(L);
+      ++fragments;
+    } else if (b.info == "lua") {
+      test::TempFolder dir;
+      std::filesystem::create_symlink(std::filesystem::path(DS_SOURCE_DIR) / "scenes" / "speckle.tif", dir.path() / "speckle.tif");
+      const bool camera = b.text.find("Camera.") != std::string::npos;
+      const std::string scene = dir.write(
+          "snippet.lua", (camera ? "" : "docCamera = Camera.Pinhole { resolution = {320, 240}; focalLength = 0.016; "
+                                        "pixelSize = {1e-5, 1e-5}; position = {0, 0, 0} }\n") + b.text);
+      const test::CliResult r =
+          test::runCli("render " + scene + " -o " + dir.file("out") + " --backend cpu --downscale 16 --spp 1 --layers image");
+      INFO(r.err);
+      CHECK(r.exitCode == 0);
+      ++scenes;
+    } else if (b.info == "sh" || (b.info == "sh slow" && slow)) {
+      test::TempFolder dir;
+      for (const char* link : {"build", "scenes", "examples", "bench"}) {
+        const std::filesystem::path target =
+            std::string(link) == "build" ? std::filesystem::path(DS_BINARY).parent_path() : std::filesystem::path(DS_SOURCE_DIR) / link;
+        std::filesystem::create_directory_symlink(target, dir.path() / link);
+      }
+      std::istringstream lines(b.text);
+      for (std::string line; std::getline(lines, line);) {
+        if (const auto hash = line.find("  #"); hash != std::string::npos) line = line.substr(0, hash);  // a trailing comment
+        while (!line.empty() && line.back() == ' ') line.pop_back();
+        if (line.empty() || line[0] == '#' || line.rfind("./scripts/", 0) == 0) continue;
+        REQUIRE_MESSAGE((line.rfind("build/dicsynth ", 0) == 0 || line.rfind("PYTHONPATH=build ", 0) == 0),
+                        where << ": a shell line the doc test cannot run: " << line);
+        for (const char* sub : {"build/dicsynth render ", "build/dicsynth sweep ", "build/dicsynth compare "})
+          if (line.rfind(sub, 0) == 0) {
+            if (line.find("--downscale ") == std::string::npos) line += " --downscale 16";
+            if (line.find("--spp ") == std::string::npos) line += " --spp 1";
+          }
+        const std::string command = "cd " + dir.path().string() + " && " + line + " > " + dir.file("stdout.txt") +
+                                    " 2> " + dir.file("stderr.txt");
+        const int status = std::system(command.c_str());
+        INFO(line << "\nstderr: " << test::readBytes(dir.file("stderr.txt")));
+        CHECK(status == 0);
+        ++commands;
+      }
+    }
+  }
+  MESSAGE(scenes << " scene snippets rendered, " << fragments << " fragments compiled, " << commands << " commands run");
+  CHECK(scenes >= 4);
+  CHECK(commands >= 6);
+}

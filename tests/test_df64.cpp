@@ -238,7 +238,7 @@ TEST_CASE("df64: the self-test fails a library with a broken split constant") {
 
 TEST_CASE("df64: the self-test fails a library compiled without precise (on lavapipe)") {
   // df64_probe_no_precise.comp: no NoContraction. Whether a compiler then breaks the error-free
-  // transformations is its choice; lavapipe's does (DESIGN.md §4), so there the self-test must fail.
+  // transformations is its choice; lavapipe's does (docs/design.md §4), so there the self-test must fail.
   auto& ctx = test::gpuContext();
   const auto ops = gpu::measureDf64(ctx, spirv::df64_probe_no_precise_fp32, {false, gpu::kDf64SelfTestInputs});
   report("no precise", ops);

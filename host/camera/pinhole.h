@@ -1,5 +1,5 @@
 #pragma once
-// The camera models, in OpenCV's conventions (DESIGN.md §3): camera frame x right, y down, z forward;
+// The camera models, in OpenCV's conventions (docs/design.md §3): camera frame x right, y down, z forward;
 // pixel (x, y) centred at integer coordinates, (0, 0) = centre of the top-left pixel;
 //   u = fx x'' + cx,  v = fy y'' + cy  with (x'', y'') = distort(x', y')   (camera/distortion.h)
 // The kinds differ in their normalized coordinates (x', y') and in the rays they trace:

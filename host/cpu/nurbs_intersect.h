@@ -1,5 +1,5 @@
 #pragma once
-// Ray–NURBS intersection, the double-precision reference (DESIGN.md §4 "Ray–NURBS"): every root of
+// Ray–NURBS intersection, the double-precision reference (docs/design.md §4 "Ray–NURBS"): every root of
 // the object-frame ray X(s) = o + s d with s in (sMin, sMax), found without any GPU shortcut.
 //
 // Method.

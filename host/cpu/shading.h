@@ -31,7 +31,7 @@
 //   t = clamp((cos φ − cos outer)/(cos inner − cos outer), 0, 1), s = t²(3 − 2t). Point light: s = 1.
 //   Defined on the cosine so that both backends need no acos (GLSL has no double acos).
 //
-// Shininess n is an integer (1 ≤ n ≤ 10⁴): GLSL has no double pow (DESIGN.md §4), and x^n by
+// Shininess n is an integer (1 ≤ n ≤ 10⁴): GLSL has no double pow (docs/design.md §4), and x^n by
 // repeated squaring costs ≤ 2 log2 n products with a relative error ≤ 2n·2⁻⁵³ (≤ 2.2e-12 at
 // n = 10⁴), far below the 1e-9 the fp64 GPU variant must meet; the CPU uses std::pow.
 #include <algorithm>

@@ -3,7 +3,7 @@
 // point lies in another frame of the scene. The ground truth of motion (disp, flow) and of stereo
 // correspondence (disparity) rests on this (render/ground_truth.h).
 //
-// A texture is glued on (u, v) (DESIGN.md §3), so the material is identified by its (u, v): the
+// A texture is glued on (u, v) (docs/design.md §3), so the material is identified by its (u, v): the
 // material point seen in one frame is the point with the same object and the same (u, v) in any
 // other frame, however the object moved or deformed (a NURBS whose control points move, a sphere
 // whose radius grows, a rectangle whose size changes). One exception: a Plane repeats its texture

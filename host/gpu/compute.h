@@ -1,7 +1,7 @@
 #pragma once
 // Compute pipelines and their dispatch. A pipeline's descriptor set layout is "bindings 0..N-1 in
 // set 0, each a storage buffer, a uniform buffer or a uniform texel buffer", plus an optional
-// push-constant block; specialization constants switch off the features a scene lacks (DESIGN.md §5).
+// push-constant block; specialization constants switch off the features a scene lacks (docs/design.md §5).
 #include <vulkan/vulkan.h>
 
 #include <cstddef>

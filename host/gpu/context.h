@@ -1,6 +1,6 @@
 #pragma once
 // Vulkan instance + logical device + compute queue, headless (no window system).
-// Device choice (DESIGN.md §5): a discrete GPU if present, else an integrated one, else a virtual one,
+// Device choice (docs/design.md §5): a discrete GPU if present, else an integrated one, else a virtual one,
 // else a CPU implementation (lavapipe); ContextOptions::device overrides (index or name substring).
 #include <vulkan/vulkan.h>
 

@@ -1,7 +1,7 @@
 #pragma once
 // df64 (double-float) support on the host: splitting doubles into the (hi, lo) float pairs that
 // shaders/lib/df64.glsl computes with, and the on-device self-test that decides whether df64 may
-// be used on a device (DESIGN.md §4: a driver that fuses or reassociates float operations breaks
+// be used on a device (docs/design.md §4: a driver that fuses or reassociates float operations breaks
 // the error-free transformations silently; only a measurement tells).
 //
 // The self-test runs tests/shaders/df64_probe.comp over a fixed, deterministic input set (random

@@ -1,5 +1,5 @@
 #pragma once
-// The one VkResult checker (DESIGN.md §5): every Vulkan call that returns a VkResult goes through
+// The one VkResult checker (docs/design.md §5): every Vulkan call that returns a VkResult goes through
 // DS_VK, which throws dicsynth::Error naming the call, the result and the file:line of the call.
 #include <vulkan/vulkan.h>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Move-only owners of Vulkan handles (DESIGN.md §5: every handle is owned by an RAII object).
+// Move-only owners of Vulkan handles (docs/design.md §5: every handle is owned by an RAII object).
 // Internal to host/gpu: users see Context, Buffer and ComputePipeline, which hold these.
 #include <vulkan/vulkan.h>
 

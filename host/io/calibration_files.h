@@ -6,7 +6,7 @@
 //   DIR/<rig>.yml         OpenCV FileStorage YAML: both cameras' intrinsics and the stereo R, T
 //   DIR/<rig>.dice.xml    DICe camera-system file (xml_file_format DICe_xml_camera_system_file)
 //
-// Conventions (DESIGN.md §3): pixel coordinates as OpenCV (centre of the top-left pixel = (0, 0)),
+// Conventions (docs/design.md §3): pixel coordinates as OpenCV (centre of the top-left pixel = (0, 0)),
 // distortion coefficients in OpenCV's order k1 k2 p1 p2 k3, pose x_cam = R·x_world + t, stereo
 // relation x_right = R·x_left + T as cv::stereoCalibrate returns it; lengths in metres.
 #include <array>

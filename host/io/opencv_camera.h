@@ -1,5 +1,5 @@
 #pragma once
-// A Camera in OpenCV's terms (DESIGN.md §3), as every output file states it: the camera matrix,
+// A Camera in OpenCV's terms (docs/design.md §3), as every output file states it: the camera matrix,
 // the distortion coefficients in OpenCV's order and the pose x_cam = R·x_world + t.
 #include <array>
 #include <vector>

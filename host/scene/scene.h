@@ -22,7 +22,7 @@
 
 namespace dicsynth {
 
-// OpenCV's lens distortion on normalized coordinates (DESIGN.md §3, camera/distortion.h); maps
+// OpenCV's lens distortion on normalized coordinates (docs/design.md §3, camera/distortion.h); maps
 // ideal → distorted. Brown: k1 k2 k3 p1 p2. Rational: also k4 k5 k6 (radial denominator) and the
 // thin-prism s1..s4.
 struct Distortion {

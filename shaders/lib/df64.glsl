@@ -1,4 +1,4 @@
-// df64: double-float arithmetic for devices whose native fp64 is slow or absent (DESIGN.md §4).
+// df64: double-float arithmetic for devices whose native fp64 is slow or absent (docs/design.md §4).
 // A number is the unevaluated sum hi + lo of two floats with |lo| <= ulp(hi)/2 ("normalized"):
 // about 48 significant bits with float's exponent. Scalars and vectors, component-wise:
 //

@@ -1,5 +1,5 @@
 // Specialization constants: the host switches off what a scene does not use, and the driver's
-// compiler removes that code (DESIGN.md §5). Defaults are "on", so an unspecialized pipeline is
+// compiler removes that code (docs/design.md §5). Defaults are "on", so an unspecialized pipeline is
 // always correct.
 #ifndef DS_FEATURES_GLSL
 #define DS_FEATURES_GLSL

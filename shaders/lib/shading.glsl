@@ -4,7 +4,7 @@
 #ifndef DS_SHADING_GLSL
 #define DS_SHADING_GLSL
 
-// x^n for an integer n >= 0 by repeated squaring: GLSL has no double pow (DESIGN.md §4). At most
+// x^n for an integer n >= 0 by repeated squaring: GLSL has no double pow (docs/design.md §4). At most
 // 2 log2 n products, relative error <= 2n ε (host/cpu/shading.h); x in [0, 1] never overflows.
 real ds_pow_int(real x, int n) {
   real r = real(1.0);

@@ -2,7 +2,7 @@
 // One source, three precision variants. `real4` is the variant's bulk type (vec4 in fp32 and df64,
 // dvec4 in fp64); `hreal4` its geometric type (vec4, dvec4, or a df64 pair {vec4 hi; vec4 lo;}).
 // In C++ they are 16/32-byte aligned structs of float/double. Members are real4/hreal4/ivec4/uvec4
-// only (DESIGN.md §4: no vec3 alignment traps), and every struct's size is a multiple of its
+// only (docs/design.md §4: no vec3 alignment traps), and every struct's size is a multiple of its
 // std430 alignment (16 bytes; 32 with dvec4 members), so arrays have no hidden padding;
 // host/gpu/gpu_layout.h static_asserts sizes and offsets.
 //

@@ -65,12 +65,43 @@ struct FramesChecked {
   bool calibrationPerFrame = false;
   std::uint64_t maxPixelsPerFrame = 0;  // over the frames: all cameras' pixels, after --downscale
 };
+// A lower bound of the GPU bytes a frame's NURBS control points take: one rational Bézier patch per
+// non-empty knot span pair, (p + 1)(q + 1) points of at least 16 bytes (fp32's vec4). Checked
+// against the device's storage-buffer limit before any preparation (which for a million patches
+// takes seconds and gigabytes); the exact sizes are checked again when the frame is packed.
+void checkNurbsFitsDevice(const RenderSession& session, const Scene& scene) {
+  gpu::Context* context = const_cast<RenderSession&>(session).context();
+  if (!context) return;
+  const std::uint64_t limit = context->properties().limits.maxStorageBufferRange;
+  auto spans = [](const std::vector<double>& knots, int degree, int count) {
+    std::uint64_t n = 0;
+    for (int i = degree; i < count; ++i) n += knots[std::size_t(i)] < knots[std::size_t(i) + 1] ? 1 : 0;
+    return n;
+  };
+  std::uint64_t total = 0;
+  for (const Object& object : scene.objects) {
+    const NurbsSurface* s = object.shape.nurbs.get();
+    if (!s) continue;
+    const std::uint64_t patches = spans(s->knotsU, s->degreeU, s->countU) * spans(s->knotsV, s->degreeV, s->countV);
+    const std::uint64_t bytes = patches * std::uint64_t((s->degreeU + 1) * (s->degreeV + 1)) * 16;
+    total += bytes;
+    if (bytes > limit || total > limit)
+      throw InputError(object.shape.where, "the NURBS surface of object '" + object.name + "' (" + std::to_string(patches) +
+                                               " Bézier patches) needs at least " + std::to_string(bytes >> 20) +
+                                               " MiB of GPU control points" + (bytes > limit ? "" : " with the scene's other surfaces") +
+                                               ", more than the device's maxStorageBufferRange of " +
+                                               std::to_string(limit >> 20) + " MiB (" + context->info().name +
+                                               "): use fewer knot spans, or --backend cpu");
+  }
+}
+
 FramesChecked checkFrames(const RenderSession& session, const RenderJob& job) {
   FramesChecked out;
   LayerSources sources;
   std::vector<std::string> firstCalibration;
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
     const Scene scene = loadFrameScene(session, job, job.frames[fi], false);
+    checkNurbsFitsDevice(session, scene);
     sources.add(scene);
     std::uint64_t pixels = 0;
     const auto k = std::uint64_t(std::max(1, session.args().downscale));
@@ -288,11 +319,12 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   checkOutputWritable(job.outputDir);
   if (std::filesystem::is_directory(job.outputDir)) removeStaleTemporaries(job.outputDir);
   OutputRollback rollback(job.outputDir);
+  // The device first: its limits are part of checking the frames (0.14 s on lavapipe).
+  session.startDevice();
+  phaseDone("device");
   // Calibration files: once and unnumbered when every frame has the same cameras, else per frame.
   const bool calibrationPerFrame = checkFrames(session, job).calibrationPerFrame;
   phaseDone("scenes");
-  session.startDevice();
-  phaseDone("device");
   RenderJobResult summary;
   std::unique_ptr<ReferenceFrame> reference;
   // Frame i is derived and written on a worker thread while frame i + 1 renders, as a sweep writes
@@ -331,8 +363,8 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
 RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
   renderOptions(session.args(), 0);
   RenderedJob out;
-  out.calibrationPerFrame = checkFrames(session, job).calibrationPerFrame;
   session.startDevice();
+  out.calibrationPerFrame = checkFrames(session, job).calibrationPerFrame;
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi)
     out.frames.push_back(renderFrame(session, job, loadFrameScene(session, job, job.frames[fi], true), job.frames[fi], out.summary));
   return out;

@@ -18,6 +18,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -113,8 +114,11 @@ class PyRenderer {
   py::dict render(const PyScene& scene, std::vector<int> frames, int spp, const std::vector<std::string>& layers,
                   std::optional<int> referenceFrame) {
     if (frames.empty()) throw InputError("frames: at least one frame");
-    for (int f : frames)
-      if (f < 0) throw InputError("frames: frame numbers are >= 0, got " + std::to_string(f));
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      if (frames[i] < 0) throw InputError("frames: frame numbers are >= 0, got " + std::to_string(frames[i]));
+      if (std::find(frames.begin(), frames.begin() + std::ptrdiff_t(i), frames[i]) != frames.begin() + std::ptrdiff_t(i))
+        throw InputError("frames: frame " + std::to_string(frames[i]) + " is listed twice");
+    }
     if (spp < 1 || spp > 65536) throw InputError("spp " + std::to_string(spp) + ": must be in 1..65536");
     std::string layerText;
     for (const std::string& l : layers) layerText += (layerText.empty() ? "" : ",") + l;

@@ -79,6 +79,8 @@ def test_layers_errors_and_a_warm_loop():
     out = renderer.render(scene, layers=["image", "P"])
     arrays = next(iter(out.values()))
     assert sorted(arrays.keys()) == ["P", "image"]
+    with pytest.raises(dicsynth.InputError, match="frame 0 is listed twice"):
+        renderer.render(scene, frames=[0, 0])
     with pytest.raises(dicsynth.InputError, match="unknown layer 'bogus'"):
         renderer.render(scene, layers=["bogus"])
     with pytest.raises(dicsynth.InputError, match="no such file|cannot read the scene file"):

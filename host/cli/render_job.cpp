@@ -21,6 +21,7 @@
 #include "core/progress.h"
 #include "core/serial_worker.h"
 #include "cpu/reference_renderer.h"
+#include "geometry/nurbs_basis.h"
 #include "io/atomic_file.h"
 #include "io/calibration_files.h"
 #include "io/feature_files.h"
@@ -49,7 +50,7 @@ void writeCalibration(const std::string& dir, const PreparedScene& prepared, con
 }
 
 // `again`: the frame was evaluated by checkFrames already, whose prints the user saw.
-Scene loadFrameScene(const RenderSession& session, const RenderJob& job, int frame, bool again) {
+Scene loadFrameScene(const RenderJob& job, int frame, bool again) {
   SceneParams params{job.defines, frame};
   params.sweepParameters = job.sweepParameters;
   params.quiet = again;
@@ -69,20 +70,15 @@ struct FramesChecked {
 // non-empty knot span pair, (p + 1)(q + 1) points of at least 16 bytes (fp32's vec4). Checked
 // against the device's storage-buffer limit before any preparation (which for a million patches
 // takes seconds and gigabytes); the exact sizes are checked again when the frame is packed.
-void checkNurbsFitsDevice(const RenderSession& session, const Scene& scene) {
-  gpu::Context* context = const_cast<RenderSession&>(session).context();
+void checkNurbsFitsDevice(RenderSession& session, const Scene& scene) {
+  gpu::Context* context = session.context();
   if (!context) return;
   const std::uint64_t limit = context->properties().limits.maxStorageBufferRange;
-  auto spans = [](const std::vector<double>& knots, int degree, int count) {
-    std::uint64_t n = 0;
-    for (int i = degree; i < count; ++i) n += knots[std::size_t(i)] < knots[std::size_t(i) + 1] ? 1 : 0;
-    return n;
-  };
   std::uint64_t total = 0;
   for (const Object& object : scene.objects) {
     const NurbsSurface* s = object.shape.nurbs.get();
     if (!s) continue;
-    const std::uint64_t patches = spans(s->knotsU, s->degreeU, s->countU) * spans(s->knotsV, s->degreeV, s->countV);
+    const std::uint64_t patches = bezierPatchCount(*s);
     const std::uint64_t bytes = patches * std::uint64_t((s->degreeU + 1) * (s->degreeV + 1)) * 16;
     total += bytes;
     if (bytes > limit || total > limit)
@@ -95,12 +91,12 @@ void checkNurbsFitsDevice(const RenderSession& session, const Scene& scene) {
   }
 }
 
-FramesChecked checkFrames(const RenderSession& session, const RenderJob& job) {
+FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   FramesChecked out;
   LayerSources sources;
   std::vector<std::string> firstCalibration;
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
-    const Scene scene = loadFrameScene(session, job, job.frames[fi], false);
+    const Scene scene = loadFrameScene(job, job.frames[fi], false);
     checkNurbsFitsDevice(session, scene);
     sources.add(scene);
     std::uint64_t pixels = 0;
@@ -342,7 +338,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
     if (bar && fi > 0) bar->update(std::int64_t(fi));
     std::shared_ptr<RenderedFrame> rendered;
     try {
-      const Scene scene = loadFrameScene(session, job, job.frames[fi], true);
+      const Scene scene = loadFrameScene(job, job.frames[fi], true);
       rendered = std::make_shared<RenderedFrame>(renderFrame(session, job, scene, job.frames[fi], summary));
     } catch (...) {
       finishWriting();  // the previous frame still completes (its own error, if any, wins)
@@ -366,7 +362,7 @@ RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
   session.startDevice();
   out.calibrationPerFrame = checkFrames(session, job).calibrationPerFrame;
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi)
-    out.frames.push_back(renderFrame(session, job, loadFrameScene(session, job, job.frames[fi], true), job.frames[fi], out.summary));
+    out.frames.push_back(renderFrame(session, job, loadFrameScene(job, job.frames[fi], true), job.frames[fi], out.summary));
   return out;
 }
 

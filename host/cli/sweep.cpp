@@ -121,7 +121,7 @@ class Progress {
  public:
   Progress(std::int64_t total, bool terminal) : bar_("sweep", "points", total, terminal) {}
   void update(std::int64_t done, std::int64_t /*rendered*/, std::int64_t images) {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double elapsed = bar_.elapsedSeconds();
     char rate[48];
     std::snprintf(rate, sizeof rate, "%.2f img/s", elapsed > 0 ? double(images) / elapsed : 0.0);
     bar_.update(done, rate);
@@ -129,7 +129,6 @@ class Progress {
 
  private:
   ProgressBar bar_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 int runSweep(const SweepCommand& cmd) {
@@ -177,9 +176,7 @@ int runSweep(const SweepCommand& cmd) {
     first.quiet = true;  // a check: the point's own evaluation prints when it renders
     loadScene(cmd.args.scenePath, first);
   }
-  createOutputDir(cmd.outputDir);
-  if (::access(cmd.outputDir.c_str(), W_OK | X_OK) != 0)
-    throw InputError("-o " + cmd.outputDir + ": the output folder is not writable");
+  createOutputDir(cmd.outputDir);  // writable: checkOutputWritable created a file where it goes
   sweep::AssetChecksums assets;
   if (cmd.mergeOnly) {
     const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets);

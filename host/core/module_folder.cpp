@@ -18,4 +18,22 @@ std::filesystem::path codeFolder() {
   return ec ? std::filesystem::path(".") : exe.parent_path();
 }
 
+void* LoadableModule::symbol(const char* name, std::string& failure) {
+  std::call_once(once_, [this] {
+    path_ = (codeFolder() / fileName_).string();
+    handle_ = dlopen(path_.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle_) {
+      const char* e = dlerror();
+      loadFailure_ = "cannot load " + path_ + " (" + (e ? e : "unknown reason") + ")";
+    }
+  });
+  if (!handle_) {
+    failure = loadFailure_;
+    return nullptr;
+  }
+  void* function = dlsym(handle_, name);
+  if (!function) failure = path_ + " lacks " + name + " (a stale build?)";
+  return function;
+}
+
 }  // namespace dicsynth

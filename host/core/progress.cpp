@@ -17,6 +17,10 @@ std::string clockText(double seconds) {
 ProgressBar::ProgressBar(std::string label, std::string unit, std::int64_t total, bool terminal)
     : label_(std::move(label)), unit_(std::move(unit)), total_(std::max<std::int64_t>(total, 1)), terminal_(terminal) {}
 
+double ProgressBar::elapsedSeconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
 void ProgressBar::update(std::int64_t done, const std::string& extra) {
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();

@@ -18,6 +18,7 @@ class ProgressBar {
   ProgressBar(std::string label, std::string unit, std::int64_t total, bool terminal);
   // `done` of the total are finished; `extra` is appended (e.g. "12.3 img/s").
   void update(std::int64_t done, const std::string& extra = "");
+  double elapsedSeconds() const;  // since construction
 
  private:
   std::string label_, unit_;

@@ -1,8 +1,10 @@
 #pragma once
 // B-spline basis of a knot vector (the NURBS Book's conventions, geometry/nurbs_surface.h): the span
-// of a parameter and the p + 1 basis functions non-zero on it. Shared by the NURBS evaluator
-// (geometry/nurbs.cpp) and the fit of deformed surfaces (geometry/nurbs_fit.cpp).
+// of a parameter, the p + 1 basis functions non-zero on it, and the count of non-empty spans.
+// Shared by the NURBS evaluator (geometry/nurbs.cpp), its BVH (nurbs_bvh.cpp), the fit of deformed
+// surfaces (nurbs_fit.cpp) and the device-size check of a render (cli/render_job.cpp).
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "geometry/nurbs_surface.h"
@@ -10,6 +12,18 @@
 namespace dicsynth {
 
 inline constexpr int kMaxNurbsOrder = kMaxNurbsDegree + 1;
+
+// Non-empty knot spans of the domain [U[p], U[n]]: the number of Bézier pieces in that direction.
+inline std::size_t spanCount(const std::vector<double>& U, int p, int n) {
+  std::size_t count = 0;
+  for (int s = p; s < n; ++s) count += U[std::size_t(s)] < U[std::size_t(s) + 1] ? 1 : 0;
+  return count;
+}
+
+// The rational Bézier patches of a surface (one per pair of non-empty spans).
+inline std::size_t bezierPatchCount(const NurbsSurface& s) {
+  return spanCount(s.knotsU, s.degreeU, s.countU) * spanCount(s.knotsV, s.degreeV, s.countV);
+}
 
 // The span s (degree p ≤ s ≤ n − 1) with U[s] ≤ t < U[s + 1]: the largest s with U[s] ≤ t is
 // automatically non-empty. At the domain's end (t = U[n]) the last non-empty span, so that the

@@ -1,5 +1,7 @@
 #include "geometry/nurbs_bvh.h"
 
+#include "geometry/nurbs_basis.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -23,13 +25,6 @@ InputError tooManySubPatches(const NurbsSurface& s, std::size_t patches, double 
       << " sub-patches to be ray-traced reliably; use fewer control points or a less strongly "
          "curved surface";
   return InputError(msg.str());
-}
-
-// Non-empty knot spans of the domain: the number of Bézier pieces in that direction.
-std::size_t spanCount(const std::vector<double>& U, int p, int n) {
-  std::size_t count = 0;
-  for (int s = p; s < n; ++s) count += U[std::size_t(s)] < U[std::size_t(s) + 1] ? 1 : 0;
-  return count;
 }
 
 struct Piece {
@@ -236,8 +231,7 @@ NurbsPieceCriteria pieceCriteria(const dvec4* points, int degreeU, int degreeV) 
 PreparedNurbs prepareNurbs(const NurbsSurface& surface, std::size_t maxSubPatches) {
   PreparedNurbs r;
   // Each patch gives at least one sub-patch: refuse before extracting (and allocating) them.
-  const std::size_t patchCount = spanCount(surface.knotsU, surface.degreeU, surface.countU) *
-                                 spanCount(surface.knotsV, surface.degreeV, surface.countV);
+  const std::size_t patchCount = bezierPatchCount(surface);
   if (patchCount > maxSubPatches) throw tooManySubPatches(surface, patchCount, 0, maxSubPatches);
   r.patches = toBezierPatches(surface);
   dvec3 lo(kInfinity), hi(-kInfinity);

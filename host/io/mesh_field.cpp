@@ -1,7 +1,5 @@
 #include "io/mesh_field.h"
 
-#include <dlfcn.h>
-
 #include <filesystem>
 
 #include "core/error.h"
@@ -18,22 +16,14 @@ struct VtkModule {
   std::string failure;  // why the module is unusable, when it is
 };
 
-// Loaded once per process, on first use, beside the binary (core/module_folder.h), and
-// never unloaded (VTK keeps singletons).
 const VtkModule& vtkModule() {
   static const VtkModule module = [] {
+    static LoadableModule library(kVtkModuleFile);
     VtkModule m;
-    const std::string path = (codeFolder() / kVtkModuleFile).string();
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* e = dlerror();
-      m.failure = "cannot load " + path + " (" + (e ? e : "unknown reason") + ")";
-      return m;
-    }
-    m.open = reinterpret_cast<OpenMeshFieldFn>(dlsym(handle, kMeshFieldOpenSymbol));
-    m.probe = reinterpret_cast<ProbeMeshFieldFn>(dlsym(handle, kMeshFieldProbeSymbol));
-    m.close = reinterpret_cast<CloseMeshFieldFn>(dlsym(handle, kMeshFieldCloseSymbol));
-    if (!m.open || !m.probe || !m.close) m.failure = path + " lacks its functions (a stale build?)";
+    m.open = reinterpret_cast<OpenMeshFieldFn>(library.symbol(kMeshFieldOpenSymbol, m.failure));
+    m.probe = reinterpret_cast<ProbeMeshFieldFn>(library.symbol(kMeshFieldProbeSymbol, m.failure));
+    m.close = reinterpret_cast<CloseMeshFieldFn>(library.symbol(kMeshFieldCloseSymbol, m.failure));
+    if (!m.open || !m.probe || !m.close) m.open = nullptr;  // unusable: `failure` says why
     return m;
   }();
   return module;

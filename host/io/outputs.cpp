@@ -56,6 +56,7 @@
 #include <algorithm>
 #include <cstring>
 #include <functional>
+#include <iterator>
 #include <optional>
 #include <filesystem>
 #include <system_error>
@@ -230,13 +231,17 @@ void addMetadata(Imf::Header& header, const Camera& camera, const OutputInfo& in
   header.pixelAspectRatio() = float(camera.pixelSize_m.x / camera.pixelSize_m.y);
 }
 
+// OpenEXR's compression of each name of kExrCompressions, in its order.
 Imf::Compression exrCompression(const std::string& name) {
-  if (name == "zip") return Imf::ZIP_COMPRESSION;
-  if (name == "zips") return Imf::ZIPS_COMPRESSION;
-  if (name == "piz") return Imf::PIZ_COMPRESSION;
-  if (name == "rle") return Imf::RLE_COMPRESSION;
-  if (name == "none") return Imf::NO_COMPRESSION;
-  throw InputError("EXR compression '" + name + "': expected zip, zips, piz, rle or none");
+  static const Imf::Compression kinds[] = {Imf::ZIP_COMPRESSION, Imf::ZIPS_COMPRESSION, Imf::PIZ_COMPRESSION,
+                                           Imf::RLE_COMPRESSION, Imf::NO_COMPRESSION};
+  DS_CHECK(kExrCompressions.size() == std::size(kinds), "one OpenEXR compression per kExrCompressions name");
+  std::string names;
+  for (std::size_t k = 0; k < kExrCompressions.size(); ++k) {
+    if (name == kExrCompressions[k]) return kinds[k];
+    names += (k == 0 ? "" : k + 1 == kExrCompressions.size() ? " or " : ", ") + kExrCompressions[k];
+  }
+  throw InputError("EXR compression '" + name + "': expected " + names);
 }
 
 // OpenEXR compresses the blocks of one writePixels call on its global thread pool (16 rows per

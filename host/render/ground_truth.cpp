@@ -209,15 +209,11 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       truth.flow_px[i] = s.pixel_px - view->pixel_px[i];
       truth.flowMask[i] = s.visible ? 1.0f : 0.0f;
     });
-  }
-
-  if (layers.has(Layer::FieldError) && !truth.displacement_m.empty()) {
-    bool deformed = false;
-    for (const PreparedObject& o : scene.objects) deformed = deformed || o.deformation != nullptr;
-    std::vector<int> objectNow(reference.scene().objects.size());
-    for (std::size_t o = 0; o < objectNow.size(); ++o)
-      objectNow[o] = objectIndexByName(scene, reference.scene().objects[o].name);
-    if (deformed) truth.fieldError_m = fieldErrors(*view, objectNow, scene);
+    if (layers.has(Layer::FieldError)) {
+      bool deformed = false;
+      for (const PreparedObject& o : scene.objects) deformed = deformed || o.deformation != nullptr;
+      if (deformed) truth.fieldError_m = fieldErrors(*view, objectNow, scene);
+    }
   }
 
   // Disparity: this pixel's material point seen by the rig's other camera.

@@ -87,9 +87,9 @@ int fieldToString(lua_State* L) {
   return 1;
 }
 
-// A Lua function d(x, y, z) → dx, dy, dz as a DisplacementField. While the scene runs (the fit),
-// it is called directly, under the run's limits; afterwards (the fieldError layer) through the
-// sandbox's callAfterRun, if the scene is still loaded.
+// A Lua function d(x, y, z) → dx, dy, dz as a DisplacementField, called through the sandbox
+// (LuaSandbox::call): while the scene runs (the fit) under the run's limits; afterwards (the
+// fieldError layer) inside callAfterRun, under fresh ones, while the scene is still loaded.
 class LuaFunctionField {
  public:
   LuaFunctionField(lua_State* L, int index, SourceLoc where)
@@ -123,33 +123,30 @@ class LuaFunctionField {
       lua_pushnumber(L, x.x);
       lua_pushnumber(L, x.y);
       lua_pushnumber(L, x.z);
-      if (running_) {
-        if (lua_pcall(L, 3, 3, 0) != LUA_OK) {
-          std::string message = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error";
-          lua_pop(L, 1);
-          throw InputError("'displacement' failed at " + at(x) + ": " + message);
-        }
-      } else {
-        try {
-          sandbox.call(3, 3);
-        } catch (const InputError& e) {
-          throw InputError(where_, std::string("Nurbs.deform: 'displacement', called again for the fieldError layer, failed at ") +
-                                       at(x) + ": " + e.what());
-        }
+      try {
+        sandbox.call(3, 3);
+      } catch (const InputError& e) {
+        fail("'displacement' failed at " + at(x) + ": " + e.what());
       }
       for (int c = 0; c < 3; ++c) {
         if (!lua_isnumber(L, -3 + c)) {
           const std::string message = "'displacement' must return three numbers dx, dy, dz; at " + at(x) + " value " +
                                       std::to_string(c + 1) + " is " + typeName(L, -3 + c);
           lua_pop(L, 3);
-          if (running_) throw InputError(message);
-          throw InputError(where_, "Nurbs.deform: " + message);
+          fail(message);
         }
         d[k][c] = lua_tonumber(L, -3 + c);
       }
       lua_pop(L, 3);
     }
     return d;
+  }
+
+  // While the scene runs, Nurbs.deform's Params reader adds the constructor and the line; after,
+  // the message says both itself.
+  [[noreturn]] void fail(const std::string& message) const {
+    if (running_) throw InputError(message);
+    throw InputError(where_, "Nurbs.deform: " + message + " (called again for the fieldError layer)");
   }
 
   static std::string at(const dvec3& x) {

@@ -86,9 +86,10 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   // instruction and memory limits as the scene, counted from zero for this body). Serialized:
   // safe from any thread. Throws what body throws, or InputError for a limit.
   void callAfterRun(const std::function<void()>& body);
-  // Inside callAfterRun's body: lua_pcall of the function and nargs arguments on the stack, with
-  // the scene's message handler. On error pops everything it pushed and throws
-  // InputError("PATH:LINE: message").
+  // lua_pcall of the function and nargs arguments on the stack, with the scene's message handler,
+  // from a C function while the scene runs or inside callAfterRun's body. On error pops what it
+  // pushed and throws InputError("PATH:LINE: message") (during run(), run() then reports a limit
+  // the scene ran into in its own words).
   void call(int nargs, int nresults);
 
   // The sandbox owning L (L may be any thread of the state).

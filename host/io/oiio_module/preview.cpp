@@ -166,7 +166,8 @@ bool preview(const PreviewRequest& request, PreviewResult& result, std::string& 
           }
           v = std::sqrt(v);
         }
-        values.setpixel(x, y, std::vector<float>{float(v)}.data());
+        const float value = float(v);
+        values.setpixel(x, y, &value);
         if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
       }
     if (!(lo <= hi)) {

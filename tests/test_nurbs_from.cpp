@@ -44,7 +44,7 @@ TEST_CASE("nurbs-from: the sphere's NURBS lies on the sphere, meets its (u, v) e
   CHECK(worst <= 1e-16);
 }
 
-TEST_CASE("nurbs-from: box faces, a rectangle and a sphere render as the analytic shapes do (P, and the stated (u, v))") {
+TEST_CASE("nurbs-from: box faces, a rectangle and a sphere render as the analytic shapes do (P, and the stated (u, v)), and on the GPU as on the CPU") {
   test::TempFolder dir;
   const std::string head =
       "cam = Camera.Pinhole { resolution = {96, 72}; focalLength = 0.012; pixelSize = {6e-5, 6e-5} }\n";
@@ -104,6 +104,12 @@ TEST_CASE("nurbs-from: box faces, a rectangle and a sphere render as the analyti
     CHECK(worstP <= 3e-8);
     CHECK(worstUv <= 1e-7);
     CHECK(onlyOne == 0);  // the same silhouette, pixel for pixel
+    // The NURBS form on the GPU against the CPU reference, as every NURBS.
+    for (const char* precision : {"fp64", "fp32"}) {
+      const test::CliResult g = test::runCli("compare " + b + " --spp 1 --precision " + precision);
+      INFO(precision << "\n" << g.out << g.err);
+      CHECK(g.exitCode == 0);
+    }
   }
   const std::string bad = dir.write("bad.lua", head + "s = Nurbs.from { shape = Shape.Box { size = {1, 1, 1} } }\n");
   const test::CliResult e = test::runCli("render " + bad + " -o " + dir.file("no") + " --backend cpu");

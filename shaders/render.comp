@@ -115,7 +115,9 @@ void main() {
   }
 
   // Radiance: mean over stratified samples of the pixel's sensitive square.
-  const ivec2 strata = cam.size.zw;  // strata.x · strata.y = samples per pixel
+  // strata.x · strata.y = samples per pixel; 0 × 0 when no radiance layer is asked for (the host's
+  // RenderOptions::radiance): only the ground-truth ray above is traced, and the radiance is 0.
+  const ivec2 strata = cam.size.zw;
   const hreal side = h_y(cam.brown1);
   hreal sum = h(real(0.0));
   // Sample s = cellY · strataX + cellX, as in host/camera/sampling.h, without integer division.
@@ -132,7 +134,7 @@ void main() {
         sum = h_add(sum, h(ds_shade(hit)));
     }
   }
-  outPixel.uvRadianceId = h4_211(uv, h_div(sum, h(real(strata.x * strata.y))), h(objectId));
+  outPixel.uvRadianceId = h4_211(uv, h_div(sum, h(real(max(strata.x * strata.y, 1)))), h(objectId));
   // Loop-limit sentinel. Mesa's llvmpipe (lavapipe) ends every loop of a shader invocation once
   // the loop iterations of its SIMD batch (8 or 16 lanes), all loops together, reach 65 535
   // (LP_MAX_TGSI_LOOP_ITERATIONS in gallivm), silently: a search cut short returns a wrong hit. After

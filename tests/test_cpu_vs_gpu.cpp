@@ -89,6 +89,42 @@ TEST_CASE("cpu-vs-gpu: switching features off by specialization changes no pixel
   test::expectNoValidationMessages();
 }
 
+// --layers without image, radiance, noise or defects (RenderOptions::radiance false): no sample
+// ray is traced, only the pixel-centre ground-truth ray, whose results are those of a full render.
+TEST_CASE("cpu-vs-gpu: without a radiance layer only the ground-truth ray is traced, with a full render's results") {
+  // figure1: a file texture, distortion and lights (the sample path's features); dogbone: NURBS.
+  for (const char* name : {"figure1.lua", "dogbone.lua"}) {
+    INFO(name);
+    const PreparedScene scene = prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/" + name, {}), {kNurbsDownscale});
+    gpu::Renderer renderer(test::gpuContext());
+    RenderOptions full;
+    full.samplesPerPixel = kSpp;
+    RenderOptions truthOnly = full;
+    truthOnly.radiance = false;
+    for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
+      INFO(toString(p));
+      full.precision = truthOnly.precision = p;
+      const RenderResult a = renderer.render(scene, full), b = renderer.render(scene, truthOnly);
+      RenderResult withRadiance = b;  // radiance is 0 everywhere; the rest must be a's bits
+      for (std::size_t c = 0; c < b.cameras.size(); ++c) {
+        const std::vector<double>& radiance = b.cameras[c].radiance;
+        CHECK(std::all_of(radiance.begin(), radiance.end(), [](double r) { return r == 0.0; }));
+        withRadiance.cameras[c].radiance = a.cameras[c].radiance;
+      }
+      test::checkIdenticalResults(scene, a, withRadiance);
+    }
+    RenderResult cpuTruth = cpu::render(scene, truthOnly);
+    const RenderResult cpuFull = cpu::render(scene, full);
+    for (std::size_t c = 0; c < cpuTruth.cameras.size(); ++c) {
+      const std::vector<double>& radiance = cpuTruth.cameras[c].radiance;
+      CHECK(std::all_of(radiance.begin(), radiance.end(), [](double r) { return r == 0.0; }));
+      cpuTruth.cameras[c].radiance = cpuFull.cameras[c].radiance;
+    }
+    test::checkIdenticalResults(scene, cpuFull, cpuTruth);
+  }
+  test::expectNoValidationMessages();
+}
+
 TEST_CASE("compare: wrong nearest hits are counted by kind") {
   // A reference render compared with a copy altered on five chosen pixels, one per kind: each must
   // land in its own count, and nothing else may. The alterations are far beyond any bound (1 cm on

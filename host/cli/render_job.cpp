@@ -131,6 +131,7 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   if (job.seed) options.seed = *job.seed;
   if (job.spp) options.samplesPerPixel = *job.spp;
   options.geometry = job.layers.needsGeometry();
+  options.radiance = job.layers.needsRadiance();
   options.precision = session.precision();  // resolved after the first frame is prepared (its errors first)
   phaseDone("precision");
   // One frame: its tiles' progress; several: the frames' bar (runRenderJob) instead.

@@ -36,7 +36,8 @@ void renderCamera(const PreparedScene& scene, std::size_t cameraIndex, const Ren
         image.objectId[i] = scene.objects[std::size_t(hit.object)].id;
       }
       double sum = 0;
-      for (int s = 0; s < options.samplesPerPixel; ++s) {
+      const int samples = options.radiance ? options.samplesPerPixel : 0;
+      for (int s = 0; s < samples; ++s) {
         const dvec2 offset = sampleOffset<double>(strata, side, options.seed, uint(options.frame),
                                                   uint(cameraIndex), uint(x), uint(y), uint(s));
         const dvec2 lens = thinLens ? lensSample<double>(options.seed, uint(options.frame), uint(cameraIndex),
@@ -45,7 +46,7 @@ void renderCamera(const PreparedScene& scene, std::size_t cameraIndex, const Ren
         const CameraRay<double> ray = worldRay(model, centre + offset, lens);
         if (traceNearest(scene, ray.origin, ray.direction, hit)) sum += shade(scene, hit);
       }
-      image.radiance[i] = sum / double(options.samplesPerPixel);
+      image.radiance[i] = samples > 0 ? sum / double(samples) : 0.0;
     }
   });
 }

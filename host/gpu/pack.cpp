@@ -37,7 +37,8 @@ typename Layout::GpuCamera packCamera(const PreparedCamera& pc, int spp, dvec3 o
   g.intrinsics = h4<Layout>(m.fx, m.fy, m.cx, m.cy);
   g.brown0 = h4<Layout>(m.brown.k1, m.brown.k2, m.brown.k3, m.brown.p1);
   g.brown1 = h4<Layout>(m.brown.p2, std::sqrt(pc.camera.fillFactor));
-  const Strata strata = strataFor(spp);
+  // spp 0 (RenderOptions::radiance false): no strata, render.comp's sample loop does not run.
+  const Strata strata = spp > 0 ? strataFor(spp) : Strata{0, 0};
   g.size = {pc.camera.width_px, pc.camera.height_px, strata.x, strata.y};
   g.flags = {m.distorted ? 1 : 0, int(m.kind), 0, 0};
   g.rational0 = h4<Layout>(m.brown.k4, m.brown.k5, m.brown.k6, m.brown.s1);

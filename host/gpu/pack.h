@@ -71,6 +71,7 @@ PackedScene<Layout> packScene(const PreparedScene& scene);
 template <class Layout>
 std::vector<typename Layout::real> packTexels(const PreparedScene& scene);
 
+// samplesPerPixel 0: no sample rays (RenderOptions::radiance false).
 template <class Layout>
 PackedFrame<Layout> packFrame(const PreparedScene& scene, const PackedScene<Layout>& packed, int samplesPerPixel,
                               std::size_t camera);

@@ -217,7 +217,7 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   std::string firstCutShort;
   images.get();  // rethrows an allocation failure
   for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
-    const PackedFrame<Layout> frame = packFrame<Layout>(scene, packed, options.samplesPerPixel, ci);
+    const PackedFrame<Layout> frame = packFrame<Layout>(scene, packed, options.radiance ? options.samplesPerPixel : 0, ci);
     Buffer cameras = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.cameras) : frame.cameras);
     Buffer objects = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.objects) : frame.objects);
     Buffer lights = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.lights) : frame.lights);

@@ -62,6 +62,12 @@ bool LayerSet::needsGeometry() const {
   return false;
 }
 
+bool LayerSet::needsRadiance() const {
+  for (Layer l : {Layer::Image, Layer::Radiance, Layer::Noise, Layer::Defects})
+    if (has(l)) return true;
+  return false;
+}
+
 std::string LayerSet::text() const {
   if (all_) return "all";
   std::string out;

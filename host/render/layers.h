@@ -54,6 +54,9 @@ class LayerSet {
   // The backend must hand back P, N, uv and depth (directly asked, or needed to derive motion and
   // disparity from material points).
   bool needsGeometry() const;
+  // The backend must trace the sample rays (image, radiance, noise, defects); otherwise only the
+  // pixel-centre ground-truth ray is traced.
+  bool needsRadiance() const;
   // The names, in the enum's order, comma-separated; "all" for all().
   std::string text() const;
 

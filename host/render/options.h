@@ -22,6 +22,9 @@ struct RenderOptions {
   // or the layers derived from them: render/layers.h); the ground-truth vectors of CameraImage stay
   // empty. The CPU reference computes them anyway (they are its trace).
   bool geometry = true;
+  // false: no sample ray is traced and CameraImage::radiance is 0 everywhere (--layers without
+  // image, radiance, noise or defects: render/layers.h); only the pixel-centre ground-truth ray is.
+  bool radiance = true;
   // Called from the rendering thread with the fraction of all cameras' pixels done, in [0, 1].
   std::function<void(double)> progress;
 };

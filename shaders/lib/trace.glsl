@@ -82,18 +82,92 @@ struct NearestHit {
   int object;
   hreal3 oo, od;
   hreal w;
+#if defined(DS_DF64)
+  // df64 searches in float and refines only the winner, so two objects whose hits lie within
+  // float's rounding of each other along the ray (where two surfaces cross or touch) cannot be
+  // ordered by their float t: 7.9e-9 relative apart, the GPU once kept the farther of two crossing
+  // random surfaces (tests/test_nurbs_random.cpp, scene 5). The runner-up within DS_TIE_BAND of the
+  // winner is kept too, and the two are ordered by their df64 t (ds_trace_nearest).
+  real t2;
+  ShapeHit found2;
+  int object2;
+  hreal3 oo2, od2;
+  hreal w2;
+#endif
 };
 
-// Keeps object i's hit (object parameter found.s) when it is nearer than the one kept so far.
+#if defined(DS_DF64)
+// Relative band of float t within which two objects' hits are ordered in df64: 2^-14 = 1024 ε of
+// float. A search's float root is off by ~32 ε |P| / cos θ (the fp32 bounds of render/compare.cpp),
+// so the band holds both hits of every crossing seen at cos θ ≥ 0.03 (88.3°); more grazing than
+// that, the float order can still be wrong, within the conditioned df64 bound of that test.
+const real DS_TIE_BAND = 1.0 / 16384.0;
+#endif
+
+// Keeps object i's hit (object parameter found.s) when it is nearer than the one kept so far (and,
+// in df64, as the runner-up when it is within DS_TIE_BAND of the winner).
 void ds_keep_nearer(int i, ShapeHit found, hreal3 oo, hreal3 od, hreal w, inout NearestHit nearest) {
   const real t = ds_world_param(found.s, h_real(w));
-  if (t > 0.0 && t < nearest.t) {
+  if (!(t > 0.0)) return;
+  if (t < nearest.t) {
+#if defined(DS_DF64)
+    // The old winner becomes the runner-up when within the band; a runner-up beyond the old winner
+    // is then beyond the band of the new one as well.
+    if (OBJECT_COUNT != 1 && nearest.object >= 0 && nearest.t <= t * (1.0 + DS_TIE_BAND)) {
+      nearest.t2 = nearest.t;
+      nearest.found2 = nearest.found;
+      nearest.object2 = nearest.object;
+      nearest.oo2 = nearest.oo;
+      nearest.od2 = nearest.od;
+      nearest.w2 = nearest.w;
+    } else {
+      nearest.object2 = -1;
+    }
+#endif
     nearest.t = t;
     nearest.found = found;
     nearest.object = i;
     nearest.oo = oo;
     nearest.od = od;
     nearest.w = w;
+  }
+#if defined(DS_DF64)
+  else if (OBJECT_COUNT != 1 && t <= nearest.t * (1.0 + DS_TIE_BAND) && (nearest.object2 < 0 || t < nearest.t2)) {
+    nearest.t2 = t;
+    nearest.found2 = found;
+    nearest.object2 = i;
+    nearest.oo2 = oo;
+    nearest.od2 = od;
+    nearest.w2 = w;
+  }
+#endif
+}
+
+// The object parameter beyond which a search of the object (ray mapped by w) may stop: the nearest
+// hit so far, and in df64 the tie band beyond it.
+real ds_search_limit(NearestHit nearest, hreal w) {
+#if defined(DS_DF64)
+  return ds_object_param(nearest.t * (1.0 + DS_TIE_BAND), h_real(w));
+#else
+  return ds_object_param(nearest.t, h_real(w));
+#endif
+}
+
+// The hit record of the winning object: its attributes in hreal. With an exact count, an analytic
+// winner's data is read at a constant index: one guarded copy per object. A NURBS winner's
+// attributes: one copy, at the winner's index.
+void ds_winner_attributes(int object, ShapeHit best, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hreal w,
+                          inout SurfaceHit hit) {
+  hit.object = object;
+  hit.shape = best;
+  hit.rayDirection = h_real(d);
+  if (ds_is_nurbs(object)) {
+    ds_hit_attributes(object, o, d, oo, od, w, best, true, hit);
+  } else if (OBJECT_COUNT > 0) {
+    [[unroll]] for (int i = 0; i < OBJECT_COUNT; ++i)
+      if (i == object) ds_hit_attributes(i, o, d, oo, od, w, best, false, hit);
+  } else {
+    ds_hit_attributes(object, o, d, oo, od, w, best, false, hit);
   }
 }
 
@@ -106,6 +180,10 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   NearestHit nearest;
   nearest.t = DS_FAR_AWAY;
   nearest.object = -1;
+#if defined(DS_DF64)
+  nearest.t2 = DS_FAR_AWAY;
+  nearest.object2 = -1;
+#endif
   [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
     if (ds_is_nurbs(i)) continue;
     hreal3 oo, od;
@@ -113,7 +191,7 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
     if (!ds_object_ray(i, o, d, oo, od, w)) continue;
     ShapeHit found;
     found.part = -1;
-    if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_object_param(nearest.t, h_real(w)), false, found))
+    if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_search_limit(nearest, w), false, found))
       ds_keep_nearer(i, found, oo, od, w, nearest);
   }
   if (DS_HAS_SHAPE(DS_SHAPE_NURBS)) {
@@ -124,29 +202,31 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
       if (!ds_object_ray(i, o, d, oo, od, w)) continue;
       ShapeHit found;
       found.part = -1;
-      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(nearest.t, h_real(w)), false, found,
-                          found))
+      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_search_limit(nearest, w), false, found, found))
         ds_keep_nearer(i, found, oo, od, w, nearest);
     }
   }
-  const int bestObject = nearest.object;
-  const ShapeHit best = nearest.found;
-  const hreal3 bestOo = nearest.oo, bestOd = nearest.od;
-  const hreal bestW = nearest.w;
-  hit.object = bestObject;
-  if (bestObject < 0) return false;
-  hit.shape = best;
-  hit.rayDirection = h_real(d);
-  // With an exact count, an analytic winner's data is read at a constant index: one guarded copy
-  // per object. A NURBS winner's attributes: one copy, at the winner's index.
-  if (ds_is_nurbs(bestObject)) {
-    ds_hit_attributes(bestObject, o, d, bestOo, bestOd, bestW, best, true, hit);
-  } else if (OBJECT_COUNT > 0) {
-    [[unroll]] for (int i = 0; i < OBJECT_COUNT; ++i)
-      if (i == bestObject) ds_hit_attributes(i, o, d, bestOo, bestOd, bestW, best, false, hit);
-  } else {
-    ds_hit_attributes(bestObject, o, d, bestOo, bestOd, bestW, best, false, hit);
+  hit.object = nearest.object;
+  if (nearest.object < 0) return false;
+#if defined(DS_DF64)
+  // The winner and, when there is one, the runner-up: both refined, the nearer in df64 kept (one
+  // copy of the attribute code, in a loop that does not unroll). A scene of one object has no
+  // runner-up: the specialized pipeline keeps only the plain call below (the loop cost Figure 1
+  // 16 % in df64 on lavapipe, bench/bench_nurbs_search.sh).
+  if (OBJECT_COUNT != 1) {
+    const int candidates = nearest.object2 >= 0 ? 2 : 1;
+    [[dont_unroll]] for (int c = 0; c < candidates; ++c) {
+      const bool first = c == 0;
+      SurfaceHit candidate;
+      ds_winner_attributes(first ? nearest.object : nearest.object2, first ? nearest.found : nearest.found2, o, d,
+                           first ? nearest.oo : nearest.oo2, first ? nearest.od : nearest.od2,
+                           first ? nearest.w : nearest.w2, candidate);
+      if (first || h_lt(candidate.t, hit.t)) hit = candidate;
+    }
+    return true;
   }
+#endif
+  ds_winner_attributes(nearest.object, nearest.found, o, d, nearest.oo, nearest.od, nearest.w, hit);
   return true;
 }
 

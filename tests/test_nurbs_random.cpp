@@ -13,9 +13,15 @@
 // and prints the largest such offset it needed.
 // The CPU reference itself is checked against an independent root finder in
 // tests/test_nurbs_oracle.cpp, so that a bug shared by both paths cannot hide.
-// Size: 4 scenes of 320 × 240 rays, 307 200 rays per precision, ~20 s per scene on 2 cores with
-// lavapipe (the CPU reference and three GPU precisions). DICSYNTH_NURBS_RANDOM_SCENES=N sets the
-// number of scenes (a long run: 140, 1.07e7 rays per precision, ~45 min).
+// Size: 14 scenes of 320 × 240 rays, 1 075 200 rays per precision, ~75 s on 2 cores with lavapipe
+// (Mesa 22.3, warm shader cache; ~25 s of it compiling the three pipelines once, one renderer for
+// all scenes); only the pixel-centre ground-truth ray is traced (RenderOptions::radiance false).
+// DICSYNTH_NURBS_RANDOM_SCENES=N sets the number of scenes (the long run: 140, 1.08e7 rays per
+// precision), DICSYNTH_NURBS_RANDOM_FIRST=k the first (to rerun one failing scene alone).
+// What the suite's scenes found (fixed): df64 kept the farther of two crossing surfaces whose hits
+// were within float rounding along the ray (lib/trace.glsl, the tie band); df64 lost a root 1e-6
+// from a knot line and one 2.5e-6 inside a surface edge with wild weights, and fp32 accepted a hit
+// 5.7 µm beyond an edge next to a pole (lib/nurbs.glsl, the edge rules).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -24,12 +30,16 @@
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "core/error.h"
 #include "core/parallel.h"
 #include "cpu/trace.h"
+#include "geometry/nurbs.h"
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
 #include "random_nurbs.h"
+#include "render/compare.h"
 
 using namespace dicsynth;
 using namespace dicsynth::test;
@@ -52,8 +62,30 @@ struct Answer {
   std::uint32_t objectId = 0;  // 0: background
   dvec3 position{0};
   dvec3 normal{0};
+  dvec2 uv{0};
   double depth = 0;
 };
+
+// How genuine an answer is, for the failure message: the distance (m) of its point from the ray's
+// line and from the surface's point at its (u, v) (NURBS objects; -1 otherwise). A root both
+// distances call genuine that the other side lacks is a root that side missed.
+std::string genuineness(const PreparedScene& scene, dvec2 pixel, const Answer& a) {
+  if (a.objectId == 0) return "background";
+  const CameraRay<double> ray = worldRay(scene.cameras[0].model, pixel);
+  const dvec3 dHat = glm::normalize(ray.direction), rel = a.position - ray.origin;
+  const double offRay = glm::length(rel - glm::dot(rel, dHat) * dHat);
+  double offSurface = -1;
+  const PreparedObject& o = scene.objects[a.objectId - 1];
+  if (o.surface) {
+    const dvec3 p = evaluateNurbs<double>(*o.surface, a.uv.x, a.uv.y).point - o.shapeOffset_m;
+    const dvec4 h = o.worldFromObject * dvec4(p, 1);
+    offSurface = glm::length(dvec3(h) / h.w - a.position);
+  }
+  std::ostringstream out;
+  out.precision(3);
+  out << "uv (" << a.uv.x << ", " << a.uv.y << "), " << offRay << " m off the ray, " << offSurface << " m off S(uv)";
+  return out.str();
+}
 
 Answer referenceAnswer(const PreparedScene& scene, dvec2 pixel) {
   const CameraRay<double> ray = worldRay(scene.cameras[0].model, pixel);
@@ -63,19 +95,18 @@ Answer referenceAnswer(const PreparedScene& scene, dvec2 pixel) {
     a.objectId = std::uint32_t(hit.object + 1);
     a.position = hit.position;
     a.normal = hit.normal;
+    a.uv = hit.uv;
     a.depth = hit.t;
   }
   return a;
 }
 
-// Per-pixel bound of |ΔP| for "the same root": the conditioned bounds of render/compare.cpp
-// (k ε D / max(cos θ, √ε) on curved surfaces; fp64: 1e-9 m).
+// Per-pixel bound of |ΔP| for "the same root": compare's conditioned bound (render/compare.h,
+// positionBound; fp64: 1e-9 m). The camera sits at the origin: D = |P| + |object origin|.
 double sameRootBound(Precision p, const Answer& ref, dvec3 objectOrigin) {
-  if (p == Precision::Fp64) return 1e-9;
-  const double eps = p == Precision::Df64 ? 0x1p-44 : 0x1p-24;
   const double distance = glm::length(ref.position);
-  const double cosTheta = std::max(std::abs(glm::dot(ref.normal, ref.position)) / distance, std::sqrt(eps));
-  return 32 * eps * (distance + glm::length(objectOrigin)) / cosTheta;
+  const double cosTheta = std::abs(glm::dot(ref.normal, ref.position)) / distance;
+  return positionBound(tolerancesFor(p), cosTheta, distance + glm::length(objectOrigin), true);
 }
 
 Kind classify(const Answer& ref, const Answer& test, double bound) {
@@ -90,8 +121,9 @@ struct Tally {
   std::array<std::size_t, KindCount> kinds{};
   std::size_t rays = 0, hits = 0;
   std::size_t explained = 0;  // fp32 disagreements a reference ray within the bound reproduces
+  std::vector<std::string> refused;  // scenes the driver's loop budget refused (Mesa 22's lavapipe)
   double largestExplainingOffset_px = 0;
-  std::string firstUnexplained;
+  std::vector<std::string> unexplainedExamples;  // the first few, for the failure message
 
   std::size_t disagreements() const { return rays - kinds[Agree]; }
   std::size_t unexplained() const { return disagreements() - explained; }
@@ -101,6 +133,10 @@ struct Tally {
     for (int k = 1; k < KindCount; ++k) o << " " << kKindNames[std::size_t(k)] << " " << kinds[std::size_t(k)] << ",";
     o << " explained by the float ray's rounding " << explained << " (largest offset needed "
       << largestExplainingOffset_px << " px)";
+    if (!refused.empty()) {
+      o << "; refused by the driver's loop budget: " << refused.size() << " scene(s):";
+      for (const std::string& r : refused) o << " " << r;
+    }
     return o.str();
   }
 };
@@ -127,13 +163,15 @@ double explainingOffset(const PreparedScene& scene, dvec2 pixel, const Answer& t
 
 RenderOptions groundTruthOnly(Precision p) {
   RenderOptions o;
-  o.samplesPerPixel = 1;  // only the pixel-centre ray's ground truth is judged
+  o.radiance = false;  // only the pixel-centre ray's ground truth is judged: no sample rays
   o.precision = p;
   return o;
 }
 
 // Compares one scene in every precision and adds to the tallies (index: fp64, df64, fp32).
-void compareScene(const Scene& sceneIn, std::array<Tally, 3>& tallies, const std::string& label) {
+// One renderer for all scenes of a test: its pipelines are compiled once (on lavapipe 1 s for fp32
+// and fp64, 5 s for df64: more than rendering a random scene takes).
+void compareScene(gpu::Renderer& renderer, const Scene& sceneIn, std::array<Tally, 3>& tallies, const std::string& label) {
   const PreparedScene scene = prepareScene(sceneIn);
   const int width = scene.cameras[0].camera.width_px, height = scene.cameras[0].camera.height_px;
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
@@ -147,18 +185,27 @@ void compareScene(const Scene& sceneIn, std::array<Tally, 3>& tallies, const std
     const dvec4 h = o.worldFromObject * dvec4(0, 0, 0, 1);
     origins.push_back(dvec3(h) / h.w);
   }
-  gpu::Renderer renderer(gpuContext());
   const std::array<Precision, 3> precisions{Precision::Fp64, Precision::Df64, Precision::Fp32};
   for (std::size_t pi = 0; pi < precisions.size(); ++pi) {
     const Precision p = precisions[pi];
-    const CameraImage gpu = renderer.render(scene, groundTruthOnly(p)).cameras[0];
     Tally& t = tallies[pi];
+    CameraImage gpu;
+    try {
+      gpu = renderer.render(scene, groundTruthOnly(p)).cameras[0];
+    } catch (const Error& e) {
+      // Mesa 22's loop budget (render.comp's sentinel): an honest refusal, not an answer; counted
+      // and named, and the scene's other precisions still compared.
+      if (std::string(e.what()).find("cut the shader's loops short") == std::string::npos) throw;
+      t.refused.push_back(label);
+      continue;
+    }
     for (std::size_t i = 0; i < pixels; ++i) {
       const Answer& ref = reference[i];
       Answer test;
       test.objectId = gpu.objectId[i];
       if (test.objectId != 0) {
         test.position = gpu.position_m[i];
+        test.uv = gpu.uv[i];
         test.depth = gpu.depth_m[i];
       }
       const double bound = ref.objectId ? sameRootBound(p, ref, origins[ref.objectId - 1]) : 0.0;
@@ -176,7 +223,7 @@ void compareScene(const Scene& sceneIn, std::array<Tally, 3>& tallies, const std
           continue;
         }
       }
-      if (t.firstUnexplained.empty()) {
+      if (t.unexplainedExamples.size() < 5) {
         std::ostringstream o;
         o.precision(17);
         o << label << " pixel (" << pixel.x << ", " << pixel.y << "): " << kKindNames[std::size_t(kind)]
@@ -184,7 +231,8 @@ void compareScene(const Scene& sceneIn, std::array<Tally, 3>& tallies, const std
           << " at depth " << test.depth << " m";
         if (kind == FartherRoot || kind == NearerRoot)
           o << ", |dP| " << glm::length(test.position - ref.position) << " m over the bound " << bound << " m";
-        t.firstUnexplained = o.str();
+        o << "; reference: " << genuineness(scene, pixel, ref) << "; GPU: " << genuineness(scene, pixel, test);
+        t.unexplainedExamples.push_back(o.str());
       }
     }
   }
@@ -192,16 +240,20 @@ void compareScene(const Scene& sceneIn, std::array<Tally, 3>& tallies, const std
 
 int sceneCount() {
   const char* v = std::getenv("DICSYNTH_NURBS_RANDOM_SCENES");
-  return v ? std::max(1, std::atoi(v)) : 4;
+  return v ? std::max(1, std::atoi(v)) : 14;
 }
 
-void report(const std::array<Tally, 3>& tallies) {
+// allowRefusals: a long run may meet scenes beyond Mesa 22's loop budget (reported, not failed:
+// the renderer refuses them rather than answer); the suite's scenes must all render.
+void report(const std::array<Tally, 3>& tallies, bool allowRefusals = false) {
   const std::array<const char*, 3> names{"fp64", "df64", "fp32"};
   for (std::size_t pi = 0; pi < 3; ++pi) {
     const Tally& t = tallies[pi];
     MESSAGE(std::string(names[pi]) << ": " << t.line());
-    if (!t.firstUnexplained.empty()) MESSAGE(std::string(names[pi]) << " first unexplained disagreement: " << t.firstUnexplained);
+    for (const std::string& example : t.unexplainedExamples)
+      MESSAGE(std::string(names[pi]) << " unexplained disagreement: " << example);
     CHECK(t.unexplained() == 0);
+    if (!allowRefusals) CHECK(t.refused.empty());
   }
 }
 
@@ -215,12 +267,13 @@ TEST_CASE("nurbs-random: GPU nearest hits equal the CPU reference's on random fo
   // DICSYNTH_NURBS_RANDOM_FIRST=k starts at scene k (to rerun a failing scene alone).
   const char* first = std::getenv("DICSYNTH_NURBS_RANDOM_FIRST");
   const int k0 = first ? std::max(0, std::atoi(first)) : 0;
+  gpu::Renderer renderer(gpuContext());
   for (int k = k0; k < k0 + scenes; ++k)
-    compareScene(randomNurbsScene(std::uint64_t(1000 + k)), tallies, "scene " + std::to_string(k));
-  report(tallies);
+    compareScene(renderer, randomNurbsScene(std::uint64_t(1000 + k)), tallies, "scene " + std::to_string(k));
+  report(tallies, std::getenv("DICSYNTH_NURBS_RANDOM_SCENES") != nullptr);
   // The scenes really exercise the surfaces: most rays hit one (the sphere behind catches the rest).
   CHECK(tallies[0].hits > tallies[0].rays / 2);
-  CHECK(tallies[0].rays >= std::size_t(scenes) * 76800);
+  CHECK(tallies[0].rays + tallies[0].refused.size() * 76800 >= std::size_t(scenes) * 76800);
   expectNoValidationMessages();
 }
 
@@ -242,7 +295,8 @@ TEST_CASE("nurbs-random: a half cylinder turned 60 degrees, both crossings of it
   const dmat4 turn = glm::rotate(dmat4(1.0), 60 * kPi / 180, dvec3(0, 1, 0)) * glm::rotate(dmat4(1.0), 5 * kPi / 180, dvec3(1, 0, 0));
   s.objects.push_back(nurbsObject("tube", cylinderSurface(0.03, -kPi / 2, kPi / 2, 4, -0.04, 0.04, 1), {0, 0, 0.3}, turn));
   std::array<Tally, 3> tallies;
-  compareScene(s, tallies, "cylinder");
+  gpu::Renderer renderer(gpuContext());
+  compareScene(renderer, s, tallies, "cylinder");
   report(tallies);
   CHECK(tallies[0].hits > 50000);
   expectNoValidationMessages();

@@ -54,6 +54,11 @@ Tolerances tolerancesFor(Precision p) {
   return {1e-3, 0.0, 0.0, 0x1p-24, 32.0, 1e-4};
 }
 
+double positionBound(const Tolerances& tol, double cosTheta, double D_m, bool curved) {
+  if (tol.epsilon == 0) return tol.position_m;
+  return tol.k * tol.epsilon * D_m / std::max(cosTheta, curved ? std::sqrt(tol.epsilon) : tol.epsilon);
+}
+
 namespace {
 
 double wrappedDiff(double a, double b) {
@@ -202,7 +207,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
           const int kind = scene.objects[obj].geometry.kind;
           const bool curved = kind == DS_SHAPE_SPHERE || kind == DS_SHAPE_NURBS;
           const double cosTheta = std::max(std::abs(glm::dot(a.normal[i], toHit)) / distance,
-                                           curved ? std::sqrt(tol.epsilon) : tol.epsilon);
+                                           curved ? std::sqrt(tol.epsilon) : tol.epsilon);  // as positionBound
           const double D = distance + glm::length(rayOrigin - model.centre) +
                            glm::length(model.centre - objectOrigins[obj]);
           cpu::SurfaceHit hit;
@@ -212,7 +217,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
           hit.normal = a.normal[i];
           const Slopes pixelSlopes = offsetSlopes(scene, model, dvec2(double(i % width), double(i / width)), hit);
           const double g = pixelSlopes.uv;
-          boundP = tol.k * tol.epsilon * D / cosTheta;
+          boundP = positionBound(tol, cosTheta, D, curved);
           boundUv = tol.k * tol.epsilon *
                     (std::max(1.0, g * glm::length(a.position_m[i] - objectOrigins[obj])) + g * D / cosTheta);
           boundRadiance += slopes[obj] * shadingFactor(scene, scene.objects[obj], a.position_m[i]) * boundUv *

@@ -66,6 +66,13 @@ struct Tolerances {
 
 Tolerances tolerancesFor(Precision gpuPrecision);
 
+// The bound on |ΔP| (m) between the reference's hit of a ray and the GPU's (the derivation at
+// tolerancesFor): with epsilon 0 the absolute tolerance.position_m; else k ε D / cos θ, cos θ the
+// reference's |cos| of the ray at its hit, floored at √ε on curved shapes (the tangent saturation)
+// and at ε on flat ones; D the distance of the hit from the ray's origin plus that origin's
+// distances to the camera centre and the camera centre's to the object's origin.
+double positionBound(const Tolerances& tolerances, double cosTheta, double D_m, bool curved);
+
 // reference and test must come from the same PreparedScene and RenderOptions.
 std::vector<CameraDifference> compareResults(const PreparedScene& scene, const RenderResult& reference,
                                              const RenderResult& test, const Tolerances& tolerances);

@@ -75,24 +75,26 @@ void ds_hit_attributes(int object, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hre
 
 bool ds_is_nurbs(int object) { return DS_HAS_SHAPE(DS_SHAPE_NURBS) && DS_OBJECT(object, kinds).x == DS_SHAPE_NURBS; }
 
-// The nearest hit so far of ds_trace_nearest, with the winner's ray in its frame (for its attributes).
-struct NearestHit {
+// One object's hit along a ray of ds_trace_nearest: world t (float), what the search found, and the
+// ray in the object's frame (for its attributes). object −1: none.
+struct Candidate {
   real t;
   ShapeHit found;
   int object;
   hreal3 oo, od;
   hreal w;
+};
+
+// The nearest hit so far.
+struct NearestHit {
+  Candidate best;
 #if defined(DS_DF64)
   // df64 searches in float and refines only the winner, so two objects whose hits lie within
   // float's rounding of each other along the ray (where two surfaces cross or touch) cannot be
   // ordered by their float t: 7.9e-9 relative apart, the GPU once kept the farther of two crossing
-  // random surfaces (tests/test_nurbs_random.cpp, scene 5). The runner-up within DS_TIE_BAND of the
-  // winner is kept too, and the two are ordered by their df64 t (ds_trace_nearest).
-  real t2;
-  ShapeHit found2;
-  int object2;
-  hreal3 oo2, od2;
-  hreal w2;
+  // random surfaces (tests/test_nurbs_random.cpp). The runner-up within DS_TIE_BAND of the winner
+  // is kept too, and the two are ordered by their df64 t (ds_trace_nearest).
+  Candidate second;
 #endif
 };
 
@@ -105,40 +107,25 @@ const real DS_TIE_BAND = 1.0 / 16384.0;
 #endif
 
 // Keeps object i's hit (object parameter found.s) when it is nearer than the one kept so far (and,
-// in df64, as the runner-up when it is within DS_TIE_BAND of the winner).
+// in df64, as the runner-up when it is within DS_TIE_BAND of the winner). A one-object scene has no
+// runner-up (OBJECT_COUNT 1: compiled out).
 void ds_keep_nearer(int i, ShapeHit found, hreal3 oo, hreal3 od, hreal w, inout NearestHit nearest) {
-  const real t = ds_world_param(found.s, h_real(w));
-  if (!(t > 0.0)) return;
-  if (t < nearest.t) {
+  const Candidate c = Candidate(ds_world_param(found.s, h_real(w)), found, i, oo, od, w);
+  if (!(c.t > 0.0)) return;
+  if (c.t < nearest.best.t) {
 #if defined(DS_DF64)
     // The old winner becomes the runner-up when within the band; a runner-up beyond the old winner
     // is then beyond the band of the new one as well.
-    if (OBJECT_COUNT != 1 && nearest.object >= 0 && nearest.t <= t * (1.0 + DS_TIE_BAND)) {
-      nearest.t2 = nearest.t;
-      nearest.found2 = nearest.found;
-      nearest.object2 = nearest.object;
-      nearest.oo2 = nearest.oo;
-      nearest.od2 = nearest.od;
-      nearest.w2 = nearest.w;
-    } else {
-      nearest.object2 = -1;
-    }
+    const bool close = OBJECT_COUNT != 1 && nearest.best.object >= 0 && nearest.best.t <= c.t * (1.0 + DS_TIE_BAND);
+    if (close) nearest.second = nearest.best;
+    else nearest.second.object = -1;
 #endif
-    nearest.t = t;
-    nearest.found = found;
-    nearest.object = i;
-    nearest.oo = oo;
-    nearest.od = od;
-    nearest.w = w;
+    nearest.best = c;
   }
 #if defined(DS_DF64)
-  else if (OBJECT_COUNT != 1 && t <= nearest.t * (1.0 + DS_TIE_BAND) && (nearest.object2 < 0 || t < nearest.t2)) {
-    nearest.t2 = t;
-    nearest.found2 = found;
-    nearest.object2 = i;
-    nearest.oo2 = oo;
-    nearest.od2 = od;
-    nearest.w2 = w;
+  else if (OBJECT_COUNT != 1 && c.t <= nearest.best.t * (1.0 + DS_TIE_BAND) &&
+           (nearest.second.object < 0 || c.t < nearest.second.t)) {
+    nearest.second = c;
   }
 #endif
 }
@@ -147,27 +134,26 @@ void ds_keep_nearer(int i, ShapeHit found, hreal3 oo, hreal3 od, hreal w, inout 
 // hit so far, and in df64 the tie band beyond it.
 real ds_search_limit(NearestHit nearest, hreal w) {
 #if defined(DS_DF64)
-  return ds_object_param(nearest.t * (1.0 + DS_TIE_BAND), h_real(w));
+  return ds_object_param(nearest.best.t * (1.0 + DS_TIE_BAND), h_real(w));
 #else
-  return ds_object_param(nearest.t, h_real(w));
+  return ds_object_param(nearest.best.t, h_real(w));
 #endif
 }
 
 // The hit record of the winning object: its attributes in hreal. With an exact count, an analytic
 // winner's data is read at a constant index: one guarded copy per object. A NURBS winner's
 // attributes: one copy, at the winner's index.
-void ds_winner_attributes(int object, ShapeHit best, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hreal w,
-                          inout SurfaceHit hit) {
-  hit.object = object;
-  hit.shape = best;
+void ds_winner_attributes(Candidate c, hreal3 o, hreal3 d, inout SurfaceHit hit) {
+  hit.object = c.object;
+  hit.shape = c.found;
   hit.rayDirection = h_real(d);
-  if (ds_is_nurbs(object)) {
-    ds_hit_attributes(object, o, d, oo, od, w, best, true, hit);
+  if (ds_is_nurbs(c.object)) {
+    ds_hit_attributes(c.object, o, d, c.oo, c.od, c.w, c.found, true, hit);
   } else if (OBJECT_COUNT > 0) {
     [[unroll]] for (int i = 0; i < OBJECT_COUNT; ++i)
-      if (i == object) ds_hit_attributes(i, o, d, oo, od, w, best, false, hit);
+      if (i == c.object) ds_hit_attributes(i, o, d, c.oo, c.od, c.w, c.found, false, hit);
   } else {
-    ds_hit_attributes(object, o, d, oo, od, w, best, false, hit);
+    ds_hit_attributes(c.object, o, d, c.oo, c.od, c.w, c.found, false, hit);
   }
 }
 
@@ -178,11 +164,11 @@ void ds_winner_attributes(int object, ShapeHit best, hreal3 o, hreal3 d, hreal3 
 // dwarfs an object index read at a varying offset.
 bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   NearestHit nearest;
-  nearest.t = DS_FAR_AWAY;
-  nearest.object = -1;
+  nearest.best.t = DS_FAR_AWAY;
+  nearest.best.object = -1;
 #if defined(DS_DF64)
-  nearest.t2 = DS_FAR_AWAY;
-  nearest.object2 = -1;
+  nearest.second.t = DS_FAR_AWAY;
+  nearest.second.object = -1;
 #endif
   [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
     if (ds_is_nurbs(i)) continue;
@@ -206,27 +192,24 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
         ds_keep_nearer(i, found, oo, od, w, nearest);
     }
   }
-  hit.object = nearest.object;
-  if (nearest.object < 0) return false;
+  hit.object = nearest.best.object;
+  if (nearest.best.object < 0) return false;
 #if defined(DS_DF64)
   // The winner and, when there is one, the runner-up: both refined, the nearer in df64 kept (one
   // copy of the attribute code, in a loop that does not unroll). A scene of one object has no
   // runner-up: the specialized pipeline keeps only the plain call below (the loop cost Figure 1
   // 16 % in df64 on lavapipe, bench/bench_nurbs_search.sh).
   if (OBJECT_COUNT != 1) {
-    const int candidates = nearest.object2 >= 0 ? 2 : 1;
-    [[dont_unroll]] for (int c = 0; c < candidates; ++c) {
-      const bool first = c == 0;
+    const int candidates = nearest.second.object >= 0 ? 2 : 1;
+    [[dont_unroll]] for (int k = 0; k < candidates; ++k) {
       SurfaceHit candidate;
-      ds_winner_attributes(first ? nearest.object : nearest.object2, first ? nearest.found : nearest.found2, o, d,
-                           first ? nearest.oo : nearest.oo2, first ? nearest.od : nearest.od2,
-                           first ? nearest.w : nearest.w2, candidate);
-      if (first || h_lt(candidate.t, hit.t)) hit = candidate;
+      ds_winner_attributes(k == 0 ? nearest.best : nearest.second, o, d, candidate);
+      if (k == 0 || h_lt(candidate.t, hit.t)) hit = candidate;
     }
     return true;
   }
 #endif
-  ds_winner_attributes(nearest.object, nearest.found, o, d, nearest.oo, nearest.od, nearest.w, hit);
+  ds_winner_attributes(nearest.best, o, d, hit);
   return true;
 }
 

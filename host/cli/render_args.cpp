@@ -6,6 +6,8 @@
 
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/exact_number.h"
@@ -37,6 +39,18 @@ void addLayersOption(CLI::App& app, std::string& layers) {
       ->capture_default_str();
 }
 
+namespace {
+
+// --precision's values: every precision's name, then auto.
+std::vector<std::string> precisionChoices() {
+  std::vector<std::string> names;
+  for (Precision p : kPrecisions) names.push_back(toString(p));
+  names.push_back("auto");
+  return names;
+}
+
+}  // namespace
+
 void addRenderArgs(CLI::App& app, RenderArgs& args) {
   app.add_option("scene", args.scenePath, "Scene file (Lua)")->required();
   app.add_option("-D,--define", args.defines,
@@ -47,7 +61,7 @@ void addRenderArgs(CLI::App& app, RenderArgs& args) {
   app.add_option("--precision", args.precision,
                  "GPU arithmetic: fp32, df64 (float pairs), fp64, or auto: the fastest whose measured geometric "
                  "error on this device is <= --max-error-px")
-      ->check(CLI::IsMember({"fp32", "df64", "fp64", "auto"}))
+      ->check(CLI::IsMember(precisionChoices()))
       ->capture_default_str();
   app.add_option("--max-error-px", args.maxErrorPx, "--precision auto: largest acceptable geometric error (px)")
       ->check(CLI::PositiveNumber)
@@ -112,9 +126,7 @@ RenderOptions renderOptions(const RenderArgs& args, int frame) {
 }
 
 Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::Renderer& renderer) {
-  if (args.precision == "fp32") return Precision::Fp32;
-  if (args.precision == "fp64") return Precision::Fp64;
-  if (args.precision == "df64") return Precision::Df64;
+  if (const auto named = parsePrecision(args.precision)) return *named;
   const PrecisionCalibration calibration = calibratePrecisions(context, renderer);
   const Precision chosen = choosePrecision(calibration, args.maxErrorPx);
   std::fprintf(stderr, "precision auto: %s (max error %g px; %s calibration on %s: %s)\n", toString(chosen),

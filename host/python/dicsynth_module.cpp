@@ -99,7 +99,7 @@ class PyRenderer {
   PyRenderer(const std::string& backend, const std::string& precision, const std::string& device, std::uint32_t seed,
              int downscale, double maxErrorPx) {
     if (backend != "gpu" && backend != "cpu") throw InputError("backend must be \"gpu\" or \"cpu\", got \"" + backend + "\"");
-    if (precision != "auto" && precision != "fp32" && precision != "df64" && precision != "fp64")
+    if (precision != "auto" && !parsePrecision(precision))
       throw InputError("precision must be \"auto\", \"fp32\", \"df64\" or \"fp64\", got \"" + precision + "\"");
     cli::RenderArgs args;
     args.precision = precision;

@@ -1,7 +1,9 @@
 #pragma once
 // Options of one render, shared by both backends.
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace dicsynth {
@@ -9,8 +11,17 @@ namespace dicsynth {
 // GPU arithmetic (shaders/lib/real.glsl): fp32; df64 = float pairs (~45 bits) for the geometry,
 // float for the rest; fp64 = native double (needs shaderFloat64).
 enum class Precision { Fp32, Df64, Fp64 };
+// Every precision, cheapest first on a GPU: the one list that names, parsing (CLI, Python) and the
+// calibration iterate over (the GPU variants themselves: CMakeLists.txt, gpu/renderer.cpp).
+inline constexpr std::array<Precision, 3> kPrecisions{Precision::Fp32, Precision::Df64, Precision::Fp64};
 inline const char* toString(Precision p) {
   return p == Precision::Fp32 ? "fp32" : p == Precision::Df64 ? "df64" : "fp64";
+}
+// The precision named `name` (toString's names); nullopt for any other text.
+inline std::optional<Precision> parsePrecision(const std::string& name) {
+  for (Precision p : kPrecisions)
+    if (name == toString(p)) return p;
+  return std::nullopt;
 }
 
 struct RenderOptions {

@@ -25,7 +25,6 @@
 namespace dicsynth {
 namespace {
 
-constexpr Precision kAll[] = {Precision::Fp32, Precision::Df64, Precision::Fp64};
 constexpr int kSpp = 2;
 
 // The calibration scene: a curved NURBS plate and a sphere seen by a 128 × 96 camera with Figure 1's
@@ -96,7 +95,7 @@ bool readCache(const std::string& path, const std::string& key, PrecisionCalibra
   if (!in || !std::getline(in, line) || line != kMagic) return false;
   if (!std::getline(in, line) || line != "key " + key) return false;
   if (!std::getline(in, line) || std::sscanf(line.c_str(), "seconds %la", &c.seconds) != 1) return false;
-  for (Precision p : kAll) {
+  for (Precision p : kPrecisions) {
     if (!std::getline(in, line)) return false;
     std::istringstream fields(line);
     std::string tag, name, rate, error;
@@ -123,7 +122,7 @@ PrecisionCalibration measure(gpu::Context& context, gpu::Renderer& renderer) {
   const GeometricErrorMeter meter(scene, 0, reference.cameras[0]);
   const double rays = double(scene.cameras[0].camera.width_px) * scene.cameras[0].camera.height_px * (kSpp + 1);
   PrecisionCalibration c;
-  for (Precision p : kAll) {
+  for (Precision p : kPrecisions) {
     PrecisionMeasurement m;
     m.precision = p;
     std::optional<gpu::Df64SelfTest> selfTest;  // cached per device

@@ -31,7 +31,7 @@ struct CameraImage {
 struct RenderResult {
   std::vector<CameraImage> cameras;  // same order as PreparedScene::cameras
   std::string backend;               // "cpu" | "gpu"
-  std::string precision;             // "fp64" for the CPU; "fp32" | "fp64" on the GPU
+  std::string precision;             // "fp64" for the CPU; toString(Precision) on the GPU
   std::string device;                // device name ("CPU reference (N threads)" for the CPU)
   double renderSeconds = 0;          // wall time of the render itself (no set-up, no I/O)
 };

@@ -54,9 +54,13 @@ Tolerances tolerancesFor(Precision p) {
   return {1e-3, 0.0, 0.0, 0x1p-24, 32.0, 1e-4};
 }
 
+double conditionedCosine(const Tolerances& tol, double cosTheta, bool curved) {
+  return std::max(cosTheta, curved ? std::sqrt(tol.epsilon) : tol.epsilon);
+}
+
 double positionBound(const Tolerances& tol, double cosTheta, double D_m, bool curved) {
   if (tol.epsilon == 0) return tol.position_m;
-  return tol.k * tol.epsilon * D_m / std::max(cosTheta, curved ? std::sqrt(tol.epsilon) : tol.epsilon);
+  return tol.k * tol.epsilon * D_m / conditionedCosine(tol, cosTheta, curved);
 }
 
 namespace {
@@ -206,8 +210,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
           const double distance = glm::length(toHit);
           const int kind = scene.objects[obj].geometry.kind;
           const bool curved = kind == DS_SHAPE_SPHERE || kind == DS_SHAPE_NURBS;
-          const double cosTheta = std::max(std::abs(glm::dot(a.normal[i], toHit)) / distance,
-                                           curved ? std::sqrt(tol.epsilon) : tol.epsilon);  // as positionBound
+          const double cosTheta = conditionedCosine(tol, std::abs(glm::dot(a.normal[i], toHit)) / distance, curved);
           const double D = distance + glm::length(rayOrigin - model.centre) +
                            glm::length(model.centre - objectOrigins[obj]);
           cpu::SurfaceHit hit;

@@ -66,10 +66,13 @@ struct Tolerances {
 
 Tolerances tolerancesFor(Precision gpuPrecision);
 
+// The reference's |cos θ| of a ray at its hit as the bounds use it: floored at √ε on curved shapes
+// (the tangent saturation, derived at tolerancesFor) and at ε on flat ones.
+double conditionedCosine(const Tolerances& tolerances, double cosTheta, bool curved);
+
 // The bound on |ΔP| (m) between the reference's hit of a ray and the GPU's (the derivation at
-// tolerancesFor): with epsilon 0 the absolute tolerance.position_m; else k ε D / cos θ, cos θ the
-// reference's |cos| of the ray at its hit, floored at √ε on curved shapes (the tangent saturation)
-// and at ε on flat ones; D the distance of the hit from the ray's origin plus that origin's
+// tolerancesFor): with epsilon 0 the absolute tolerance.position_m; else k ε D / cos θ, cos θ
+// conditioned as above; D the distance of the hit from the ray's origin plus that origin's
 // distances to the camera centre and the camera centre's to the object's origin.
 double positionBound(const Tolerances& tolerances, double cosTheta, double D_m, bool curved);
 

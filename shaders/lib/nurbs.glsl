@@ -184,6 +184,15 @@ bool ds_nurbs_inside_edges(hreal2 ab, bvec4 edges) {
 }
 #endif
 
+// Which borders of a patch are the surface's own edges (a = 0, b = 0, a = 1, b = 1): its uvRange
+// reaches 0 or 1 there (exactly: host/geometry/nurbs.cpp), compared in hreal, unrounded; the other
+// borders have a neighbour patch that continues the surface.
+bvec4 ds_surface_edges(int patchIndex) {
+  const hreal4 r = nurbsPatches[patchIndex].uvRange;
+  const hreal zero = h(real(0.0)), one = h(real(1.0));
+  return bvec4(h_le(h_x(r), zero), h_le(h_y(r), zero), h_ge(h_z(r), one), h_ge(h_w(r), one));
+}
+
 // Ray–box slabs in `real`; returns the entry and exit parameters (entry > exit: missed).
 real2 ds_box_range(vec4 lo, vec4 hi, real3 o, real3 invD) {
   const real3 t0 = (real3(lo.xyz) - o) * invD, t1 = (real3(hi.xyz) - o) * invD;
@@ -532,11 +541,8 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
         // df64: up to DS_DF64_EDGE_WINDOW beyond the surface's own edge, where the df64 refinement
         // below decides; the float root's a and b can be that far off where the weights are wild
         // (a root 2.5e-6 inside an edge came out beyond 1e-6 in float, tests/test_nurbs_random.cpp).
-        const real4 patchRange = h_real(nurbsPatches[info.x].uvRange);
-        const real4 borderTolerance = real4(patchRange.x <= 0.0 ? DS_DF64_EDGE_WINDOW : DS_NURBS_BORDER_TOLERANCE,
-                                            patchRange.y <= 0.0 ? DS_DF64_EDGE_WINDOW : DS_NURBS_BORDER_TOLERANCE,
-                                            patchRange.z >= 1.0 ? DS_DF64_EDGE_WINDOW : DS_NURBS_BORDER_TOLERANCE,
-                                            patchRange.w >= 1.0 ? DS_DF64_EDGE_WINDOW : DS_NURBS_BORDER_TOLERANCE);
+        const bvec4 edges = ds_surface_edges(info.x);
+        const real4 borderTolerance = mix(real4(DS_NURBS_BORDER_TOLERANCE), real4(DS_DF64_EDGE_WINDOW), edges);
         bool keep = accepted && all(greaterThanEqual(ab, -borderTolerance.xy)) &&
                     all(lessThanEqual(ab, real2(1.0) + borderTolerance.zw));
 #else
@@ -548,15 +554,15 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
           keep = false;
         real2 tEval = t;
 #if defined(DS_FP32)
-        // fp32, a root beyond the surface's own edge (uvRange at 0 or 1 on that side) by less than
+        // fp32, a root beyond the surface's own edge (ds_surface_edges) by less than
         // the border tolerance: a parameter tolerance is no distance. Where the parametrization is
         // fast (wild weights next to a pole: ~6 m per unit of a) 1e-6 of a put a hit 5.7 µm
         // (0.064 px) beyond the surface's edge (tests/test_nurbs_random.cpp). The root moves onto
         // the edge, and is kept only when the edge point lies within the tangent-root tolerance
         // of the ray (the residual the search accepts for a tangent contact).
-        const real4 edgeRange = nurbsPatches[info.x].uvRange;
-        const real2 edgeAb = real2(ab.x < 0.0 && edgeRange.x <= 0.0 ? 0.0 : ab.x > 1.0 && edgeRange.z >= 1.0 ? 1.0 : ab.x,
-                                   ab.y < 0.0 && edgeRange.y <= 0.0 ? 0.0 : ab.y > 1.0 && edgeRange.w >= 1.0 ? 1.0 : ab.y);
+        const bvec4 edges = ds_surface_edges(info.x);
+        const real2 edgeAb = real2(ab.x < 0.0 && edges.x ? 0.0 : ab.x > 1.0 && edges.z ? 1.0 : ab.x,
+                                   ab.y < 0.0 && edges.y ? 0.0 : ab.y > 1.0 && edges.w ? 1.0 : ab.y);
         const bool beyondEdge = any(notEqual(edgeAb, ab));
         if (beyondEdge) {
           // Patch → sub-patch-local → box-local, the inverse of the mapping above.
@@ -582,14 +588,12 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
         // as the neighbour's, and two refinement steps from a poorly conditioned float root (wild
         // weights) could reject it on both sides: a root 1e-6 from a knot line was lost so
         // (tests/test_nurbs_random.cpp).
-        const bvec4 nearEdge = bvec4(ab.x < DS_DF64_EDGE_WINDOW && patchRange.x <= 0.0, ab.y < DS_DF64_EDGE_WINDOW && patchRange.y <= 0.0,
-                                     ab.x > 1.0 - DS_DF64_EDGE_WINDOW && patchRange.z >= 1.0,
-                                     ab.y > 1.0 - DS_DF64_EDGE_WINDOW && patchRange.w >= 1.0);
+        const bvec4 nearEdge = bvec4(ab.x < DS_DF64_EDGE_WINDOW && edges.x, ab.y < DS_DF64_EDGE_WINDOW && edges.y,
+                                     ab.x > 1.0 - DS_DF64_EDGE_WINDOW && edges.z, ab.y > 1.0 - DS_DF64_EDGE_WINDOW && edges.w);
         if (keep && s > sMin && s < sMax && any(nearEdge)) {
           real4 objectPoints[DS_NURBS_MAX_POINTS];
           ds_patch_load(info.x, objectPoints);
-          keep = ds_nurbs_inside_edges(ds_nurbs_refine(info.x, objectPoints, oh, dh, ab, 2),
-                                       bvec4(patchRange.x <= 0.0, patchRange.y <= 0.0, patchRange.z >= 1.0, patchRange.w >= 1.0));
+          keep = ds_nurbs_inside_edges(ds_nurbs_refine(info.x, objectPoints, oh, dh, ab, 2), edges);
         }
 #endif
         if (keep && s > sMin && s < sMax) {

@@ -197,8 +197,8 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
 #if defined(DS_DF64)
   // The winner and, when there is one, the runner-up: both refined, the nearer in df64 kept (one
   // copy of the attribute code, in a loop that does not unroll). A scene of one object has no
-  // runner-up: the specialized pipeline keeps only the plain call below (the loop cost Figure 1
-  // 16 % in df64 on lavapipe, bench/bench_nurbs_search.sh).
+  // runner-up: the specialized pipeline keeps only the plain call below (the loop's cost there:
+  // bench/RESULTS.md, "The edge rules and the df64 tie band").
   if (OBJECT_COUNT != 1) {
     const int candidates = nearest.second.object >= 0 ? 2 : 1;
     [[dont_unroll]] for (int k = 0; k < candidates; ++k) {

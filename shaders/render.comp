@@ -2,7 +2,9 @@
 #extension GL_EXT_samplerless_texture_functions : require
 // Entry point of the renderer: one invocation per pixel of one tile of one camera.
 // Writes the mean radiance over the pixel's stratified samples and the ground truth of the ray
-// through the pixel centre (host/render/result.h). Compiled once per precision (DS_FP32, DS_FP64,
+// through the pixel centre (host/render/result.h). Query mode (params.random.w = 1): one invocation
+// per visibility query instead, the nearest hit along the query's ray (gpu::Renderer::reachesFirst);
+// the same pipeline, so the scene's specialization and its compilation serve both. Compiled once per precision (DS_FP32, DS_FP64,
 // DS_DF64; lib/real.glsl); scene features are specialization constants (lib/features.glsl).
 
 #include "lib/real.glsl"
@@ -51,6 +53,11 @@ layout(std140, set = 0, binding = DS_BINDING_LIGHTS_UNIFORM) uniform LightsUnifo
 #else
 #define DS_OBJECT_H(i, member) DS_OBJECT(i, member)
 #endif
+#if defined(DS_DF64)
+#define DS_QUERY_H(i, member) df4(queries[i].member.hi, queries[i].member.lo)
+#else
+#define DS_QUERY_H(i, member) queries[i].member
+#endif
 #define DS_LIGHT(i, member) (UNIFORM_SCENE ? uniformLights[i].member : lights[i].member)
 layout(std430, set = 0, binding = DS_BINDING_TEXTURES) readonly buffer Textures { GpuTexture textures[]; };
 // Texture coefficients: a storage buffer, or (TEXEL_VIEW, fp32 and df64) the same bytes as a uniform
@@ -74,14 +81,33 @@ layout(std430, set = 0, binding = DS_BINDING_NURBS_SUBPATCHES) readonly buffer N
 };
 layout(std430, set = 0, binding = DS_BINDING_NURBS_PATCHES) readonly buffer NurbsPatches { GpuNurbsPatch nurbsPatches[]; };
 layout(std430, set = 0, binding = DS_BINDING_NURBS_POINTS) readonly buffer NurbsPoints { hreal4 nurbsPoints[]; };
+layout(std430, set = 0, binding = DS_BINDING_QUERIES) readonly buffer Queries { GpuRayQuery queries[]; };
 layout(push_constant) uniform Push { GpuTileParams params; };
 
 #include "lib/camera.glsl"
 #include "lib/trace.glsl"
 
+// Loop-limit sentinel. Mesa's llvmpipe (lavapipe) ends every loop of a shader invocation once
+// the loop iterations of its SIMD batch (8 or 16 lanes), all loops together, reach 65 535
+// (LP_MAX_TGSI_LOOP_ITERATIONS in gallivm), silently: a search cut short returns a wrong hit. After
+// that every loop runs its body once, so a loop that must run twice (its bound is not a
+// constant: params.random.z is 0) counts once. 1 tells the host (gpu/renderer.cpp), which refuses
+// the result. Other drivers have no such limit: the sentinel then never fires.
+real ds_loop_limit_sentinel() {
+  int probe = 0;
+  for (int i = 0; i < 2 + int(params.random.z); ++i) ++probe;
+  return probe == 2 ? 0.0 : 1.0;
+}
+
 void main() {
   const ivec2 local = ivec2(gl_GlobalInvocationID.xy);
   if (local.x >= params.tile.z || local.y >= params.tile.w) return;
+  const int slot = local.y * params.tile.z + local.x;
+  // Query mode: query counts.y + slot instead of the pixel (one call site of the trace for both:
+  // each call site inlines the whole search, and compiling it costs seconds on lavapipe).
+  const bool query = params.random.w != 0u;
+  const int queryIndex = params.counts.y + slot;
+  if (query && queryIndex >= queries.length()) return;
   const int cameraIndex = params.counts.x;
   GpuCamera cam;
   if (UNIFORM_SCENE)
@@ -107,7 +133,15 @@ void main() {
   real objectId = 0.0;
   UndistortStart start;
   start.valid = false;
-  if (ds_camera_ray(cam, centre, distorted, real2(0.0), false, start, origin, d) && ds_trace_nearest(origin, d, hit)) {
+  bool traced;
+  if (query) {
+    origin = h_xyz(DS_QUERY_H(queryIndex, origin));
+    d = h_xyz(DS_QUERY_H(queryIndex, direction));
+    traced = true;
+  } else {
+    traced = ds_camera_ray(cam, centre, distorted, real2(0.0), false, start, origin, d);
+  }
+  if (traced && ds_trace_nearest(origin, d, hit)) {
     outPixel.positionDepth = h4_31(hit.position, hit.t);
     outPixel.normal = real4(hit.normal, 0.0);
     uv = hit.uv;
@@ -116,8 +150,8 @@ void main() {
 
   // Radiance: mean over stratified samples of the pixel's sensitive square.
   // strata.x · strata.y = samples per pixel; 0 × 0 when no radiance layer is asked for (the host's
-  // RenderOptions::radiance): only the ground-truth ray above is traced, and the radiance is 0.
-  const ivec2 strata = cam.size.zw;
+  // RenderOptions::radiance), and in query mode: only the ray above is traced, the radiance is 0.
+  const ivec2 strata = query ? ivec2(0) : cam.size.zw;
   const hreal side = h_y(cam.brown1);
   hreal sum = h(real(0.0));
   // Sample s = cellY · strataX + cellX, as in host/camera/sampling.h, without integer division.
@@ -135,14 +169,6 @@ void main() {
     }
   }
   outPixel.uvRadianceId = h4_211(uv, h_div(sum, h(real(max(strata.x * strata.y, 1)))), h(objectId));
-  // Loop-limit sentinel. Mesa's llvmpipe (lavapipe) ends every loop of a shader invocation once
-  // the loop iterations of its SIMD batch (8 or 16 lanes), all loops together, reach 65 535
-  // (LP_MAX_TGSI_LOOP_ITERATIONS in gallivm), silently: a search cut short returns a wrong hit. After
-  // that every loop runs its body once, so a loop that must run twice (its bound is not a
-  // constant: params.random.z is 0) counts once. normal.w = 1 tells the host (gpu/renderer.cpp),
-  // which refuses the result. Other drivers have no such limit: the sentinel then never fires.
-  int probe = 0;
-  for (int i = 0; i < 2 + int(params.random.z); ++i) ++probe;
-  outPixel.normal.w = probe == 2 ? 0.0 : 1.0;
-  pixels[local.y * params.tile.z + local.x] = outPixel;
+  outPixel.normal.w = ds_loop_limit_sentinel();
+  pixels[slot] = outPixel;
 }

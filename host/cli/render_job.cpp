@@ -20,6 +20,7 @@
 #include "core/phase_timer.h"
 #include "core/progress.h"
 #include "core/serial_worker.h"
+#include "gpu/df64.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/nurbs_basis.h"
 #include "io/atomic_file.h"
@@ -141,6 +142,7 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   phaseDone("render");
   if (session.context()) failOnValidationMessages(*session.context());  // before any file of this frame is written
   out.options = options;
+  out.visibility = session.visibilityTracer();
   summary.renderSeconds += out.result.renderSeconds;
   summary.backend = out.result.backend;
   summary.precision = out.result.precision;
@@ -232,7 +234,7 @@ CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, co
                          const ReferenceFrame& reference) {
   const Camera& cam = scene.cameras[c].camera;
   CameraFrame out;
-  out.truth = deriveTruth(reference, rendered.frame, scene, rendered.result, c, job.layers);
+  out.truth = deriveTruth(reference, rendered.frame, scene, rendered.result, c, job.layers, rendered.visibility);
   phaseDone("truth");
   if (!out.truth.disparityCamera.empty() && out.truth.disparityVisibleCount == 0)
     std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
@@ -275,6 +277,25 @@ void RenderSession::startDevice() {
   co.device = args_.device;
   context_ = std::make_unique<gpu::Context>(co);
   renderer_ = std::make_unique<gpu::Renderer>(*context_);
+}
+
+VisibilityTracer RenderSession::visibilityTracer() {
+  if (!useGpu() || !renderer_) return {};
+  Precision p = Precision::Fp64;
+  if (!context_->info().shaderFloat64) {
+    try {
+      gpu::requireDf64(*context_);
+      p = Precision::Df64;
+    } catch (const InputError&) {
+      return {};  // the device's df64 fails its self-test: the CPU reference traces them
+    }
+  }
+  // render() and reachesFirst() may overlap (the writer thread derives frame i while frame i + 1
+  // renders): the renderer keeps separate buffers for the two.
+  return [renderer = renderer_.get(), p](const PreparedScene& scene, std::size_t camera, std::span<const dvec3> points,
+                                         std::span<const int> objects, double tolerance) {
+    return renderer->reachesFirst(scene, p, camera, points, objects, tolerance);
+  };
 }
 
 Precision RenderSession::precision() {

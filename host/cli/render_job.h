@@ -35,6 +35,12 @@ class RenderSession {
   void startDevice();  // no-op for the CPU backend or when started
   // The precision of every job: resolved once, on the first call (after the first prepare).
   Precision precision();
+  // Who traces the visibility of flow.mask and disparity.mask (render/visibility.h): the GPU that
+  // renders, in fp64 whatever the render's precision (one ray per pixel: fp64's speed matters little,
+  // and its masks equal the CPU reference's, tests/test_visibility.cpp), in df64 on a device without
+  // fp64 (exact except within ~0.2° of tangency, where df64's float search can miss the nearer of
+  // two roots), the CPU reference when the device can do neither or for the CPU backend (empty).
+  VisibilityTracer visibilityTracer();
   const RenderArgs& args() const { return args_; }
   TextureCache& textures() { return textures_; }
 
@@ -74,6 +80,7 @@ struct RenderedFrame {
   PreparedScene scene;
   RenderResult result;
   RenderOptions options;
+  VisibilityTracer visibility;  // RenderSession::visibilityTracer(): safe on the writer thread
 };
 
 // Every frame of a job rendered, not yet written (sweep: written on a worker thread).

@@ -59,6 +59,7 @@ using hreal4 = df64x4;
   static_assert(sizeof(ns::GpuPixel) == PIXEL);                                            \
   static_assert(offsetof(ns::GpuPixel, normal) == 2 * H4);                                 \
   static_assert(sizeof(ns::GpuTileParams) == 48);                                          \
+  static_assert(sizeof(ns::GpuRayQuery) == 2 * H4);                                        \
   static_assert(sizeof(ns::GpuNurbsNode) == 48 && sizeof(ns::GpuNurbsSubPatch) == 32);     \
   static_assert(sizeof(ns::GpuNurbsPatch) == H4 + 32);                                      \
   static_assert(sizeof(ns::GpuCamera) == DS_GPU_CAMERA_BYTES(H4, R4));                     \

@@ -43,6 +43,7 @@ struct PackedFrame {
     using GpuLight = ns::GpuLight;                  \
     using GpuTexture = ns::GpuTexture;              \
     using GpuPixel = ns::GpuPixel;                  \
+    using GpuRayQuery = ns::GpuRayQuery;            \
     using GpuTileParams = ns::GpuTileParams;        \
     using GpuNurbsNode = ns::GpuNurbsNode;          \
     using GpuNurbsSubPatch = ns::GpuNurbsSubPatch;  \

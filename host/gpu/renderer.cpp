@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <span>
 #include <string>
 #include <future>
 #include <type_traits>
@@ -13,6 +14,7 @@
 #include "gpu/pack.h"
 #include "shared/bindings.h"
 #include "gpu/df64.h"
+#include "camera/pinhole.h"
 #include "spirv/render_df64.h"
 #include "spirv/render_fp32.h"
 #include "spirv/render_fp64.h"
@@ -171,11 +173,64 @@ Pixel* hostTile(Renderer::Caches& caches, std::size_t count) {
   return reinterpret_cast<Pixel*>(caches.tile.get());
 }
 
+// The scene-wide inputs of render.comp (textures, texels, NURBS) into `bindings`, from the
+// caches when their bytes are unchanged, and a one-record dummy for the queries binding.
+template <class Layout>
+void bindSceneInputs(Context& context, const PreparedScene& scene, const PackedScene<Layout>& packed,
+                     Renderer::Caches& caches, BoundBuffer* bindings) {
+  checkDeviceCapacity(context, scene, packed);
+  Renderer::InputCache& cache = caches.inputs;
+  Buffer& textures = cachedInput(context, cache, DS_BINDING_TEXTURES, packed.textures);
+  Buffer& texels = cachedTexels<Layout>(context, caches.texels, scene);
+  bindings[DS_BINDING_TEXTURES] = storage(textures);
+  bindings[DS_BINDING_TEXELS] = storage(texels);
+  // The view is bound in every variant (the layout has the binding); fp64 never reads it.
+  bindings[DS_BINDING_TEXEL_VIEW] = {&texels, VK_WHOLE_SIZE, texels.texelView(VK_FORMAT_R32_SFLOAT, 4)};
+  bindings[DS_BINDING_NURBS_NODES] = storage(cachedInput(context, cache, DS_BINDING_NURBS_NODES, packed.nurbsNodes));
+  bindings[DS_BINDING_NURBS_SUBPATCHES] =
+      storage(cachedInput(context, cache, DS_BINDING_NURBS_SUBPATCHES, packed.nurbsSubPatches));
+  bindings[DS_BINDING_NURBS_PATCHES] = storage(cachedInput(context, cache, DS_BINDING_NURBS_PATCHES, packed.nurbsPatches));
+  bindings[DS_BINDING_NURBS_POINTS] = storage(cachedInput(context, cache, DS_BINDING_NURBS_POINTS, packed.nurbsPoints));
+  bindings[DS_BINDING_QUERIES] =
+      storage(cachedInput(context, cache, DS_BINDING_QUERIES, std::vector<typename Layout::GpuRayQuery>(1)));
+}
+
+// Camera `ci`'s cameras, objects and lights (camera-relative, PackedFrame), each bound twice: the
+// shader reads the uniform blocks when residency.uniformScene says so.
+struct FrameBuffers {
+  Buffer cameras, objects, lights;
+};
+template <class Layout>
+FrameBuffers frameBuffers(Context& context, const PackedFrame<Layout>& frame, const SceneResidency& residency) {
+  FrameBuffers b{inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.cameras) : frame.cameras),
+                 inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.objects) : frame.objects),
+                 inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.lights) : frame.lights)};
+  return b;
+}
+void bindFrameBuffers(FrameBuffers& b, BoundBuffer* bindings) {
+  bindings[DS_BINDING_CAMERAS] = storage(b.cameras);
+  bindings[DS_BINDING_OBJECTS] = storage(b.objects);
+  bindings[DS_BINDING_LIGHTS] = storage(b.lights);
+  bindings[DS_BINDING_CAMERAS_UNIFORM] = uniform(b.cameras);
+  bindings[DS_BINDING_OBJECTS_UNIFORM] = uniform(b.objects);
+  bindings[DS_BINDING_LIGHTS_UNIFORM] = uniform(b.lights);
+}
+
+// The error of a dispatch whose loops lavapipe cut short (render.comp's sentinel) on `count`
+// pixels or queries, the first of them named by `first`.
+Error cutShortError(std::size_t count, const std::string& first) {
+  return Error("the Vulkan driver cut the shader's loops short on " + std::to_string(count) + " pixels (first: " +
+               first + "): Mesa 22's lavapipe ends all loops of a batch of pixels "
+               "after 65535 iterations in total, so their results would be wrong. Render with "
+               "--backend cpu, on a GPU, or with Mesa 25's lavapipe (scripts/install-deps.sh --backports-mesa), "
+               "which has no such limit; fewer samples per pixel or a NURBS surface with fewer folds "
+               "also need fewer iterations");
+}
+
 template <class Layout>
 void renderAll(Context& context, const ComputePipeline& pipeline, const PreparedScene& scene,
                const RenderOptions& options, int requestedTile, const SceneResidency& residency,
                Renderer::Caches& caches, RenderResult& result) {
-  Renderer::InputCache& cache = caches.inputs;
   const int tileSize = tileEdge(context, requestedTile, sizeof(typename Layout::GpuPixel), scene);
   // The result images (~84 bytes per pixel, NaN-filled: 160 MB for 1600 × 1200) are allocated on a
   // second thread while this one packs and uploads the scene: on a CPU device the render's own
@@ -190,25 +245,11 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
     }
   });
   const PackedScene<Layout> packed = packScene<Layout>(scene);
-  checkDeviceCapacity(context, scene, packed);
-  Buffer& textures = cachedInput(context, cache, DS_BINDING_TEXTURES, packed.textures);
-  Buffer& texels = cachedTexels<Layout>(context, caches.texels, scene);
-  Buffer& nurbsNodes = cachedInput(context, cache, DS_BINDING_NURBS_NODES, packed.nurbsNodes);
-  Buffer& nurbsSubPatches = cachedInput(context, cache, DS_BINDING_NURBS_SUBPATCHES, packed.nurbsSubPatches);
-  Buffer& nurbsPatches = cachedInput(context, cache, DS_BINDING_NURBS_PATCHES, packed.nurbsPatches);
-  Buffer& nurbsPoints = cachedInput(context, cache, DS_BINDING_NURBS_POINTS, packed.nurbsPoints);
+  BoundBuffer bindings[DS_BINDING_COUNT];
+  bindSceneInputs(context, scene, packed, caches, bindings);
   const std::size_t tilePixels = std::size_t(tileSize) * std::size_t(tileSize);
   Buffer& pixels = readbackBuffer(context, caches, tilePixels * sizeof(typename Layout::GpuPixel));
-  BoundBuffer bindings[DS_BINDING_COUNT];
-  bindings[DS_BINDING_TEXTURES] = storage(textures);
-  bindings[DS_BINDING_TEXELS] = storage(texels);
-  // The view is bound in every variant (the layout has the binding); fp64 never reads it.
-  bindings[DS_BINDING_TEXEL_VIEW] = {&texels, VK_WHOLE_SIZE, texels.texelView(VK_FORMAT_R32_SFLOAT, 4)};
   bindings[DS_BINDING_PIXELS] = storage(pixels);
-  bindings[DS_BINDING_NURBS_NODES] = storage(nurbsNodes);
-  bindings[DS_BINDING_NURBS_SUBPATCHES] = storage(nurbsSubPatches);
-  bindings[DS_BINDING_NURBS_PATCHES] = storage(nurbsPatches);
-  bindings[DS_BINDING_NURBS_POINTS] = storage(nurbsPoints);
   typename Layout::GpuPixel* const tile = hostTile<typename Layout::GpuPixel>(caches, tilePixels);
 
   double totalPixels = 0, donePixels = 0;
@@ -218,16 +259,8 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
   images.get();  // rethrows an allocation failure
   for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
     const PackedFrame<Layout> frame = packFrame<Layout>(scene, packed, options.radiance ? options.samplesPerPixel : 0, ci);
-    Buffer cameras = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.cameras) : frame.cameras);
-    Buffer objects = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.objects) : frame.objects);
-    Buffer lights = inputBuffer(context, residency.uniformScene ? paddedToBlock(frame.lights) : frame.lights);
-    // Each bound twice: the shader reads the uniform blocks when residency.uniformScene says so.
-    bindings[DS_BINDING_CAMERAS] = storage(cameras);
-    bindings[DS_BINDING_OBJECTS] = storage(objects);
-    bindings[DS_BINDING_LIGHTS] = storage(lights);
-    bindings[DS_BINDING_CAMERAS_UNIFORM] = uniform(cameras);
-    bindings[DS_BINDING_OBJECTS_UNIFORM] = uniform(objects);
-    bindings[DS_BINDING_LIGHTS_UNIFORM] = uniform(lights);
+    FrameBuffers buffers = frameBuffers(context, frame, residency);
+    bindFrameBuffers(buffers, bindings);
     const Camera& cam = scene.cameras[ci].camera;
     CameraImage& image = result.cameras[ci];
     for (int y0 = 0; y0 < cam.height_px; y0 += tileSize) {
@@ -268,13 +301,64 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
     }
   }
   // Nothing cut short is returned as if it were an answer.
-  if (cutShort > 0)
-    throw Error("the Vulkan driver cut the shader's loops short on " + std::to_string(cutShort) +
-                " pixels (first: " + firstCutShort + "): Mesa 22's lavapipe ends all loops of a batch of pixels "
-                "after 65535 iterations in total, so their results would be wrong. Render with "
-                "--backend cpu, on a GPU, or with Mesa 25's lavapipe (scripts/install-deps.sh --backports-mesa), "
-                "which has no such limit; fewer samples per pixel or a NURBS surface with fewer folds "
-                "also need fewer iterations");
+  if (cutShort > 0) throw cutShortError(cutShort, firstCutShort);
+}
+
+// Render.comp's query mode over all points of one camera (Renderer::reachesFirst): blocks of up to
+// one tile's worth of queries, each dispatched as a tile of `edge` columns.
+template <class Layout>
+std::vector<std::uint8_t> queryAll(Context& context, const ComputePipeline& pipeline, const PreparedScene& scene,
+                                   std::size_t ci, std::span<const dvec3> points, std::span<const int> objects,
+                                   double relativeTolerance, int requestedTile, const SceneResidency& residency,
+                                   Renderer::Caches& caches) {
+  using Pixel = typename Layout::GpuPixel;
+  using H4 = typename Layout::hreal4;
+  const PackedScene<Layout> packed = packScene<Layout>(scene);
+  BoundBuffer bindings[DS_BINDING_COUNT];
+  bindSceneInputs(context, scene, packed, caches, bindings);
+  const PackedFrame<Layout> frame = packFrame<Layout>(scene, packed, 0, ci);
+  FrameBuffers buffers = frameBuffers(context, frame, residency);
+  bindFrameBuffers(buffers, bindings);
+  // The rays of render/image_point.cpp reachesFirst: from the chief ray's origin to the point, the
+  // point at t = 1; camera-relative (PackedFrame), so a pinhole's origin is exactly 0.
+  const PinholeModel<double>& model = scene.cameras[ci].model;
+  std::vector<typename Layout::GpuRayQuery> rays(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const dvec3 origin = chiefRayOrigin(model, points[i]);
+    const dvec3 o = origin - frame.origin_m, d = points[i] - origin;
+    rays[i].origin = toReal4(o.x, o.y, o.z, 0, static_cast<H4*>(nullptr));
+    rays[i].direction = toReal4(d.x, d.y, d.z, 0, static_cast<H4*>(nullptr));
+  }
+  Buffer queries = inputBuffer(context, rays);
+  bindings[DS_BINDING_QUERIES] = storage(queries);
+  const int edge = tileEdge(context, requestedTile, sizeof(Pixel), scene);
+  const std::size_t block = std::size_t(edge) * std::size_t(edge);
+  Buffer& pixels = readbackBuffer(context, caches, block * sizeof(Pixel));
+  bindings[DS_BINDING_PIXELS] = storage(pixels);
+  Pixel* const tile = hostTile<Pixel>(caches, block);
+  std::vector<std::uint8_t> reached(points.size(), 0);
+  std::size_t cutShort = 0;
+  std::string firstCutShort;
+  for (std::size_t first = 0; first < points.size(); first += block) {
+    const std::size_t count = std::min(block, points.size() - first);
+    const int rows = int((count + std::size_t(edge) - 1) / std::size_t(edge));
+    typename Layout::GpuTileParams params{};
+    params.tile = {0, 0, edge, rows};
+    params.counts = {int(ci), int(first), int(frame.objects.size()), int(frame.lights.size())};
+    params.random = {0, 0, 0, 1};
+    dispatchAndWait(context, pipeline, bindings, &params, std::uint32_t((edge + DS_LOCAL_SIZE_X - 1) / DS_LOCAL_SIZE_X),
+                    std::uint32_t((rows + DS_LOCAL_SIZE_Y - 1) / DS_LOCAL_SIZE_Y));
+    pixels.download(tile, count * sizeof(Pixel));
+    for (std::size_t j = 0; j < count; ++j) {
+      const Pixel& p = tile[j];
+      if (component(p.normal, 3) != 0 && cutShort++ == 0)
+        firstCutShort = "visibility query " + std::to_string(first + j) + " of camera '" + scene.cameras[ci].camera.name + "'";
+      const auto id = std::lround(component(p.uvRadianceId, 3));
+      reached[first + j] = id == objects[first + j] + 1 && std::abs(component(p.positionDepth, 3) - 1) <= relativeTolerance;
+    }
+  }
+  if (cutShort > 0) throw cutShortError(cutShort, firstCutShort);
+  return reached;
 }
 
 }  // namespace
@@ -309,6 +393,7 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
     r.objectCount = 0;
     r.lightCount = -1;
   }
+  std::lock_guard lock(pipelinesMutex_);  // render() and reachesFirst() may run on two threads
   auto& slot = pipelines_[{precision, used, df64Fma, r}];
   if (!slot) {
     const std::vector<SpecConstant> spec = {{DS_SPEC_HAS_LIGHTS, used.lights ? 1u : 0u},
@@ -366,6 +451,26 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   }
   result.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+std::vector<std::uint8_t> Renderer::reachesFirst(const PreparedScene& scene, Precision precision, std::size_t camera,
+                                                 std::span<const dvec3> points_m, std::span<const int> objects,
+                                                 double relativeTolerance, const RendererOptions& rendererOptions) {
+  DS_CHECK(points_m.size() == objects.size() && camera < scene.cameras.size(), "reachesFirst: bad arguments");
+  if (precision == Precision::Fp64 && !context_.info().shaderFloat64)
+    throw InputError("visibility in fp64: device '" + context_.info().name + "' has no shaderFloat64");
+  if (points_m.empty()) return {};
+  const bool df64Fma = precision == Precision::Df64 && requireDf64(context_).useFma;
+  const SceneResidency where = residency(precision, scene, rendererOptions);
+  const ComputePipeline& pipe = pipeline(precision, scene.features, rendererOptions.specialize, df64Fma, where);
+  std::lock_guard lock(queryMutex_);
+  const int tile = rendererOptions.tileSize;
+  switch (precision) {
+    case Precision::Fp32: return queryAll<Fp32Layout>(context_, pipe, scene, camera, points_m, objects, relativeTolerance, tile, where, queryCaches_);
+    case Precision::Df64: return queryAll<Df64Layout>(context_, pipe, scene, camera, points_m, objects, relativeTolerance, tile, where, queryCaches_);
+    case Precision::Fp64: return queryAll<Fp64Layout>(context_, pipe, scene, camera, points_m, objects, relativeTolerance, tile, where, queryCaches_);
+  }
+  throw Error("Renderer::reachesFirst: unknown precision");
 }
 
 }  // namespace dicsynth::gpu

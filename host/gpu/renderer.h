@@ -3,8 +3,11 @@
 // features, dispatches it tile by tile and reads the results back into a RenderResult.
 #include <cstddef>
 #include <map>
+#include <cstdint>
 #include <memory>
+#include <mutex>
 #include <new>
+#include <span>
 #include <tuple>
 #include <typeindex>
 #include <vector>
@@ -51,6 +54,16 @@ class Renderer {
   RenderResult render(const PreparedScene& scene, const RenderOptions& options,
                       const RendererOptions& rendererOptions = {});
 
+  // Whether the chief ray of camera `camera` towards each point first meets the point's own object
+  // (objects[i], an index into scene.objects) at t within relativeTolerance of the point (t = 1):
+  // render/image_point.h reachesFirst on the device, in `precision`, for the visibility masks of
+  // flow and disparity (render/visibility.h). All points in one pass of render.comp's query mode,
+  // with the pipeline a render of this scene and precision uses. May run on another thread than
+  // render() (each keeps its own buffers); two reachesFirst calls at once wait for each other.
+  std::vector<std::uint8_t> reachesFirst(const PreparedScene& scene, Precision precision, std::size_t camera,
+                                         std::span<const dvec3> points_m, std::span<const int> objects,
+                                         double relativeTolerance, const RendererOptions& rendererOptions = {});
+
   // Creates (or finds) the pipeline render() uses for this scene; benchmarks call it before timing
   // a render so that the pipeline's creation is not counted.
   // df64Fma: TwoProd by fma in df64 (only where the self-test proved fma exact).
@@ -65,6 +78,7 @@ class Renderer {
 
  private:
   Context& context_;
+  std::mutex pipelinesMutex_;  // pipelines_ (render() and reachesFirst() may run on two threads)
   std::map<std::tuple<Precision, SceneFeatures, bool, SceneResidency>, std::unique_ptr<ComputePipeline>> pipelines_;
 
  public:
@@ -102,7 +116,9 @@ class Renderer {
   };
 
  private:
-  Caches caches_;
+  Caches caches_;        // render()'s
+  Caches queryCaches_;   // reachesFirst()'s
+  std::mutex queryMutex_;
 };
 
 }  // namespace dicsynth::gpu

@@ -80,14 +80,31 @@ dvec2 seenAt(const ImagePoint& p) { return p.inFront && !p.folded ? p.pixel_px :
 
 dvec2 projectPoint(const PreparedCamera& camera, dvec3 world_m) { return seenAt(projectToImage(camera, world_m)); }
 
-// Where the point appears in `camera` (projectPoint) and whether the camera sees it.
-struct Sighting {
-  dvec2 pixel_px{0};
-  bool visible = false;
+// Points of one camera whose visibility is to be traced, by pixel: object −1 where none is.
+struct VisibilityCandidates {
+  std::vector<dvec3> point_m;
+  std::vector<int> object;
+  explicit VisibilityCandidates(std::size_t n) : point_m(n, dvec3(0)), object(n, -1) {}
 };
-Sighting sight(const PreparedScene& scene, const PreparedCamera& camera, int object, dvec3 world_m) {
-  const ImagePoint p = projectToImage(camera, world_m);
-  return {seenAt(p), p.inImage && reachesFirst(scene, camera, object, world_m, kVisibilityTolerance)};
+
+// mask[i] = 1 where candidate i is reached first by `camera`'s chief ray: all candidates in one
+// call of the tracer (the rendering device), or of the CPU reference when there is none.
+void fillVisibilityMask(const VisibilityTracer& tracer, const PreparedScene& scene, std::size_t camera,
+                        const VisibilityCandidates& candidates, std::vector<float>& mask) {
+  std::vector<dvec3> points;
+  std::vector<int> objects;
+  std::vector<std::size_t> pixels;
+  for (std::size_t i = 0; i < candidates.object.size(); ++i) {
+    if (candidates.object[i] < 0) continue;
+    points.push_back(candidates.point_m[i]);
+    objects.push_back(candidates.object[i]);
+    pixels.push_back(i);
+  }
+  const std::vector<std::uint8_t> reached =
+      tracer ? tracer(scene, camera, points, objects, kVisibilityTolerance)
+             : reachesFirstCpu(scene, camera, points, objects, kVisibilityTolerance);
+  DS_CHECK(reached.size() == points.size(), "visibility tracer answered the wrong number of points");
+  for (std::size_t k = 0; k < pixels.size(); ++k) mask[pixels[k]] = reached[k] ? 1.0f : 0.0f;
 }
 
 }  // namespace
@@ -169,7 +186,8 @@ std::vector<dvec3> fieldErrors(const ReferenceFrame::View& view, const std::vect
 }
 
 DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const PreparedScene& scene,
-                         const RenderResult& result, std::size_t cameraIndex, const LayerSet& layers) {
+                         const RenderResult& result, std::size_t cameraIndex, const LayerSet& layers,
+                         const VisibilityTracer& visibility) {
   const PreparedCamera& camera = scene.cameras[cameraIndex];
   const CameraImage& image = result.cameras[cameraIndex];
   DerivedTruth truth;
@@ -191,6 +209,7 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       objectNow[o] = objectIndexByName(scene, reference.scene().objects[o].name);
     const bool isReference = frame == reference.frame();
     DS_CHECK(isReference || view->pixel_px.size() == n, "reference frame built without otherFrames");
+    VisibilityCandidates seen(flow && !isReference ? n : 0);
     forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
       if (view->object[i] < 0) return;
       if (isReference) {
@@ -205,10 +224,13 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       if (!p) return;
       truth.displacement_m[i] = *p - view->position_m[i];
       if (!flow) return;  // its visibility is the costly part: traced only when asked for
-      const Sighting s = sight(scene, camera, o, *p);
-      truth.flow_px[i] = s.pixel_px - view->pixel_px[i];
-      truth.flowMask[i] = s.visible ? 1.0f : 0.0f;
+      const ImagePoint now = projectToImage(camera, *p);
+      truth.flow_px[i] = seenAt(now) - view->pixel_px[i];
+      if (!now.inImage) return;  // mask 0
+      seen.point_m[i] = *p;
+      seen.object[i] = o;
     });
+    if (flow && !isReference) fillVisibilityMask(visibility, scene, cameraIndex, seen, truth.flowMask);
     if (layers.has(Layer::FieldError)) {
       bool deformed = false;
       for (const PreparedObject& o : scene.objects) deformed = deformed || o.deformation != nullptr;
@@ -229,16 +251,20 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
     const std::size_t n = image.pixelCount();
     truth.disparity_px.assign(n, kNaN2);
     truth.disparityMask.assign(n, 0.0f);
+    VisibilityCandidates seen(n);
     forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
       if (image.objectId[i] == 0) return;
       const int o = int(image.objectId[i]) - 1;
       const PreparedObject& obj = scene.objects[std::size_t(o)];
       const auto p = worldPointOfMaterial(obj, materialCoordinates(obj, image.uv[i], image.position_m[i]));
       if (!p) return;
-      const Sighting there = sight(scene, otherCamera, o, *p);
-      truth.disparity_px[i] = there.pixel_px - projectPoint(camera, *p);
-      truth.disparityMask[i] = there.visible ? 1.0f : 0.0f;
+      const ImagePoint there = projectToImage(otherCamera, *p);
+      truth.disparity_px[i] = seenAt(there) - projectPoint(camera, *p);
+      if (!there.inImage) return;  // mask 0
+      seen.point_m[i] = *p;
+      seen.object[i] = o;
     });
+    fillVisibilityMask(visibility, scene, std::size_t(other), seen, truth.disparityMask);
     for (float v : truth.disparityMask) truth.disparityVisibleCount += v > 0 ? 1 : 0;
   }
   return truth;

@@ -26,6 +26,7 @@
 #include "geometry/prepared_scene.h"
 #include "render/layers.h"
 #include "render/result.h"
+#include "render/visibility.h"
 
 namespace dicsynth {
 
@@ -89,7 +90,10 @@ class ReferenceFrame {
 // pixel sees an object (it is visible there by construction), without tracing.
 // Only the layers in `layers` are derived: without flow no visibility is traced for it, without
 // disparity nothing is projected into the other camera, without distortion no field is computed.
+// `visibility`: who traces the visibility of flow.mask and disparity.mask (render/visibility.h);
+// empty: the CPU reference.
 DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const PreparedScene& scene,
-                         const RenderResult& result, std::size_t camera, const LayerSet& layers = LayerSet::all());
+                         const RenderResult& result, std::size_t camera, const LayerSet& layers = LayerSet::all(),
+                         const VisibilityTracer& visibility = {});
 
 }  // namespace dicsynth

@@ -20,7 +20,8 @@
 #define DS_BINDING_OBJECTS_UNIFORM 11
 #define DS_BINDING_LIGHTS_UNIFORM 12
 #define DS_BINDING_TEXEL_VIEW 13
-#define DS_BINDING_COUNT 14
+#define DS_BINDING_QUERIES 14  // visibility queries (render.comp's query mode; a dummy otherwise)
+#define DS_BINDING_COUNT 15
 
 // Size of each uniform block: Vulkan's guaranteed minimum of maxUniformBufferRange, so every
 // device takes it. Holds 51 cameras, 28 objects, 128 lights in fp64; 51, 30, 204 in df64; 93, 46,

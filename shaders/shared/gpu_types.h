@@ -90,9 +90,18 @@ struct GpuPixel {
   real4 normal;           // N (world, unit, facing the camera), 1 where the loop-limit sentinel fired (render.comp)
 };
 
+// One visibility query (render.comp's query mode): the ray origin + t · direction, camera-relative
+// like everything the GPU sees (PackedFrame), direction = point − origin so that the point is at
+// t = 1. The answer: the GpuPixel at the same index, with the nearest hit's t in positionDepth.w
+// and its objectId in uvRadianceId.w (0: none).
+struct GpuRayQuery {
+  hreal4 origin;     // xyz, 0
+  hreal4 direction;  // xyz, 0
+};
+
 // Push constants of one dispatch (one tile of one camera).
 struct GpuTileParams {
-  ivec4 tile;       // x0, y0, width, height (px)
-  ivec4 counts;     // camera index, samples per pixel, object count, light count
-  uvec4 random;     // seed, frame, 0 (render.comp's loop-limit sentinel reads it), 0
+  ivec4 tile;       // x0, y0, width, height (px); query mode: 0, 0, width, height of the query block
+  ivec4 counts;     // camera index, samples per pixel (query mode: first query), object count, light count
+  uvec4 random;     // seed, frame, 0 (render.comp's loop-limit sentinel reads it), query mode (0/1)
 };

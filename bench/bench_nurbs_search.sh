@@ -13,10 +13,7 @@ NEW=$(cd "$2" && pwd)/dicsynth
 RUNS=${3:-3}
 SPP=4
 HERE=$(cd "$(dirname "$0")" && pwd)
-SCENES=$(cd "$HERE/../scenes" && pwd)
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
-median() { sort -g | awk '{ v[NR] = $1 } END { m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; printf "%.3f", m }'; }
+. "$HERE/common.sh"
 # Render seconds of one run, and its pixel count into $OUT/pixels.
 render() {
   DICSYNTH_TIMINGS=1 "$1" render "$SCENES/$2.lua" -o "$OUT/o" --spp $SPP --downscale 2 --precision "$3" \

@@ -13,10 +13,7 @@ NEW=$(cd "$2" && pwd)/dicsynth
 RUNS=${3:-3}
 P=${PRECISION:-fp64}
 HERE=$(cd "$(dirname "$0")" && pwd)
-SCENES=$(cd "$HERE/../scenes" && pwd)
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
-median() { sort -g | awk '{ v[NR] = $1 } END { m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; printf "%.3f", m }'; }
+. "$HERE/common.sh"
 # "wall truth" seconds of one run.
 run() {
   bin=$1

@@ -11,6 +11,7 @@
 #include "geometry/material_point.h"
 #include "render/ground_truth.h"
 #include "scene/scene.h"
+#include "scene_test_util.h"
 #include "temp_folder.h"
 
 namespace dicsynth {
@@ -258,14 +259,7 @@ TEST_CASE("ground truth: disparity with overlap, points hidden from the other ca
   // x = 0.02) is seen by both, and hides a strip of the wall from the right camera only where it
   // falls between the wall and that camera. Checked independently: for every left pixel whose
   // point the right camera sees, the right camera's ray through x + disparity meets that point.
-  const std::string path = dir.write("s.lua",
-      "left = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
-      " position = {-0.05, 0, 0}; lookAt = {0, 0, 0.5}; up = {0, -1, 0};"
-      " distortion = Distortion.Brown { radial = {-0.1, 0, 0} } }\n"
-      "right = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
-      " position = {0.05, 0, 0}; lookAt = {0, 0, 0.5}; up = {0, -1, 0} }\n"
-      "wall = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 0.5} } }\n"
-      "post = Object.Simple { shape = Shape.Rectangle { size = {0.004, 1}; location = {0.02, 0, 0.4} } }\n");
+  const std::string path = dir.write("s.lua", test::kConvergingRigWithPost);
   Frame f = renderFrame(path, 0, {}, {rig("left", "right")});
   const ReferenceFrame reference(0, f.scene, f.result);
   const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, 0);

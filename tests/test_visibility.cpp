@@ -16,6 +16,7 @@
 #include "render/ground_truth.h"
 #include "render/visibility.h"
 #include "scene/scene.h"
+#include "scene_test_util.h"
 #include "temp_folder.h"
 
 namespace dicsynth {
@@ -117,14 +118,7 @@ TEST_CASE("visibility: flow and disparity masks traced on the GPU equal the CPU 
   // with a post hiding a strip of the wall from one of them (disparity.mask), a sphere partly
   // behind the wall.
   test::TempFolder dir;
-  const std::string path = dir.write("s.lua",
-      "left = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
-      " position = {-0.05, 0, 0}; lookAt = {0, 0, 0.5}; up = {0, -1, 0};"
-      " distortion = Distortion.Brown { radial = {-0.1, 0, 0} } }\n"
-      "right = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
-      " position = {0.05, 0, 0}; lookAt = {0, 0, 0.5}; up = {0, -1, 0} }\n"
-      "wall = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 0.5} } }\n"
-      "post = Object.Simple { shape = Shape.Rectangle { size = {0.004, 1}; location = {0.02, 0, 0.4} } }\n"
+  const std::string path = dir.write("s.lua", std::string(test::kConvergingRigWithPost) +
       "ball = Object.Simple { shape = Shape.Sphere { radius = 0.03; location = {-0.03, 0.01, 0.5} } }\n"
       "if frame == 1 then blocker = Object.Simple { shape = Shape.Rectangle { size = {0.02, 0.02};"
       " location = {-0.02, 0, 0.3} } } end\n");

@@ -13,7 +13,7 @@
 
 #include "core/error.h"
 #include "core/math.h"
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/image_io.h"
 #include "io/oiio_reader.h"
 #include "io/tiff_io.h"

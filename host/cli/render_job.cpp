@@ -23,7 +23,7 @@
 #include "gpu/df64.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/nurbs_basis.h"
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/calibration_files.h"
 #include "io/feature_files.h"
 #include "io/image_limits.h"

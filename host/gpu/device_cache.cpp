@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "gpu/context.h"
 #include "gpu/pipeline_cache.h"
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace dicsynth::gpu {
 

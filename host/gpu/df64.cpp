@@ -19,7 +19,7 @@
 #include "gpu/context.h"
 #include "gpu/df64_cases.h"
 #include "gpu/pipeline_cache.h"
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "shared/bindings.h"
 #include "spirv/df64_probe_fp32.h"
 

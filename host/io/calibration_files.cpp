@@ -21,7 +21,7 @@
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/version.h"
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/opencv_camera.h"
 
 namespace dicsynth {

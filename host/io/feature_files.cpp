@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/json.h"
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "render/target_features.h"
 
 namespace dicsynth {

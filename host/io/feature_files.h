@@ -2,7 +2,7 @@
 // Writer of the calibration-target ground truth of one camera and frame:
 // DIR/<stem>.features.csv and DIR/<stem>.features.json (columns and fields: README, "Feature
 // files"). Full double precision (%.17g); each file written under a temporary name and renamed
-// when complete (io/atomic_file.h).
+// when complete (core/atomic_file.h).
 #include <cstddef>
 #include <string>
 

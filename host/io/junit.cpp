@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <ctime>
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace dicsynth::junit {
 namespace {

@@ -39,7 +39,7 @@ struct Report {
 // are the sums of their cases' times.
 std::string toXml(const Report& report);
 
-// Writes toXml(report) to `path` atomically (io/atomic_file.h). Throws Error.
+// Writes toXml(report) to `path` atomically (core/atomic_file.h). Throws Error.
 void writeReport(const std::string& path, const Report& report);
 
 // Text usable both as attribute value and element content: & < > " ' as entities; tab, newline and

@@ -65,7 +65,7 @@
 #include "core/exact_number.h"
 #include "core/parallel.h"
 #include "core/version.h"
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/image_io.h"
 #include "io/opencv_camera.h"
 

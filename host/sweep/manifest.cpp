@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 #include "core/json.h"
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "sweep/point_record.h"
 
 namespace dicsynth::sweep {

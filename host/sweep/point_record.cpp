@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/json.h"
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace dicsynth::sweep {
 namespace fs = std::filesystem;

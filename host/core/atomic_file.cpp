@@ -3,7 +3,7 @@
 // old file or the new one, never a partial one. Not a durability guarantee: the data are not
 // fsync'ed, so after a power loss the renamed file may be empty or truncated (the usual trade-off of
 // tools that write many large images).
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include <fcntl.h>
 #include <signal.h>

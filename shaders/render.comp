@@ -141,7 +141,7 @@ void main() {
   } else {
     traced = ds_camera_ray(cam, centre, distorted, real2(0.0), false, start, origin, d);
   }
-  if (traced && ds_trace_nearest(origin, d, hit)) {
+  if (traced && ds_trace_nearest(origin, d, true, hit)) {
     outPixel.positionDepth = h4_31(hit.position, hit.t);
     outPixel.normal = real4(hit.normal, 0.0);
     uv = hit.uv;
@@ -164,7 +164,7 @@ void main() {
                                                    uint(pixel.x), uint(pixel.y), uint(s))
                                   : real2(0.0);
       if (ds_camera_ray(cam, h_add(centre, offset), distorted, lens, true, start, origin, d) &&
-          ds_trace_nearest(origin, d, hit))
+          ds_trace_nearest(origin, d, false, hit))
         sum = h_add(sum, h(ds_shade(hit)));
     }
   }

@@ -93,7 +93,11 @@ struct NearestHit {
   // float's rounding of each other along the ray (where two surfaces cross or touch) cannot be
   // ordered by their float t: 7.9e-9 relative apart, the GPU once kept the farther of two crossing
   // random surfaces (tests/test_nurbs_random.cpp). The runner-up within DS_TIE_BAND of the winner
-  // is kept too, and the two are ordered by their df64 t (ds_trace_nearest).
+  // is kept too, and the two are ordered by their df64 t (ds_trace_nearest), for the rays whose
+  // hit is ground truth (`ties`: the pixel-centre ray, visibility queries). Sample rays order by
+  // float t: their radiance is float arithmetic in df64 anyway, a misordered sample needs its ray
+  // within float rounding (~1e-8 of the distance) of a crossing line, and the band's bookkeeping
+  // cost scenes of several objects 12-16 % in df64 on every sample (bench/RESULTS.md).
   Candidate second;
 #endif
 };
@@ -107,23 +111,24 @@ const real DS_TIE_BAND = 1.0 / 16384.0;
 #endif
 
 // Keeps object i's hit (object parameter found.s) when it is nearer than the one kept so far (and,
-// in df64, as the runner-up when it is within DS_TIE_BAND of the winner). A one-object scene has no
-// runner-up (OBJECT_COUNT 1: compiled out).
-void ds_keep_nearer(int i, ShapeHit found, hreal3 oo, hreal3 od, hreal w, inout NearestHit nearest) {
+// in df64 with `ties`, as the runner-up when it is within DS_TIE_BAND of the winner). A one-object
+// scene has no runner-up (OBJECT_COUNT 1: compiled out), nor a sample ray (`ties` false: compiled
+// out of its call site).
+void ds_keep_nearer(int i, ShapeHit found, hreal3 oo, hreal3 od, hreal w, bool ties, inout NearestHit nearest) {
   const Candidate c = Candidate(ds_world_param(found.s, h_real(w)), found, i, oo, od, w);
   if (!(c.t > 0.0)) return;
   if (c.t < nearest.best.t) {
 #if defined(DS_DF64)
     // The old winner becomes the runner-up when within the band; a runner-up beyond the old winner
     // is then beyond the band of the new one as well.
-    const bool close = OBJECT_COUNT != 1 && nearest.best.object >= 0 && nearest.best.t <= c.t * (1.0 + DS_TIE_BAND);
+    const bool close = ties && OBJECT_COUNT != 1 && nearest.best.object >= 0 && nearest.best.t <= c.t * (1.0 + DS_TIE_BAND);
     if (close) nearest.second = nearest.best;
     else nearest.second.object = -1;
 #endif
     nearest.best = c;
   }
 #if defined(DS_DF64)
-  else if (OBJECT_COUNT != 1 && c.t <= nearest.best.t * (1.0 + DS_TIE_BAND) &&
+  else if (ties && OBJECT_COUNT != 1 && c.t <= nearest.best.t * (1.0 + DS_TIE_BAND) &&
            (nearest.second.object < 0 || c.t < nearest.second.t)) {
     nearest.second = c;
   }
@@ -132,9 +137,9 @@ void ds_keep_nearer(int i, ShapeHit found, hreal3 oo, hreal3 od, hreal w, inout 
 
 // The object parameter beyond which a search of the object (ray mapped by w) may stop: the nearest
 // hit so far, and in df64 the tie band beyond it.
-real ds_search_limit(NearestHit nearest, hreal w) {
+real ds_search_limit(NearestHit nearest, hreal w, bool ties) {
 #if defined(DS_DF64)
-  return ds_object_param(nearest.best.t * (1.0 + DS_TIE_BAND), h_real(w));
+  return ds_object_param(nearest.best.t * (ties ? 1.0 + DS_TIE_BAND : 1.0), h_real(w));
 #else
   return ds_object_param(nearest.best.t, h_real(w));
 #endif
@@ -161,8 +166,9 @@ void ds_winner_attributes(Candidate c, hreal3 o, hreal3 d, inout SurfaceHit hit)
 // The analytic objects are searched in an unrolled loop (constant indices); the NURBS objects in a
 // loop of their own that does not unroll: the NURBS search is large, and one copy of it per object
 // and call site made the pipeline compile for tens of seconds on lavapipe. Its cost per ray
-// dwarfs an object index read at a varying offset.
-bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
+// dwarfs an object index read at a varying offset. `ties` (a literal at each call site, so the
+// other case compiles out): df64 orders objects within DS_TIE_BAND by their df64 t (NearestHit).
+bool ds_trace_nearest(hreal3 o, hreal3 d, bool ties, out SurfaceHit hit) {
   NearestHit nearest;
   nearest.best.t = DS_FAR_AWAY;
   nearest.best.object = -1;
@@ -177,8 +183,8 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
     if (!ds_object_ray(i, o, d, oo, od, w)) continue;
     ShapeHit found;
     found.part = -1;
-    if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_search_limit(nearest, w), false, found))
-      ds_keep_nearer(i, found, oo, od, w, nearest);
+    if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_search_limit(nearest, w, ties), false, found))
+      ds_keep_nearer(i, found, oo, od, w, ties, nearest);
   }
   if (DS_HAS_SHAPE(DS_SHAPE_NURBS)) {
     [[dont_unroll]] for (int i = 0; i < ds_object_count(); ++i) {
@@ -188,8 +194,8 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
       if (!ds_object_ray(i, o, d, oo, od, w)) continue;
       ShapeHit found;
       found.part = -1;
-      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_search_limit(nearest, w), false, found, found))
-        ds_keep_nearer(i, found, oo, od, w, nearest);
+      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_search_limit(nearest, w, ties), false, found, found))
+        ds_keep_nearer(i, found, oo, od, w, ties, nearest);
     }
   }
   hit.object = nearest.best.object;
@@ -199,7 +205,7 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, out SurfaceHit hit) {
   // copy of the attribute code, in a loop that does not unroll). A scene of one object has no
   // runner-up: the specialized pipeline keeps only the plain call below (the loop's cost there:
   // bench/RESULTS.md, "The edge rules and the df64 tie band").
-  if (OBJECT_COUNT != 1) {
+  if (OBJECT_COUNT != 1 && ties) {
     const int candidates = nearest.second.object >= 0 ? 2 : 1;
     [[dont_unroll]] for (int k = 0; k < candidates; ++k) {
       SurfaceHit candidate;

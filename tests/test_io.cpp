@@ -11,9 +11,9 @@
 #include <optional>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/math.h"
-#include "core/atomic_file.h"
 #include "io/image_io.h"
 #include "io/oiio_reader.h"
 #include "io/tiff_io.h"

@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "core/error.h"
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "render/benchmark.h"
 
 namespace dicsynth::cli {

@@ -15,15 +15,15 @@
 #include <set>
 #include <utility>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/phase_timer.h"
 #include "core/progress.h"
 #include "core/serial_worker.h"
-#include "gpu/df64.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/nurbs_basis.h"
-#include "core/atomic_file.h"
+#include "gpu/df64.h"
 #include "io/calibration_files.h"
 #include "io/feature_files.h"
 #include "io/image_limits.h"
@@ -281,21 +281,25 @@ void RenderSession::startDevice() {
 
 VisibilityTracer RenderSession::visibilityTracer() {
   if (!useGpu() || !renderer_) return {};
+  if (visibility_) return *visibility_;  // decided once per session, as the precision is
+  visibility_.emplace();
   Precision p = Precision::Fp64;
   if (!context_->info().shaderFloat64) {
     try {
       gpu::requireDf64(*context_);
       p = Precision::Df64;
     } catch (const InputError&) {
-      return {};  // the device's df64 fails its self-test: the CPU reference traces them
+      return *visibility_;  // the device's df64 fails its self-test: the CPU reference traces them
     }
   }
   // render() and reachesFirst() may overlap (the writer thread derives frame i while frame i + 1
   // renders): the renderer keeps separate buffers for the two.
-  return [renderer = renderer_.get(), p](const PreparedScene& scene, std::size_t camera, std::span<const dvec3> points,
-                                         std::span<const int> objects, double tolerance) {
+  *visibility_ = [renderer = renderer_.get(), p](const PreparedScene& scene, std::size_t camera,
+                                                 std::span<const dvec3> points, std::span<const int> objects,
+                                                 double tolerance) {
     return renderer->reachesFirst(scene, p, camera, points, objects, tolerance);
   };
+  return *visibility_;
 }
 
 Precision RenderSession::precision() {

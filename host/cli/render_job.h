@@ -50,6 +50,7 @@ class RenderSession {
   std::unique_ptr<gpu::Context> context_;
   std::unique_ptr<gpu::Renderer> renderer_;
   std::optional<Precision> precision_;
+  std::optional<VisibilityTracer> visibility_;  // visibilityTracer(), once decided
   TextureCache textures_;
 };
 

@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "gpu/context.h"
 #include "gpu/pipeline_cache.h"
-#include "core/atomic_file.h"
 
 namespace dicsynth::gpu {
 

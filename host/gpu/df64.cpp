@@ -13,13 +13,13 @@
 #include <sstream>
 #include <system_error>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu/context.h"
 #include "gpu/df64_cases.h"
 #include "gpu/pipeline_cache.h"
-#include "core/atomic_file.h"
 #include "shared/bindings.h"
 #include "spirv/df64_probe_fp32.h"
 

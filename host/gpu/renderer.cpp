@@ -9,12 +9,12 @@
 #include <future>
 #include <type_traits>
 
+#include "camera/pinhole.h"
 #include "core/phase_timer.h"
 #include "gpu/buffer.h"
 #include "gpu/pack.h"
 #include "shared/bindings.h"
 #include "gpu/df64.h"
-#include "camera/pinhole.h"
 #include "spirv/render_df64.h"
 #include "spirv/render_fp32.h"
 #include "spirv/render_fp64.h"
@@ -217,9 +217,9 @@ void bindFrameBuffers(FrameBuffers& b, BoundBuffer* bindings) {
 }
 
 // The error of a dispatch whose loops lavapipe cut short (render.comp's sentinel) on `count`
-// pixels or queries, the first of them named by `first`.
-Error cutShortError(std::size_t count, const std::string& first) {
-  return Error("the Vulkan driver cut the shader's loops short on " + std::to_string(count) + " pixels (first: " +
+// `what` (pixels, visibility queries), the first of them named by `first`.
+Error cutShortError(std::size_t count, const char* what, const std::string& first) {
+  return Error("the Vulkan driver cut the shader's loops short on " + std::to_string(count) + " " + what + " (first: " +
                first + "): Mesa 22's lavapipe ends all loops of a batch of pixels "
                "after 65535 iterations in total, so their results would be wrong. Render with "
                "--backend cpu, on a GPU, or with Mesa 25's lavapipe (scripts/install-deps.sh --backports-mesa), "
@@ -301,7 +301,7 @@ void renderAll(Context& context, const ComputePipeline& pipeline, const Prepared
     }
   }
   // Nothing cut short is returned as if it were an answer.
-  if (cutShort > 0) throw cutShortError(cutShort, firstCutShort);
+  if (cutShort > 0) throw cutShortError(cutShort, "pixels", firstCutShort);
 }
 
 // Render.comp's query mode over all points of one camera (Renderer::reachesFirst): blocks of up to
@@ -352,12 +352,12 @@ std::vector<std::uint8_t> queryAll(Context& context, const ComputePipeline& pipe
     for (std::size_t j = 0; j < count; ++j) {
       const Pixel& p = tile[j];
       if (component(p.normal, 3) != 0 && cutShort++ == 0)
-        firstCutShort = "visibility query " + std::to_string(first + j) + " of camera '" + scene.cameras[ci].camera.name + "'";
+        firstCutShort = "query " + std::to_string(first + j) + " of camera '" + scene.cameras[ci].camera.name + "'";
       const auto id = std::lround(component(p.uvRadianceId, 3));
       reached[first + j] = id == objects[first + j] + 1 && std::abs(component(p.positionDepth, 3) - 1) <= relativeTolerance;
     }
   }
-  if (cutShort > 0) throw cutShortError(cutShort, firstCutShort);
+  if (cutShort > 0) throw cutShortError(cutShort, "visibility queries", firstCutShort);
   return reached;
 }
 

@@ -2,8 +2,8 @@
 // The GPU backend: packs a PreparedScene into buffers, specializes render.comp to the scene's
 // features, dispatches it tile by tile and reads the results back into a RenderResult.
 #include <cstddef>
-#include <map>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <new>

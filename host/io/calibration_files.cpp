@@ -18,10 +18,10 @@
 #include <memory>
 #include <system_error>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/version.h"
-#include "core/atomic_file.h"
 #include "io/opencv_camera.h"
 
 namespace dicsynth {

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/json.h"
-#include "core/atomic_file.h"
 #include "render/target_features.h"
 
 namespace dicsynth {

@@ -7,8 +7,8 @@
 #include <optional>
 #include <system_error>
 
-#include "core/error.h"
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "io/oiio_reader.h"
 #include "io/tiff_io.h"
 

@@ -61,11 +61,11 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/parallel.h"
 #include "core/version.h"
-#include "core/atomic_file.h"
 #include "io/image_io.h"
 #include "io/opencv_camera.h"
 

@@ -9,9 +9,9 @@
 #include <cstring>
 #include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json.h"
-#include "core/atomic_file.h"
 #include "sweep/point_record.h"
 
 namespace dicsynth::sweep {

@@ -11,10 +11,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/json.h"
-#include "core/atomic_file.h"
 
 namespace dicsynth::sweep {
 namespace fs = std::filesystem;

@@ -8,10 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "core/json.h"
 #include "gpu/context.h"
 #include "gpu/df64.h"
 #include "gpu/df64_cases.h"
@@ -185,9 +187,25 @@ TEST_CASE("df64: the self-test is cached per device and ignores a damaged cache 
   }
 
   const std::string valid = test::readBytes(first.cachePath);
-  // Damaged: garbage, truncated (no end line), a bad number. Each is ignored and rewritten.
-  const std::string badNumber = valid.substr(0, valid.find("op dekker mul")) + "op dekker mul 0x1pZZ 1 0\nend\n";
-  for (const std::string& damaged : {std::string("not a cache\n"), valid.substr(0, valid.size() / 2), badNumber}) {
+  const auto document = json::parse(valid);
+  REQUIRE(document);
+  // The entry of the Dekker variant's operation `name`, edited by `edit`, as cache text.
+  auto edited = [&document](const std::string& name, const std::function<void(Json::Value&)>& edit) {
+    Json::Value d = *document;
+    bool found = false;
+    for (Json::Value& op : d["dekker"])
+      if (op["name"].asString() == name) {
+        edit(op);
+        found = true;
+      }
+    REQUIRE(found);
+    return json::write(d);
+  };
+  // Damaged: garbage, truncated, a number that is no number, a missing member. Each is ignored and
+  // rewritten.
+  const std::string badNumber = edited("mul", [](Json::Value& op) { op["max_rel_error"] = "0x1pZZ"; });
+  const std::string missing = edited("mul", [](Json::Value& op) { op.removeMember("inputs"); });
+  for (const std::string& damaged : {std::string("not a cache\n"), valid.substr(0, valid.size() / 2), badNumber, missing}) {
     test::writeBytes(first.cachePath, damaged);
     const gpu::Df64SelfTest remeasured = gpu::runDf64SelfTest(ctx);
     CHECK_FALSE(remeasured.fromCache);
@@ -196,11 +214,11 @@ TEST_CASE("df64: the self-test is cached per device and ignores a damaged cache 
   }
 
   // A valid entry claiming a failure: requireDf64 refuses df64, naming the operation, error, bound.
-  std::string failing = valid;
-  const auto at = failing.find("op dekker div ");
-  REQUIRE(at != std::string::npos);
-  const auto end = failing.find('\n', at);
-  failing.replace(at, end - at, "op dekker div 0x1p-40 100 0");
+  const std::string failing = edited("div", [](Json::Value& op) {
+    op["max_rel_error"] = std::ldexp(1.0, -40);
+    op["inputs"] = 100;
+    op["unnormalized"] = 0;
+  });
   test::writeBytes(first.cachePath, failing);
   const gpu::Df64SelfTest failed = gpu::runDf64SelfTest(ctx);
   CHECK(failed.fromCache);
@@ -261,8 +279,17 @@ TEST_CASE("df64: dicsynth devices reports the self-test per device") {
   CHECK(text.out.find("fma exact:            ") != std::string::npos);
   const test::CliResult json = test::runCli("devices --json");
   CHECK(json.exitCode == 0);
-  CHECK(json.out.find("\"df64_pass\": true, \"df64_worst_log2\": -4") != std::string::npos);
-  CHECK(json.out.find("\"df64_worst_op\": \"") != std::string::npos);
-  CHECK(json.out.find("\"fma_exact\": ") != std::string::npos);
+  const auto devices = json::parse(json.out);
+  REQUIRE(devices);
+  REQUIRE(devices->isArray());
+  REQUIRE(devices->size() >= 1);
+  for (const Json::Value& device : *devices) {
+    CHECK(json::boolMember(device, "df64_pass") == true);
+    const auto worst = json::numberMember(device, "df64_worst_log2");
+    REQUIRE(worst);
+    CHECK(*worst < -40);  // the df64 bound is 2^-44 (shaders/lib/df64.glsl)
+    CHECK(json::stringMember(device, "df64_worst_op"));
+    CHECK(json::boolMember(device, "fma_exact"));
+  }
   CHECK(json.err.empty());
 }

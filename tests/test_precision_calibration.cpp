@@ -46,11 +46,11 @@ TEST_CASE("calibration: measured on the device, cached, and read back") {
   const PrecisionCalibration second = calibratePrecisions(context, renderer);
   CHECK(second.fromCache);
   for (std::size_t k = 0; k < 3; ++k) {
-    CHECK(second.modes[k].mraysPerSecond == first.modes[k].mraysPerSecond);  // hex floats: exact
+    CHECK(second.modes[k].mraysPerSecond == first.modes[k].mraysPerSecond);  // 17 digits: exact
     CHECK(second.modes[k].maxErrorPx == first.modes[k].maxErrorPx);
   }
   // A damaged file is ignored (and rewritten by a new measurement).
-  test::writeBytes(first.cachePath, "dicsynth precision calibration 1\nkey nonsense\n");
+  test::writeBytes(first.cachePath, "{\"dicsynth_precision_calibration\": 2, \"key\": \"nonsense\"");
   CHECK_FALSE(calibratePrecisions(context, renderer).fromCache);
   CHECK(context.validationMessages().empty());
 }

@@ -278,3 +278,82 @@ TEST_CASE("sweep: a point record is complete only with every file intact") {
   CHECK_FALSE(sweep::readPointRecord(folder));
   CHECK_FALSE(sweep::readPointRecord(dir.file("nothing_here")));
 }
+
+TEST_CASE("sweep: point records are read in any layout, and a wrong member makes one missing") {
+  // Records written before core/json.h (one member per line in a fixed order) stay valid: a sweep
+  // resumed with a newer dicsynth does not render its finished points again. Layout, member order,
+  // unknown members do not matter; a member of the wrong type, a bad checksum text or a version
+  // other than 2 make the record missing.
+  TempFolder dir;
+  const std::string folder = dir.file("point_00007");
+  const std::string oldLayout = R"({
+  "dicsynth_point": 2,
+  "index": 7,
+  "key": "scene=x seed=3",
+  "parameters": {"a": 0.5},
+  "seed": 3,
+  "spp": 4,
+  "backend": "gpu",
+  "precision": "fp32",
+  "device": "llvmpipe",
+  "render_seconds": 0.125,
+  "host": "h",
+  "finished_utc": "2026-11-21T00:00:00Z",
+  "files": [
+    {"name": "cam.exr", "bytes": 11, "crc32": "8da06faf"},
+    {"name": "cam.tif", "bytes": 5, "crc32": "0000abcd"}
+  ],
+  "assets": [
+  ]
+}
+)";
+  dir.write("point_00007/point.json", oldLayout);
+  const auto old = sweep::readPointRecord(folder);
+  REQUIRE(old);
+  CHECK(old->index == 7);
+  CHECK(old->key == "scene=x seed=3");
+  CHECK(old->seed == 3u);
+  CHECK(old->samplesPerPixel == 4);
+  CHECK(old->renderSeconds == 0.125);
+  REQUIRE(old->files.size() == 2);
+  CHECK(old->files[0].crc32 == 0x8da06fafu);
+  CHECK(old->files[1].bytes == 5);
+  CHECK(old->assets.empty());
+  // Another order, on one line, with a member this version does not know.
+  dir.write("point_00007/point.json",
+            R"({"files": [{"crc32": "8da06faf", "bytes": 11, "name": "cam.exr"}], "assets": [], "future": [1, 2],)"
+            R"( "finished_utc": "t", "host": "h", "render_seconds": null, "device": "d", "precision": "fp64",)"
+            R"( "backend": "cpu", "spp": 1, "seed": 0, "key": "k", "index": 7, "dicsynth_point": 2})");
+  const auto reordered = sweep::readPointRecord(folder);
+  REQUIRE(reordered);
+  CHECK(reordered->key == "k");
+  CHECK(reordered->renderSeconds == 0);
+  CHECK(reordered->files.size() == 1);
+  // Each of these makes the record missing.
+  const std::pair<std::string, std::string> damages[] = {
+      {"\"dicsynth_point\": 2", "\"dicsynth_point\": 1"},  // version 1: no assets
+      {"\"spp\": 4", "\"spp\": \"4\""},                  // a string where a count belongs
+      {"\"seed\": 3", "\"seed\": -3"},                     // negative
+      {"\"8da06faf\"", "\"8da06fa\""},                     // 7 hex digits
+      {"\"0000abcd\"", "\"0000ABCD\""},                    // upper case: not the writer's
+      {"\"key\": \"scene=x seed=3\",", ""},                // key missing
+      {"\"files\": [", "\"files\": {"},                    // not JSON any more
+  };
+  for (const auto& [from, to] : damages) {
+    std::string text = oldLayout;
+    const auto at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, from.size(), to);
+    dir.write("point_00007/point.json", text);
+    CHECK_MESSAGE(!sweep::readPointRecord(folder), from << " -> " << to);
+  }
+  // The writer's own output reads back (index, files and assets sorted by name).
+  sweep::PointRecord r = *old;
+  r.files = {{"z.tif", 1, 2}, {"a.exr", 3, 4}};
+  sweep::writePointRecord(folder, r);
+  const auto back = sweep::readPointRecord(folder);
+  REQUIRE(back);
+  CHECK(back->files[0].name == "a.exr");
+  CHECK(back->files[1].crc32 == 2u);
+  CHECK(back->index == 7);
+}

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/json.h"
 #include "cpu/trace.h"
 #include "geometry/prepared_scene.h"
 #include "geometry/target_poses.h"
@@ -162,14 +163,27 @@ TEST_CASE("targets: visibility (occluded, outside the image, behind the camera) 
   CHECK(header.rfind("target,index,row,col,target_x_m", 0) == 0);
   CHECK(first.rfind("board,0,0,0,0,0,0,", 0) == 0);
   CHECK(first.substr(first.size() - 8) == ",1,1,0,0");  // in front, in the image, occluded
-  std::stringstream json;
-  json << std::ifstream(files.json).rdbuf();
-  CHECK(json.str().find("\"frame\": 7") != std::string::npos);
-  CHECK(json.str().find("\"pattern_size\": [11, 2]") != std::string::npos);
-  // Full precision: the pixel of feature 1 appears with 17 significant digits.
-  char pixel[64];
-  std::snprintf(pixel, sizeof pixel, "%.17g", truth[0].features[1].pixel_px.x);
-  CHECK(json.str().find(pixel) != std::string::npos);
+  const auto document = json::readFile(files.json);
+  REQUIRE(document);
+  CHECK(json::countMember(*document, "frame") == 7u);
+  const Json::Value& board = (*document)["targets"][0];
+  CHECK(board["pattern_size"][0].asInt() == 11);
+  CHECK(board["pattern_size"][1].asInt() == 2);
+  const Json::Value& features = board["features"];
+  REQUIRE(features.size() == truth[0].features.size());
+  // Full precision: every pixel reads back as the same double; the pose maps each feature's target
+  // point to its depth (x_camera = R x_target + t, R row-major).
+  const Json::Value& R = board["R_camera_from_target"];
+  const Json::Value& t = board["t_camera_from_target_m"];
+  for (Json::ArrayIndex k = 0; k < features.size(); ++k) {
+    const FeatureTruth& f = truth[0].features[k];
+    CHECK(features[k]["pixel"][0].asDouble() == f.pixel_px.x);
+    CHECK(features[k]["pixel"][1].asDouble() == f.pixel_px.y);
+    CHECK(json::boolMember(features[k], "unoccluded") == f.unoccluded);
+    double z = t[2].asDouble();
+    for (int j = 0; j < 3; ++j) z += R[6 + j].asDouble() * features[k]["target_m"][j].asDouble();
+    CHECK(z == doctest::Approx(f.depth_m).epsilon(1e-12));
+  }
 
   // No target: no feature file.
   const std::string plain = dir.write("plain.lua", std::string(test::kCameraLine) +

@@ -12,7 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/compare_items.h"
-#include "cli/render_args.h"
+#include "cli/options.h"
 #include "core/error.h"
 #include "core/json.h"
 #include "cpu/reference_renderer.h"
@@ -43,38 +43,56 @@ struct ItemOutcome {
 
 std::string toJson(const CompareItem& item, const RenderResult& cpu, const RenderResult& gpu, int spp,
                    const Tolerances& t, const std::vector<CameraDifference>& diffs, bool pass) {
-  using namespace json;
-  std::ostringstream o;
-  o << "{\"scene\": " << quote(item.scenePath);
+  Json::Value o(Json::objectValue);
+  o["scene"] = item.scenePath;
   if (item.point) {
-    o << ", \"point\": " << item.point->index << ", \"parameters\": {";
-    for (std::size_t i = 0; i < item.point->parameters.size(); ++i)
-      o << (i ? ", " : "") << quote(item.point->parameters[i].first) << ": " << item.point->parameters[i].second;
-    o << "}";
+    o["point"] = Json::Int64(item.point->index);
+    Json::Value parameters(Json::objectValue);
+    for (const auto& [name, value] : item.point->parameters)
+      parameters[name] = json::parse(value).value_or(Json::Value(value));
+    o["parameters"] = parameters;
   }
-  o << ", \"precision\": " << quote(gpu.precision) << ", \"device\": " << quote(gpu.device) << ", \"spp\": " << spp
-    << ", \"cpu_seconds\": " << number(cpu.renderSeconds) << ", \"gpu_seconds\": " << number(gpu.renderSeconds)
-    << ", \"tolerances\": {\"radiance\": " << number(t.radiance) << ", \"position_m\": " << number(t.position_m)
-    << ", \"uv\": " << number(t.uv) << ", \"epsilon\": " << number(t.epsilon) << ", \"k\": " << number(t.k)
-    << ", \"outlier_fraction\": " << number(t.outlierFraction) << "}, \"cameras\": {";
-  for (std::size_t i = 0; i < diffs.size(); ++i) {
-    const CameraDifference& d = diffs[i];
-    o << (i ? ", " : "") << quote(d.camera) << ": {\"pixels\": " << d.pixels
-      << ", \"max_radiance_diff\": " << number(d.maxRadianceDiff)
-      << ", \"rms_radiance_diff\": " << number(d.rmsRadianceDiff) << ", \"pixels_differing\": " << d.pixelsDiffering
-      << ", \"radiance_outliers\": " << d.radianceOutliers << ", \"radiance_outliers_off_edge\": "
-      << d.radianceOutliersOffEdge << ", \"object_id_mismatches\": " << d.objectIdMismatches
-      << ", \"object_id_mismatches_off_edge\": " << d.objectIdMismatchesOffEdge
-      << ", \"max_uv_diff\": " << number(d.maxUvDiff) << ", \"max_P_diff_m\": " << number(d.maxPositionDiff_m)
-      << ", \"max_Z_diff_m\": " << number(d.maxDepthDiff_m) << ", \"max_geometry_ratio\": " << number(d.maxGeometryRatio)
-      << ", \"geometry_outliers\": " << d.geometryOutliers << ", \"wrong_nearest_hits\": {\"total\": "
-      << d.wrongNearestHits() << ", \"miss\": " << d.wrongMiss << ", \"extra_hit\": " << d.wrongExtraHit
-      << ", \"other_object\": " << d.wrongOtherObject << ", \"farther_root\": " << d.wrongFartherRoot
-      << ", \"nearer_root\": " << d.wrongNearerRoot << "}"
-      << ", \"pass\": " << boolean(withinTolerance(d, t)) << "}";
+  o["precision"] = gpu.precision;
+  o["device"] = gpu.device;
+  o["spp"] = spp;
+  o["cpu_seconds"] = json::value(cpu.renderSeconds);
+  o["gpu_seconds"] = json::value(gpu.renderSeconds);
+  Json::Value& tolerances = o["tolerances"] = Json::Value(Json::objectValue);
+  tolerances["radiance"] = json::value(t.radiance);
+  tolerances["position_m"] = json::value(t.position_m);
+  tolerances["uv"] = json::value(t.uv);
+  tolerances["epsilon"] = json::value(t.epsilon);
+  tolerances["k"] = json::value(t.k);
+  tolerances["outlier_fraction"] = json::value(t.outlierFraction);
+  Json::Value& cameras = o["cameras"] = Json::Value(Json::objectValue);
+  for (const CameraDifference& d : diffs) {
+    Json::Value& c = cameras[d.camera] = Json::Value(Json::objectValue);
+    c["pixels"] = Json::UInt64(d.pixels);
+    c["max_radiance_diff"] = json::value(d.maxRadianceDiff);
+    c["rms_radiance_diff"] = json::value(d.rmsRadianceDiff);
+    c["pixels_differing"] = Json::UInt64(d.pixelsDiffering);
+    c["radiance_outliers"] = Json::UInt64(d.radianceOutliers);
+    c["radiance_outliers_off_edge"] = Json::UInt64(d.radianceOutliersOffEdge);
+    c["object_id_mismatches"] = Json::UInt64(d.objectIdMismatches);
+    c["object_id_mismatches_off_edge"] = Json::UInt64(d.objectIdMismatchesOffEdge);
+    c["max_uv_diff"] = json::value(d.maxUvDiff);
+    c["max_P_diff_m"] = json::value(d.maxPositionDiff_m);
+    c["max_Z_diff_m"] = json::value(d.maxDepthDiff_m);
+    c["max_geometry_ratio"] = json::value(d.maxGeometryRatio);
+    c["geometry_outliers"] = Json::UInt64(d.geometryOutliers);
+    Json::Value& wrong = c["wrong_nearest_hits"] = Json::Value(Json::objectValue);
+    wrong["total"] = Json::UInt64(d.wrongNearestHits());
+    wrong["miss"] = Json::UInt64(d.wrongMiss);
+    wrong["extra_hit"] = Json::UInt64(d.wrongExtraHit);
+    wrong["other_object"] = Json::UInt64(d.wrongOtherObject);
+    wrong["farther_root"] = Json::UInt64(d.wrongFartherRoot);
+    wrong["nearer_root"] = Json::UInt64(d.wrongNearerRoot);
+    c["pass"] = withinTolerance(d, t);
   }
-  o << "}, \"pass\": " << boolean(pass) << "}";
-  return o.str();
+  o["pass"] = pass;
+  std::string line = json::write(o, false);
+  line.pop_back();  // one object per line: the caller ends the line
+  return line;
 }
 
 std::string format(const char* fmt, auto... values) {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "cli/render_args.h"
+#include "cli/options.h"
 #include "core/error.h"
 
 namespace dicsynth::cli {

@@ -103,48 +103,47 @@ void printText(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
 
 void printJson(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df64Status>& df64,
                uint32_t selected) {
-  std::printf("[");
-  for (size_t i = 0; i < devices.size(); ++i) {
-    const auto& d = devices[i];
-    std::printf("%s\n  {", i ? "," : "");
-    std::printf("\"index\": %u, ", d.index);
-    std::printf("\"name\": %s, ", json::quote(d.name).c_str());
-    std::printf("\"type\": %s, ", json::quote(d.type).c_str());
-    std::printf("\"driver\": %s, ", json::quote(d.driver).c_str());
-    std::printf("\"vulkan\": %s, ", json::quote(gpu::apiVersionString(d.apiVersion)).c_str());
-    std::printf("\"vendorID\": %u, \"deviceID\": %u, ", d.vendorID, d.deviceID);
-    std::printf("\"shaderFloat64\": %s, ", d.shaderFloat64 ? "true" : "false");
-    std::printf("\"shaderInt64\": %s, ", d.shaderInt64 ? "true" : "false");
-    std::printf("\"maxStorageBufferRange\": %llu, ", static_cast<unsigned long long>(d.maxStorageBufferRange));
-    std::printf("\"maxStorageBuffer_MiB\": %s, ", mebibytes(d.maxStorageBufferRange).c_str());
-    std::printf("\"subgroupSize\": %u, ", d.subgroupSize);
-    std::printf("\"pipelineCacheUUID\": %s, ", json::quote(d.pipelineCacheUUID).c_str());
-    if (const Df64Status& status = df64[d.index]; status.selfTest) {
+  Json::Value list(Json::arrayValue);
+  for (const gpu::DeviceInfo& d : devices) {
+    Json::Value o(Json::objectValue);
+    o["index"] = d.index;
+    o["name"] = d.name;
+    o["type"] = d.type;
+    o["driver"] = d.driver;
+    o["vulkan"] = gpu::apiVersionString(d.apiVersion);
+    o["vendorID"] = d.vendorID;
+    o["deviceID"] = d.deviceID;
+    o["shaderFloat64"] = d.shaderFloat64;
+    o["shaderInt64"] = d.shaderInt64;
+    o["maxStorageBufferRange"] = Json::UInt64(d.maxStorageBufferRange);
+    o["maxStorageBuffer_MiB"] = json::value(double(d.maxStorageBufferRange) / double(1 << 20));
+    o["subgroupSize"] = d.subgroupSize;
+    o["pipelineCacheUUID"] = d.pipelineCacheUUID;
+    const Df64Status& status = df64[d.index];
+    if (status.selfTest) {
       const gpu::Df64OpError& worst = status.selfTest->worst();
-      std::printf("\"df64_pass\": %s, ", json::boolean(status.selfTest->passed).c_str());
-      if (std::isfinite(worst.log2))
-        std::printf("\"df64_worst_log2\": %.2f, ", worst.log2);
-      else
-        std::printf("\"df64_worst_log2\": null, ");
-      std::printf("\"df64_worst_op\": %s, ", json::quote(worst.name).c_str());
-      std::printf("\"fma_exact\": %s, ", json::boolean(status.selfTest->fmaExact).c_str());
+      o["df64_pass"] = status.selfTest->passed;
+      o["df64_worst_log2"] = json::value(worst.log2);  // null when every result was exact
+      o["df64_worst_op"] = worst.name;
+      o["fma_exact"] = status.selfTest->fmaExact;
     } else {
-      std::printf("\"df64_pass\": null, \"df64_worst_log2\": null, \"df64_worst_op\": null, "
-                  "\"fma_exact\": null, \"df64_note\": %s, ", json::quote(status.note).c_str());
+      for (const char* name : {"df64_pass", "df64_worst_log2", "df64_worst_op", "fma_exact"}) o[name] = Json::nullValue;
+      o["df64_note"] = status.note;
     }
-    std::printf("\"precisions\": [");
-    if (const Df64Status& status = df64[d.index]; status.calibration) {
-      bool first = true;
+    Json::Value& precisions = o["precisions"] = Json::Value(Json::arrayValue);
+    if (status.calibration)
       for (const PrecisionMeasurement& m : status.calibration->modes) {
-        std::printf("%s{\"precision\": %s, \"available\": %s, \"mrays_per_s\": %s, \"max_error_px\": %s}",
-                    first ? "" : ", ", json::quote(toString(m.precision)).c_str(), json::boolean(m.available).c_str(),
-                    json::number(m.mraysPerSecond).c_str(), json::number(m.maxErrorPx).c_str());
-        first = false;
+        Json::Value p(Json::objectValue);
+        p["precision"] = toString(m.precision);
+        p["available"] = m.available;
+        p["mrays_per_s"] = json::value(m.mraysPerSecond);
+        p["max_error_px"] = json::value(m.maxErrorPx);
+        precisions.append(p);
       }
-    }
-    std::printf("], \"selected\": %s}", d.index == selected ? "true" : "false");
+    o["selected"] = d.index == selected;
+    list.append(o);
   }
-  std::printf("%s]\n", devices.empty() ? "" : "\n");
+  std::fputs(json::write(list).c_str(), stdout);
 }
 
 int runDevices(const DevicesOptions& options) {

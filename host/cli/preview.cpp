@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "cli/render_job.h"
+#include "job/render_job.h"
 #include "core/error.h"
 #include "io/preview.h"
 

@@ -5,8 +5,8 @@
 #include <optional>
 
 #include "cli/commands.h"
-#include "cli/render_args.h"
-#include "cli/render_job.h"
+#include "cli/options.h"
+#include "job/render_job.h"
 #include "core/error.h"
 
 namespace dicsynth::cli {

@@ -1,38 +1,44 @@
 #pragma once
-// Minimal JSON output (the CLI's --json modes): string escaping and numbers that round-trip.
-#include <cmath>
-#include <cstdio>
+// JSON, the one format of the files dicsynth writes for programs and reads back (sweep point
+// records, caches, --json reports). Documents are jsoncpp's Json::Value; this file is the one
+// writer and the one reader:
+//  - write: doubles with 17 significant digits (they read back exactly), non-finite as null (JSON
+//    has no NaN or infinity), members sorted by name (jsoncpp keeps objects as maps);
+//  - parse / readFile: tolerant of layout, member order, unknown members and comments; nullopt for
+//    text that is not JSON, never an exception: a damaged cache or record counts as missing.
+// quote / number / boolean serve writers that stream (the sweep manifest writes its points one by
+// one, never holding the list) and keys whose text is part of an identity (sweep points' keys).
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
-#include "core/exact_number.h"
+#include <json/value.h>
 
 namespace dicsynth::json {
 
-inline std::string quote(const std::string& s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += char(c);
-        }
-    }
-  }
-  return out + "\"";
-}
-
+std::string quote(const std::string& s);
 // Exact (core/exact_number.h); JSON has no NaN/Infinity, so those become null.
-inline std::string number(double v) { return std::isfinite(v) ? exactNumber(v) : "null"; }
-
+std::string number(double v);
 inline std::string boolean(bool b) { return b ? "true" : "false"; }
+
+// A double as a JSON value: null when not finite.
+Json::Value value(double v);
+
+// The document as text: indented by 2 (pretty) or on one line, ending with a newline.
+std::string write(const Json::Value& document, bool pretty = true);
+
+// The document, or nullopt when `text` is not JSON.
+std::optional<Json::Value> parse(std::string_view text);
+
+// parse() of a file's text; nullopt when it cannot be read or is not JSON.
+std::optional<Json::Value> readFile(const std::string& path);
+
+// Typed members of an object, nullopt when absent or of another type (numbers: finite doubles;
+// counts: non-negative integers).
+std::optional<double> numberMember(const Json::Value& object, const char* name);
+std::optional<std::string> stringMember(const Json::Value& object, const char* name);
+std::optional<bool> boolMember(const Json::Value& object, const char* name);
+std::optional<std::uint64_t> countMember(const Json::Value& object, const char* name);
 
 }  // namespace dicsynth::json

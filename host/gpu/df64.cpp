@@ -8,13 +8,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <system_error>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/json.h"
 #include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu/context.h"
@@ -110,11 +109,11 @@ Df64SelfTest measureSelfTest(Context& context) {
 }
 
 // ---- Cache file: one per device and driver version, in the pipeline cache's folder ----
-// Text, one fact per line; hexadecimal floats (%a) so the errors read back bit-exact. The key line
-// names the device and driver, the probe's SPIR-V (its FNV-1a hash: any change of df64.glsl or
-// the probe), the dicsynth version (the input set is host code) and the input count; a file whose
-// key, format or operation list differs is ignored and rewritten.
-constexpr const char* kCacheMagic = "dicsynth df64 self-test 1";
+// JSON (core/json.h; doubles with 17 digits read back bit-exact). The key names the device and
+// driver, the probe's SPIR-V (its FNV-1a hash: any change of df64.glsl or the probe), the dicsynth
+// version (the input set is host code) and the input count; a file whose key, format or operation
+// list differs is ignored and rewritten.
+constexpr int kCacheVersion = 2;  // 1: a line-based text format
 
 std::string cacheKey(const Context& context) {
   std::uint64_t hash = 0xcbf29ce484222325ull;
@@ -128,69 +127,58 @@ std::string cacheKey(const Context& context) {
 }
 
 std::string serialize(const Df64SelfTest& t, const std::string& key) {
-  std::ostringstream o;
-  char buf[256];
-  o << kCacheMagic << "\nkey " << key << "\nfma_exact " << t.fmaExact << "\n";
-  std::snprintf(buf, sizeof buf, "seconds %a\n", t.seconds);
-  o << buf;
-  auto ops = [&](const char* variant, const std::vector<Df64OpError>& list) {
+  Json::Value d(Json::objectValue);
+  d["dicsynth_df64_selftest"] = kCacheVersion;
+  d["key"] = key;
+  d["fma_exact"] = t.fmaExact;
+  d["seconds"] = json::value(t.seconds);
+  auto ops = [](const std::vector<Df64OpError>& list) {
+    Json::Value a(Json::arrayValue);
     for (const Df64OpError& e : list) {
-      std::snprintf(buf, sizeof buf, "op %s %s %a %zu %zu\n", variant, e.name.c_str(), e.maxRelError, e.inputs,
-                    e.unnormalized);
-      o << buf;
+      Json::Value op(Json::objectValue);
+      op["name"] = e.name;
+      op["max_rel_error"] = e.maxRelError;
+      op["inputs"] = Json::UInt64(e.inputs);
+      op["unnormalized"] = Json::UInt64(e.unnormalized);
+      a.append(op);
     }
+    return a;
   };
-  ops("dekker", t.dekker);
-  ops("fma", t.fma);
-  o << "end\n";
-  return o.str();
-}
-
-bool parseNumber(const std::string& text, double& value) {
-  char* end = nullptr;
-  value = std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(value);
-}
-bool parseCount(const std::string& text, std::size_t& value) {
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  value = static_cast<std::size_t>(v);
-  return !text.empty() && text[0] != '-' && end == text.c_str() + text.size();
+  d["dekker"] = ops(t.dekker);
+  d["fma"] = ops(t.fma);
+  return json::write(d);
 }
 
 // The cached self-test, or false when the file is absent, damaged or for another key.
 bool readCache(const std::string& path, const std::string& key, Df64SelfTest& t) {
-  std::ifstream in(path);
-  if (!in) return false;
-  const std::vector<Df64OpError> expected = df64::evaluate({}, {});  // names and bounds, in order
-  std::string line;
-  if (!std::getline(in, line) || line != kCacheMagic) return false;
-  if (!std::getline(in, line) || line != "key " + key) return false;
-  if (!std::getline(in, line) || (line != "fma_exact 0" && line != "fma_exact 1")) return false;
-  t.fmaExact = line.back() == '1';
-  if (!std::getline(in, line) || line.rfind("seconds ", 0) != 0 || !parseNumber(line.substr(8), t.seconds))
+  const auto d = json::readFile(path);
+  if (!d || json::countMember(*d, "dicsynth_df64_selftest") != std::uint64_t(kCacheVersion) ||
+      json::stringMember(*d, "key") != key)
     return false;
-  bool ended = false;
-  while (std::getline(in, line)) {
-    if (line == "end") {
-      ended = true;
-      break;
+  const auto fmaExact = json::boolMember(*d, "fma_exact");
+  const auto seconds = json::numberMember(*d, "seconds");
+  if (!fmaExact || !seconds) return false;
+  t.fmaExact = *fmaExact;
+  t.seconds = *seconds;
+  const std::vector<Df64OpError> expected = df64::evaluate({}, {});  // names and bounds, in order
+  auto readOps = [&expected](const Json::Value& list, std::vector<Df64OpError>& out) {
+    if (!list.isArray()) return false;
+    for (const Json::Value& op : list) {
+      if (out.size() >= expected.size() || json::stringMember(op, "name") != expected[out.size()].name) return false;
+      Df64OpError e = expected[out.size()];
+      const auto error = json::numberMember(op, "max_rel_error");
+      const auto inputs = json::countMember(op, "inputs"), unnormalized = json::countMember(op, "unnormalized");
+      if (!error || *error < 0 || !inputs || !unnormalized) return false;
+      e.maxRelError = *error;
+      e.inputs = std::size_t(*inputs);
+      e.unnormalized = std::size_t(*unnormalized);
+      e.log2 = e.maxRelError > 0 ? std::log2(e.maxRelError) : -std::numeric_limits<double>::infinity();
+      out.push_back(e);
     }
-    std::istringstream fields(line);
-    std::string tag, variant, name, error, inputs, unnormalized, extra;
-    if (!(fields >> tag >> variant >> name >> error >> inputs >> unnormalized) || (fields >> extra) ||
-        tag != "op")
-      return false;
-    std::vector<Df64OpError>* list = variant == "dekker" ? &t.dekker : variant == "fma" ? &t.fma : nullptr;
-    if (!list || list->size() >= expected.size() || expected[list->size()].name != name) return false;
-    Df64OpError e = expected[list->size()];
-    if (!parseNumber(error, e.maxRelError) || e.maxRelError < 0 || !parseCount(inputs, e.inputs) ||
-        !parseCount(unnormalized, e.unnormalized))
-      return false;
-    e.log2 = e.maxRelError > 0 ? std::log2(e.maxRelError) : -std::numeric_limits<double>::infinity();
-    list->push_back(e);
-  }
-  if (!ended || t.dekker.size() != expected.size() || t.fma.size() != (t.fmaExact ? expected.size() : 0))
+    return true;
+  };
+  if (!readOps((*d)["dekker"], t.dekker) || !readOps((*d)["fma"], t.fma) || t.dekker.size() != expected.size() ||
+      t.fma.size() != (t.fmaExact ? expected.size() : 0))
     return false;
   t.useFma = t.fmaExact && allPassed(t.fma);
   t.passed = allPassed(t.ops());

@@ -19,10 +19,10 @@ const char* kindName(TextureKind kind) {
 // Exact (core/exact_number.h); NaN as "nan" in CSV, whatever its sign bit.
 std::string csvNumber(double v) { return std::isnan(v) ? "nan" : exactNumber(v); }
 
-std::string jsonVector(std::initializer_list<double> values) {
-  std::string out = "[";
-  for (double v : values) out += (out.size() > 1 ? ", " : "") + json::number(v);
-  return out + "]";
+Json::Value jsonVector(std::initializer_list<double> values) {
+  Json::Value out(Json::arrayValue);
+  for (double v : values) out.append(json::value(v));  // null for NaN
+  return out;
 }
 
 std::string csvText(const std::vector<TargetTruth>& targets) {
@@ -44,38 +44,47 @@ std::string csvText(const std::vector<TargetTruth>& targets) {
 std::string jsonText(const PreparedScene& scene, std::size_t camera, int frame,
                      const std::vector<TargetTruth>& targets) {
   const PreparedCamera& c = scene.cameras[camera];
-  std::ostringstream s;
-  s << "{\n  \"scene\": " << json::quote(scene.file) << ",\n  \"camera\": " << json::quote(c.camera.name)
-    << ",\n  \"frame\": " << frame << ",\n  \"image_size\": [" << c.camera.width_px << ", "
-    << c.camera.height_px << "],\n  \"targets\": [";
-  for (std::size_t i = 0; i < targets.size(); ++i) {
-    const TargetTruth& t = targets[i];
+  Json::Value d(Json::objectValue);
+  d["scene"] = scene.file;
+  d["camera"] = c.camera.name;
+  d["frame"] = frame;
+  d["image_size"] = jsonVector({double(c.camera.width_px), double(c.camera.height_px)});
+  Json::Value& list = d["targets"] = Json::Value(Json::arrayValue);
+  for (const TargetTruth& t : targets) {
     const TargetLayout& l = *t.layout;
     // The target's pose in the camera, as cv::calibrateCamera / cv::solvePnP state it:
     // x_camera = R x_target + t.
     const dmat4& wt = scene.objects[t.object].worldFromTarget;
     const dmat3 R = c.rotationCameraFromWorld * dmat3(wt);
     const dvec3 tv = c.rotationCameraFromWorld * dvec3(wt[3]) + c.translationCameraFromWorld;
-    s << (i ? "," : "") << "\n    {\"name\": " << json::quote(t.name) << ", \"kind\": \"" << kindName(l.kind)
-      << "\", \"pattern_size\": [" << l.perRow << ", " << l.rows << "], \"asymmetric\": "
-      << json::boolean(l.pattern.asymmetric) << ", \"spacing_m\": " << json::number(l.pattern.spacing_m)
-      << ",\n     \"R_camera_from_target\": "
-      << jsonVector({R[0][0], R[1][0], R[2][0], R[0][1], R[1][1], R[2][1], R[0][2], R[1][2], R[2][2]})
-      << ",\n     \"t_camera_from_target_m\": " << jsonVector({tv.x, tv.y, tv.z}) << ",\n     \"features\": [";
-    for (std::size_t k = 0; k < t.features.size(); ++k) {
-      const FeatureTruth& f = t.features[k];
-      s << (k ? "," : "") << "\n      {\"index\": " << f.index << ", \"row\": " << f.row << ", \"col\": " << f.col
-        << ", \"target_m\": " << jsonVector({f.target_m.x, f.target_m.y, f.target_m.z})
-        << ", \"world_m\": " << jsonVector({f.world_m.x, f.world_m.y, f.world_m.z})
-        << ", \"pixel\": " << jsonVector({f.pixel_px.x, f.pixel_px.y}) << ", \"depth_m\": " << json::number(f.depth_m)
-        << ", \"in_front\": " << json::boolean(f.inFront) << ", \"in_image\": " << json::boolean(f.inImage)
-        << ", \"unoccluded\": " << json::boolean(f.unoccluded) << ", \"visible\": " << json::boolean(f.visible())
-        << "}";
+    Json::Value target(Json::objectValue);
+    target["name"] = t.name;
+    target["kind"] = kindName(l.kind);
+    target["pattern_size"] = jsonVector({double(l.perRow), double(l.rows)});
+    target["asymmetric"] = l.pattern.asymmetric;
+    target["spacing_m"] = json::value(l.pattern.spacing_m);
+    target["R_camera_from_target"] =
+        jsonVector({R[0][0], R[1][0], R[2][0], R[0][1], R[1][1], R[2][1], R[0][2], R[1][2], R[2][2]});  // row-major
+    target["t_camera_from_target_m"] = jsonVector({tv.x, tv.y, tv.z});
+    Json::Value& features = target["features"] = Json::Value(Json::arrayValue);
+    for (const FeatureTruth& f : t.features) {
+      Json::Value e(Json::objectValue);
+      e["index"] = f.index;
+      e["row"] = f.row;
+      e["col"] = f.col;
+      e["target_m"] = jsonVector({f.target_m.x, f.target_m.y, f.target_m.z});
+      e["world_m"] = jsonVector({f.world_m.x, f.world_m.y, f.world_m.z});
+      e["pixel"] = jsonVector({f.pixel_px.x, f.pixel_px.y});
+      e["depth_m"] = json::value(f.depth_m);
+      e["in_front"] = f.inFront;
+      e["in_image"] = f.inImage;
+      e["unoccluded"] = f.unoccluded;
+      e["visible"] = f.visible();
+      features.append(e);
     }
-    s << "\n     ]}";
+    list.append(target);
   }
-  s << "\n  ]\n}\n";
-  return s.str();
+  return json::write(d);
 }
 
 }  // namespace

@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/render_job.h"
+#include "job/render_job.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/version.h"
@@ -101,14 +101,14 @@ class PyRenderer {
     if (backend != "gpu" && backend != "cpu") throw InputError("backend must be \"gpu\" or \"cpu\", got \"" + backend + "\"");
     if (precision != "auto" && !parsePrecision(precision))
       throw InputError("precision must be \"auto\", \"fp32\", \"df64\" or \"fp64\", got \"" + precision + "\"");
-    cli::RenderArgs args;
+    RenderArgs args;
     args.precision = precision;
     args.device = device;
     args.seed = seed;
     args.downscale = downscale;
     args.maxErrorPx = maxErrorPx;
-    cli::renderOptions(args, 0);  // the same checks as the CLI's options
-    session_ = std::make_unique<cli::RenderSession>(args, backend);
+    renderOptions(args, 0);  // the same checks as the CLI's options
+    session_ = std::make_unique<RenderSession>(args, backend);
   }
 
   py::dict render(const PyScene& scene, std::vector<int> frames, int spp, const std::vector<std::string>& layers,
@@ -122,7 +122,7 @@ class PyRenderer {
     if (spp < 1 || spp > 65536) throw InputError("spp " + std::to_string(spp) + ": must be in 1..65536");
     std::string layerText;
     for (const std::string& l : layers) layerText += (layerText.empty() ? "" : ",") + l;
-    cli::RenderJob job;
+    RenderJob job;
     job.sceneFile = scene.path;
     job.defines = scene.defines;
     job.layers = LayerSet::parse(layerText, "layers");
@@ -145,13 +145,13 @@ class PyRenderer {
     std::vector<CameraResult> results;
     {
       py::gil_scoped_release release;
-      cli::RenderedJob rendered = cli::renderJob(*session_, job);
+      RenderedJob rendered = renderJob(*session_, job);
       std::unique_ptr<ReferenceFrame> referenceData;
       for (std::size_t fi = 0; fi < rendered.frames.size(); ++fi) {
-        cli::RenderedFrame& frame = rendered.frames[fi];
-        const PreparedScene& prepared = cli::frameScene(job, frame, fi == 0, referenceData);
+        RenderedFrame& frame = rendered.frames[fi];
+        const PreparedScene& prepared = frameScene(job, frame, fi == 0, referenceData);
         for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
-          cli::CameraFrame derived = cli::deriveCamera(job, frame, prepared, c, *referenceData);
+          CameraFrame derived = deriveCamera(job, frame, prepared, c, *referenceData);
           const CameraImage& image = frame.result.cameras[c];
           results.push_back({prepared.cameras[c].camera.name, frame.frame, image.width_px, image.height_px,
                              groundTruthChannels(image, &derived.truth, &derived.sensed, job.layers),
@@ -175,7 +175,7 @@ class PyRenderer {
   std::string device() const { return device_; }
 
  private:
-  std::unique_ptr<cli::RenderSession> session_;
+  std::unique_ptr<RenderSession> session_;
   std::string backend_, precision_, device_;
 };
 

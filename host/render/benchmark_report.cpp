@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <sstream>
 
 #include "core/json.h"
 #include "render/benchmark.h"
@@ -12,21 +11,26 @@
 namespace dicsynth {
 
 std::string benchmarkJson(const std::vector<BenchmarkRow>& rows) {
-  using namespace json;
-  std::ostringstream o;
-  o << "[";
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const BenchmarkRow& r = rows[i];
-    o << (i ? ",\n " : "\n ") << "{\"scene\": " << quote(r.scene) << ", \"backend\": " << quote(r.backend)
-      << ", \"precision\": " << quote(r.precision) << ", \"device\": " << quote(r.device) << ", \"width\": " << r.width
-      << ", \"height\": " << r.height << ", \"spp\": " << r.samplesPerPixel
-      << ", \"seconds_per_frame\": " << number(r.secondsPerFrame) << ", \"mrays_per_s\": " << number(r.mraysPerSecond)
-      << ", \"geom_err_px_max\": " << number(r.geomErrPxMax) << ", \"geom_err_px_rms\": " << number(r.geomErrPxRms)
-      << ", \"radiance_err_dn_max\": " << number(r.radianceErrDnMax)
-      << ", \"radiance_err_dn_rms\": " << number(r.radianceErrDnRms) << ", \"wrong_hits\": " << r.wrongHits << "}";
+  Json::Value a(Json::arrayValue);
+  for (const BenchmarkRow& r : rows) {
+    Json::Value o(Json::objectValue);
+    o["scene"] = r.scene;
+    o["backend"] = r.backend;
+    o["precision"] = r.precision;
+    o["device"] = r.device;
+    o["width"] = r.width;
+    o["height"] = r.height;
+    o["spp"] = r.samplesPerPixel;
+    o["seconds_per_frame"] = json::value(r.secondsPerFrame);
+    o["mrays_per_s"] = json::value(r.mraysPerSecond);
+    o["geom_err_px_max"] = json::value(r.geomErrPxMax);
+    o["geom_err_px_rms"] = json::value(r.geomErrPxRms);
+    o["radiance_err_dn_max"] = json::value(r.radianceErrDnMax);
+    o["radiance_err_dn_rms"] = json::value(r.radianceErrDnRms);
+    o["wrong_hits"] = Json::UInt64(r.wrongHits);
+    a.append(o);
   }
-  o << "\n]\n";
-  return o.str();
+  return json::write(a);
 }
 
 namespace {

@@ -3,13 +3,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "core/json.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
@@ -72,45 +71,56 @@ std::string cacheKey() {
   return buf;
 }
 
-constexpr const char* kMagic = "dicsynth precision calibration 1";
+// The cache file: JSON (core/json.h; doubles with 17 digits read back bit-exact).
+constexpr int kCacheVersion = 2;  // 1: a line-based text format
 
 std::string serialize(const PrecisionCalibration& c, const std::string& key) {
-  std::ostringstream o;
-  char buf[256];
-  o << kMagic << "\nkey " << key << "\n";
-  std::snprintf(buf, sizeof buf, "seconds %a\n", c.seconds);
-  o << buf;
+  Json::Value d(Json::objectValue);
+  d["dicsynth_precision_calibration"] = kCacheVersion;
+  d["key"] = key;
+  d["seconds"] = json::value(c.seconds);
+  Json::Value modes(Json::arrayValue);
   for (const PrecisionMeasurement& m : c.modes) {
-    std::snprintf(buf, sizeof buf, "mode %s %d %a %a ", toString(m.precision), m.available ? 1 : 0, m.mraysPerSecond,
-                  m.maxErrorPx);
-    o << buf << m.unavailable << "\n";
+    Json::Value mode(Json::objectValue);
+    mode["precision"] = toString(m.precision);
+    mode["available"] = m.available;
+    mode["unavailable"] = m.unavailable;
+    mode["mrays_per_second"] = json::value(m.mraysPerSecond);
+    mode["max_error_px"] = json::value(m.maxErrorPx);
+    modes.append(mode);
   }
-  o << "end\n";
-  return o.str();
+  d["modes"] = modes;
+  return json::write(d);
 }
 
+// The cached calibration, or false when the file is absent, damaged or for another key.
 bool readCache(const std::string& path, const std::string& key, PrecisionCalibration& c) {
-  std::ifstream in(path);
-  std::string line;
-  if (!in || !std::getline(in, line) || line != kMagic) return false;
-  if (!std::getline(in, line) || line != "key " + key) return false;
-  if (!std::getline(in, line) || std::sscanf(line.c_str(), "seconds %la", &c.seconds) != 1) return false;
+  const auto d = json::readFile(path);
+  if (!d || json::countMember(*d, "dicsynth_precision_calibration") != std::uint64_t(kCacheVersion) ||
+      json::stringMember(*d, "key") != key)
+    return false;
+  const auto seconds = json::numberMember(*d, "seconds");
+  const Json::Value& modes = (*d)["modes"];
+  if (!seconds || !modes.isArray() || modes.size() != std::size(kPrecisions)) return false;
+  c.seconds = *seconds;
+  Json::ArrayIndex k = 0;
   for (Precision p : kPrecisions) {
-    if (!std::getline(in, line)) return false;
-    std::istringstream fields(line);
-    std::string tag, name, rate, error;
-    int available = 0;
-    if (!(fields >> tag >> name >> available >> rate >> error) || tag != "mode" || name != toString(p)) return false;
+    const Json::Value& mode = modes[k++];
+    const auto available = json::boolMember(mode, "available");
+    const auto unavailable = json::stringMember(mode, "unavailable");
+    const auto rate = json::numberMember(mode, "mrays_per_second"), error = json::numberMember(mode, "max_error_px");
+    if (json::stringMember(mode, "precision") != std::string(toString(p)) || !available || !unavailable || !rate ||
+        !error)
+      return false;
     PrecisionMeasurement m;
     m.precision = p;
-    m.available = available == 1;
-    m.mraysPerSecond = std::strtod(rate.c_str(), nullptr);
-    m.maxErrorPx = std::strtod(error.c_str(), nullptr);
-    std::getline(fields >> std::ws, m.unavailable);
-    if (!std::isfinite(m.mraysPerSecond) || !std::isfinite(m.maxErrorPx)) return false;
+    m.available = *available;
+    m.unavailable = *unavailable;
+    m.mraysPerSecond = *rate;
+    m.maxErrorPx = *error;
     c.modes.push_back(m);
   }
-  return std::getline(in, line) && line == "end";
+  return true;
 }
 
 PrecisionCalibration measure(gpu::Context& context, gpu::Renderer& renderer) {

@@ -105,11 +105,9 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
       filesJson += std::string(filesJson.empty() ? "" : ", ") + json::quote(folderName + "/" + f.name);
     }
     std::string row = std::to_string(p.index) + "," + folderName;
-    std::string params;
     for (const auto& [name, value] : p.values) {
       row += ',';
       row += csvValue(value);
-      params += (params.empty() ? "" : ", ") + json::quote(name) + ": " + value.json();
     }
     row += ',';
     row += std::to_string(record->seed) + "," + std::to_string(record->samplesPerPixel) + "," +
@@ -117,8 +115,8 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
            seconds(record->renderSeconds) + "," + csvField(files) + "\n";
     csv.write(row);
     js.write(std::string(summary.complete ? ",\n" : "\n") + "    {\"index\": " + std::to_string(p.index) +
-             ", \"folder\": " + json::quote(folderName) + ", \"parameters\": {" + params +
-             "}, \"seed\": " + std::to_string(record->seed) + ", \"spp\": " + std::to_string(record->samplesPerPixel) +
+             ", \"folder\": " + json::quote(folderName) + ", \"parameters\": " + parametersJson(p) +
+             ", \"seed\": " + std::to_string(record->seed) + ", \"spp\": " + std::to_string(record->samplesPerPixel) +
              ", \"backend\": " + json::quote(record->backend) + ", \"precision\": " + json::quote(record->precision) +
              ", \"device\": " + json::quote(record->device) + ", \"render_seconds\": " +
              seconds(record->renderSeconds) + ", \"files\": [" + filesJson + "]}");

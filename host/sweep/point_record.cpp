@@ -1,6 +1,6 @@
-// point.json layout: one JSON member per line, in a fixed order, written and read by this file only
-// (the product links no JSON parser). A record in any other shape counts as missing, so the point is
-// rendered again: a damaged record can cost time, never a wrong "complete".
+// point.json: one JSON document (core/json.h), written and read by this file. A record that is not
+// JSON, lacks a member or has one of another type counts as missing, so the point is rendered
+// again: a damaged record can cost time, never a wrong "complete".
 #include "sweep/point_record.h"
 
 #include <zlib.h>
@@ -8,12 +8,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/exact_number.h"
 #include "core/json.h"
 
 namespace dicsynth::sweep {
@@ -40,64 +37,6 @@ std::string hex32(std::uint32_t v) {
   char buf[16];
   std::snprintf(buf, sizeof buf, "%08x", v);
   return buf;
-}
-
-// Reads a JSON string starting at s[pos] == '"'; returns the end position after the closing quote.
-std::optional<std::string> unquote(const std::string& s, std::size_t& pos) {
-  if (pos >= s.size() || s[pos] != '"') return std::nullopt;
-  std::string out;
-  for (++pos; pos < s.size(); ++pos) {
-    const char c = s[pos];
-    if (c == '"') {
-      ++pos;
-      return out;
-    }
-    if (c != '\\') {
-      out += c;
-      continue;
-    }
-    if (++pos >= s.size()) return std::nullopt;
-    switch (s[pos]) {
-      case '"': out += '"'; break;
-      case '\\': out += '\\'; break;
-      case 'n': out += '\n'; break;
-      case 'r': out += '\r'; break;
-      case 't': out += '\t'; break;
-      case 'u': {  // json::quote writes \u00XX for control characters only
-        if (pos + 4 >= s.size()) return std::nullopt;
-        out += char(std::stoi(s.substr(pos + 1, 4), nullptr, 16));
-        pos += 4;
-        break;
-      }
-      default: return std::nullopt;
-    }
-  }
-  return std::nullopt;
-}
-
-// `  "name": VALUE,` → VALUE text (without the trailing comma), or nullopt.
-std::optional<std::string> member(const std::string& line, const std::string& name) {
-  const std::string prefix = "  " + json::quote(name) + ": ";
-  if (line.rfind(prefix, 0) != 0) return std::nullopt;
-  std::string value = line.substr(prefix.size());
-  if (!value.empty() && value.back() == ',') value.pop_back();
-  return value;
-}
-
-std::optional<std::string> stringValue(const std::string& text) {
-  std::size_t pos = 0;
-  auto s = unquote(text, pos);
-  if (!s || pos != text.size()) return std::nullopt;
-  return s;
-}
-
-template <class T>
-std::optional<T> numberValue(const std::string& text) {
-  std::istringstream in(text);
-  in.imbue(std::locale::classic());
-  T v{};
-  if (!(in >> v) || !in.eof()) return std::nullopt;
-  return v;
 }
 
 }  // namespace
@@ -151,101 +90,84 @@ std::vector<PointFile> scanPointFiles(const std::string& folder) {
 }
 
 void writePointRecord(const std::string& folder, const PointRecord& r) {
-  std::string t = "{\n";
-  t += "  \"dicsynth_point\": 2,\n";
-  t += "  \"index\": " + std::to_string(r.index) + ",\n";
-  t += "  \"key\": " + json::quote(r.key) + ",\n";
-  t += "  \"parameters\": " + r.parametersJson + ",\n";
-  t += "  \"seed\": " + std::to_string(r.seed) + ",\n";
-  t += "  \"spp\": " + std::to_string(r.samplesPerPixel) + ",\n";
-  t += "  \"backend\": " + json::quote(r.backend) + ",\n";
-  t += "  \"precision\": " + json::quote(r.precision) + ",\n";
-  t += "  \"device\": " + json::quote(r.device) + ",\n";
-  t += "  \"render_seconds\": " + json::number(r.renderSeconds) + ",\n";
-  t += "  \"host\": " + json::quote(r.host) + ",\n";
-  t += "  \"finished_utc\": " + json::quote(r.finishedUtc) + ",\n";
-  auto list = [&t](const std::vector<PointFile>& files) {
-    for (std::size_t i = 0; i < files.size(); ++i)
-      t += "    {\"name\": " + json::quote(files[i].name) + ", \"bytes\": " + std::to_string(files[i].bytes) +
-           ", \"crc32\": \"" + hex32(files[i].crc32) + "\"}" + (i + 1 < files.size() ? ",\n" : "\n");
+  Json::Value d(Json::objectValue);
+  d["dicsynth_point"] = kPointRecordVersion;
+  d["index"] = Json::Int64(r.index);
+  d["key"] = r.key;
+  // The parameters as an object, for people and scripts (the key holds them as text).
+  d["parameters"] = json::parse(r.parametersJson).value_or(Json::Value(Json::objectValue));
+  d["seed"] = Json::UInt(r.seed);
+  d["spp"] = r.samplesPerPixel;
+  d["backend"] = r.backend;
+  d["precision"] = r.precision;
+  d["device"] = r.device;
+  d["render_seconds"] = json::value(r.renderSeconds);
+  d["host"] = r.host;
+  d["finished_utc"] = r.finishedUtc;
+  auto list = [](const std::vector<PointFile>& files) {
+    Json::Value a(Json::arrayValue);
+    for (const PointFile& f : files) {
+      Json::Value e(Json::objectValue);
+      e["name"] = f.name;
+      e["bytes"] = Json::UInt64(f.bytes);
+      e["crc32"] = hex32(f.crc32);
+      a.append(e);
+    }
+    return a;
   };
-  t += "  \"files\": [\n";
-  list(r.files);
-  t += "  ],\n  \"assets\": [\n";
-  list(r.assets);
-  t += "  ]\n}\n";
-  writeTextAtomically((fs::path(folder) / kPointRecordName).string(), t);
+  d["files"] = list(r.files);
+  d["assets"] = list(r.assets);
+  writeTextAtomically((fs::path(folder) / kPointRecordName).string(), json::write(d));
 }
 
 std::optional<PointRecord> readPointRecord(const std::string& folder) {
-  std::ifstream in(fs::path(folder) / kPointRecordName);
-  if (!in) return std::nullopt;
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  // Fixed layout: "{", 13 members, the file lines, "  ],", "  \"assets\": [", the asset lines, "  ]",
-  // "}". A record of layout 1 (without assets) counts as missing: it cannot tell whether its textures
-  // changed, so its point is rendered again.
-  if (lines.size() < 19 || lines[0] != "{" || lines[lines.size() - 1] != "}" || lines[lines.size() - 2] != "  ]")
-    return std::nullopt;
+  const auto d = json::readFile((fs::path(folder) / kPointRecordName).string());
+  if (!d) return std::nullopt;
+  // Version 2 and later list the assets; a record of version 1 (without them) cannot tell whether
+  // its textures changed, so it counts as missing and its point is rendered again.
+  const auto version = json::countMember(*d, "dicsynth_point");
+  if (!version || *version != std::uint64_t(kPointRecordVersion)) return std::nullopt;
   PointRecord r;
-  auto str = [&](std::size_t i, const char* name) -> std::optional<std::string> {
-    auto v = member(lines[i], name);
-    return v ? stringValue(*v) : std::nullopt;
-  };
-  auto version = member(lines[1], "dicsynth_point");
-  auto index = member(lines[2], "index");
-  auto key = str(3, "key");
-  auto params = member(lines[4], "parameters");
-  auto seed = member(lines[5], "seed");
-  auto spp = member(lines[6], "spp");
-  auto backend = str(7, "backend"), precision = str(8, "precision"), device = str(9, "device");
-  auto seconds = member(lines[10], "render_seconds");
-  auto host = str(11, "host"), finished = str(12, "finished_utc");
-  if (!version || *version != "2" || !index || !key || !params || !seed || !spp || !backend || !precision ||
-      !device || !seconds || !host || !finished || lines[13] != "  \"files\": [")
+  const auto index = (*d)["index"];
+  const auto seed = json::countMember(*d, "seed");
+  const auto spp = json::countMember(*d, "spp");
+  const auto key = json::stringMember(*d, "key");
+  const auto backend = json::stringMember(*d, "backend"), precision = json::stringMember(*d, "precision");
+  const auto device = json::stringMember(*d, "device"), host = json::stringMember(*d, "host");
+  const auto finished = json::stringMember(*d, "finished_utc");
+  // render_seconds: null when the time was not finite (json::value), read as 0.
+  const Json::Value& seconds = (*d)["render_seconds"];
+  if (!index.isIntegral() || !seed || *seed > 0xffffffffu || !spp || *spp > 0x7fffffffu || !key || !backend ||
+      !precision || !device || !host || !finished || !(seconds.isNull() || json::numberMember(*d, "render_seconds")))
     return std::nullopt;
-  auto i = numberValue<std::int64_t>(*index);
-  auto s = numberValue<std::uint32_t>(*seed);
-  auto n = numberValue<int>(*spp);
-  auto sec = *seconds == "null" ? std::optional<double>(0) : numberValue<double>(*seconds);
-  if (!i || !s || !n || !sec) return std::nullopt;
-  r.index = *i;
+  r.index = index.asInt64();
   r.key = *key;
-  r.parametersJson = *params;
-  r.seed = *s;
-  r.samplesPerPixel = *n;
+  r.parametersJson = json::write((*d)["parameters"], false);
+  r.seed = std::uint32_t(*seed);
+  r.samplesPerPixel = int(*spp);
   r.backend = *backend;
   r.precision = *precision;
   r.device = *device;
-  r.renderSeconds = *sec;
+  r.renderSeconds = seconds.isNull() ? 0.0 : seconds.asDouble();
   r.host = *host;
   r.finishedUtc = *finished;
-  // `    {"name": ..., "bytes": N, "crc32": "xxxxxxxx"}[,]` lines from lines[k] up to the line `end`.
-  auto readList = [&lines](std::size_t& k, const std::string& end, std::vector<PointFile>& out) {
-    for (; k < lines.size() && lines[k] != end; ++k) {
-      std::string line = lines[k];
-      if (!line.empty() && line.back() == ',') line.pop_back();
-      const std::string head = "    {\"name\": ";
-      if (line.rfind(head, 0) != 0 || line.back() != '}') return false;
-      std::size_t pos = head.size();
-      auto name = unquote(line, pos);
-      if (!name) return false;
-      unsigned long long bytes = 0;
-      char crc[9] = {0};
-      int used = 0;
-      const std::string rest = line.substr(pos);
-      if (std::sscanf(rest.c_str(), ", \"bytes\": %llu, \"crc32\": \"%8[0-9a-f]\"}%n", &bytes, crc, &used) != 2 ||
-          std::size_t(used) != rest.size() || std::string(crc).size() != 8)
+  // [{"name": ..., "bytes": N, "crc32": "xxxxxxxx"}, ...]
+  auto readList = [](const Json::Value& list, std::vector<PointFile>& out) {
+    if (!list.isArray()) return false;
+    for (const Json::Value& e : list) {
+      const auto name = json::stringMember(e, "name");
+      const auto bytes = json::countMember(e, "bytes");
+      const auto crc = json::stringMember(e, "crc32");
+      if (!name || !bytes || !crc || crc->size() != 8 || crc->find_first_not_of("0123456789abcdef") != std::string::npos)
         return false;
-      out.push_back({*name, bytes, std::uint32_t(std::stoul(crc, nullptr, 16))});
+      out.push_back({*name, std::uintmax_t(*bytes), std::uint32_t(std::stoul(*crc, nullptr, 16))});
     }
-    return k < lines.size();
+    return true;
   };
-  std::size_t k = 14;
-  if (!readList(k, "  ],", r.files) || ++k >= lines.size() || lines[k] != "  \"assets\": [") return std::nullopt;
-  ++k;
-  if (!readList(k, "  ]", r.assets) || k + 2 != lines.size()) return std::nullopt;
+  if (!readList((*d)["files"], r.files) || !readList((*d)["assets"], r.assets)) return std::nullopt;
   if (r.files.empty()) return std::nullopt;  // a point always writes files
+  std::sort(r.files.begin(), r.files.end(), byName);
+  std::sort(r.assets.begin(), r.assets.end(), byName);
   return r;
 }
 

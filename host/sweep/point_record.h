@@ -57,6 +57,8 @@ class AssetChecksums {
 };
 
 inline constexpr const char* kPointRecordName = "point.json";
+// The record's "dicsynth_point" member: 2 since records list their assets.
+inline constexpr int kPointRecordVersion = 2;
 
 // zlib's CRC-32 of a byte string.
 std::uint32_t crc32Of(std::string_view bytes);
@@ -68,7 +70,8 @@ std::vector<PointFile> scanPointFiles(const std::string& folder);
 // Writes folder/point.json atomically. Throws Error naming the file (e.g. disk full).
 void writePointRecord(const std::string& folder, const PointRecord& record);
 
-// Reads folder/point.json; nullopt when missing or not in the layout writePointRecord writes.
+// Reads folder/point.json; nullopt when missing, not JSON, of another version, or lacking a member
+// (in any layout and member order: core/json.h).
 std::optional<PointRecord> readPointRecord(const std::string& folder);
 
 // True when `record` has `key`, each of its files exists with the recorded size (and, when

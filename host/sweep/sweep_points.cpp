@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/json.h"
 #include "scene/scene.h"
 #include "shared/rng.h"
 
@@ -189,6 +190,13 @@ SweepPlan planSweep(const std::string& scenePath, const std::vector<std::pair<st
       if (define.first == name) throw InputError(what + "also given by -D " + name + "; give it in one place");
   }
   return plan;
+}
+
+std::string parametersJson(const SweepPoint& point) {
+  std::string s = "{";
+  for (std::size_t i = 0; i < point.values.size(); ++i)
+    s += (i ? ", " : "") + json::quote(point.values[i].first) + ": " + point.values[i].second.json();
+  return s + "}";
 }
 
 std::string pointFolderName(std::int64_t index) {

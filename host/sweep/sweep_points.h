@@ -61,6 +61,10 @@ std::vector<SweepPoint> enumerateSweep(const SweepDeclaration& declaration);
 SweepPlan planSweep(const std::string& scenePath, const std::vector<std::pair<std::string, std::string>>& defines,
                     const SweepOptions& options);
 
+// The point's values as one line of JSON, {"noise": 1, "strain": 0.01}, in name order: part of the
+// point's key (sweep runner), so its text must not change between versions.
+std::string parametersJson(const SweepPoint& point);
+
 // "point_00042": the folder of a point under the sweep's output folder (at least 5 digits).
 std::string pointFolderName(std::int64_t index);
 

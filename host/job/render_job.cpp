@@ -1,4 +1,4 @@
-#include "cli/render_job.h"
+#include "job/render_job.h"
 
 #include <unistd.h>
 
@@ -31,7 +31,7 @@
 #include "io/preview.h"
 #include "sensor/sensor.h"
 
-namespace dicsynth::cli {
+namespace dicsynth {
 namespace {
 
 std::string outputStem(const std::string& camera, bool numbered, int frame) {
@@ -398,4 +398,4 @@ void writeRenderedJob(RenderedJob rendered, const RenderJob& job) {
     writeFrame(job, rendered.frames[fi], fi == 0, rendered.calibrationPerFrame, reference);
 }
 
-}  // namespace dicsynth::cli
+}  // namespace dicsynth

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "cli/render_args.h"
+#include "job/render_args.h"
 #include "geometry/prepared_scene.h"
 #include "geometry/texture_cache.h"
 #include "gpu/context.h"
@@ -22,7 +22,7 @@
 #include "io/outputs.h"
 #include "sensor/sensor.h"
 
-namespace dicsynth::cli {
+namespace dicsynth {
 
 // What outlives one job: the device is created lazily by the first job (after its scenes loaded
 // without error, so a scene error never pays for a device start), then reused.
@@ -122,4 +122,4 @@ void createOutputDir(const std::string& dir);
 // file (tried with a temporary file, removed at once). Nothing else is created.
 void checkOutputWritable(const std::string& dir);
 
-}  // namespace dicsynth::cli
+}  // namespace dicsynth

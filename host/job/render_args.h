@@ -1,19 +1,18 @@
 #pragma once
-// Options shared by the subcommands that render a scene (render, sweep, compare): the scene, its
-// parameters, frames, sampling, device, and a sweep's points (sweep, compare). Parsing of their values into the library's types.
-#include <CLI/CLI.hpp>
-
-#include <optional>
+// The options of a render job (render, sweep, compare and the Python module share them): the scene,
+// its parameters, frames, sampling, device, and their parsing into the library's types. The
+// command line's spelling of them is cli/options.h.
+#include <cstdint>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gpu/context.h"
 #include "gpu/renderer.h"
 #include "render/options.h"
-#include "scene/scene.h"
-#include "sweep/sweep_points.h"
 
-namespace dicsynth::cli {
+namespace dicsynth {
 
 struct RenderArgs {
   std::string scenePath;
@@ -25,18 +24,6 @@ struct RenderArgs {
   std::string device;
   int downscale = 1;
 };
-
-void addRenderArgs(CLI::App& app, RenderArgs& args);
-
-// --exr-compression: how the ground-truth EXR is compressed (render, sweep).
-void addExrCompressionOption(CLI::App& app, std::string& compression);
-
-// --layers: which outputs are computed and written (render, sweep; render/layers.h).
-void addLayersOption(CLI::App& app, std::string& layers);
-
-// --sweep, --random, --random-seed (sweep/sweep_points.h). `effect` ends the --sweep help text: what
-// the subcommand does with the points.
-void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect);
 
 // -D name=value list → SceneParams::defines. Throws InputError for a malformed entry.
 std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<std::string>& defines);
@@ -66,4 +53,4 @@ bool stderrIsTerminal();
 // A progress callback printing "\r<label> NN%" to stderr when it is a terminal, else null.
 std::function<void(double)> progressPrinter(const std::string& label);
 
-}  // namespace dicsynth::cli
+}  // namespace dicsynth

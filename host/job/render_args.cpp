@@ -1,9 +1,9 @@
-#include "cli/render_args.h"
+#include "job/render_args.h"
+
+#include <unistd.h>
 
 #include <cctype>
 #include <cmath>
-#include <unistd.h>
-
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -11,66 +11,9 @@
 
 #include "core/error.h"
 #include "core/exact_number.h"
-#include "io/outputs.h"
 #include "render/precision_calibration.h"
 
-namespace dicsynth::cli {
-
-void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect) {
-  app.add_option("--sweep", options.sweeps,
-                 "NAME=A:B:N (N values from A to B), NAME=V1,V2,... or, with --random, NAME=LO:HI" + effect);
-  app.add_option("--random", options.randomCount, "Random sweep of N points over the --sweep ranges");
-  app.add_option("--random-seed", options.randomSeed, "Seed of --random")->capture_default_str();
-}
-
-void addExrCompressionOption(CLI::App& app, std::string& compression) {
-  app.add_option("--exr-compression", compression,
-                 "Lossless compression of the ground-truth EXR: zip (smallest of the fast ones), zips, piz, "
-                 "rle (about 2.3x larger than zip, nearly free to write: for large sweeps), none")
-      ->check(CLI::IsMember(kExrCompressions))
-      ->capture_default_str();
-}
-
-void addLayersOption(CLI::App& app, std::string& layers) {
-  app.add_option("--layers", layers,
-                 "Outputs to compute and write: all (every layer the scene can produce), or a comma-separated "
-                 "list of image (the TIFF), radiance, depth, P, normal, uv, mask, disp, flow, disparity, "
-                 "distortion, noise, defects (EXR channel groups; no EXR without one)")
-      ->capture_default_str();
-}
-
-namespace {
-
-// --precision's values: every precision's name, then auto.
-std::vector<std::string> precisionChoices() {
-  std::vector<std::string> names;
-  for (Precision p : kPrecisions) names.push_back(toString(p));
-  names.push_back("auto");
-  return names;
-}
-
-}  // namespace
-
-void addRenderArgs(CLI::App& app, RenderArgs& args) {
-  app.add_option("scene", args.scenePath, "Scene file (Lua)")->required();
-  app.add_option("-D,--define", args.defines,
-                 "Set a scene global before the scene runs: name=value (number, true/false, or string)");
-  app.add_option("--spp", args.spp, "Samples per pixel, stratified over the sensitive area")
-      ->capture_default_str();
-  app.add_option("--seed", args.seed, "Seed of the sample positions")->capture_default_str();
-  app.add_option("--precision", args.precision,
-                 "GPU arithmetic: fp32, df64 (float pairs), fp64, or auto: the fastest whose measured geometric "
-                 "error on this device is <= --max-error-px")
-      ->check(CLI::IsMember(precisionChoices()))
-      ->capture_default_str();
-  app.add_option("--max-error-px", args.maxErrorPx, "--precision auto: largest acceptable geometric error (px)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  app.add_option("--device", args.device, "Vulkan device: index or name substring (see `dicsynth devices`)");
-  app.add_option("--downscale", args.downscale,
-                 "Divide every camera's resolution by this integer, keeping the field of view")
-      ->capture_default_str();
-}
+namespace dicsynth {
 
 std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<std::string>& defines) {
   std::vector<std::pair<std::string, std::string>> out;
@@ -156,4 +99,4 @@ std::function<void(double)> progressPrinter(const std::string& label) {
   };
 }
 
-}  // namespace dicsynth::cli
+}  // namespace dicsynth

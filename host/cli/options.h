@@ -1,0 +1,25 @@
+#pragma once
+// Options shared by the subcommands that render a scene (render, sweep, compare), as the command
+// line spells them (CLI11); their values and parsing are job/render_args.h.
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "job/render_args.h"
+#include "sweep/sweep_points.h"
+
+namespace dicsynth::cli {
+
+void addRenderArgs(CLI::App& app, RenderArgs& args);
+
+// --exr-compression: how the ground-truth EXR is compressed (render, sweep).
+void addExrCompressionOption(CLI::App& app, std::string& compression);
+
+// --layers: which outputs are computed and written (render, sweep; render/layers.h).
+void addLayersOption(CLI::App& app, std::string& layers);
+
+// --sweep, --random, --random-seed (sweep/sweep_points.h). `effect` ends the --sweep help text: what
+// the subcommand does with the points.
+void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect);
+
+}  // namespace dicsynth::cli

@@ -1,0 +1,268 @@
+#include "sweep/sweep_runner.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "core/error.h"
+#include "core/exact_number.h"
+#include "core/progress.h"
+#include "core/serial_worker.h"
+#include "job/render_job.h"
+#include "shared/rng.h"
+#include "sweep/manifest.h"
+#include "sweep/point_record.h"
+
+namespace dicsynth {
+namespace {
+namespace fs = std::filesystem;
+
+struct Shard {
+  std::int64_t index = 0, count = 1;
+  std::string origin;  // for messages: "--shard 1/4" or "SLURM_ARRAY_TASK_ID=2 ..."
+};
+
+std::optional<std::int64_t> parseInteger(const char* text) {
+  if (text == nullptr || *text == '\0') return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(text, &end, 10);
+  if (errno != 0 || *end != '\0') return std::nullopt;
+  return v;
+}
+
+// --shard I/N, else the Slurm job array's task (0-based from SLURM_ARRAY_TASK_MIN), else 0/1.
+Shard resolveShard(const std::string& option) {
+  Shard s;
+  if (!option.empty()) {
+    const auto slash = option.find('/');
+    const auto i = slash == std::string::npos ? std::nullopt : parseInteger(option.substr(0, slash).c_str());
+    const auto n = slash == std::string::npos ? std::nullopt : parseInteger(option.substr(slash + 1).c_str());
+    if (!i || !n || *n < 1 || *i < 0 || *i >= *n)
+      throw InputError("--shard " + option + ": expected I/N with 0 <= I < N");
+    return {*i, *n, "--shard " + option};
+  }
+  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+  if (id == nullptr || count == nullptr) return s;
+  const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+  const auto i = parseInteger(id), n = parseInteger(count), m = min ? parseInteger(min) : std::optional<std::int64_t>(0);
+  const std::string origin = std::string("SLURM_ARRAY_TASK_ID=") + id + " SLURM_ARRAY_TASK_COUNT=" + count +
+                             " SLURM_ARRAY_TASK_MIN=" + (min ? min : "(unset)");
+  // Arrays may start at 1 (--array=1-8): the shard is the task's offset from the array's first.
+  if (!i || !n || !m || *n < 1 || *i - *m < 0 || *i - *m >= *n)
+    throw InputError(origin + ": cannot shard by these (expected a contiguous array, step 1; or give --shard I/N)");
+  return {*i - *m, *n, origin};
+}
+
+std::string hostName() {
+  char buf[256] = {0};
+  if (gethostname(buf, sizeof buf - 1) != 0) return "";
+  return buf;
+}
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string readWholeFile(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) throw InputError(path + ": cannot read the scene file");
+  std::string text;
+  char buf[1 << 16];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+  std::fclose(f);
+  return text;
+}
+
+// Progress (core/progress.h): the points done of this shard, and the images written per second.
+class Progress {
+ public:
+  Progress(std::int64_t total, bool terminal) : bar_("sweep", "points", total, terminal) {}
+  void update(std::int64_t done, std::int64_t /*rendered*/, std::int64_t images) {
+    const double elapsed = bar_.elapsedSeconds();
+    char rate[48];
+    std::snprintf(rate, sizeof rate, "%.2f img/s", elapsed > 0 ? double(images) / elapsed : 0.0);
+    bar_.update(done, rate);
+  }
+
+ private:
+  ProgressBar bar_;
+};
+
+}  // namespace
+
+void runSweep(const SweepRun& cmd) {
+  const auto defines = parseDefines(cmd.args.defines);
+  renderOptions(cmd.args, 0);  // validate the sampling options before any work
+  const LayerSet layers = LayerSet::parse(cmd.layers);
+  const bool numbered = !cmd.frames.empty();
+  const std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
+  const SweepPlan plan = planSweep(cmd.args.scenePath, defines, cmd.sweep);
+  const Shard shard = resolveShard(cmd.shard);
+
+  if (cmd.list) {
+    for (std::int64_t i = 0; i < plan.count; ++i) {
+      const SweepPoint p = plan.point(i);
+      std::printf("%lld %s", (long long)p.index, pointFolderName(p.index).c_str());
+      for (const auto& [name, value] : p.values) std::printf(" %s=%s", name.c_str(), value.defineText().c_str());
+      std::printf("\n");
+    }
+    return;
+  }
+
+  // The key of a point: everything that determines its files. The scene enters by its content
+  // (CRC-32), so editing the scene invalidates finished points; assets it loads do not enter.
+  const std::string sceneText = readWholeFile(cmd.args.scenePath);
+  std::string definesText;
+  for (const auto& [n, v] : defines) definesText += n + "=" + v + " ";
+  const std::string commonKey =
+      "scene_crc32=" + std::to_string(sweep::crc32Of(sceneText)) + " spp=" + std::to_string(cmd.args.spp) +
+      " precision=" + cmd.args.precision + " max_error_px=" + exactNumber(cmd.args.maxErrorPx) +
+      " downscale=" + std::to_string(cmd.args.downscale) + " backend=" + cmd.backend + " frames=" + cmd.frames +
+      " defines=" + definesText + " exr_compression=" + cmd.exrCompression + " layers=" + layers.text();
+  auto seedOf = [&](const SweepPoint& p) {
+    return cmd.seedPerPoint ? ds_hash_combine(ds_hash(cmd.args.seed), std::uint32_t(p.index)) : cmd.args.seed;
+  };
+  auto keyOf = [&](const SweepPoint& p) {
+    return commonKey + " seed=" + std::to_string(seedOf(p)) + " parameters=" + parametersJson(p);
+  };
+
+  // Before anything is created: the output folder can be written, and the first point's scene
+  // evaluates (a --sweep value the scene cannot take, e.g. a string for a coordinate, stops here).
+  checkOutputWritable(cmd.outputDir);
+  {
+    SceneParams first{pointDefines(defines, plan.point(0)), frames.front()};
+    first.sweepParameters = plan.names;
+    first.quiet = true;  // a check: the point's own evaluation prints when it renders
+    loadScene(cmd.args.scenePath, first);
+  }
+  createOutputDir(cmd.outputDir);  // writable: checkOutputWritable created a file where it goes
+  sweep::AssetChecksums assets;
+  if (cmd.mergeOnly) {
+    const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets);
+    std::printf("manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
+                (long long)summary.complete, (long long)summary.total, cmd.outputDir.c_str());
+    return;
+  }
+  const fs::path lockDir = fs::path(cmd.outputDir) / ".locks";
+  std::error_code ec;
+  fs::create_directories(lockDir, ec);
+  if (ec) throw InputError("-o " + cmd.outputDir + ": cannot create " + lockDir.string() + ": " + ec.message());
+
+  // This shard's points: index ≡ shard.index (mod shard.count).
+  const std::int64_t mine = plan.count > shard.index ? (plan.count - shard.index + shard.count - 1) / shard.count : 0;
+
+  RenderSession session(cmd.args, cmd.backend);
+  Progress progress(mine, stderrIsTerminal());
+  std::int64_t done = 0, rendered = 0, skipped = 0, busy = 0, images = 0;
+  const std::string host = hostName();
+  // The files of point i are written (sensor, truth, files, record) on a worker thread while the
+  // main thread evaluates, prepares and renders point i+1: at most one point waits to be written,
+  // so memory does not grow with the number of points.
+  SerialWorker writer;
+  bool writing = false;  // a point was handed to the writer and not yet collected
+  auto finishWriting = [&] {
+    if (!writing) return;
+    writing = false;
+    writer.wait();  // rethrows the writer's error
+    ++rendered;
+    images += std::int64_t(frames.size());
+    progress.update(++done, rendered, images);
+  };
+  for (std::int64_t index = shard.index; index < plan.count; index += shard.count) {
+    const SweepPoint p = plan.point(index);
+    const std::string folder = (fs::path(cmd.outputDir) / pointFolderName(p.index)).string();
+    // One owner per point at a time, whatever the sharding: a second process skips it.
+    auto lock = std::make_shared<sweep::FileLock>((lockDir / (pointFolderName(p.index) + ".lock")).string(), false);
+    if (!lock->acquired()) {
+      ++busy;
+      progress.update(++done, rendered, images);
+      continue;
+    }
+    const std::string key = keyOf(p);
+    if (const auto record = sweep::readPointRecord(folder);
+        record && record->index == p.index && sweep::pointFilesIntact(folder, *record, key, true, assets)) {
+      ++skipped;
+      progress.update(++done, rendered, images);
+      continue;
+    }
+    auto job = std::make_shared<RenderJob>();
+    job->sceneFile = cmd.args.scenePath;
+    job->outputDir = folder;
+    job->frames = frames;
+    job->numbered = numbered;
+    job->defines = pointDefines(defines, p);
+    job->sweepParameters = plan.names;
+    job->seed = seedOf(p);
+    job->verbose = false;
+    job->exrCompression = cmd.exrCompression;
+    job->layers = layers;
+    RenderedJob result;
+    try {
+      result = renderJob(session, *job);
+    } catch (...) {
+      finishWriting();  // the previous point still completes (its own error, if any, wins)
+      throw;
+    }
+    finishWriting();
+    // Not complete: the point starts from an empty folder (a killed run may have left part of it).
+    std::error_code ec;
+    fs::remove_all(folder, ec);
+    auto record = std::make_shared<sweep::PointRecord>();
+    record->index = p.index;
+    record->key = key;
+    record->parametersJson = parametersJson(p);
+    record->seed = seedOf(p);
+    record->samplesPerPixel = cmd.args.spp;
+    record->backend = result.summary.backend;
+    record->precision = result.summary.precision;
+    record->device = result.summary.device;
+    record->renderSeconds = result.summary.renderSeconds;
+    record->host = host;
+    // The textures it rendered with, so that a rerun notices when they change.
+    std::vector<std::string> texturePaths;
+    for (const RenderedFrame& f : result.frames)
+      for (const PreparedTexture& t : f.scene.textures) texturePaths.push_back(t.path);
+    record->assets = assets.of(texturePaths);
+    writing = true;
+    writer.start([job, record, lock, folder, r = std::make_shared<RenderedJob>(std::move(result))] {
+      try {
+        writeRenderedJob(std::move(*r), *job);
+        record->files = sweep::scanPointFiles(folder);
+        record->finishedUtc = utcNow();
+        sweep::writePointRecord(folder, *record);  // last: the point is complete from here on
+      } catch (...) {
+        std::error_code ignored;
+        fs::remove_all(folder, ignored);  // nothing half-written stays (and a full disk gets its space back)
+        throw;
+      }
+    });
+  }
+  finishWriting();
+  const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets);
+  std::printf("sweep: %lld points%s: rendered %lld, already complete %lld, in progress elsewhere %lld; "
+              "manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
+              (long long)mine,
+              shard.count > 1 ? (" (shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) + " of " +
+                                 std::to_string(plan.count) + ", by " + shard.origin + ")").c_str()
+                              : "",
+              (long long)rendered, (long long)skipped, (long long)busy, (long long)summary.complete,
+              (long long)summary.total, cmd.outputDir.c_str());
+  return;
+}
+
+
+}  // namespace dicsynth

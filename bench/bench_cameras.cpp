@@ -24,6 +24,7 @@
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
+#include "scene/scene.h"
 
 using namespace dicsynth;
 

@@ -16,6 +16,7 @@
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
+#include "scene/scene.h"
 #include "sensor/sensor.h"
 
 using namespace dicsynth;

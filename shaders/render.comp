@@ -2,7 +2,7 @@
 #extension GL_EXT_samplerless_texture_functions : require
 // Entry point of the renderer: one invocation per pixel of one tile of one camera.
 // Writes the mean radiance over the pixel's stratified samples and the ground truth of the ray
-// through the pixel centre (host/render/result.h). Query mode (params.random.w = 1): one invocation
+// through the pixel centre (host/model/render_result.h). Query mode (params.random.w = 1): one invocation
 // per visibility query instead, the nearest hit along the query's ray (gpu::Renderer::reachesFirst);
 // the same pipeline, so the scene's specialization and its compilation serve both. Compiled once per precision (DS_FP32, DS_FP64,
 // DS_DF64; lib/real.glsl); scene features are specialization constants (lib/features.glsl).

@@ -1,11 +1,11 @@
 #pragma once
 // NURBS evaluation for the scene tests, written independently of the code under test: the Cox–de Boor
 // recursion exactly as defined (half-open spans, 0/0 = 0), not the triangular scheme of
-// host/scene/nurbs_specimens.cpp. Slow (2^degree per basis function) and plain.
+// host/nurbs/nurbs_specimens.cpp. Slow (2^degree per basis function) and plain.
 #include <vector>
 
 #include "core/math.h"
-#include "geometry/nurbs_surface.h"
+#include "nurbs/nurbs_surface.h"
 
 namespace dicsynth::test {
 

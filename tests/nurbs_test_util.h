@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/nurbs_surface.h"
-#include "scene/scene.h"
+#include "model/scene.h"
+#include "nurbs/nurbs_surface.h"
 
 namespace dicsynth::test {
 

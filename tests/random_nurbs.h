@@ -15,8 +15,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "model/scene.h"
 #include "nurbs_test_util.h"
-#include "scene/scene.h"
 
 namespace dicsynth::test {
 

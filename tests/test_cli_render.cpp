@@ -8,7 +8,7 @@
 
 #include "core/json.h"
 #include "exr_test_util.h"
-#include "io/image_io.h"
+#include "files/image_io.h"
 #include "run_cli.h"
 
 using namespace dicsynth;

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/image_io.h"
+#include "files/image_io.h"
 #include "run_cli.h"
 
 using namespace dicsynth;

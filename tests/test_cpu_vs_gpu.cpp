@@ -13,6 +13,7 @@
 #include "gpu_test_context.h"
 #include "identical_results.h"
 #include "render/compare.h"
+#include "scene/scene.h"
 
 using namespace dicsynth;
 

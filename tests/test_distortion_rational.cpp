@@ -14,6 +14,7 @@
 #include "distortion_test_util.h"
 #include "geometry/prepared_scene.h"
 #include "io/opencv_camera.h"
+#include "scene/scene.h"
 #include "scene_test_util.h"
 
 using namespace dicsynth;

@@ -17,6 +17,7 @@
 #include "gpu_test_context.h"
 #include "identical_results.h"
 #include "render/compare.h"
+#include "scene/scene.h"
 #include "shared/bindings.h"
 #include "temp_folder.h"
 

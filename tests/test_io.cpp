@@ -14,9 +14,9 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/math.h"
-#include "io/image_io.h"
-#include "io/oiio_reader.h"
-#include "io/tiff_io.h"
+#include "files/image_io.h"
+#include "files/oiio_reader.h"
+#include "files/tiff_io.h"
 #include "temp_folder.h"
 
 using namespace dicsynth;

@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "exr_test_util.h"
-#include "io/image_io.h"
+#include "files/image_io.h"
 #include "render/layers.h"
 #include "run_cli.h"
 

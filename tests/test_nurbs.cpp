@@ -7,9 +7,9 @@
 #include <random>
 
 #include "core/error.h"
-#include "geometry/nurbs.h"
 #include "geometry/nurbs_bvh.h"
 #include "geometry/nurbs_cones.h"
+#include "nurbs/nurbs.h"
 #include "nurbs_test_util.h"
 
 using namespace dicsynth;

@@ -1,4 +1,4 @@
-// Nurbs.deform (geometry/nurbs_fit.h): a NURBS moved by a displacement field keeps its (u, v)
+// Nurbs.deform (nurbs/nurbs_fit.h): a NURBS moved by a displacement field keeps its (u, v)
 // material parametrization. Checked against the field evaluated by the test itself at random
 // material points, with the fitted surface evaluated through its Bézier patches (toBezierPatches +
 // evaluateBezier), a code path the fit does not use (it measures its error with evaluateNurbs).
@@ -10,12 +10,12 @@
 
 #include "core/error.h"
 #include "exr_test_util.h"
-#include "geometry/nurbs.h"
-#include "geometry/nurbs_fit.h"
+#include "model/scene.h"
+#include "nurbs/nurbs.h"
+#include "nurbs/nurbs_fit.h"
+#include "nurbs/nurbs_specimens.h"
 #include "run_cli.h"
 #include "scene/lua_values.h"
-#include "scene/nurbs_specimens.h"
-#include "scene/scene.h"
 
 using namespace dicsynth;
 using namespace dicsynth::scene;

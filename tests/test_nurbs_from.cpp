@@ -1,4 +1,4 @@
-// Nurbs.from (scene/nurbs_specimens.h: makeParallelogram, makeBoxFace, makeSphereNurbs): the
+// Nurbs.from (nurbs/nurbs_specimens.h: makeParallelogram, makeBoxFace, makeSphereNurbs): the
 // NURBS forms of analytic shapes. Checked against the analytic shapes rendered by their own
 // intersectors (P and the (u, v) mapping the docs state), and on the sphere against its equation.
 #include <doctest/doctest.h>
@@ -9,10 +9,10 @@
 #include <string>
 
 #include "exr_test_util.h"
-#include "geometry/nurbs.h"
-#include "geometry/nurbs_fit.h"
+#include "nurbs/nurbs.h"
+#include "nurbs/nurbs_fit.h"
+#include "nurbs/nurbs_specimens.h"
 #include "run_cli.h"
-#include "scene/nurbs_specimens.h"
 
 using namespace dicsynth;
 using namespace dicsynth::scene;

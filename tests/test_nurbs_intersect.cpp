@@ -1,4 +1,4 @@
-// The ray–NURBS reference (cpu/nurbs_intersect.h) against independent truths: planes, cylinders and
+// The ray–NURBS reference (geometry/nurbs_intersect.h) against independent truths: planes, cylinders and
 // spheres solved in closed form in long double, graph surfaces by dense sign sampling of
 // z(s) − f(x(s), y(s)) along the ray refined by long double bisection. Rays are classified first:
 // a ray whose true root lies within a tiny margin of the surface's border, or that grazes it so
@@ -11,8 +11,8 @@
 #include <functional>
 #include <random>
 
-#include "cpu/nurbs_intersect.h"
-#include "geometry/nurbs.h"
+#include "geometry/nurbs_intersect.h"
+#include "nurbs/nurbs.h"
 #include "nurbs_test_util.h"
 
 using namespace dicsynth;
@@ -77,7 +77,7 @@ std::vector<ld> quadraticRoots(ld A, ld B, ld C) {
 // Compares intersectAll with the expected roots; returns false for a skipped (ambiguous) ray.
 bool compareRoots(const PreparedNurbs& pn, dvec3 o, dvec3 d, const Expected& e, int& compared) {
   if (e.ambiguous) return false;
-  const std::vector<cpu::NurbsHit> hits = cpu::intersectAll(pn, o, d, 0.0, 1e30);
+  const std::vector<NurbsHit> hits = intersectAll(pn, o, d, 0.0, 1e30);
   INFO("ray o = (" << o.x << ", " << o.y << ", " << o.z << "), d = (" << d.x << ", " << d.y << ", " << d.z << ")");
   REQUIRE(hits.size() == e.s.size());
   const ld length = glm::length(ldvec3(d));
@@ -123,7 +123,7 @@ TEST_CASE("nurbs: reference intersection of a plate matches the plane, with its 
     if (std::abs(x) < w / 2 && std::abs(y) < h / 2) e.add(s, d.z / glm::length(d));
     if (!compareRoots(pn, o, d, e, compared) || e.s.empty()) continue;
     ++hits;
-    const auto all = cpu::intersectAll(pn, o, d, 0.0, 1e30);
+    const auto all = intersectAll(pn, o, d, 0.0, 1e30);
     // Linear precision of the plate: (u, v) = ((x + w/2)/w, (y + h/2)/h) exactly.
     worstUV = std::max({worstUV, double(std::abs(all[0].uv.x - (x + w / 2) / w)), double(std::abs(all[0].uv.y - (y + h / 2) / h))});
     CHECK(all[0].normal.z != 0);
@@ -231,19 +231,19 @@ TEST_CASE("nurbs: grazing rays along a plate") {
       const dvec3 d(std::cos(azimuth) * std::cos(angle), std::sin(azimuth) * std::cos(angle), -std::sin(angle));
       const dvec3 o = target - 0.3 * d;
       const ld s = -ld(o.z) / ld(d.z);  // the double ray's own root
-      const auto hits = cpu::intersectAll(pn, o, d, 0.0, 1e30);
+      const auto hits = intersectAll(pn, o, d, 0.0, 1e30);
       INFO("angle " << angle << ", ray " << k);
       REQUIRE(hits.size() == 1);
       // Along the ray the root is ill-conditioned by 1/sin(angle): compare the height it implies.
       CHECK(std::abs(hits[0].s - s) * std::sin(angle) <= kNormalError);
       // Parallel rays above the plate never hit, even 1e-9 m above it.
       const dvec3 parallel(d.x, d.y, 0);
-      CHECK(cpu::intersectAll(pn, target + dvec3(0, 0, 1e-9) - 0.3 * parallel, parallel, 0.0, 1e30).empty());
+      CHECK(intersectAll(pn, target + dvec3(0, 0, 1e-9) - 0.3 * parallel, parallel, 0.0, 1e30).empty());
     }
   }
   // A ray lying in the plate: infinitely many roots; the nearest one is found, and quickly.
   LocalHit<double> hit;
-  REQUIRE(cpu::intersectNearest(pn, {-0.3, 0.01, 0}, {1, 0, 0}, 0.0, 1e30, nullptr, hit));
+  REQUIRE(intersectNearest(pn, {-0.3, 0.01, 0}, {1, 0, 0}, 0.0, 1e30, nullptr, hit));
   CHECK(hit.s == doctest::Approx(0.2).epsilon(1e-6));  // within the first bottom piece, 2^-20 of a patch
 }
 
@@ -255,7 +255,7 @@ TEST_CASE("nurbs: silhouette rays of a cylinder: tangent roots found, no spuriou
   for (double delta : {1e-2, 1e-5, 1e-8, 1e-11, 0.0, -1e-11, -1e-8, -1e-5}) {
     for (double y : {-0.031, 0.0, 0.017}) {
       const dvec3 o(R * (1 - delta), y, -1), d(0, 0, 1);
-      const auto hits = cpu::intersectAll(pn, o, d, 0.0, 1e30);
+      const auto hits = intersectAll(pn, o, d, 0.0, 1e30);
       INFO("delta " << delta << ", y " << y);
       if (delta < 0) {
         CHECK(hits.empty());
@@ -293,12 +293,12 @@ TEST_CASE("nurbs: silhouette rays of a cylinder: tangent roots found, no spuriou
     const dvec3 d = std::cos(alpha) * t + std::sin(alpha) * dvec3(0, 1, 0);
     // The tangent point must be seen from the ray's origin side within the surface's y range.
     const dvec3 o = p - 0.2 * d;
-    const auto touching = cpu::intersectAll(pn, o, d, 0.0, 1e30);
-    const auto outside = cpu::intersectAll(pn, o + 1e-9 * n, d, 0.0, 1e30);
-    const auto inside = cpu::intersectAll(pn, o - 1e-7 * R * n, d, 0.0, 1e30);
+    const auto touching = intersectAll(pn, o, d, 0.0, 1e30);
+    const auto outside = intersectAll(pn, o + 1e-9 * n, d, 0.0, 1e30);
+    const auto inside = intersectAll(pn, o - 1e-7 * R * n, d, 0.0, 1e30);
     INFO("phi " << phi << ", y " << y << ", alpha " << alpha);
     // Other parts of the 240° segment may be cut elsewhere along the line: count roots near s = 0.2.
-    auto near = [](const std::vector<cpu::NurbsHit>& h) {
+    auto near = [](const std::vector<NurbsHit>& h) {
       int c = 0;
       for (const auto& x : h) c += std::abs(x.s - 0.2) < 0.01;
       return c;
@@ -349,7 +349,7 @@ TEST_CASE("nurbs: degenerate patches: a pole and a collapsed edge") {
       dvec3 dir = randomUnit(rng);
       if (std::abs(dir.z) < 0.1) dir.z = 0.5;
       const dvec3 o = target - 0.3 * dir;
-      const auto hits = cpu::intersectAll(pn, o, dir, 0.0, 1e30);
+      const auto hits = intersectAll(pn, o, dir, 0.0, 1e30);
       INFO("ray " << k);
       REQUIRE(hits.size() == 1);  // one point, however many (u, v) map to it
       // |d| = 1 and |cos| = |d.z| ≥ 0.1: kNormalError / 0.1 along the ray.
@@ -403,12 +403,12 @@ TEST_CASE("nurbs: two surfaces 1e-6 m apart are hit in the right order") {
     INFO("ray " << k);
     // The ray reaches the lower sheet at s ≤ 1; from above it must cross the upper one first. From
     // below it may cross a crest of the lower sheet without reaching the upper one.
-    REQUIRE(cpu::intersectNearest(lower, o, d, 0.0, 1e30, nullptr, a));
+    REQUIRE(intersectNearest(lower, o, d, 0.0, 1e30, nullptr, a));
     CHECK(a.s <= 1 + 1e-12);  // o + d is the target, a point of the lower sheet (to rounding)
     if (side > 0) {
-      REQUIRE(cpu::intersectNearest(upper, o, d, 0.0, 1e30, nullptr, b));
+      REQUIRE(intersectNearest(upper, o, d, 0.0, 1e30, nullptr, b));
       CHECK(b.s < a.s);
-    } else if (cpu::intersectNearest(upper, o, d, 0.0, 1e30, nullptr, b)) {
+    } else if (intersectNearest(upper, o, d, 0.0, 1e30, nullptr, b)) {
       CHECK(a.s < b.s);
     }
     ++compared;
@@ -430,7 +430,7 @@ TEST_CASE("nurbs: reference hits are exact to 1e-12 px (long double re-evaluatio
     const dvec3 tilt = which == 0 ? dvec3(0, 0.3, 0) : dvec3(0);  // see the wavy plate obliquely
     for (const auto& [o, d] : cameraRays(s, camera + tilt, 6000, 29 + which)) {
       LocalHit<double> hit;
-      if (!cpu::intersectNearest(pn, o, d, 0.0, 1e30, nullptr, hit)) continue;
+      if (!intersectNearest(pn, o, d, 0.0, 1e30, nullptr, hit)) continue;
       ++hits;
       const ldvec3 S = evaluateNurbs<ld>(s, hit.uv.x, hit.uv.y).point;
       const ldvec3 O(o), D(d);
@@ -464,7 +464,7 @@ TEST_CASE("nurbs: reference speed (us per ray)") {
     const auto start = std::chrono::steady_clock::now();
     for (const auto& [o, d] : rays) {
       LocalHit<double> hit;
-      hits += cpu::intersectNearest(pn, o, d, 0.0, 1e30, nullptr, hit);
+      hits += intersectNearest(pn, o, d, 0.0, 1e30, nullptr, hit);
     }
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() / rays.size();
     MESSAGE(c.name << ": " << us << " us per ray (" << hits << " of " << rays.size() << " hit)");

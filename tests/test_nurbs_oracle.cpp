@@ -1,10 +1,10 @@
-// The CPU reference's ray–NURBS nearest hit (cpu::intersectNearest) against an independent root
+// The CPU reference's ray–NURBS nearest hit (intersectNearest) against an independent root
 // finder (issue 14): tests/test_nurbs_random.cpp compares the GPU with the reference, so a bug both
 // share would pass there; here the reference meets an oracle that shares none of its machinery.
 //
 // The oracle, all in long double: its own rational B-spline evaluation with first derivatives (the
 // basis functions from their recursive definition on one knot span, not the Bézier patches and de
-// Casteljau of host/geometry/nurbs.cpp); the ray's offset F(u, v) = (N1·(S − o), N2·(S − o)) on two
+// Casteljau of host/nurbs/nurbs.cpp); the ray's offset F(u, v) = (N1·(S − o), N2·(S − o)) on two
 // planes that contain the ray; damped Gauss–Newton, polished to long double's rounding level, from
 // starting points taken from a dense sample of the surface (a 257 × 257 grid of points: each of the
 // 256² sample cells whose padded bounding sphere the ray passes through seeds Newton at its four
@@ -28,7 +28,7 @@
 //                           tolerance: the reference skipped a root                   (reference wrong)
 //   merged contact          as above, but the two roots are the ends of one grazing contact the
 //                           surface makes within the reference's tangent tolerance of the ray, which
-//                           cpu/nurbs_intersect.h documents it may report as one root (reported)
+//                           geometry/nurbs_intersect.h documents it may report as one root (reported)
 //   nearer root (rejected)  the reference's s is below the oracle's nearest, its root not genuine
 //                                                                                     (reference wrong)
 //   nearer root (verified)  as above but genuine: the oracle missed a root (a fold tighter than its
@@ -53,8 +53,8 @@
 #include <vector>
 
 #include "core/parallel.h"
-#include "cpu/nurbs_intersect.h"
 #include "geometry/nurbs_bvh.h"
+#include "geometry/nurbs_intersect.h"
 #include "nurbs_cox_de_boor.h"
 #include "random_nurbs.h"
 
@@ -573,7 +573,7 @@ Verification verify(const NurbsSurface& s, const OracleRay& r, const LocalHit<do
   Verification v;
   v.distanceToRay = distanceToRay(r, e.point);
   v.alongRay = std::abs(glm::dot(e.point - r.o, r.dHat) - ld(hit.s) * dLength);
-  const ld positionTolerance = ld(cpu::kTangentResidual) * ld(size) + speed * uvError;
+  const ld positionTolerance = ld(kTangentResidual) * ld(size) + speed * uvError;
   const ld alongTolerance = kNormalError + speed * uvError + 2 * std::ldexp(std::abs(ld(hit.s)) * dLength, -52);
   v.genuine = v.distanceToRay <= positionTolerance && v.alongRay <= alongTolerance && hit.s > r.sMin && hit.s < r.sMax;
   return v;
@@ -582,7 +582,7 @@ Verification verify(const NurbsSurface& s, const OracleRay& r, const LocalHit<do
 // How far the surface strays from the ray between two roots: the largest distance from the ray of S
 // on the straight (u, v) segment between them (64 samples). Where it is below the reference's
 // tangent-root acceptance, kTangentResidual of the surface's size, the two roots are the two ends
-// of one grazing contact too shallow to tell from a touch, which cpu/nurbs_intersect.h documents it
+// of one grazing contact too shallow to tell from a touch, which geometry/nurbs_intersect.h documents it
 // may report as one root ("Limits"); the straight segment overestimates the shallowest path, so
 // the exemption is never wider than that.
 ld contactDepth(const NurbsSurface& s, const OracleRay& r, ldvec2 a, ldvec2 b) {
@@ -639,7 +639,7 @@ void classify(const NurbsSurface& surface, double size, int surfaceIndex, const 
     const ld tolerance = sameRootTolerance(oracle.nearest, dLength);
     if (ds > tolerance) {
       depth = contactDepth(surface, r, oracle.nearest.uv, ldvec2(hit.uv));
-      kind = v.genuine && depth <= ld(cpu::kTangentResidual) * ld(size) ? MergedContact : FartherRoot;
+      kind = v.genuine && depth <= ld(kTangentResidual) * ld(size) ? MergedContact : FartherRoot;
     } else if (ds < -tolerance) {
       kind = v.genuine ? NearerRootVerified : NearerRootRejected;
     } else {
@@ -687,7 +687,7 @@ TEST_CASE("nurbs-oracle: the reference's nearest hit equals an independent long 
       RayResult& result = results[n];
       const TestRay& ray = rays[n];
       result.oracle = oracleNearest(sampled, oracleRay(ray.o, ray.d, ray.sMin, ray.sMax));
-      result.referenceHit = cpu::intersectNearest(prepared, ray.o, ray.d, ray.sMin, ray.sMax, nullptr, result.hit);
+      result.referenceHit = intersectNearest(prepared, ray.o, ray.d, ray.sMin, ray.sMax, nullptr, result.hit);
     });
     for (std::size_t n = 0; n < rays.size(); ++n) classify(surface, prepared.size, k, rays[n], results[n], tally);
   }

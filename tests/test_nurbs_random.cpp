@@ -35,9 +35,9 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "cpu/trace.h"
-#include "geometry/nurbs.h"
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
+#include "nurbs/nurbs.h"
 #include "random_nurbs.h"
 #include "render/compare.h"
 

@@ -10,8 +10,8 @@
 #include "core/error.h"
 #include "cpu/reference_renderer.h"
 #include "cpu/trace.h"
-#include "geometry/nurbs.h"
 #include "geometry/prepared_scene.h"
+#include "nurbs/nurbs.h"
 #include "nurbs_test_util.h"
 
 using namespace dicsynth;

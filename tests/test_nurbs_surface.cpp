@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "geometry/nurbs_surface.h"
+#include "nurbs/nurbs_surface.h"
 
 using namespace dicsynth;
 

@@ -23,6 +23,7 @@
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
 #include "render/target_features.h"
+#include "scene/scene.h"
 #include "sensor/sensor.h"
 
 using namespace dicsynth;

@@ -12,11 +12,11 @@
 
 #include "core/math.h"
 #include "cpu/reference_renderer.h"
-#include "io/image_io.h"
+#include "files/image_io.h"
 #include "render/ground_truth.h"
-#include "texture/speckle.h"
 #include "scene/scene.h"
 #include "temp_folder.h"
+#include "texture/speckle.h"
 
 namespace dicsynth {
 namespace {

@@ -66,7 +66,7 @@ TEST_CASE("preview: render --preview draws every layer of a stereo frame, values
   const std::vector<float>& dx = exr.floats.at("disp.X");
   const int w = exr.spec.width, h = exr.spec.height;
   const Png png = readPng(dir.file("out/preview/rig.left_0001.disp.X.png"));
-  const int top = 30;  // the title band (io/oiio_module/preview.cpp); the picture below it, unscaled
+  const int top = 30;  // the title band (files/oiio_module/preview.cpp); the picture below it, unscaled
   REQUIRE(png.width == w + 110);
   REQUIRE(png.height == h + top);
   float lo = INFINITY, hi = -INFINITY;

@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "exr_test_util.h"
-#include "io/image_io.h"
+#include "files/image_io.h"
 #include "run_cli.h"
 #include "scene/scene.h"
 #include "scene_test_util.h"

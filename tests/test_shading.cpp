@@ -8,6 +8,7 @@
 
 #include "cpu/reference_renderer.h"
 #include "cpu/shading.h"
+#include "scene/scene.h"
 #include "scene_test_util.h"
 
 using namespace dicsynth;

@@ -12,6 +12,7 @@
 #include "gpu_test_context.h"
 #include "identical_results.h"
 #include "render/compare.h"
+#include "scene/scene.h"
 #include "scene_test_util.h"
 
 using namespace dicsynth;

@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 #include "core/math.h"
-#include "io/image_io.h"
+#include "files/image_io.h"
 #include "run_cli.h"
 #include "temp_folder.h"
 #include "texture/speckle.h"

@@ -13,6 +13,7 @@
 #include "geometry/target_poses.h"
 #include "io/feature_files.h"
 #include "render/target_features.h"
+#include "scene/scene.h"
 #include "scene_test_util.h"
 
 using namespace dicsynth;

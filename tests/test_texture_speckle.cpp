@@ -18,6 +18,7 @@
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
 #include "identical_results.h"
+#include "scene/scene.h"
 #include "scene_test_util.h"
 #include "spirv/texture_probe_df64.h"
 #include "spirv/texture_probe_fp32.h"

@@ -1,4 +1,4 @@
-// `dicsynth bench`: the run-time-versus-error benchmark (render/benchmark.h) over three scenes at
+// `dicsynth bench`: the run-time-versus-error benchmark (job/benchmark.h) over three scenes at
 // 1600 × 1200: the paper's Figure 1 (sphere), a NURBS plate under 0.2 % strain, the necking
 // dogbone. Writes DIR/bench.csv and DIR/bench.svg (atomically) and prints a table, or with --json
 // the rows as a JSON array.
@@ -9,7 +9,7 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "render/benchmark.h"
+#include "job/benchmark.h"
 
 namespace dicsynth::cli {
 namespace {

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "io/outputs.h"
-#include "render/options.h"
+#include "model/render_options.h"
 
 namespace dicsynth::cli {
 

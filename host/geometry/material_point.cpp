@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "geometry/nurbs.h"
+#include "nurbs/nurbs.h"
 
 namespace dicsynth {
 namespace {

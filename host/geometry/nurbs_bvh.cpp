@@ -1,6 +1,6 @@
 #include "geometry/nurbs_bvh.h"
 
-#include "geometry/nurbs_basis.h"
+#include "nurbs/nurbs_basis.h"
 
 #include <algorithm>
 #include <array>

@@ -18,7 +18,7 @@
 //    and with it the Kantorovich quantity of Newton started at the centre, for such a ray: Newton
 //    behaves as on a mildly bent parallelogram. These are guidance for a fast intersector (the
 //    GPU's); the CPU reference does not rely on them and subdivides further per ray
-//    (cpu/nurbs_intersect.h), as grazing rays (det J → 0) require anyway.
+//    (geometry/nurbs_intersect.h), as grazing rays (det J → 0) require anyway.
 // A piece whose speed bound touches 0 (a pole or collapsed edge: the parametrization is singular)
 // never qualifies; it is split until kNurbsMaxSplitsPerDirection (10) halvings in the direction
 // that helps and then kept, marked `degenerate`, so that a GPU can treat it specially (e.g.
@@ -43,7 +43,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/nurbs.h"
+#include "nurbs/nurbs.h"
 
 namespace dicsynth {
 

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "geometry/nurbs_surface.h"
+#include "nurbs/nurbs_surface.h"
 
 namespace dicsynth {
 namespace {

@@ -7,9 +7,9 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/exact_number.h"
+#include "files/image_io.h"
 #include "geometry/homography.h"
 #include "geometry/prepared_scene.h"
-#include "io/image_io.h"
 #include "geometry/texture_cache.h"
 #include "texture/bspline.h"
 

@@ -12,7 +12,7 @@
 #include "geometry/nurbs_bvh.h"
 #include "geometry/shapes.h"
 #include "geometry/targets.h"
-#include "scene/scene.h"
+#include "model/scene.h"
 #include "texture/analytic_speckle.h"
 #include "texture/bspline.h"
 

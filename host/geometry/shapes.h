@@ -7,7 +7,7 @@
 // With `origin` (a shadow ray leaving this very object at that hit; nullptr for none), the root
 // belonging to the origin is discarded by identity instead of by an epsilon: for the convex or flat
 // analytic shapes the ray meets the surface at most once more, at the root of larger |s| (none for
-// flat shapes); a NURBS surface skips the root at the origin's (u, v) (cpu/nurbs_intersect.h).
+// flat shapes); a NURBS surface skips the root at the origin's (u, v) (geometry/nurbs_intersect.h).
 //
 // (u, v) ∈ [0, 1]² per shape, chosen so that seen from the default camera (at the origin looking
 // down +z, image y down) an untransformed shape shows its texture upright and unmirrored:
@@ -16,7 +16,7 @@
 //   Plane     as Rectangle for one tile, repeated: u = fract(x/w + 1/2), v = fract(y/h + 1/2)
 //   Triangle  barycentric blend of the vertices' uv
 //   Box       a 3 × 2 atlas of the faces, each seen from outside (see boxUV below)
-//   Nurbs     the surface's knot domain normalized to [0, 1]² (geometry/nurbs_surface.h)
+//   Nurbs     the surface's knot domain normalized to [0, 1]² (nurbs/nurbs_surface.h)
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -189,12 +189,10 @@ bool intersectTriangle(const ShapeGeometry<Real>& g, glm::vec<3, Real> o, glm::v
 
 }  // namespace detail
 
-// The NURBS reference intersection (cpu/nurbs_intersect.h; declared here so that the shape switch
-// below stays in one place). Double precision only.
-namespace cpu {
+// The NURBS reference intersection (geometry/nurbs_intersect.h, which includes this file for
+// LocalHit; declared here so that the shape switch below stays in one place). Double precision only.
 bool intersectNearest(const PreparedNurbs& nurbs, dvec3 o, dvec3 d, double sMin, double sMax,
                       const dvec2* excludeUV, LocalHit<double>& hit);
-}  // namespace cpu
 
 template <class Real>
 bool intersectShape(const ShapeGeometry<Real>& g, glm::vec<3, Real> o, glm::vec<3, Real> d, Real sMin,
@@ -208,7 +206,7 @@ bool intersectShape(const ShapeGeometry<Real>& g, glm::vec<3, Real> o, glm::vec<
     case DS_SHAPE_RECTANGLE: return detail::intersectXYPlane(g, o, d, sMin, sMax, originOnSurface, true, hit);
     case DS_SHAPE_NURBS:
       if constexpr (std::is_same_v<Real, double>) {
-        return g.nurbs && cpu::intersectNearest(*g.nurbs, o, d, sMin, sMax, origin ? &origin->uv : nullptr, hit);
+        return g.nurbs && intersectNearest(*g.nurbs, o, d, sMin, sMax, origin ? &origin->uv : nullptr, hit);
       } else {
         return false;  // no reduced-precision NURBS reference
       }

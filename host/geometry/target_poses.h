@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "geometry/targets.h"
-#include "scene/scene.h"
+#include "model/scene.h"
 
 namespace dicsynth {
 

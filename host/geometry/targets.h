@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "core/math.h"
-#include "scene/scene.h"
+#include "model/scene.h"
 #include "texture/target_texture.h"
 
 namespace dicsynth {

@@ -16,8 +16,8 @@
 #include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu/context.h"
-#include "render/options.h"
-#include "render/result.h"
+#include "model/render_options.h"
+#include "model/render_result.h"
 
 namespace dicsynth::gpu {
 

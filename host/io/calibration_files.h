@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "geometry/prepared_scene.h"
-#include "scene/scene.h"
+#include "model/scene.h"
 
 namespace dicsynth {
 

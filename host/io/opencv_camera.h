@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/math.h"
-#include "scene/scene.h"
+#include "model/scene.h"
 
 namespace dicsynth {
 

@@ -66,7 +66,7 @@
 #include "core/exact_number.h"
 #include "core/parallel.h"
 #include "core/version.h"
-#include "io/image_io.h"
+#include "files/image_io.h"
 #include "io/opencv_camera.h"
 
 namespace dicsynth {

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "model/render_result.h"
+#include "model/scene.h"
 #include "render/ground_truth.h"
 #include "render/layers.h"
-#include "render/result.h"
-#include "scene/scene.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth {

@@ -1,8 +1,8 @@
 #include "io/preview.h"
 
 #include "core/error.h"
-#include "io/oiio_module/oiio_module.h"
-#include "io/oiio_reader.h"
+#include "files/oiio_module/oiio_module.h"
+#include "files/oiio_reader.h"
 
 namespace dicsynth {
 

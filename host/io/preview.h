@@ -6,7 +6,7 @@
 // flow, distortion, fieldError) are shown as their length and, for disp and flow, per component.
 // Images wider than `maxWidth` are shown every k-th pixel (k an integer), so each shown value is
 // one of the file's. A file that is not dicsynth's shows each float channel as itself.
-// Done by OpenImageIO in libdicsynth_oiio.so (io/oiio_module/preview.cpp).
+// Done by OpenImageIO in libdicsynth_oiio.so (files/oiio_module/preview.cpp).
 #include <string>
 #include <vector>
 

@@ -10,7 +10,7 @@
 
 #include "gpu/context.h"
 #include "gpu/renderer.h"
-#include "render/options.h"
+#include "model/render_options.h"
 
 namespace dicsynth {
 

@@ -22,13 +22,14 @@
 #include "core/progress.h"
 #include "core/serial_worker.h"
 #include "cpu/reference_renderer.h"
-#include "geometry/nurbs_basis.h"
+#include "files/image_limits.h"
 #include "gpu/df64.h"
 #include "io/calibration_files.h"
 #include "io/feature_files.h"
-#include "io/image_limits.h"
 #include "io/outputs.h"
 #include "io/preview.h"
+#include "nurbs/nurbs_basis.h"
+#include "scene/scene.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth {

@@ -11,15 +11,15 @@
 #include <utility>
 #include <vector>
 
-#include "job/render_args.h"
 #include "geometry/prepared_scene.h"
 #include "geometry/texture_cache.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
+#include "io/outputs.h"
+#include "job/render_args.h"
+#include "model/render_result.h"
 #include "render/ground_truth.h"
 #include "render/layers.h"
-#include "render/result.h"
-#include "io/outputs.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth {

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "geometry/prepared_scene.h"
-#include "render/options.h"
-#include "render/result.h"
+#include "model/render_options.h"
+#include "model/render_result.h"
 
 namespace dicsynth {
 

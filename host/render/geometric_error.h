@@ -19,7 +19,7 @@
 #include <glm/glm.hpp>
 
 #include "geometry/prepared_scene.h"
-#include "render/result.h"
+#include "model/render_result.h"
 
 namespace dicsynth {
 

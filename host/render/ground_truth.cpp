@@ -9,7 +9,7 @@
 
 #include "core/parallel.h"
 #include "geometry/material_point.h"
-#include "geometry/nurbs.h"
+#include "nurbs/nurbs.h"
 #include "render/image_point.h"
 
 namespace dicsynth {

@@ -24,8 +24,8 @@
 
 #include "core/math.h"
 #include "geometry/prepared_scene.h"
+#include "model/render_result.h"
 #include "render/layers.h"
-#include "render/result.h"
 #include "render/visibility.h"
 
 namespace dicsynth {

@@ -3,7 +3,7 @@
 #include <iterator>
 
 #include "core/error.h"
-#include "scene/scene.h"
+#include "model/scene.h"
 
 namespace dicsynth {
 

@@ -1,6 +1,6 @@
 // Deformation by a displacement field: Field.load (a finite-element result read with VTK) and
 // Nurbs.deform (a NURBS surface moved by a field: a Lua function or a Field, fitted by
-// geometry/nurbs_fit.h). The Deformation a deformed shape carries keeps the field callable after
+// nurbs/nurbs_fit.h). The Deformation a deformed shape carries keeps the field callable after
 // the scene ran, for the fieldError layer: a Field holds its mesh; a Lua function is kept in the
 // registry and called through the sandbox (LuaSandbox::callAfterRun), which the Scene keeps alive.
 #include <cstdio>
@@ -9,8 +9,8 @@
 #include <string>
 
 #include "core/exact_number.h"
-#include "geometry/nurbs_fit.h"
 #include "io/mesh_field.h"
+#include "nurbs/nurbs_fit.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
 
@@ -167,7 +167,7 @@ Nurbs.deform: a NURBS surface moved by a displacement field, with the same (u, v
 parametrization: every point S(u, v) of `surface` goes to S(u, v) + d(S(u, v)), up to the fit
 error. The result is a NURBS whose control points are fitted by least squares, its knots refined
 (both directions, where the error is) until the largest deviation on a check grid of 2(p + 1) + 1
-points per knot span and direction is <= tolerance (geometry/nurbs_fit.h has the method). Fields
+points per knot span and direction is <= tolerance (nurbs/nurbs_fit.h has the method). Fields
 affine in x, y, z are reproduced exactly (up to rounding). The achieved error, the check grid and
 the control-point count are printed on stderr and stored in the EXR header; the fieldError layer
 holds, per pixel, the rendered position minus the requested one.

@@ -13,9 +13,9 @@
 #include <memory>
 #include <tuple>
 
+#include "nurbs/nurbs_specimens.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
-#include "scene/nurbs_specimens.h"
 
 namespace dicsynth::scene {
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sensor/sensor_model.h"
+#include "model/sensor_model.h"
 
 namespace dicsynth {
 

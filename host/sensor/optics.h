@@ -6,7 +6,7 @@
 // scene's values for --downscale).
 #include <vector>
 
-#include "sensor/sensor_model.h"
+#include "model/sensor_model.h"
 
 namespace dicsynth {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.h"
+#include "model/scene.h"
 
 namespace dicsynth {
 

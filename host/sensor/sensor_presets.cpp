@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "sensor/sensor_model.h"
+#include "model/sensor_model.h"
 
 namespace dicsynth {
 

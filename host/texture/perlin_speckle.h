@@ -17,7 +17,7 @@
 // mean |∇n| (per px) over the pixel centres whose n lies within ±1 % (in quantile) of t: across a
 // contour the darkness then ramps from 0 to 1 over about w px. A pixel's value is 1 − the mean
 // darkness of its S × S samples (same sample grid as the disks).
-#include "io/image_io.h"
+#include "files/image_io.h"
 #include "texture/speckle.h"
 
 namespace dicsynth {

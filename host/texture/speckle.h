@@ -4,7 +4,7 @@
 // hash of shaders/shared/rng.h; no std:: distributions, whose output is implementation-defined).
 #include <cstdint>
 
-#include "io/image_io.h"
+#include "files/image_io.h"
 
 namespace dicsynth {
 

@@ -8,7 +8,7 @@
 //    (method and proofs: "per-ray subdivision of a leaf" below).
 //  - attributes (`hreal`): in df64 DS_NURBS_REFINE_STEPS more Newton steps whose residual is
 //    evaluated in df64, then the point, s and (u, v) in hreal.
-// The CPU reference (host/cpu/nurbs_intersect.cpp) finds every root by its own subdivision; the
+// The CPU reference (host/geometry/nurbs_intersect.cpp) finds every root by its own subdivision; the
 // stress suite (tests/test_nurbs_stress.cpp) and the randomized test (tests/test_nurbs_random.cpp)
 // compare the two.
 // Expects nurbsNodes[], nurbsSubPatches[], nurbsPatches[], nurbsPoints[] and DS_OBJECT(i, member).
@@ -185,7 +185,7 @@ bool ds_nurbs_inside_edges(hreal2 ab, bvec4 edges) {
 #endif
 
 // Which borders of a patch are the surface's own edges (a = 0, b = 0, a = 1, b = 1): its uvRange
-// reaches 0 or 1 there (exactly: host/geometry/nurbs.cpp), compared in hreal, unrounded; the other
+// reaches 0 or 1 there (exactly: host/nurbs/nurbs.cpp), compared in hreal, unrounded; the other
 // borders have a neighbour patch that continues the surface.
 bvec4 ds_surface_edges(int patchIndex) {
   const hreal4 r = nurbsPatches[patchIndex].uvRange;

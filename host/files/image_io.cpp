@@ -1,6 +1,6 @@
 // Gray images: common TIFFs through libtiff, any other readable format through OpenImageIO's
 // module; single-channel TIFF out through libtiff.
-#include "io/image_io.h"
+#include "files/image_io.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -9,8 +9,8 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "io/oiio_reader.h"
-#include "io/tiff_io.h"
+#include "files/oiio_reader.h"
+#include "files/tiff_io.h"
 
 namespace dicsynth {
 

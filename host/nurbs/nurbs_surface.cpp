@@ -1,7 +1,7 @@
 // validateNurbs: the checks that make a NurbsSurface safe to evaluate (see nurbs_surface.h).
 // Every message says what is wrong with which entry, without a location: the scene reader
 // prepends "file:line: Shape.Nurbs: ".
-#include "geometry/nurbs_surface.h"
+#include "nurbs/nurbs_surface.h"
 
 #include <charconv>
 #include <cmath>

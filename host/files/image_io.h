@@ -1,5 +1,5 @@
 #pragma once
-// Image files: TIFF through libtiff (io/tiff_io.h), other formats through OpenImageIO (io/oiio_reader.h).
+// Image files: TIFF through libtiff (files/tiff_io.h), other formats through OpenImageIO (files/oiio_reader.h).
 #include <cstdint>
 #include <string>
 #include <vector>

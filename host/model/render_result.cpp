@@ -1,4 +1,4 @@
-#include "render/result.h"
+#include "model/render_result.h"
 
 #include <limits>
 

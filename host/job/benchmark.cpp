@@ -1,4 +1,4 @@
-#include "render/benchmark.h"
+#include "job/benchmark.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +11,7 @@
 #include "gpu/df64.h"
 #include "gpu/renderer.h"
 #include "render/geometric_error.h"
+#include "scene/scene.h"
 
 namespace dicsynth {
 namespace {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "io/oiio_module/oiio_module.h"
+#include "files/oiio_module/oiio_module.h"
 
 namespace {
 

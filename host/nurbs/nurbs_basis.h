@@ -1,13 +1,13 @@
 #pragma once
-// B-spline basis of a knot vector (the NURBS Book's conventions, geometry/nurbs_surface.h): the span
+// B-spline basis of a knot vector (the NURBS Book's conventions, nurbs/nurbs_surface.h): the span
 // of a parameter, the p + 1 basis functions non-zero on it, and the count of non-empty spans.
-// Shared by the NURBS evaluator (geometry/nurbs.cpp), its BVH (nurbs_bvh.cpp), the fit of deformed
+// Shared by the NURBS evaluator (nurbs/nurbs.cpp), its BVH (nurbs_bvh.cpp), the fit of deformed
 // surfaces (nurbs_fit.cpp) and the device-size check of a render (cli/render_job.cpp).
 #include <array>
 #include <cstddef>
 #include <vector>
 
-#include "geometry/nurbs_surface.h"
+#include "nurbs/nurbs_surface.h"
 
 namespace dicsynth {
 

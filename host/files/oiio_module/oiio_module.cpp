@@ -1,6 +1,6 @@
-// libdicsynth_oiio.so: readGrayImage for every format OpenImageIO reads (io/oiio_reader.h loads it
+// libdicsynth_oiio.so: readGrayImage for every format OpenImageIO reads (files/oiio_reader.h loads it
 // on first use). Built as its own module so that the dicsynth binary does not link OpenImageIO.
-#include "io/oiio_module/oiio_module.h"
+#include "files/oiio_module/oiio_module.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -8,7 +8,7 @@
 #include <exception>
 
 #include "core/math.h"
-#include "io/image_limits.h"
+#include "files/image_limits.h"
 
 namespace {
 

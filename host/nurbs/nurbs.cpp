@@ -1,5 +1,5 @@
-#include "geometry/nurbs.h"
-#include "geometry/nurbs_basis.h"
+#include "nurbs/nurbs.h"
+#include "nurbs/nurbs_basis.h"
 
 #include "core/error.h"
 

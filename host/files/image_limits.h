@@ -2,7 +2,7 @@
 // The size an input image may declare (Texture.File), checked from its header before any pixel
 // buffer exists: a few hundred bytes of a compressed or header-only file can claim 20000 × 20000
 // pixels (a "decompression bomb"). Header-only: used by the libtiff reader and by the OpenImageIO
-// module (io/oiio_module/), which do not link the same libraries.
+// module (files/oiio_module/), which do not link the same libraries.
 //
 // Limits (README, "Limits"):
 //  - at most kMaxImagePixels pixels (16384 × 16384): a texture samples a speckle a few texels per

@@ -51,7 +51,7 @@
 #include "geometry/nurbs_bvh.h"
 #include "geometry/shapes.h"
 
-namespace dicsynth::cpu {
+namespace dicsynth {
 
 // Tangent roots are accepted when the point is within this fraction of the surface's size from the
 // ray: 1e-13 m for a 0.1 m specimen, ~5e-10 px at 0.5 m with 4.4 µm pixels behind 12 mm, far below
@@ -77,4 +77,4 @@ std::vector<NurbsHit> intersectAll(const PreparedNurbs& nurbs, dvec3 o, dvec3 d,
 bool intersectNearest(const PreparedNurbs& nurbs, dvec3 o, dvec3 d, double sMin, double sMax,
                       const dvec2* excludeUV, LocalHit<double>& hit);
 
-}  // namespace dicsynth::cpu
+}  // namespace dicsynth

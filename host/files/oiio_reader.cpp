@@ -1,8 +1,8 @@
-#include "io/oiio_reader.h"
+#include "files/oiio_reader.h"
 
 #include "core/error.h"
 #include "core/module_folder.h"
-#include "io/oiio_module/oiio_module.h"
+#include "files/oiio_module/oiio_module.h"
 
 namespace dicsynth {
 namespace {

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "core/math.h"
-#include "geometry/nurbs_surface.h"
+#include "nurbs/nurbs_surface.h"
 
 namespace dicsynth {
 

@@ -1,4 +1,4 @@
-#include "geometry/nurbs_fit.h"
+#include "nurbs/nurbs_fit.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 
 #include "core/error.h"
 #include "core/exact_number.h"
-#include "geometry/nurbs.h"
-#include "geometry/nurbs_basis.h"
+#include "nurbs/nurbs.h"
+#include "nurbs/nurbs_basis.h"
 
 namespace dicsynth {
 namespace {
@@ -30,7 +30,7 @@ Net netOf(const NurbsSurface& s) {
 }
 
 // Boehm's insertion of knot x (strictly inside a non-empty span) along u (alongU) or v, applied to
-// every row of control points across the other direction (geometry/nurbs.cpp, insertKnot, has the
+// every row of control points across the other direction (nurbs/nurbs.cpp, insertKnot, has the
 // formula): the surface, and so its denominator W, are unchanged.
 void insertKnot(Net& net, bool alongU, double x) {
   std::vector<double>& L = alongU ? net.U : net.V;

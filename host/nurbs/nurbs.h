@@ -20,7 +20,7 @@
 #include <glm/glm.hpp>
 
 #include "core/math.h"
-#include "geometry/nurbs_surface.h"
+#include "nurbs/nurbs_surface.h"
 
 namespace dicsynth {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/math.h"
-#include "geometry/nurbs_surface.h"
+#include "nurbs/nurbs_surface.h"
 
 namespace dicsynth::scene {
 

@@ -2,13 +2,13 @@
 // TIFF through libtiff directly: the sensor images dicsynth writes and the plain TIFF textures it
 // reads most, without OpenImageIO, whose ~250 shared libraries cost every process ~0.18 s of
 // dynamic linking at start (README, "Speed as a user times it"). Other formats and unusual TIFF
-// variants go through OpenImageIO, loaded only when needed (io/oiio_reader.h).
+// variants go through OpenImageIO, loaded only when needed (files/oiio_reader.h).
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "io/image_io.h"
+#include "files/image_io.h"
 
 namespace dicsynth {
 
@@ -21,7 +21,7 @@ bool looksLikeTiff(const std::string& path);
 // reads it through OpenImageIO. Throws InputError("PATH: reason") for a damaged file.
 std::optional<GrayImage> readCommonTiff(const std::string& path);
 
-// The single-channel zip-compressed TIFF of writeGrayTiff (io/image_io.h) at `tempPath`; errors
+// The single-channel zip-compressed TIFF of writeGrayTiff (files/image_io.h) at `tempPath`; errors
 // name `finalPath`.
 void writeGrayTiffFile(const std::string& tempPath, const std::string& finalPath, int width, int height,
                        const std::vector<std::uint16_t>& values, int bits, const std::string& description);

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "render/options.h"
+#include "model/render_options.h"
 
 namespace dicsynth {
 

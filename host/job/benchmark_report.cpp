@@ -6,7 +6,7 @@
 #include <map>
 
 #include "core/json.h"
-#include "render/benchmark.h"
+#include "job/benchmark.h"
 
 namespace dicsynth {
 

@@ -1,7 +1,7 @@
 // Builders of Nurbs.plate, Nurbs.cylinderSegment and Nurbs.dogbone (see nurbs_specimens.h).
 // B-spline conventions as in "The NURBS Book" (Piegl & Tiller); knot domains are [0, 1], so a
 // knot value is directly the surface parameter u or v.
-#include "scene/nurbs_specimens.h"
+#include "nurbs/nurbs_specimens.h"
 
 #include <algorithm>
 #include <cmath>

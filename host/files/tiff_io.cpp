@@ -1,6 +1,6 @@
-#include "io/tiff_io.h"
+#include "files/tiff_io.h"
 
-#include "io/image_limits.h"
+#include "files/image_limits.h"
 
 #include <tiffio.h>
 

@@ -1,10 +1,10 @@
 #pragma once
-// The interface of libdicsynth_oiio.so (io/oiio_reader.h, io/preview.h load it): C-named functions,
+// The interface of libdicsynth_oiio.so (files/oiio_reader.h, io/preview.h load it): C-named functions,
 // built by the same compiler and standard library as their callers, so they may take C++ objects.
 #include <string>
 #include <vector>
 
-#include "io/image_io.h"
+#include "files/image_io.h"
 
 namespace dicsynth {
 

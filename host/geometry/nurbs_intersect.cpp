@@ -1,11 +1,11 @@
-#include "cpu/nurbs_intersect.h"
+#include "geometry/nurbs_intersect.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 
-namespace dicsynth::cpu {
+namespace dicsynth {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -361,4 +361,4 @@ bool intersectNearest(const PreparedNurbs& nurbs, dvec3 o, dvec3 d, double sMin,
   return true;
 }
 
-}  // namespace dicsynth::cpu
+}  // namespace dicsynth

@@ -1,19 +1,19 @@
 #pragma once
 // Images in any format OpenImageIO reads, through a module loaded on first use
-// (libdicsynth_oiio.so beside the executable, built from io/oiio_module/): the dicsynth binary does
+// (libdicsynth_oiio.so beside the executable, built from files/oiio_module/): the dicsynth binary does
 // not link OpenImageIO, whose ~250 shared libraries would cost every process ~0.18 s at start even
 // when it only reads a TIFF and writes TIFF and EXR (which libtiff and OpenEXR do directly).
 #include <string>
 
-#include "io/image_io.h"
+#include "files/image_io.h"
 
 namespace dicsynth {
 
-// readGrayImage's contract (io/image_io.h) for any format. Throws InputError("PATH: reason"), also
+// readGrayImage's contract (files/image_io.h) for any format. Throws InputError("PATH: reason"), also
 // when the module cannot be loaded (then naming it and why).
 GrayImage readGrayImageWithOiio(const std::string& path);
 
-// A function of the module by name (io/oiio_module/oiio_module.h), or null with `failure` saying why.
+// A function of the module by name (files/oiio_module/oiio_module.h), or null with `failure` saying why.
 void* oiioModuleSymbol(const char* symbol, std::string& failure);
 
 }  // namespace dicsynth

@@ -1,0 +1,170 @@
+#pragma once
+// The scene as plain validated C++ structs in double precision: what a scene file describes.
+// Produced by loadScene() (host/scene, the Lua layer above), consumed by prepareScene()
+// (host/geometry) and the layers after it, which therefore include this file and not the Lua layer.
+// Units: metres, radians, pixels where the name says _px. Frames: the camera frame is OpenCV's
+// (x right, y down, z forward); world and object frames are right-handed.
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/math.h"
+#include "model/sensor_model.h"
+#include "nurbs/nurbs_fit.h"
+#include "nurbs/nurbs_surface.h"
+#include "shared/kinds.h"
+#include "texture/analytic_speckle.h"
+#include "texture/bspline.h"
+
+namespace dicsynth {
+
+// OpenCV's lens distortion on normalized coordinates (docs/design.md §3, camera/distortion.h); maps
+// ideal → distorted. Brown: k1 k2 k3 p1 p2. Rational: also k4 k5 k6 (radial denominator) and the
+// thin-prism s1..s4.
+struct Distortion {
+  DistortionKind kind = DistortionKind::None;
+  double k1 = 0, k2 = 0, k3 = 0;  // radial
+  double p1 = 0, p2 = 0;          // tangential (OpenCV order; photogrammetry tools swap them)
+  double k4 = 0, k5 = 0, k6 = 0;  // Rational: radial denominator
+  double s1 = 0, s2 = 0, s3 = 0, s4 = 0;  // Rational: thin prism
+};
+
+struct Camera {
+  std::string name;  // the scene's global variable name, e.g. "camera1"
+  SourceLoc where;
+  CameraKind kind = CameraKind::Pinhole;
+  int width_px = 0, height_px = 0;
+  dvec2 principalPoint_px{0, 0};  // OpenCV pixel frame: centre of the top-left pixel is (0, 0)
+  double focalLength_m = 0;   // Pinhole: pinhole distance; ThinLens: the lens's focal length f
+  dvec2 pixelSize_m{0, 0};
+  double aperture_m = 0;       // ThinLens: aperture diameter A (from `aperture` or f/`fNumber`)
+  double focusDistance_m = 0;  // ThinLens: object distance u in focus, along the axis from the lens
+  double magnification = 0;    // Orthographic: image size / object size
+  double fillFactor = 1;   // area fraction of the pixel that is sensitive, (0, 1]
+  int bitsPerPixel = 8;    // 1..16
+  double exposure = 1;     // digital number = round(clamp(exposure * radiance, 0, 1) * (2^bits - 1))
+  Distortion distortion;
+  dmat4 worldFromCamera{1.0};  // rigid; identity = at the origin looking down +z, y down
+  // The scene gave the pose (transform, position, lookAt or up). Rig.Stereo refuses such a camera:
+  // the rig places its cameras, and silently dropping a pose the user wrote would hide a mistake.
+  bool poseGiven = false;
+  // Sensor model and post-processors (`sensor`, `postProcessing`; host/sensor). Empty: the plain
+  // digitization above, exactly as without them.
+  SensorModel sensor;
+};
+
+// A shape in its own frame; `location` places that frame's origin in the object's frame.
+// Per-kind parameters (others unused):
+//   Sphere:    radius_m
+//   Box:       size_m (full edge lengths x, y, z)
+//   Rectangle: size_m.x, size_m.y (in the local xy-plane)
+//   Plane:     size_m.x, size_m.y = texture tile size (u, v repeat every tile)
+//   Triangle:  vertices_m[3] (relative to location), vertexUV[3]
+//   Nurbs:     nurbs (control points relative to location)
+// How a Nurbs.deform surface was made (scene/deform_constructors.cpp): the EXR header records it,
+// the fieldError layer evaluates the requested field again at each pixel's material point.
+struct Deformation {
+  std::shared_ptr<const NurbsSurface> reference;  // S: the surface that was deformed (shape frame)
+  DisplacementField field;  // d, callable after the scene ran (it keeps what it needs alive)
+  std::string source;       // "Lua function (scene.lua:12)", or the mesh file, array and step
+  double tolerance_m = 0;
+  NurbsFitReport report;
+  bool fromCache = false;   // the fit of an earlier frame, verified against this frame's field
+};
+// One line for the EXR header: "field: ...; fit error E m (tolerance T m) on a U x V check grid;
+// N control points; K refinements" (numbers with 17 significant digits).
+std::string describeDeformation(const Deformation& deformation);
+
+struct Shape {
+  ShapeKind kind = ShapeKind::Sphere;
+  SourceLoc where;
+  dvec3 location_m{0, 0, 0};
+  double radius_m = 0;
+  dvec3 size_m{0, 0, 0};
+  std::array<dvec3, 3> vertices_m{};
+  std::array<dvec2, 3> vertexUV{dvec2{0, 0}, dvec2{1, 0}, dvec2{0, 1}};
+  std::shared_ptr<const NurbsSurface> nurbs;  // validated (validateNurbs)
+  std::shared_ptr<const Deformation> deformation;  // Nurbs.deform only: S, d and the fit's report
+};
+
+struct Shader {
+  ShaderKind kind = ShaderKind::Constant;
+  SourceLoc where;
+  dvec3 color{1, 1, 1};  // linear RGB; the renderer uses its luminance (grayscale sensor)
+  // Specular parameters (host/cpu/shading.h has the formulas; shading_constructors.cpp the docs).
+  double specular = 0;   // Phong, BlinnPhong: ks, the specular lobe's weight
+  int shininess = 1;     // Phong, BlinnPhong: exponent n (an integer, shading.h says why)
+  double roughness = 0;  // GGX: α (Trowbridge-Reitz width; α = perceptual roughness²)
+  double f0 = 0;         // GGX: Fresnel reflectance at normal incidence (Schlick)
+};
+
+// The printed pattern of a calibration target (Target.Checkerboard, Target.CircleGrid); its layout,
+// the target frame and its features are defined in host/geometry/targets.h.
+struct TargetPattern {
+  int cols = 0, rows = 0;   // Checkerboard: squares per row, rows of squares. CircleGrid: circles
+                            // per row, rows (OpenCV's patternSize)
+  bool asymmetric = false;  // CircleGrid: OpenCV's CALIB_CB_ASYMMETRIC_GRID layout
+  double spacing_m = 0;     // Checkerboard: square size. CircleGrid: OpenCV's squareSize (row
+                            // pitch; centres in a row are 2·spacing apart when asymmetric)
+  double radius_m = 0;      // CircleGrid: dot radius
+  double border_m = 0;      // light margin around the squares / around the dots' edges
+  double dark = 0, light = 1;  // texture values of the dark and the light parts
+};
+
+struct Texture {
+  TextureKind kind = TextureKind::Constant;
+  SourceLoc where;
+  double value = 1;      // Constant
+  std::string path;      // File: resolved path (relative paths resolve against the scene's folder)
+  TargetPattern target;  // Checkerboard, CircleGrid
+  Interpolation interpolation = Interpolation::Cubic;  // File
+  AnalyticSpeckle speckle;  // Speckle (texture/analytic_speckle.h)
+};
+
+struct Object {
+  std::string name;  // global variable name
+  SourceLoc where;
+  Shape shape;
+  Shader shader;
+  Texture texture;
+  // Applied to the shape before `location`: worldFromShape = translate(location) * transform.
+  // So a rotation turns the shape about its own location. Any invertible 4x4 homography.
+  dmat4 transform{1.0};
+};
+
+struct Light {
+  std::string name;
+  SourceLoc where;
+  LightKind kind = LightKind::Point;
+  dvec3 position_m{0, 0, 0};
+  // Point, Spot: radiant intensity (radiance units · m²); Ambient: incident radiance, the same
+  // from every direction (radiance units). Luminance if given as RGB.
+  double intensity = 1;
+  dvec3 direction{0, 0, 1};  // Spot: unit axis of the cone (world)
+  double innerAngle_rad = 0, outerAngle_rad = 0;  // Spot: full intensity within inner, none beyond outer
+};
+
+// Two cameras of the scene that form a stereo pair (Rig.Stereo). The rig's cameras are part of
+// Scene::cameras under the names "<rig>.left" and "<rig>.right". Outputs state their relation as
+// cv::stereoCalibrate does: x_right = R·x_left + T (camera frames, metres).
+struct StereoRig {
+  std::string name;   // the scene's global variable name
+  SourceLoc where;
+  std::string left, right;  // camera names
+};
+
+struct Scene {
+  std::string file;               // the scene file as given
+  std::vector<Camera> cameras;    // sorted by name
+  std::vector<StereoRig> rigs;    // sorted by name
+  std::vector<Object> objects;    // sorted by name; objectId = index + 1 (0 = background)
+  std::vector<Light> lights;      // sorted by name
+  // What the scene's values still need after loading: the Lua state of a scene whose Nurbs.deform
+  // took a Lua function (the fieldError layer calls it again). Null for most scenes.
+  std::shared_ptr<const void> keepAlive;
+};
+
+}  // namespace dicsynth

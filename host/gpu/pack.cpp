@@ -221,9 +221,9 @@ PackedFrame<Layout> packFrame(const PreparedScene& scene, const PackedScene<Layo
   template std::vector<Layout::real> packTexels<Layout>(const PreparedScene&);                        \
   template PackedFrame<Layout> packFrame<Layout>(const PreparedScene&, const PackedScene<Layout>&, int, \
                                                  std::size_t);
-DS_INSTANTIATE(Fp32Layout)
-DS_INSTANTIATE(Fp64Layout)
-DS_INSTANTIATE(Df64Layout)
+#define DS_PRECISION_INSTANTIATE(E, name) DS_INSTANTIATE(E##Layout)
+DS_PRECISIONS(DS_PRECISION_INSTANTIATE)
+#undef DS_PRECISION_INSTANTIATE
 #undef DS_INSTANTIATE
 
 }  // namespace dicsynth::gpu

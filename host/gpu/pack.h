@@ -1,10 +1,13 @@
 #pragma once
 // PreparedScene → the std430 arrays of shaders/shared/gpu_types.h, in one precision variant.
 // Doubles are rounded to the variant's `real` here and nowhere else.
+#include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "geometry/prepared_scene.h"
 #include "gpu/gpu_layout.h"
+#include "model/render_options.h"
 
 namespace dicsynth::gpu {
 
@@ -49,10 +52,23 @@ struct PackedFrame {
     using GpuNurbsSubPatch = ns::GpuNurbsSubPatch;  \
     using GpuNurbsPatch = ns::GpuNurbsPatch;        \
   };
-DS_LAYOUT_TRAITS(Fp32Layout, fp32)
-DS_LAYOUT_TRAITS(Fp64Layout, fp64)
-DS_LAYOUT_TRAITS(Df64Layout, df64)
+#define DS_PRECISION_LAYOUT(E, name) DS_LAYOUT_TRAITS(E##Layout, name)
+DS_PRECISIONS(DS_PRECISION_LAYOUT)
+#undef DS_PRECISION_LAYOUT
 #undef DS_LAYOUT_TRAITS
+
+// f.template operator()<Layout>() with the layout of precision p: the one place where a precision
+// picks its layout (DS_PRECISIONS, model/render_options.h).
+template <class F>
+decltype(auto) withLayout(Precision p, F&& f) {
+  switch (p) {
+#define DS_PRECISION_CASE(E, name) \
+  case Precision::E: return f.template operator()<E##Layout>();
+    DS_PRECISIONS(DS_PRECISION_CASE)
+#undef DS_PRECISION_CASE
+  }
+  throw Error("unknown precision " + std::to_string(int(p)));
+}
 
 // Doubles as the variant's real4 / hreal4 (the pointer only selects the overload), and a component
 // back as a double (df64: hi + lo summed in double, exact).

@@ -15,9 +15,7 @@
 #include "gpu/pack.h"
 #include "shared/bindings.h"
 #include "gpu/df64.h"
-#include "spirv/render_df64.h"
-#include "spirv/render_fp32.h"
-#include "spirv/render_fp64.h"
+#include "spirv/render_variants.h"
 
 namespace dicsynth::gpu {
 namespace {
@@ -363,18 +361,33 @@ std::vector<std::uint8_t> queryAll(Context& context, const ComputePipeline& pipe
 
 }  // namespace
 
+// CMakeLists.txt builds one render.comp per name of its DS_PRECISIONS (spirv/render_variants.h):
+// a variant of model/render_options.h that CMake does not build fails to compile here, one that
+// only CMake builds fails the assertion.
+static_assert(DS_RENDER_VARIANT_COUNT == kPrecisions.size(),
+              "CMakeLists.txt's DS_PRECISIONS and model/render_options.h's DS_PRECISIONS differ");
+
+std::span<const std::uint32_t> renderSpirv(Precision precision) {
+  switch (precision) {
+#define DS_PRECISION_SPIRV(E, name) \
+  case Precision::E: return spirv::render_##name;
+    DS_PRECISIONS(DS_PRECISION_SPIRV)
+#undef DS_PRECISION_SPIRV
+  }
+  throw Error("renderSpirv: unknown precision");
+}
+
 Renderer::Renderer(Context& context) : context_(context) {}
 Renderer::~Renderer() = default;
 
 SceneResidency Renderer::residency(Precision precision, const PreparedScene& scene,
                                    const RendererOptions& rendererOptions) const {
   const std::uint32_t maxTexels = context_.properties().limits.maxTexelBufferElements;
-  switch (precision) {
-    case Precision::Fp32: return residencyOf<Fp32Layout>(scene, maxTexels, true, rendererOptions);
-    case Precision::Df64: return residencyOf<Df64Layout>(scene, maxTexels, true, rendererOptions);
-    case Precision::Fp64: return residencyOf<Fp64Layout>(scene, maxTexels, false, rendererOptions);
-  }
-  throw Error("Renderer::residency: unknown precision");
+  return withLayout(precision, [&]<class Layout>() {
+    // The texel view holds float texels: variants whose `real` is float read them.
+    constexpr bool floatReal = std::is_same_v<typename Layout::real, float>;
+    return residencyOf<Layout>(scene, maxTexels, floatReal, rendererOptions);
+  });
 }
 
 const ComputePipeline& Renderer::pipeline(Precision precision, const PreparedScene& scene, bool specialize,
@@ -412,9 +425,7 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
                                             {DS_SPEC_TEXEL_VIEW, r.texelView ? 1u : 0u},
                                             {DS_SPEC_OBJECT_COUNT, std::uint32_t(r.objectCount)},
                                             {DS_SPEC_LIGHT_COUNT, std::uint32_t(r.lightCount)}};
-    std::span<const std::uint32_t> spirv = spirv::render_fp32;
-    if (precision == Precision::Fp64) spirv = spirv::render_fp64;
-    if (precision == Precision::Df64) spirv = spirv::render_df64;
+    const std::span<const std::uint32_t> spirv = renderSpirv(precision);
     const std::uint32_t pushBytes = sizeof(fp32::GpuTileParams);  // the same in every variant
     std::vector<BindingKind> bindings(DS_BINDING_COUNT, BindingKind::Storage);
     bindings[DS_BINDING_CAMERAS_UNIFORM] = BindingKind::Uniform;
@@ -444,11 +455,9 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   result.precision = toString(options.precision);
   result.device = context_.info().name;
   const auto start = std::chrono::steady_clock::now();
-  switch (options.precision) {
-    case Precision::Fp32: renderAll<Fp32Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, caches_, result); break;
-    case Precision::Df64: renderAll<Df64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, caches_, result); break;
-    case Precision::Fp64: renderAll<Fp64Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, caches_, result); break;
-  }
+  withLayout(options.precision, [&]<class Layout>() {
+    renderAll<Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, caches_, result);
+  });
   result.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -465,12 +474,10 @@ std::vector<std::uint8_t> Renderer::reachesFirst(const PreparedScene& scene, Pre
   const ComputePipeline& pipe = pipeline(precision, scene.features, rendererOptions.specialize, df64Fma, where);
   std::lock_guard lock(queryMutex_);
   const int tile = rendererOptions.tileSize;
-  switch (precision) {
-    case Precision::Fp32: return queryAll<Fp32Layout>(context_, pipe, scene, camera, points_m, objects, relativeTolerance, tile, where, queryCaches_);
-    case Precision::Df64: return queryAll<Df64Layout>(context_, pipe, scene, camera, points_m, objects, relativeTolerance, tile, where, queryCaches_);
-    case Precision::Fp64: return queryAll<Fp64Layout>(context_, pipe, scene, camera, points_m, objects, relativeTolerance, tile, where, queryCaches_);
-  }
-  throw Error("Renderer::reachesFirst: unknown precision");
+  return withLayout(precision, [&]<class Layout>() {
+    return queryAll<Layout>(context_, pipe, scene, camera, points_m, objects, relativeTolerance, tile, where,
+                            queryCaches_);
+  });
 }
 
 }  // namespace dicsynth::gpu

@@ -21,6 +21,9 @@
 
 namespace dicsynth::gpu {
 
+// The SPIR-V of render.comp for a precision variant (built by CMakeLists.txt, one per variant).
+std::span<const std::uint32_t> renderSpirv(Precision precision);
+
 struct RendererOptions {
   // false: run every feature's code whatever the scene uses (the benchmark's baseline for what
   // specialization saves; results are identical).

@@ -10,12 +10,28 @@ namespace dicsynth {
 
 // GPU arithmetic (shaders/lib/real.glsl): fp32; df64 = float pairs (~45 bits) for the geometry,
 // float for the rest; fp64 = native double (needs shaderFloat64).
-enum class Precision { Fp32, Df64, Fp64 };
-// Every precision, cheapest first on a GPU: the one list that names, parsing (CLI, Python) and the
-// calibration iterate over (the GPU variants themselves: CMakeLists.txt, gpu/renderer.cpp).
-inline constexpr std::array<Precision, 3> kPrecisions{Precision::Fp32, Precision::Df64, Precision::Fp64};
+// The one list of precision variants, cheapest first on a GPU: X(Enum, name) per variant. The enum,
+// kPrecisions, the names and parsing below (CLI, Python, calibration), the GPU's layouts (gpu/pack.h:
+// Enum##Layout over gpu_layout.h's namespace `name`), its SPIR-V and dispatch (gpu/renderer.cpp) all
+// expand it; CMakeLists.txt compiles render.comp once per name in its DS_PRECISIONS (with DS_NAME
+// defined), and gpu/renderer.cpp fails to compile when the two lists differ.
+#define DS_PRECISIONS(X) X(Fp32, fp32) X(Df64, df64) X(Fp64, fp64)
+
+#define DS_PRECISION_ENUMERATOR(E, name) E,
+enum class Precision { DS_PRECISIONS(DS_PRECISION_ENUMERATOR) };
+#undef DS_PRECISION_ENUMERATOR
+#define DS_PRECISION_VALUE(E, name) Precision::E,
+inline constexpr std::array kPrecisions{DS_PRECISIONS(DS_PRECISION_VALUE)};
+#undef DS_PRECISION_VALUE
+
 inline const char* toString(Precision p) {
-  return p == Precision::Fp32 ? "fp32" : p == Precision::Df64 ? "df64" : "fp64";
+  switch (p) {
+#define DS_PRECISION_NAME(E, name) \
+  case Precision::E: return #name;
+    DS_PRECISIONS(DS_PRECISION_NAME)
+#undef DS_PRECISION_NAME
+  }
+  return "?";
 }
 // The precision named `name` (toString's names); nullopt for any other text.
 inline std::optional<Precision> parsePrecision(const std::string& name) {

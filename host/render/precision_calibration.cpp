@@ -17,9 +17,6 @@
 #include "gpu/renderer.h"
 #include "nurbs/nurbs_specimens.h"
 #include "render/geometric_error.h"
-#include "spirv/render_df64.h"
-#include "spirv/render_fp32.h"
-#include "spirv/render_fp64.h"
 
 namespace dicsynth {
 namespace {
@@ -62,10 +59,9 @@ Scene calibrationScene() {
 
 // The renderer build: any change of the shaders invalidates the calibration.
 std::string cacheKey() {
-  std::uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a over the three variants' SPIR-V
-  for (auto spirv : {std::span<const std::uint32_t>(spirv::render_fp32), std::span<const std::uint32_t>(spirv::render_df64),
-                     std::span<const std::uint32_t>(spirv::render_fp64)})
-    for (std::uint32_t word : spirv) hash = (hash ^ word) * 0x100000001b3ull;
+  std::uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a over every variant's SPIR-V
+  for (Precision p : kPrecisions)
+    for (std::uint32_t word : gpu::renderSpirv(p)) hash = (hash ^ word) * 0x100000001b3ull;
   char buf[64];
   std::snprintf(buf, sizeof buf, "%s %016llx", DS_VERSION, static_cast<unsigned long long>(hash));
   return buf;

@@ -1,6 +1,6 @@
 #pragma once
 // Random rational NURBS surfaces and scenes for the randomized differential tests of ray–NURBS
-// intersection (tests/test_nurbs_random.cpp, tests/test_nurbs_oracle.cpp): the surfaces a
+// intersection (tests/nurbs/test_nurbs_random.cpp, tests/nurbs/test_nurbs_oracle.cpp): the surfaces a
 // nearest-hit search finds hardest. Folds (control points jittered across their neighbours, so the
 // surface turns back over itself), steep heights, non-uniform knots, weights from 0.5–2 up to a
 // factor 400 apart, collapsed edges (a pole), several surfaces overlapping in depth, tilts up to

@@ -13,8 +13,8 @@ namespace dicsynth::test {
 
 // Two converging cameras 10 cm apart looking at (0, 0, 0.5) (the left one with Brown distortion), a
 // wall at Z = 0.5 m and a thin vertical post at Z = 0.4 m, x = 0.02 that hides a strip of the wall
-// from the right camera only: the visibility cases of disparity (tests/test_ground_truth.cpp,
-// tests/test_visibility.cpp).
+// from the right camera only: the visibility cases of disparity (tests/render/test_ground_truth.cpp,
+// tests/gpu/test_visibility.cpp).
 inline constexpr const char* kConvergingRigWithPost =
     "left = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.016; pixelSize = {2e-5, 2e-5};"
     " position = {-0.05, 0, 0}; lookAt = {0, 0, 0.5}; up = {0, -1, 0};"

@@ -24,7 +24,7 @@
 //   Normalization: Phong's (n + 2)/(2π) makes ∫ f_spec cosθi dωi = ks for a viewer on the normal
 //   (Lafortune & Willems 1994), so ρ + ks ≤ 1 conserves energy there; Blinn-Phong's (n + 8)/(8π) is
 //   the usual approximation of the same (Akenine-Möller et al., Real-Time Rendering). GGX's D is
-//   normalized exactly (tests/test_shading.cpp integrates it).
+//   normalized exactly (tests/render/test_shading.cpp integrates it).
 //
 //   Spot light: s = smoothstep of cos φ (φ: angle between the spot's axis and the direction from
 //   the light to the point) between cos(outer) (s = 0) and cos(inner) (s = 1):

@@ -39,7 +39,7 @@
 // sub-patch per Bézier patch and ~7 µs per patch: 16 × 16 spans 2 ms, 64 × 64 spans 29 ms,
 // 256 × 256 spans 0.45 s; a 240° cylinder in 4 rational spans gives 8 sub-patches (0.1 ms); a
 // sphere octant with its pole 97 (5 degenerate, 1 ms). Strong curvature or strongly varying
-// weights cost more splits (tests/test_nurbs.cpp prints the figures).
+// weights cost more splits (tests/nurbs/test_nurbs.cpp prints the figures).
 #include <cstdint>
 #include <vector>
 

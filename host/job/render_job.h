@@ -37,7 +37,7 @@ class RenderSession {
   Precision precision();
   // Who traces the visibility of flow.mask and disparity.mask (render/visibility.h): the GPU that
   // renders, in fp64 whatever the render's precision (one ray per pixel: fp64's speed matters little,
-  // and its masks equal the CPU reference's, tests/test_visibility.cpp), in df64 on a device without
+  // and its masks equal the CPU reference's, tests/gpu/test_visibility.cpp), in df64 on a device without
   // fp64 (exact except within ~0.2° of tangency, where df64's float search can miss the nearer of
   // two roots), the CPU reference when the device can do neither or for the CPU backend (empty).
   VisibilityTracer visibilityTracer();

@@ -9,20 +9,51 @@ namespace dicsynth {
 
 namespace {
 
-constexpr const char* kNames[] = {"image", "radiance", "depth", "P", "normal", "uv", "mask",
-                                  "disp", "flow", "disparity", "distortion", "noise", "defects",
-                                  "fieldError"};
-static_assert(std::size(kNames) == std::size_t(Layer::Count), "one name per layer");
+constexpr LayerChannel F(const char* name) { return {name, false}; }
+constexpr LayerChannel U(const char* name) { return {name, true}; }
+using C = std::array<LayerChannel, 3>;
+constexpr LayerSource A = LayerSource::Always;
+
+// Rows in the enum's order (checked below).
+constexpr LayerSpec kSpecs[] = {
+    {Layer::Image, "image", C{}, false, true, A, ""},
+    {Layer::Radiance, "radiance", C{F("Y")}, false, true, A, ""},
+    {Layer::Depth, "depth", C{F("Z")}, true, false, A, ""},
+    {Layer::P, "P", C{F("P.X"), F("P.Y"), F("P.Z")}, true, false, A, ""},
+    {Layer::Normal, "normal", C{F("N.X"), F("N.Y"), F("N.Z")}, true, false, A, ""},
+    {Layer::Uv, "uv", C{F("uv.U"), F("uv.V")}, true, false, A, ""},
+    {Layer::Mask, "mask", C{U("objectId"), F("mask")}, false, false, A, ""},
+    {Layer::Disp, "disp", C{F("disp.X"), F("disp.Y"), F("disp.Z")}, true, false, A, ""},
+    {Layer::Flow, "flow", C{F("flow.X"), F("flow.Y"), F("flow.mask")}, true, false, A, ""},
+    {Layer::Disparity, "disparity", C{F("disparity.X"), F("disparity.Y"), F("disparity.mask")}, true, false,
+     LayerSource::Rig, "no camera of the scene belongs to a stereo rig (Rig.Stereo)"},
+    {Layer::Distortion, "distortion", C{F("distortion.X"), F("distortion.Y")}, false, false, A, ""},
+    {Layer::Noise, "noise", C{F("noiseFree"), F("noise")}, false, true, LayerSource::Sensor,
+     "no camera of the scene has a sensor model (a camera's sensor = Sensor.Emva { ... } or postProcessing)"},
+    {Layer::Defects, "defects", C{U("defects")}, false, true, LayerSource::Defects,
+     "no camera of the scene has defective pixels (DefectivePixels { ... } in a camera's postProcessing)"},
+    {Layer::FieldError, "fieldError", C{F("fieldError.X"), F("fieldError.Y"), F("fieldError.Z")}, true, false,
+     LayerSource::Deformed, "no object of the scene has a Nurbs.deform surface in any frame rendered"},
+};
+static_assert(std::size(kSpecs) == std::size_t(Layer::Count), "one row per layer");
+constexpr bool inEnumOrder() {
+  for (std::size_t i = 0; i < std::size(kSpecs); ++i)
+    if (kSpecs[i].layer != Layer(i)) return false;
+  return true;
+}
+static_assert(inEnumOrder(), "kSpecs rows in the enum's order");
 
 std::string knownNames() {
   std::string list = "all";
-  for (const char* name : kNames) list += std::string(", ") + name;
+  for (const LayerSpec& spec : kSpecs) list += std::string(", ") + spec.name;
   return list;
 }
 
 }  // namespace
 
-const char* layerName(Layer layer) { return kNames[std::size_t(layer)]; }
+const LayerSpec& layerSpec(Layer layer) { return kSpecs[std::size_t(layer)]; }
+std::span<const LayerSpec> layerSpecs() { return kSpecs; }
+const char* layerName(Layer layer) { return layerSpec(layer).name; }
 
 LayerSet LayerSet::all() {
   LayerSet s;
@@ -44,7 +75,7 @@ LayerSet LayerSet::parse(const std::string& text, const std::string& option) {
     if (name == "all") throw InputError(option + " " + text + ": 'all' stands alone, not in a list");
     bool found = false;
     for (std::uint32_t l = 0; l < std::uint32_t(Layer::Count); ++l)
-      if (name == kNames[l]) {
+      if (name == kSpecs[l].name) {
         s.add(Layer(l));
         found = true;
       }
@@ -56,15 +87,14 @@ LayerSet LayerSet::parse(const std::string& text, const std::string& option) {
 }
 
 bool LayerSet::needsGeometry() const {
-  for (Layer l : {Layer::Depth, Layer::P, Layer::Normal, Layer::Uv, Layer::Disp, Layer::Flow, Layer::Disparity,
-                  Layer::FieldError})
-    if (has(l)) return true;
+  for (const LayerSpec& spec : kSpecs)
+    if (spec.geometry && has(spec.layer)) return true;
   return false;
 }
 
 bool LayerSet::needsRadiance() const {
-  for (Layer l : {Layer::Image, Layer::Radiance, Layer::Noise, Layer::Defects})
-    if (has(l)) return true;
+  for (const LayerSpec& spec : kSpecs)
+    if (spec.radiance && has(spec.layer)) return true;
   return false;
 }
 
@@ -72,7 +102,7 @@ std::string LayerSet::text() const {
   if (all_) return "all";
   std::string out;
   for (std::uint32_t l = 0; l < std::uint32_t(Layer::Count); ++l)
-    if (has(Layer(l))) out += (out.empty() ? "" : ",") + std::string(kNames[l]);
+    if (has(Layer(l))) out += (out.empty() ? "" : ",") + std::string(kSpecs[l].name);
   return out;
 }
 
@@ -87,15 +117,15 @@ void LayerSources::add(const Scene& scene) {
 
 void checkLayersProducible(const LayerSet& layers, const LayerSources& sources, const std::string& option) {
   if (layers.isAll()) return;
-  auto refuse = [&](Layer layer, const std::string& why) {
-    throw InputError(option + ": layer '" + layerName(layer) + "' cannot be produced: " + why);
-  };
-  if (layers.has(Layer::Disparity) && !sources.rig) refuse(Layer::Disparity, "no camera of the scene belongs to a stereo rig (Rig.Stereo)");
-  if (layers.has(Layer::Noise) && !sources.sensor) refuse(Layer::Noise, "no camera of the scene has a sensor model (a camera's sensor = Sensor.Emva { ... } or postProcessing)");
-  if (layers.has(Layer::Defects) && !sources.defects)
-    refuse(Layer::Defects, "no camera of the scene has defective pixels (DefectivePixels { ... } in a camera's postProcessing)");
-  if (layers.has(Layer::FieldError) && !sources.deformed)
-    refuse(Layer::FieldError, "no object of the scene has a Nurbs.deform surface in any frame rendered");
+  for (const LayerSpec& spec : kSpecs) {
+    if (!layers.has(spec.layer)) continue;
+    const bool available = spec.source == LayerSource::Always || (spec.source == LayerSource::Rig && sources.rig) ||
+                           (spec.source == LayerSource::Sensor && sources.sensor) ||
+                           (spec.source == LayerSource::Defects && sources.defects) ||
+                           (spec.source == LayerSource::Deformed && sources.deformed);
+    if (!available)
+      throw InputError(option + ": layer '" + spec.name + "' cannot be produced: " + spec.without);
+  }
 }
 
 void checkLayersProducible(const LayerSet& layers, const std::vector<Scene>& scenes, const std::string& option) {

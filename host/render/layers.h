@@ -1,27 +1,15 @@
 #pragma once
 // The outputs a run writes (`--layers`): the sensor image and named groups of ground-truth
-// channels. A layer not asked for is not derived (the CPU-traced visibility of flow and disparity,
-// the distortion field), not converted on readback (P, N, uv, depth), and not stored; with no
-// ground-truth layer at all no EXR is written. The list is closed: one enum value, one name, its
-// channels (README, "Output layers").
-//   layer       file / EXR channels
-//   image       <stem>.tif, the sensor image (digital numbers)
-//   radiance    Y
-//   depth       Z
-//   P           P.X P.Y P.Z
-//   normal      N.X N.Y N.Z
-//   uv          uv.U uv.V
-//   mask        objectId mask
-//   disp        disp.X disp.Y disp.Z
-//   flow        flow.X flow.Y flow.mask
-//   disparity   disparity.X disparity.Y disparity.mask   (cameras of a stereo rig)
-//   distortion  distortion.X distortion.Y
-//   noise       noiseFree noise                           (cameras with a sensor model)
-//   defects     defects                                   (cameras with DefectivePixels)
-//   fieldError  fieldError.X fieldError.Y fieldError.Z    (frames with a Nurbs.deform surface)
+// channels. A layer not asked for is not derived (the visibility of flow and disparity, the
+// distortion field), not converted on readback (P, N, uv, depth), and not stored; with no
+// ground-truth layer at all no EXR is written. The list is closed: one enum value and one row of
+// the schema (layers.cpp kSpecs: name, channels, what the backend must trace, which scenes can
+// produce it); docs/outputs.md's table is checked against it.
 // `all` is every layer the scene can produce: the default, so that a run without --layers keeps the
 // complete ground truth the tool exists for.
+#include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -65,6 +53,31 @@ class LayerSet {
   bool all_ = false;  // "all": layers the scene cannot produce are skipped, not an error
 };
 
+// The schema of the layers: one row per Layer (layers.cpp), which parsing, the backends' needs,
+// the producibility check, the EXR writer's channel names and types (io/outputs.cpp) and the docs'
+// channel tables (tests/suite/test_docs.cpp) all read.
+enum class LayerSource : std::uint8_t {
+  Always,    // every camera of every scene
+  Rig,       // cameras of a stereo rig (Rig.Stereo)
+  Sensor,    // cameras with a sensor model (Sensor.Emva or post-processors)
+  Defects,   // cameras with DefectivePixels
+  Deformed,  // frames with a Nurbs.deform surface
+};
+struct LayerChannel {
+  const char* name = nullptr;  // EXR channel name
+  bool uint32 = false;         // exact 32-bit integers; otherwise float32
+};
+struct LayerSpec {
+  Layer layer;
+  const char* name;      // the --layers name
+  std::array<LayerChannel, 3> channels;  // in file order; unused entries have no name ("image": none, the TIFF)
+  bool geometry;         // needs the backend's P, N, uv and depth (asked, or to derive from material points)
+  bool radiance;         // needs the sample rays (otherwise only the pixel-centre ray is traced)
+  LayerSource source;
+  const char* without;   // when `source` is missing: why the layer cannot be produced
+};
+const LayerSpec& layerSpec(Layer layer);
+std::span<const LayerSpec> layerSpecs();
 const char* layerName(Layer layer);
 
 // What of the scenes of a run decides which layers it can produce, gathered frame by frame.

@@ -9,7 +9,7 @@
 // target in both directions, so the cells are square on the target and circles are round.
 //   Checkerboard: squares [i, i+1) × [j, j+1), 0 ≤ i < cols, 0 ≤ j < rows; square (i, j) is dark
 //                 when i + j is odd (the top-left square is light: then cv::findChessboardCornersSB
-//                 reports the inner corners starting at the top left, tests/test_opencv_calibration.cpp);
+//                 reports the inner corners starting at the top left, tests/io/test_opencv_calibration.cpp);
 //                 light outside the squares.
 //   CircleGrid:   dots of radius √radiusSquared_cells centred at (step·i + o_j, j), 0 ≤ i < cols,
 //                 0 ≤ j < rows, step = 1 and o_j = 0 (symmetric) or step = 2 and o_j = j mod 2

@@ -1,7 +1,7 @@
 // Functions GLSL lacks in double precision (docs/design.md §4: GLSL.std.450 transcendentals are 32-bit
 // only), written once with the h_* operations of lib/real.glsl, so every variant uses the same
 // algorithm (not the driver's atan of unspecified accuracy) in its geometric precision.
-// tests/test_shader_math.cpp compares them with std::atan2.
+// tests/gpu/test_shader_math.cpp compares them with std::atan2.
 #ifndef DS_MATH_GLSL
 #define DS_MATH_GLSL
 #include "lib/real.glsl"

@@ -9,7 +9,7 @@
 //  - attributes (`hreal`): in df64 DS_NURBS_REFINE_STEPS more Newton steps whose residual is
 //    evaluated in df64, then the point, s and (u, v) in hreal.
 // The CPU reference (host/geometry/nurbs_intersect.cpp) finds every root by its own subdivision; the
-// stress suite (tests/test_nurbs_stress.cpp) and the randomized test (tests/test_nurbs_random.cpp)
+// stress suite (tests/nurbs/test_nurbs_stress.cpp) and the randomized test (tests/nurbs/test_nurbs_random.cpp)
 // compare the two.
 // Expects nurbsNodes[], nurbsSubPatches[], nurbsPatches[], nurbsPoints[] and DS_OBJECT(i, member).
 #ifndef DS_NURBS_GLSL
@@ -147,7 +147,7 @@ const int DS_NURBS_REFINE_STEPS = 6;
 // bounded by the host's sub-patch criteria and two steps reach the df64 limit from a float root.
 // Near a silhouette (a grazing ray, two roots close together) cond(J) reaches 10^3–10^4 and each
 // step gains only ~3–4 digits: the winner's attributes take DS_NURBS_REFINE_STEPS (two steps left
-// 93 nm of error on a ray 1e-3 rad off a fold, tests/test_nurbs_random.cpp); the border decision
+// 93 nm of error on a ray 1e-3 rad off a fold, tests/nurbs/test_nurbs_random.cpp); the border decision
 // inside the search, which only needs the side of the border, keeps two.
 // The two planes must contain the df64 ray itself: n1 = d × e, n2 = d × n1 in df64 (not
 // normalized: F's scale does not matter), their float roundings for the Jacobian.
@@ -540,7 +540,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
 #if defined(DS_DF64)
         // df64: up to DS_DF64_EDGE_WINDOW beyond the surface's own edge, where the df64 refinement
         // below decides; the float root's a and b can be that far off where the weights are wild
-        // (a root 2.5e-6 inside an edge came out beyond 1e-6 in float, tests/test_nurbs_random.cpp).
+        // (a root 2.5e-6 inside an edge came out beyond 1e-6 in float, tests/nurbs/test_nurbs_random.cpp).
         const bvec4 edges = ds_surface_edges(info.x);
         const real4 borderTolerance = mix(real4(DS_NURBS_BORDER_TOLERANCE), real4(DS_DF64_EDGE_WINDOW), edges);
         bool keep = accepted && all(greaterThanEqual(ab, -borderTolerance.xy)) &&
@@ -557,7 +557,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
         // fp32, a root beyond the surface's own edge (ds_surface_edges) by less than
         // the border tolerance: a parameter tolerance is no distance. Where the parametrization is
         // fast (wild weights next to a pole: ~6 m per unit of a) 1e-6 of a put a hit 5.7 µm
-        // (0.064 px) beyond the surface's edge (tests/test_nurbs_random.cpp). The root moves onto
+        // (0.064 px) beyond the surface's edge (tests/nurbs/test_nurbs_random.cpp). The root moves onto
         // the edge, and is kept only when the edge point lies within the tangent-root tolerance
         // of the ray (the residual the search accepts for a tangent contact).
         const bvec4 edges = ds_surface_edges(info.x);
@@ -587,7 +587,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
         // continues the surface, so a root a rounding error outside this patch is the same point
         // as the neighbour's, and two refinement steps from a poorly conditioned float root (wild
         // weights) could reject it on both sides: a root 1e-6 from a knot line was lost so
-        // (tests/test_nurbs_random.cpp).
+        // (tests/nurbs/test_nurbs_random.cpp).
         const bvec4 nearEdge = bvec4(ab.x < DS_DF64_EDGE_WINDOW && edges.x, ab.y < DS_DF64_EDGE_WINDOW && edges.y,
                                      ab.x > 1.0 - DS_DF64_EDGE_WINDOW && edges.z, ab.y > 1.0 - DS_DF64_EDGE_WINDOW && edges.w);
         if (keep && s > sMin && s < sMax && any(nearEdge)) {

@@ -92,7 +92,7 @@ struct NearestHit {
   // df64 searches in float and refines only the winner, so two objects whose hits lie within
   // float's rounding of each other along the ray (where two surfaces cross or touch) cannot be
   // ordered by their float t: 7.9e-9 relative apart, the GPU once kept the farther of two crossing
-  // random surfaces (tests/test_nurbs_random.cpp). The runner-up within DS_TIE_BAND of the winner
+  // random surfaces (tests/nurbs/test_nurbs_random.cpp). The runner-up within DS_TIE_BAND of the winner
   // is kept too, and the two are ordered by their df64 t (ds_trace_nearest), for the rays whose
   // hit is ground truth (`ties`: the pixel-centre ray, visibility queries). Sample rays order by
   // float t: their radiance is float arithmetic in df64 anyway, a misordered sample needs its ray

@@ -1,5 +1,5 @@
 #version 460
-// Test shader of tests/test_gpu_context.cpp: out[i] = op(in[i]) for i < count.
+// Test shader of tests/gpu/test_gpu_context.cpp: out[i] = op(in[i]) for i < count.
 // DS_FP32 (and DS_DF64): the arrays hold float. DS_FP64: they hold double and the arithmetic is done in double,
 // which proves shaderFloat64 works (1 + 2^-40 survives only there).
 #if defined(DS_FP64)

@@ -1,6 +1,6 @@
 // Reflectance models and lights (host/cpu/shading.h) against closed forms computed here from angles,
 // independently of the vector code; ambient and several lights on whole renders; the scene
-// constructors' errors. The GPU twins: tests/test_shading_gpu.cpp and test_cpu_vs_gpu.cpp.
+// constructors' errors. The GPU twins: tests/gpu/test_shading_gpu.cpp and test_cpu_vs_gpu.cpp.
 #include <doctest/doctest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Each shape's intersection and (u, v) in its own frame, against hand-computed values, and the
 // shadow-ray rule (a ray leaving the shape's own surface: `origin`). The GPU twins are checked against these through the scenes
-// (tests/test_cpu_vs_gpu.cpp).
+// (tests/gpu/test_cpu_vs_gpu.cpp).
 #include <doctest/doctest.h>
 
 #include <cmath>

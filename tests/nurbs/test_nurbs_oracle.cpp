@@ -1,5 +1,5 @@
 // The CPU reference's ray–NURBS nearest hit (intersectNearest) against an independent root
-// finder (issue 14): tests/test_nurbs_random.cpp compares the GPU with the reference, so a bug both
+// finder (issue 14): tests/nurbs/test_nurbs_random.cpp compares the GPU with the reference, so a bug both
 // share would pass there; here the reference meets an oracle that shares none of its machinery.
 //
 // The oracle, all in long double: its own rational B-spline evaluation with first derivatives (the

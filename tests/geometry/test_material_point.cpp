@@ -60,7 +60,7 @@ TEST_CASE("material point: world point of the material coordinates of a hit is t
       CHECK(hits > 200);  // the shapes fill a good part of the cone of rays
       // Double rounding of the hit and of the inverse mapping at 0.5 m: ~1e-16 relative times
       // the condition of atan2/acos near the sphere's poles (~1e3) stays far below 1e-12 m; the
-      // NURBS evaluation is exact to ~1e-15 m (tests/test_nurbs.cpp).
+      // NURBS evaluation is exact to ~1e-15 m (tests/nurbs/test_nurbs.cpp).
       CHECK(worst_m < 1e-12);
     }
   }

@@ -8,7 +8,7 @@
 //                    repository's; render, sweep and compare get --downscale 16 --spp 1 unless the
 //                    line sets them; it must exit 0. Lines starting with ./scripts/ are the quick
 //                    start, which CI itself runs (.ci/run); comments and blank lines are skipped;
-//   ```sh cluster    needs Slurm or GNU parallel: not run here (tests/test_slurm_scripts.cpp runs
+//   ```sh cluster    needs Slurm or GNU parallel: not run here (tests/sweep/test_slurm_scripts.cpp runs
 //                    the Slurm scripts with bash);
 //   ```sh slow       run only with DICSYNTH_DOC_SLOW=1 (minutes of rendering);
 //   other blocks (python, plain text) are not executed (the Python examples run in tests/python).
@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "render/layers.h"
 #include "run_cli.h"
 
 using namespace dicsynth;
@@ -123,4 +124,52 @@ TEST_CASE("docs: every lua and sh snippet of README.md and docs/ runs") {
   MESSAGE(scenes << " scene snippets rendered, " << fragments << " fragments compiled, " << commands << " commands run");
   CHECK(scenes >= 4);
   CHECK(commands >= 6);
+}
+
+TEST_CASE("docs: the output-layer table of docs/outputs.md is the layer schema's") {
+  // docs/outputs.md lists each --layers name with its file or channels ("P.X/Y/Z" stands for P.X,
+  // P.Y, P.Z); the program's schema is render/layers.cpp. Same names in the same order, the same
+  // channels per layer in file order.
+  std::ifstream in(std::string(DS_SOURCE_DIR) + "/docs/outputs.md");
+  REQUIRE(in);
+  std::vector<std::pair<std::string, std::vector<std::string>>> rows;
+  bool inTable = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line == "| layer | file or channels | can be produced |") inTable = true;
+    if (!inTable) continue;
+    if (line.rfind("|", 0) != 0) break;  // the table's end
+    if (line.rfind("| `", 0) != 0) continue;
+    const auto nameEnd = line.find("` |", 3);
+    if (nameEnd == std::string::npos) continue;
+    const std::string name = line.substr(3, nameEnd - 3);
+    const auto cellEnd = line.find(" |", nameEnd + 3);
+    const std::string cell = line.substr(nameEnd + 4, cellEnd - nameEnd - 4);
+    std::vector<std::string> channels;
+    for (std::size_t at = cell.find('`'); at != std::string::npos;) {
+      const std::size_t close = cell.find('`', at + 1);
+      REQUIRE(close != std::string::npos);  // balanced backticks
+      const std::string token = cell.substr(at + 1, close - at - 1);
+      at = cell.find('`', close + 1);
+      const auto dot = token.find('.'), slash = token.find('/');
+      if (dot != std::string::npos && slash != std::string::npos && token.find(".tif") == std::string::npos) {
+        // "P.X/Y/Z": the prefix with each suffix
+        const std::string prefix = token.substr(0, dot + 1);
+        std::stringstream suffixes(token.substr(dot + 1));
+        for (std::string suffix; std::getline(suffixes, suffix, '/');) channels.push_back(prefix + suffix);
+      } else if (token.find(".tif") == std::string::npos) {
+        channels.push_back(token);
+      }
+    }
+    rows.emplace_back(name, channels);
+  }
+  REQUIRE(rows.size() == layerSpecs().size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const LayerSpec& spec = layerSpecs()[i];
+    INFO("docs/outputs.md row " << i << ": " << rows[i].first);
+    CHECK(rows[i].first == spec.name);
+    std::vector<std::string> expected;
+    for (const LayerChannel& c : spec.channels)
+      if (c.name) expected.emplace_back(c.name);
+    CHECK(rows[i].second == expected);
+  }
 }

@@ -12,7 +12,7 @@
 // that close to a silhouette or a surface's border may go either way in float). The test measures
 // and prints the largest such offset it needed.
 // The CPU reference itself is checked against an independent root finder in
-// tests/test_nurbs_oracle.cpp, so that a bug shared by both paths cannot hide.
+// tests/nurbs/test_nurbs_oracle.cpp, so that a bug shared by both paths cannot hide.
 // Size: 14 scenes of 320 × 240 rays, 1 075 200 rays per precision, ~75 s on 2 cores with lavapipe
 // (Mesa 22.3, warm shader cache; ~25 s of it compiling the three pipelines once, one renderer for
 // all scenes); only the pixel-centre ground-truth ray is traced (RenderOptions::radiance false).

@@ -1,5 +1,5 @@
 // NURBS evaluation, Bézier extraction, de Casteljau split, the sub-patch criteria and the BVH
-// (geometry/nurbs*.h). Intersection: tests/test_nurbs_intersect.cpp.
+// (geometry/nurbs*.h). Intersection: tests/nurbs/test_nurbs_intersect.cpp.
 #include <doctest/doctest.h>
 
 #include <chrono>

@@ -169,7 +169,7 @@ polynomial spline (weights 1); along y the surface is exact, and the corners (u,
 exactly on the cylinder. Polynomial rather than the exact rational circle because a rational arc
 cannot follow arc length: within an arc of angle a its speed varies by a factor 1 + tan²(a/4), a
 fake strain pattern in the texture (1e-3 for 7° arcs), while the spline keeps every error of
-order a⁴. Measured for degree 3 (tests/nurbs/test_nurbs_lua.cpp), with a = |k| w (1 + ex) / nu the bend
+order a⁴. Measured for degree 3 (tests/nurbs/test_nurbs_specimens.cpp), with a = |k| w (1 + ex) / nu the bend
 angle of one span:
   distance to the cylinder                                <= 3.5e-3 a⁴ / |k|
   arc length from the centre line - (u - 1/2) w (1 + ex)  <= 6e-4 a⁴ / |k|

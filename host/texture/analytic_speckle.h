@@ -29,7 +29,7 @@
 // makes bit-identical decisions for the same (u, v). shaders/lib/texture.glsl (ds_speckle_texture)
 // is the GPU twin, all in the variant's hreal: df64 decides to ~2^-44 of a cell, fp32 to ~x·2^-23
 // cells (the rounding of x = u · cellsPerU dominates), which can flip only samples that close to a
-// disk edge (tests/texture/test_texture_speckle.cpp bounds it; host/render/compare.cpp excuses such pixels).
+// disk edge (tests/texture/test_analytic_speckle.cpp bounds it; host/render/compare.cpp excuses such pixels).
 #include <array>
 #include <cmath>
 #include <cstdint>

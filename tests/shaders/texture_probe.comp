@@ -1,6 +1,6 @@
 #version 460
 // Evaluates ds_object_texture (shaders/lib/texture.glsl) at host-given (u, v) for three objects:
-// 0 a Texture.Speckle, 1 a quintic and 2 a cubic Texture.File, so tests/texture/test_texture_speckle.cpp can
+// 0 a Texture.Speckle, 1 a quintic and 2 a cubic Texture.File, so tests/texture/test_analytic_speckle.cpp can
 // compare every variant with the C++ (analytic_speckle.h, bspline.h) sample by sample.
 #include "lib/real.glsl"
 #include "lib/features.glsl"

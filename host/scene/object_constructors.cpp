@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "model/shape_kinds.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
 
@@ -144,10 +145,12 @@ int objectSimple(lua_State* L) {
   Params p(L, "Object.Simple", {"shape", "shader", "texture", "transform"});
   Object object;
   object.where = LuaSandbox::of(L).here(L);
-  const Shape* shape = p.userdata<Shape>(
-      "shape",
-      "a Shape (Shape.Sphere, Shape.Box, Shape.Rectangle, Shape.Plane, Shape.Triangle, "
-      "Shape.Nurbs, Nurbs.plate, Nurbs.cylinderSegment, Nurbs.dogbone)");
+  static const std::string kShapeExpected = [] {
+    std::string text = "a Shape (";
+    for (const ShapeKindInfo& k : kShapeKinds) text += std::string("Shape.") + k.name + ", ";
+    return text + "Nurbs.plate, Nurbs.cylinderSegment, Nurbs.dogbone)";  // the specimens (nurbs_constructors.cpp)
+  }();
+  const Shape* shape = p.userdata<Shape>("shape", kShapeExpected.c_str());
   if (!shape) p.fail("missing required 'shape'");
   object.shape = *shape;
   if (const Shader* shader =

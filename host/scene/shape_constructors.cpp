@@ -5,6 +5,7 @@
 // (worldFromShape = translate(location) * transform, see scene.h).
 #include <algorithm>
 
+#include "model/shape_kinds.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
 
@@ -139,10 +140,8 @@ int shapeTriangle(lua_State* L) {
 }
 
 int shapeToString(lua_State* L) {
-  static const char* const kNames[] = {"Sphere", "Box", "Triangle", "Plane", "Rectangle", "Nurbs"};
-  static_assert(std::size(kNames) == DS_SHAPE_COUNT);
   const Shape* shape = toUserdata<Shape>(L, 1);
-  lua_pushfstring(L, "Shape.%s", shape ? kNames[static_cast<int>(shape->kind)] : "?");
+  lua_pushfstring(L, "Shape.%s", shape ? shapeKindInfo(shape->kind).name : "?");
   return 1;
 }
 

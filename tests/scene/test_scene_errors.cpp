@@ -89,8 +89,8 @@ TEST_CASE("scene: wrong types, missing and non-finite values") {
       "  shader = Shape.Sphere { radius = 2 } }\n",
       1, "Object.Simple: 'shader' must be a Shader (Shader.Constant, Shader.Lambert, Shader.Phong, Shader.BlinnPhong, Shader.GGX), got Shape");
   checkError(dir, "o = Object.Simple { shape = 1 }\n", 1,
-             "Object.Simple: 'shape' must be a Shape (Shape.Sphere, Shape.Box, Shape.Rectangle, "
-             "Shape.Plane, Shape.Triangle, Shape.Nurbs, Nurbs.plate, Nurbs.cylinderSegment, "
+             "Object.Simple: 'shape' must be a Shape (Shape.Sphere, Shape.Box, Shape.Triangle, "
+             "Shape.Plane, Shape.Rectangle, Shape.Nurbs, Nurbs.plate, Nurbs.cylinderSegment, "
              "Nurbs.dogbone), got number");
   checkError(dir, "o = Object.Simple { shader = Shader.Lambert {} }\n", 1,
              "Object.Simple: missing required 'shape'");

@@ -23,16 +23,6 @@ layout(local_size_x = DS_LOCAL_SIZE_X, local_size_y = DS_LOCAL_SIZE_Y) in;
 // block read at a constant offset is one scalar load), while it reads a storage buffer inside any
 // loop or branch lane by lane (bench/RESULTS.md, "Render speed after issue 6"); on GPUs uniform
 // blocks go through the constant cache. Storage buffers remain for scenes too large for the blocks.
-#if defined(DS_FP64)
-#define DS_H4_BYTES 32
-#define DS_R4_BYTES 32
-#elif defined(DS_DF64)
-#define DS_H4_BYTES 32
-#define DS_R4_BYTES 16
-#else
-#define DS_H4_BYTES 16
-#define DS_R4_BYTES 16
-#endif
 layout(std430, set = 0, binding = DS_BINDING_CAMERAS) readonly buffer Cameras { GpuCamera cameras[]; };
 layout(std430, set = 0, binding = DS_BINDING_OBJECTS) readonly buffer Objects { GpuObject objects[]; };
 layout(std430, set = 0, binding = DS_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };

@@ -22,12 +22,14 @@
 #define real2 dvec2
 #define real3 dvec3
 #define real4 dvec4
+#define DS_R4_BYTES 32  // a real4's size in buffers (std430/std140), for the uniform blocks' lengths
 #define DS_FAR_AWAY 1.0e30LF
 #elif defined(DS_FP32) || defined(DS_DF64)
 #define real float
 #define real2 vec2
 #define real3 vec3
 #define real4 vec4
+#define DS_R4_BYTES 16
 #define DS_FAR_AWAY 1.0e30
 #else
 #error "compile with -DDS_FP32, -DDS_FP64 or -DDS_DF64"
@@ -39,6 +41,7 @@
 #define hreal2 df2
 #define hreal3 df3
 #define hreal4 df4
+#define DS_H4_BYTES 32  // an hreal4's size in buffers: hi and lo
 #define h_add(a, b) df_add(a, b)
 #define h_sub(a, b) df_sub(a, b)
 #define h_mul(a, b) df_mul(a, b)
@@ -70,6 +73,7 @@ df4 h4_211(df2 a, df1 b, df1 c) { return df4(vec4(a.hi, b.hi, c.hi), vec4(a.lo, 
 #define hreal2 real2
 #define hreal3 real3
 #define hreal4 real4
+#define DS_H4_BYTES DS_R4_BYTES
 #define h_add(a, b) ((a) + (b))
 #define h_sub(a, b) ((a) - (b))
 #define h_mul(a, b) ((a) * (b))

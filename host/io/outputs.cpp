@@ -149,7 +149,8 @@ std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth
   if (layers.has(Layer::Uv)) addVec2(Layer::Uv, image.uv);
   if (layers.has(Layer::Mask)) {
     ch.push_back(uintChannel(name(Layer::Mask, 0), [&](std::size_t i) { return image.objectId[i]; }));
-    ch.push_back(floatChannel(name(Layer::Mask, 1), [&](std::size_t i) { return image.objectId[i] > 0 ? 1.0f : 0.0f; }));
+    ch.push_back(
+        floatChannel(name(Layer::Mask, 1), [&](std::size_t i) { return image.objectId[i] > 0 ? 1.0f : 0.0f; }));
   }
   if (truth) {
     if (layers.has(Layer::Disp)) addVec3(Layer::Disp, truth->displacement_m);
@@ -170,7 +171,8 @@ std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth
       addDoubles(Layer::Noise, 1, sensor->noise_DN);
     }
     if (layers.has(Layer::Defects) && !sensor->defects.empty())
-      ch.push_back(uintChannel(name(Layer::Defects, 0), [sensor](std::size_t i) { return std::uint32_t(sensor->defects[i]); }));
+      ch.push_back(uintChannel(name(Layer::Defects, 0),
+                               [sensor](std::size_t i) { return std::uint32_t(sensor->defects[i]); }));
   }
   // The types the schema states: a channel written as uint32 is one the schema calls uint32.
   for (const ExrChannel& c : ch) {

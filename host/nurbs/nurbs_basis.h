@@ -2,7 +2,7 @@
 // B-spline basis of a knot vector (the NURBS Book's conventions, nurbs/nurbs_surface.h): the span
 // of a parameter, the p + 1 basis functions non-zero on it, and the count of non-empty spans.
 // Shared by the NURBS evaluator (nurbs/nurbs.cpp), its BVH (nurbs_bvh.cpp), the fit of deformed
-// surfaces (nurbs_fit.cpp) and the device-size check of a render (cli/render_job.cpp).
+// surfaces (nurbs_fit.cpp) and the device-size check of a render (job/render_job.cpp).
 #include <array>
 #include <cstddef>
 #include <vector>

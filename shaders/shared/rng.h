@@ -1,6 +1,7 @@
 // Deterministic counter-based random numbers, the same source text compiled as C++ and as GLSL, so
-// the CPU reference and every GPU variant draw bit-identical numbers (tests/test_rng.cpp checks it
-// on the device). No state: a number is a pure function of (seed, frame, camera, pixel, sample, dim).
+// the CPU reference and every GPU variant draw bit-identical numbers (tests/gpu/test_shader_math.cpp
+// checks it on the device). No state: a number is a pure function of (seed, frame, camera, pixel,
+// sample, dim).
 #ifndef DS_SHARED_RNG_H
 #define DS_SHARED_RNG_H
 

@@ -53,6 +53,7 @@ std::string write(const Json::Value& document, bool pretty) {
 std::optional<Json::Value> parse(std::string_view text) {
   Json::CharReaderBuilder builder;
   builder["collectComments"] = false;
+  builder["failIfExtra"] = true;  // one document and nothing after it: trailing bytes mean damage
   const std::unique_ptr<Json::CharReader> reader(builder.newCharReader());
   Json::Value document;
   std::string errors;

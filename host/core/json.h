@@ -5,7 +5,8 @@
 //  - write: doubles with 17 significant digits (they read back exactly), non-finite as null (JSON
 //    has no NaN or infinity), members sorted by name (jsoncpp keeps objects as maps);
 //  - parse / readFile: tolerant of layout, member order, unknown members and comments; nullopt for
-//    text that is not JSON, never an exception: a damaged cache or record counts as missing.
+//    text that is not one JSON document (anything after it included), never an exception: a
+//    damaged cache or record counts as missing.
 // quote / number / boolean serve writers that stream (the sweep manifest writes its points one by
 // one, never holding the list) and keys whose text is part of an identity (sweep points' keys).
 #include <cstdint>

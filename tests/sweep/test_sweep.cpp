@@ -338,6 +338,7 @@ TEST_CASE("sweep: point records are read in any layout, and a wrong member makes
       {"\"0000abcd\"", "\"0000ABCD\""},                    // upper case: not the writer's
       {"\"key\": \"scene=x seed=3\",", ""},                // key missing
       {"\"files\": [", "\"files\": {"},                    // not JSON any more
+      {"  ]\n}\n", "  ]\n}\n{}\n"},                          // a second document after the first
   };
   for (const auto& [from, to] : damages) {
     std::string text = oldLayout;

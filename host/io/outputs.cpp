@@ -1,30 +1,10 @@
 // One camera's output pair: the sensor image (TIFF) and its ground truth (OpenEXR).
 //
-// Ground-truth EXR, one part, scanline, zip-compressed (lossless):
-//   channel   type    content
-//   Y         float   radiance before the sensor (full scale = 1/exposure)
-//   Z         float   depth along the optical axis (m)
-//   P.X/Y/Z   float   world position of the surface point (m)
-//   N.X/Y/Z   float   unit world normal, towards the camera
-//   uv.U/V    float   surface parameters in [0, 1]²
-//   objectId  uint    0 = background, else index in dicsynth:objects + 1
-//   mask      float   1 where objectId > 0, else 0
-// and the derived layers (render/ground_truth.h), each only when the run computed it:
-//   disp.X/Y/Z       float   displacement since the reference frame (m), reference pixels
-//   flow.X/Y         float   image motion since the reference frame (px), reference pixels
-//   flow.mask        float   1 where that material point is visible in this image
-//   disparity.X/Y    float   position in the rig's other camera minus this one (px)
-//   disparity.mask   float   1 where the other camera sees this pixel's point
-//   distortion.X/Y   float   distorted minus undistorted position of the pixel centre (px)
-//   fieldError.X/Y/Z float   rendered minus requested position of the material point (m, world
-//                            axes), reference pixels; frames with a Nurbs.deform surface only
-// and the sensor's layers (host/sensor/sensor.h), only when the camera has a sensor model:
-//   noiseFree        float   the image without temporal noise (DN), before rounding and clipping
-//   noise            float   the noise added (DN), with Sensor.Emva only:
-//                            TIFF = clamp(round(noiseFree + noise), 0, 2^bits - 1)
-//   defects          uint    0 good, 1 dead, 2 hot, 3 stuck, with DefectivePixels only
-// Background pixels hold NaN in Z, P, N and uv (and in disp, flow, disparity where undefined). OpenEXR stores channels sorted by name, so a reader
-// sees them in the file's order (OIIO: Y, Z, mask, objectId, N.*, P.*, uv.*): find them by name.
+// Ground-truth EXR, one part, scanline, zip-compressed (lossless). Its channels, per layer, with
+// their names and types: the layer schema (render/layers.cpp); their meanings, units and which
+// pixels they refer to: docs/outputs.md. Background pixels hold NaN in Z, P, N and uv (and in disp,
+// flow, disparity where undefined). OpenEXR stores channels sorted by name, so a reader sees them
+// in the file's order (OIIO: Y, Z, mask, objectId, N.*, P.*, uv.*): find them by name.
 //
 // Header attributes, all strings; numbers are written with 17 significant digits, so every double
 // parses back exactly; lists are separated by single spaces:

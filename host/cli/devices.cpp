@@ -39,11 +39,7 @@ struct DevicesOptions {
   bool json = false;
 };
 
-std::string mebibytes(uint64_t bytes) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", static_cast<double>(bytes) / (1024.0 * 1024.0));
-  return buf;
-}
+double mebibytes(uint64_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); }
 
 const char* yesNo(bool b) { return b ? "yes" : "no"; }
 
@@ -79,7 +75,7 @@ void printText(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
     std::printf("    Vulkan:               %s\n", version.c_str());
     std::printf("    fp64 (shaderFloat64): %s\n", yesNo(d.shaderFloat64));
     std::printf("    int64 (shaderInt64):  %s\n", yesNo(d.shaderInt64));
-    std::printf("    max storage buffer:   %s MiB\n", mebibytes(d.maxStorageBufferRange).c_str());
+    std::printf("    max storage buffer:   %.6g MiB\n", mebibytes(d.maxStorageBufferRange));
     std::printf("    subgroup size:        %u\n", d.subgroupSize);
     const Df64Status& status = df64[d.index];
     if (status.selfTest) {
@@ -116,7 +112,7 @@ void printJson(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
     o["shaderFloat64"] = d.shaderFloat64;
     o["shaderInt64"] = d.shaderInt64;
     o["maxStorageBufferRange"] = Json::UInt64(d.maxStorageBufferRange);
-    o["maxStorageBuffer_MiB"] = json::value(double(d.maxStorageBufferRange) / double(1 << 20));
+    o["maxStorageBuffer_MiB"] = json::value(mebibytes(d.maxStorageBufferRange));
     o["subgroupSize"] = d.subgroupSize;
     o["pipelineCacheUUID"] = d.pipelineCacheUUID;
     const Df64Status& status = df64[d.index];

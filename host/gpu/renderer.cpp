@@ -437,18 +437,23 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
   return *slot;
 }
 
+std::pair<SceneResidency, const ComputePipeline*> Renderer::prepare(Precision precision, const PreparedScene& scene,
+                                                                    const RendererOptions& rendererOptions) {
+  // df64: the device's self-test (cached per device) decides, and whether its products use fma.
+  const bool df64Fma = precision == Precision::Df64 && requireDf64(context_).useFma;
+  const SceneResidency where = residency(precision, scene, rendererOptions);
+  return {where, &pipeline(precision, scene.features, rendererOptions.specialize, df64Fma, where)};
+}
+
 RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& options,
                               const RendererOptions& rendererOptions) {
   if (options.precision == Precision::Fp64 && !context_.info().shaderFloat64)
     throw InputError("--precision fp64: device '" + context_.info().name +
                      "' has no shaderFloat64; use --precision df64, fp32 or another --device");
-  // df64: the device's self-test (cached per device) decides, and whether its products use fma.
-  const bool df64Fma = options.precision == Precision::Df64 && requireDf64(context_).useFma;
   if (options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
   if (rendererOptions.tileSize != 0 && (rendererOptions.tileSize < 8 || rendererOptions.tileSize % 8 != 0))
     throw InputError("tile size must be 0 (automatic) or a positive multiple of 8");
-  const SceneResidency where = residency(options.precision, scene, rendererOptions);
-  const ComputePipeline& pipe = pipeline(options.precision, scene.features, rendererOptions.specialize, df64Fma, where);
+  const auto [where, pipe] = prepare(options.precision, scene, rendererOptions);
   phaseDone("pipeline");
   RenderResult result;
   result.backend = "gpu";
@@ -456,7 +461,7 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   result.device = context_.info().name;
   const auto start = std::chrono::steady_clock::now();
   withLayout(options.precision, [&]<class Layout>() {
-    renderAll<Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, caches_, result);
+    renderAll<Layout>(context_, *pipe, scene, options, rendererOptions.tileSize, where, caches_, result);
   });
   result.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
@@ -469,13 +474,11 @@ std::vector<std::uint8_t> Renderer::reachesFirst(const PreparedScene& scene, Pre
   if (precision == Precision::Fp64 && !context_.info().shaderFloat64)
     throw InputError("visibility in fp64: device '" + context_.info().name + "' has no shaderFloat64");
   if (points_m.empty()) return {};
-  const bool df64Fma = precision == Precision::Df64 && requireDf64(context_).useFma;
-  const SceneResidency where = residency(precision, scene, rendererOptions);
-  const ComputePipeline& pipe = pipeline(precision, scene.features, rendererOptions.specialize, df64Fma, where);
+  const auto [where, pipe] = prepare(precision, scene, rendererOptions);
   std::lock_guard lock(queryMutex_);
   const int tile = rendererOptions.tileSize;
   return withLayout(precision, [&]<class Layout>() {
-    return queryAll<Layout>(context_, pipe, scene, camera, points_m, objects, relativeTolerance, tile, where,
+    return queryAll<Layout>(context_, *pipe, scene, camera, points_m, objects, relativeTolerance, tile, where,
                             queryCaches_);
   });
 }

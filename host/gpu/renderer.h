@@ -10,6 +10,7 @@
 #include <span>
 #include <tuple>
 #include <typeindex>
+#include <utility>
 #include <vector>
 
 #include "geometry/prepared_scene.h"
@@ -80,6 +81,12 @@ class Renderer {
                            const RendererOptions& rendererOptions) const;
 
  private:
+  // What a render and a query of `scene` in `precision` both need (the caller has checked fp64
+  // against the device): df64 must pass the device's self-test, which also says whether products
+  // use fma; then where the data lives and the pipeline.
+  std::pair<SceneResidency, const ComputePipeline*> prepare(Precision precision, const PreparedScene& scene,
+                                                            const RendererOptions& rendererOptions);
+
   Context& context_;
   std::mutex pipelinesMutex_;  // pipelines_ (render() and reachesFirst() may run on two threads)
   std::map<std::tuple<Precision, SceneFeatures, bool, SceneResidency>, std::unique_ptr<ComputePipeline>> pipelines_;

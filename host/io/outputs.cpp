@@ -104,66 +104,57 @@ ExrChannel uintChannel(std::string name, Get get) {
 std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth* truth,
                                     const SensorImage* sensor, const LayerSet& layers) {
   std::vector<ExrChannel> ch;
-  auto name = [](Layer layer, int k) { return std::string(layerSpec(layer).channels[std::size_t(k)].name); };
+  // Channel k of `layer`, named and typed (float32 or uint32) as the schema says; get(i) is pixel
+  // i's value.
+  auto add = [&ch](Layer layer, int k, auto get) {
+    const LayerChannel& c = layerSpec(layer).channels[std::size_t(k)];
+    if (c.uint32)
+      ch.push_back(uintChannel(c.name, [get](std::size_t i) { return std::uint32_t(get(i)); }));
+    else
+      ch.push_back(floatChannel(c.name, [get](std::size_t i) { return float(get(i)); }));
+  };
+  auto addValues = [&](Layer layer, int k, const auto& v) {
+    if (!v.empty()) add(layer, k, [&v](std::size_t i) { return v[i]; });
+  };
   auto addVec2 = [&](Layer layer, const std::vector<dvec2>& v) {
     if (v.empty()) return;
-    ch.push_back(floatChannel(name(layer, 0), [&v](std::size_t i) { return float(v[i].x); }));
-    ch.push_back(floatChannel(name(layer, 1), [&v](std::size_t i) { return float(v[i].y); }));
+    add(layer, 0, [&v](std::size_t i) { return v[i].x; });
+    add(layer, 1, [&v](std::size_t i) { return v[i].y; });
   };
   auto addVec3 = [&](Layer layer, const std::vector<dvec3>& v) {
     if (v.empty()) return;
-    ch.push_back(floatChannel(name(layer, 0), [&v](std::size_t i) { return float(v[i].x); }));
-    ch.push_back(floatChannel(name(layer, 1), [&v](std::size_t i) { return float(v[i].y); }));
-    ch.push_back(floatChannel(name(layer, 2), [&v](std::size_t i) { return float(v[i].z); }));
+    add(layer, 0, [&v](std::size_t i) { return v[i].x; });
+    add(layer, 1, [&v](std::size_t i) { return v[i].y; });
+    add(layer, 2, [&v](std::size_t i) { return v[i].z; });
   };
-  auto addFloats = [&](Layer layer, int k, const std::vector<float>& v) {
-    if (!v.empty()) ch.push_back(floatChannel(name(layer, k), [&v](std::size_t i) { return v[i]; }));
-  };
-  auto addDoubles = [&](Layer layer, int k, const std::vector<double>& v) {
-    if (!v.empty()) ch.push_back(floatChannel(name(layer, k), [&v](std::size_t i) { return float(v[i]); }));
-  };
-  if (layers.has(Layer::Radiance)) addDoubles(Layer::Radiance, 0, image.radiance);
-  if (layers.has(Layer::Depth)) addDoubles(Layer::Depth, 0, image.depth_m);
+  if (layers.has(Layer::Radiance)) addValues(Layer::Radiance, 0, image.radiance);
+  if (layers.has(Layer::Depth)) addValues(Layer::Depth, 0, image.depth_m);
   if (layers.has(Layer::P)) addVec3(Layer::P, image.position_m);
   if (layers.has(Layer::Normal)) addVec3(Layer::Normal, image.normal);
   if (layers.has(Layer::Uv)) addVec2(Layer::Uv, image.uv);
   if (layers.has(Layer::Mask)) {
-    ch.push_back(uintChannel(name(Layer::Mask, 0), [&](std::size_t i) { return image.objectId[i]; }));
-    ch.push_back(
-        floatChannel(name(Layer::Mask, 1), [&](std::size_t i) { return image.objectId[i] > 0 ? 1.0f : 0.0f; }));
+    addValues(Layer::Mask, 0, image.objectId);
+    add(Layer::Mask, 1, [&](std::size_t i) { return image.objectId[i] > 0 ? 1.0f : 0.0f; });
   }
   if (truth) {
     if (layers.has(Layer::Disp)) addVec3(Layer::Disp, truth->displacement_m);
     if (layers.has(Layer::Flow)) {
       addVec2(Layer::Flow, truth->flow_px);
-      addFloats(Layer::Flow, 2, truth->flowMask);
+      addValues(Layer::Flow, 2, truth->flowMask);
     }
     if (layers.has(Layer::Disparity)) {
       addVec2(Layer::Disparity, truth->disparity_px);
-      addFloats(Layer::Disparity, 2, truth->disparityMask);
+      addValues(Layer::Disparity, 2, truth->disparityMask);
     }
     if (layers.has(Layer::Distortion)) addVec2(Layer::Distortion, truth->distortion_px);
     if (layers.has(Layer::FieldError)) addVec3(Layer::FieldError, truth->fieldError_m);
   }
   if (sensor) {
     if (layers.has(Layer::Noise)) {
-      addDoubles(Layer::Noise, 0, sensor->noiseFree_DN);
-      addDoubles(Layer::Noise, 1, sensor->noise_DN);
+      addValues(Layer::Noise, 0, sensor->noiseFree_DN);
+      addValues(Layer::Noise, 1, sensor->noise_DN);
     }
-    if (layers.has(Layer::Defects) && !sensor->defects.empty())
-      ch.push_back(uintChannel(name(Layer::Defects, 0),
-                               [sensor](std::size_t i) { return std::uint32_t(sensor->defects[i]); }));
-  }
-  // The types the schema states: a channel written as uint32 is one the schema calls uint32.
-  for (const ExrChannel& c : ch) {
-    bool known = false;
-    for (const LayerSpec& spec : layerSpecs())
-      for (const LayerChannel& lc : spec.channels)
-        if (lc.name && c.name == lc.name) {
-          DS_CHECK(lc.uint32 == c.uintValue, "EXR channel " + c.name + " written with another type than the schema's");
-          known = true;
-        }
-    DS_CHECK(known, "EXR channel " + c.name + " is not in the layer schema (render/layers.cpp)");
+    if (layers.has(Layer::Defects)) addValues(Layer::Defects, 0, sensor->defects);
   }
   return ch;
 }

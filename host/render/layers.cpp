@@ -115,15 +115,22 @@ void LayerSources::add(const Scene& scene) {
   }
 }
 
+bool LayerSources::provides(LayerSource source) const {
+  switch (source) {
+    case LayerSource::Always: return true;
+    case LayerSource::Rig: return rig;
+    case LayerSource::Sensor: return sensor;
+    case LayerSource::Defects: return defects;
+    case LayerSource::Deformed: return deformed;
+  }
+  return false;
+}
+
 void checkLayersProducible(const LayerSet& layers, const LayerSources& sources, const std::string& option) {
   if (layers.isAll()) return;
   for (const LayerSpec& spec : kSpecs) {
     if (!layers.has(spec.layer)) continue;
-    const bool available = spec.source == LayerSource::Always || (spec.source == LayerSource::Rig && sources.rig) ||
-                           (spec.source == LayerSource::Sensor && sources.sensor) ||
-                           (spec.source == LayerSource::Defects && sources.defects) ||
-                           (spec.source == LayerSource::Deformed && sources.deformed);
-    if (!available)
+    if (!sources.provides(spec.source))
       throw InputError(option + ": layer '" + spec.name + "' cannot be produced: " + spec.without);
   }
 }

@@ -84,6 +84,7 @@ const char* layerName(Layer layer);
 struct LayerSources {
   bool rig = false, sensor = false, defects = false, deformed = false;
   void add(const Scene& scene);
+  bool provides(LayerSource source) const;
 };
 void checkLayersProducible(const LayerSet& layers, const LayerSources& sources, const std::string& option = "--layers");
 

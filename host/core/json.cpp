@@ -47,6 +47,7 @@ std::string write(const Json::Value& document, bool pretty) {
   builder["precisionType"] = "significant";
   builder["emitUTF8"] = true;  // names and paths as written, not as \u escapes
   builder["enableYAMLCompatibility"] = true;  // "name": value, as people write JSON (not "name" : value)
+  builder["commentStyle"] = "None";  // no comments to keep; with "All" every short array spans lines
   return Json::writeString(builder, document) + "\n";
 }
 

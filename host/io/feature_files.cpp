@@ -25,6 +25,13 @@ Json::Value jsonVector(std::initializer_list<double> values) {
   return out;
 }
 
+// Counts (sizes in pixels, OpenCV's patternSize) stay integers: readers hand them to OpenCV.
+Json::Value jsonIntegers(std::initializer_list<int> values) {
+  Json::Value out(Json::arrayValue);
+  for (int v : values) out.append(v);
+  return out;
+}
+
 std::string csvText(const std::vector<TargetTruth>& targets) {
   std::ostringstream s;
   s << "target,index,row,col,target_x_m,target_y_m,target_z_m,world_x_m,world_y_m,world_z_m,x_px,y_px,"
@@ -48,7 +55,7 @@ std::string jsonText(const PreparedScene& scene, std::size_t camera, int frame,
   d["scene"] = scene.file;
   d["camera"] = c.camera.name;
   d["frame"] = frame;
-  d["image_size"] = jsonVector({double(c.camera.width_px), double(c.camera.height_px)});
+  d["image_size"] = jsonIntegers({c.camera.width_px, c.camera.height_px});
   Json::Value& list = d["targets"] = Json::Value(Json::arrayValue);
   for (const TargetTruth& t : targets) {
     const TargetLayout& l = *t.layout;
@@ -60,7 +67,7 @@ std::string jsonText(const PreparedScene& scene, std::size_t camera, int frame,
     Json::Value target(Json::objectValue);
     target["name"] = t.name;
     target["kind"] = kindName(l.kind);
-    target["pattern_size"] = jsonVector({double(l.perRow), double(l.rows)});
+    target["pattern_size"] = jsonIntegers({l.perRow, l.rows});
     target["asymmetric"] = l.pattern.asymmetric;
     target["spacing_m"] = json::value(l.pattern.spacing_m);
     target["R_camera_from_target"] =

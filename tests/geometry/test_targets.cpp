@@ -168,8 +168,11 @@ TEST_CASE("targets: visibility (occluded, outside the image, behind the camera) 
   REQUIRE(document);
   CHECK(json::countMember(*document, "frame") == 7u);
   const Json::Value& board = (*document)["targets"][0];
+  // Counts are JSON integers (a reader hands them to OpenCV as ints).
+  CHECK(board["pattern_size"][0].type() == Json::intValue);  // written as 11, not 11.0
   CHECK(board["pattern_size"][0].asInt() == 11);
   CHECK(board["pattern_size"][1].asInt() == 2);
+  CHECK((*document)["image_size"][0].type() == Json::intValue);
   const Json::Value& features = board["features"];
   REQUIRE(features.size() == truth[0].features.size());
   // Full precision: every pixel reads back as the same double; the pose maps each feature's target

@@ -122,7 +122,6 @@ inline Object nurbsObject(const std::string& name, const NurbsSurface& surface, 
   Object o;
   o.name = name;
   o.where = {"scene.lua", 7};
-  o.shape.kind = ShapeKind::Nurbs;
   o.shape.where = {"scene.lua", 7};
   o.shape.location_m = location;
   o.shape.nurbs = std::make_shared<NurbsSurface>(surface);

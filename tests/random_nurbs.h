@@ -125,9 +125,8 @@ inline Scene randomNurbsScene(std::uint64_t seed) {
   Object sphere;
   sphere.name = "behind";
   sphere.where = {"random.lua", 9};
-  sphere.shape.kind = ShapeKind::Sphere;
   sphere.shape.where = sphere.where;
-  sphere.shape.radius_m = 0.3;
+  sphere.shape.analytic = shapes::Sphere{0.3};
   sphere.shape.location_m = {0, 0, 0.8};
   sphere.shader.kind = ShaderKind::Lambert;
   sphere.texture.value = 0.5;

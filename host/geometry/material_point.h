@@ -8,7 +8,7 @@
 // other frame, however the object moved or deformed (a NURBS whose control points move, a sphere
 // whose radius grows, a rectangle whose size changes). One exception: a Plane repeats its texture
 // tile, so its (u, v) are the same on every tile; its material coordinates are the unwrapped
-// ones, u = x/w + 1/2, v = y/h + 1/2 of the plane's own frame (shapes.h), without the fract.
+// ones, u = x/w + 1/2, v = y/h + 1/2 of the plane's own frame (host/shapes/plane.h), without the fract.
 //
 // Everything here is double precision and evaluates the shape analytically (a NURBS by de Boor's
 // algorithm on the scene's surface): a world point computed from material coordinates lies on the
@@ -25,7 +25,8 @@ namespace dicsynth {
 dvec2 materialCoordinates(const PreparedObject& o, dvec2 uv, dvec3 world_m);
 
 // The world position of the material point with coordinates `material` on object `o` (in the
-// frame `o` was prepared for). Empty only for a Triangle whose vertex uv are collinear (no inverse).
+// frame `o` was prepared for). Empty for a Triangle whose vertex uv are collinear (no inverse) and for a (u, v) of a
+// Cylinder cap's atlas cell outside its disk (no material there).
 // Coordinates slightly outside [0, 1]² (a renderer's rounding) extrapolate the analytic shapes and
 // are clamped on a NURBS, whose evaluation stops at its knot domain.
 std::optional<dvec3> worldPointOfMaterial(const PreparedObject& o, dvec2 material);

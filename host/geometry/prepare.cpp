@@ -70,27 +70,6 @@ PreparedCamera prepareCamera(const Camera& sceneCamera, int downscale) {
   return pc;
 }
 
-ShapeGeometry<double> shapeGeometry(const Shape& s) {
-  ShapeGeometry<double> g;
-  g.kind = int(s.kind);
-  switch (s.kind) {
-    case ShapeKind::Sphere: g.radius = s.radius_m; break;
-    case ShapeKind::Box: g.halfSize = s.size_m * 0.5; break;
-    case ShapeKind::Rectangle:
-    case ShapeKind::Plane: g.extent = dvec2(s.size_m); break;
-    case ShapeKind::Nurbs: break;  // prepared by prepareNurbsShape (it owns the data)
-    case ShapeKind::Triangle:
-      g.p0 = s.vertices_m[0];
-      g.p1 = s.vertices_m[1];
-      g.p2 = s.vertices_m[2];
-      g.uv0 = s.vertexUV[0];
-      g.uv1 = s.vertexUV[1];
-      g.uv2 = s.vertexUV[2];
-      break;
-  }
-  return g;
-}
-
 // Bézier patches, sub-patches and BVH of a Shape.Nurbs; its (u, v) are the normalized knot domain.
 // The control points are re-centred on the middle of their bounds, `centre` (returned), which the
 // caller puts back into the object's transform: a specimen placed 1 km from the origin by its
@@ -237,8 +216,8 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     PreparedObject o;
     o.name = so.name;
     o.id = std::uint32_t(i + 1);
-    o.geometry = shapeGeometry(so.shape);
-    if (so.shape.kind == ShapeKind::Nurbs) {
+    o.geometry.analytic = so.shape.analytic;
+    if (so.shape.kind() == ShapeKind::Nurbs) {
       o.nurbs = prepareNurbsShape(so.shape, o.shapeOffset_m);
       o.surface = so.shape.nurbs;
       o.deformation = so.shape.deformation;
@@ -289,7 +268,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   for (const PreparedTexture& t : ps.textures)
     ps.features.quinticTextures |= t.interpolation == Interpolation::Quintic;
   for (const PreparedObject& o : ps.objects) {
-    ps.features.shapeKinds |= 1u << o.geometry.kind;
+    ps.features.shapeKinds |= 1u << int(o.geometry.kind());
     ps.features.speckleTextures |= o.textureKind == TextureKind::Speckle;
     ps.features.shaderKinds |= 1u << int(o.shader);
     if (o.nurbs)

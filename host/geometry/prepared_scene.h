@@ -30,7 +30,7 @@ struct PreparedCamera {
 struct PreparedObject {
   std::string name;
   std::uint32_t id = 0;  // objectId in the outputs (index + 1)
-  ShapeGeometry<double> geometry;  // for a NURBS shape, geometry.nurbs == nurbs.get()
+  ShapeGeometry geometry;  // for a NURBS shape, geometry.nurbs == nurbs.get()
   std::shared_ptr<const PreparedNurbs> nurbs;  // Bézier patches, sub-patches, BVH (Nurbs only)
   std::shared_ptr<const NurbsSurface> surface; // the scene's surface (Nurbs only; scene shape frame)
   std::shared_ptr<const Deformation> deformation;  // Nurbs.deform only: S, d, the fit (scene.h)

@@ -45,7 +45,7 @@ using hreal4 = df64x4;
   static_assert(offsetof(ns::GpuCamera, rational0) == 6 * H4 + 32);                        \
   static_assert(offsetof(ns::GpuCamera, lens) == 8 * H4 + 32);                             \
   static_assert(sizeof(ns::GpuObject) == OBJECT);                                          \
-  static_assert(offsetof(ns::GpuObject, shape0) == 4 * H4);                                \
+  static_assert(offsetof(ns::GpuObject, shape) == 4 * H4);                                       \
   static_assert(offsetof(ns::GpuObject, shading) == 9 * H4);                               \
   static_assert(offsetof(ns::GpuObject, material) == 9 * H4 + R4);                         \
   static_assert(offsetof(ns::GpuObject, kinds) == 9 * H4 + 2 * R4);                        \

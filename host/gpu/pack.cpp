@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <variant>
 
 #include "camera/sampling.h"
 #include "core/error.h"
@@ -55,21 +57,21 @@ typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
   for (int row = 0; row < 4; ++row)
     g.objectFromWorld[row] = h4<Layout>(objectFromRelative[0][row], objectFromRelative[1][row],
                                         objectFromRelative[2][row], objectFromRelative[3][row]);
-  const auto& s = o.geometry;
-  switch (s.kind) {
-    case DS_SHAPE_SPHERE: g.shape0 = h4<Layout>(s.radius); break;
-    case DS_SHAPE_BOX: g.shape0 = h4<Layout>(s.halfSize.x, s.halfSize.y, s.halfSize.z); break;
-    case DS_SHAPE_PLANE:
-    case DS_SHAPE_RECTANGLE: g.shape0 = h4<Layout>(s.extent.x, s.extent.y); break;
-    case DS_SHAPE_TRIANGLE:
-      g.shape0 = h4<Layout>(s.p0.x, s.p0.y, s.p0.z);
-      g.shape1 = h4<Layout>(s.p1.x, s.p1.y, s.p1.z);
-      g.shape2 = h4<Layout>(s.p2.x, s.p2.y, s.p2.z);
-      g.shape3 = h4<Layout>(s.uv0.x, s.uv0.y, s.uv1.x, s.uv1.y);
-      g.shape4 = h4<Layout>(s.uv2.x, s.uv2.y);
-      break;
-    case DS_SHAPE_NURBS: g.shape0 = h4<Layout>(o.nurbs->size); break;  // extra.x: packFrame
-    default: DS_CHECK(false, "unknown shape kind " + std::to_string(s.kind));
+  if (o.nurbs) {
+    g.shape[0] = h4<Layout>(o.nurbs->size);  // the root node: extra.x (packFrame)
+  } else {
+    // The kind's GPU struct, member k in slot k (host/shapes/shape_hit.h).
+    std::visit(
+        [&](const auto& shape) {
+          const auto gpu = shape.gpu();
+          constexpr int kSlots = shapes::gpuSlotCount<decltype(gpu)>();
+          static_assert(kSlots <= DS_SHAPE_SLOTS, "a shape's GPU struct fits GpuObject.shape");
+          const auto slots = std::bit_cast<std::array<dvec4, kSlots>>(gpu);
+          for (int k = 0; k < kSlots; ++k)
+            g.shape[k] = h4<Layout>(slots[std::size_t(k)].x, slots[std::size_t(k)].y, slots[std::size_t(k)].z,
+                                    slots[std::size_t(k)].w);
+        },
+        o.geometry.analytic);
   }
   g.shading = r4<Layout>(o.albedo, o.textureValue);
   switch (o.shader) {  // lib/shading.glsl reads these per shader kind
@@ -79,7 +81,7 @@ typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
     case ShaderKind::BlinnPhong: g.material = r4<Layout>(o.specular, double(o.shininess)); break;
     case ShaderKind::Ggx: g.material = r4<Layout>(0, o.roughness, o.f0); break;
   }
-  g.kinds = {s.kind, int(o.shader), o.textureIndex, int(o.id)};
+  g.kinds = {int(o.geometry.kind()), int(o.shader), o.textureIndex, int(o.id)};
   const TargetTexture& t = o.targetTexture;
   g.target0 = h4<Layout>(t.origin_uv.x, t.origin_uv.y, t.cell_uv.x, t.cell_uv.y);
   g.target1 = h4<Layout>(t.radiusSquared_cells, t.dark, t.light);

@@ -15,6 +15,7 @@
 #include "model/sensor_model.h"
 #include "nurbs/nurbs_fit.h"
 #include "nurbs/nurbs_surface.h"
+#include "shapes/registry.h"
 #include "shared/kinds.h"
 #include "texture/analytic_speckle.h"
 #include "texture/bspline.h"
@@ -57,13 +58,6 @@ struct Camera {
 };
 
 // A shape in its own frame; `location` places that frame's origin in the object's frame.
-// Per-kind parameters (others unused):
-//   Sphere:    radius_m
-//   Box:       size_m (full edge lengths x, y, z)
-//   Rectangle: size_m.x, size_m.y (in the local xy-plane)
-//   Plane:     size_m.x, size_m.y = texture tile size (u, v repeat every tile)
-//   Triangle:  vertices_m[3] (relative to location), vertexUV[3]
-//   Nurbs:     nurbs (control points relative to location)
 // How a Nurbs.deform surface was made (scene/deform_constructors.cpp): the EXR header records it,
 // the fieldError layer evaluates the requested field again at each pixel's material point.
 struct Deformation {
@@ -78,16 +72,15 @@ struct Deformation {
 // N control points; K refinements" (numbers with 17 significant digits).
 std::string describeDeformation(const Deformation& deformation);
 
+// A shape: one analytic kind with its parameters (host/shapes/<kind>.h), or a NURBS surface.
 struct Shape {
-  ShapeKind kind = ShapeKind::Sphere;
   SourceLoc where;
-  dvec3 location_m{0, 0, 0};
-  double radius_m = 0;
-  dvec3 size_m{0, 0, 0};
-  std::array<dvec3, 3> vertices_m{};
-  std::array<dvec2, 3> vertexUV{dvec2{0, 0}, dvec2{1, 0}, dvec2{0, 1}};
-  std::shared_ptr<const NurbsSurface> nurbs;  // validated (validateNurbs)
+  dvec3 location_m{0, 0, 0};  // the shape frame's origin in the object frame
+  shapes::Analytic analytic;  // the shape unless `nurbs` is set
+  std::shared_ptr<const NurbsSurface> nurbs;  // Shape.Nurbs: validated (validateNurbs), control
+                                              // points relative to location
   std::shared_ptr<const Deformation> deformation;  // Nurbs.deform only: S, d and the fit's report
+  ShapeKind kind() const { return nurbs ? ShapeKind::Nurbs : shapes::kindOf(analytic); }
 };
 
 struct Shader {

@@ -298,7 +298,7 @@ NurbsSurface makeParallelogram(const dvec3& origin, const dvec3& U, const dvec3&
 }
 
 NurbsSurface makeBoxFace(const dvec3& halfSize, const std::string& face, ivec2 degree) {
-  // a(s, t): the face point over halfSize, as geometry/material_point.cpp's boxPoint inverts boxUV.
+  // a(s, t): the face point over halfSize, as Box::pointOfUV inverts Box::atlasUV (host/shapes/box.h).
   std::function<dvec3(double, double)> a;
   if (face == "-z") a = [](double s, double t) { return dvec3(2 * s - 1, 2 * t - 1, -1); };
   else if (face == "+x") a = [](double s, double t) { return dvec3(1, 2 * t - 1, 2 * s - 1); };

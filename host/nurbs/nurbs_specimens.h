@@ -48,8 +48,8 @@ NurbsSurface makeCylinderSegment(const CylinderSegmentSpec& spec);
 // degrees with evenly spaced control points, so the parametrization is exactly this linear one
 // (Rectangle: origin (−w/2, −h/2, 0), U = (w, 0, 0), V = (0, h, 0): the rectangle's own (u, v)).
 NurbsSurface makeParallelogram(const dvec3& origin, const dvec3& U, const dvec3& V, ivec2 degree);
-// Face `face` ("-z", "+x", "+z", "-x", "-y", "+y": the 3 × 2 atlas cells of geometry/shapes.h's
-// boxUV, row by row) of a box of half edge lengths `halfSize`: the parallelogram whose (u, v) are
+// Face `face` ("-z", "+x", "+z", "-x", "-y", "+y": the 3 × 2 atlas cells of host/shapes/box.h's
+// atlasUV, row by row) of a box of half edge lengths `halfSize`: the parallelogram whose (u, v) are
 // the atlas cell's (s, t). Throws InputError for another face name.
 NurbsSurface makeBoxFace(const dvec3& halfSize, const std::string& face, ivec2 degree);
 // The sphere of radius r about the origin with the analytic sphere's poles (v = 0 at −y, 1 at +y)

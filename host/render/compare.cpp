@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "cpu/trace.h"
-#include "model/shape_kinds.h"
+#include "shapes/registry.h"
 #include "render/shading_tolerance.h"
 #include "sensor/sensor.h"
 
@@ -209,7 +209,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
           const dvec3 rayOrigin = chiefRayOrigin(model, a.position_m[i]);
           const dvec3 toHit = a.position_m[i] - rayOrigin;
           const double distance = glm::length(toHit);
-          const bool curved = shapeKindInfo(ShapeKind(scene.objects[obj].geometry.kind)).curved;
+          const bool curved = shapes::shapeKindInfo(scene.objects[obj].geometry.kind()).curved;
           const double cosTheta = conditionedCosine(tol, std::abs(glm::dot(a.normal[i], toHit)) / distance, curved);
           const double D = distance + glm::length(rayOrigin - model.centre) +
                            glm::length(model.centre - objectOrigins[obj]);

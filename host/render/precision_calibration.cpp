@@ -17,6 +17,7 @@
 #include "gpu/renderer.h"
 #include "nurbs/nurbs_specimens.h"
 #include "render/geometric_error.h"
+#include "shapes/registry.h"
 
 namespace dicsynth {
 namespace {
@@ -42,7 +43,6 @@ Scene calibrationScene() {
   plate.curvature_per_m = 6;
   Object specimen;
   specimen.name = "plate";
-  specimen.shape.kind = ShapeKind::Nurbs;
   specimen.shape.location_m = {-0.03, 0, 0.5};
   specimen.shape.nurbs = std::make_shared<NurbsSurface>(scene::makePlate(plate));
   specimen.transform = glm::rotate(dmat4(1.0), 0.4, dvec3(0.2, 1, 0));
@@ -50,8 +50,7 @@ Scene calibrationScene() {
 
   Object ball;
   ball.name = "sphere";
-  ball.shape.kind = ShapeKind::Sphere;
-  ball.shape.radius_m = 0.04;
+  ball.shape.analytic = shapes::Sphere{0.04};
   ball.shape.location_m = {0.05, 0.01, 0.45};
   s.objects.push_back(ball);
   return s;

@@ -195,7 +195,7 @@ int nurbsDeform(lua_State* L) {
   Params p(L, "Nurbs.deform", {"surface", "displacement", "tolerance", "maxControlPoints"});
   const Shape* surface = p.userdata<Shape>("surface", "a NURBS shape (Shape.Nurbs, Nurbs.plate, ...)");
   if (!surface) p.fail("missing required 'surface' (a NURBS shape)");
-  if (surface->kind != ShapeKind::Nurbs || !surface->nurbs) p.fail("'surface' must be a NURBS shape (Shape.Nurbs, Nurbs.plate, ...)");
+  if (surface->kind() != ShapeKind::Nurbs || !surface->nurbs) p.fail("'surface' must be a NURBS shape (Shape.Nurbs, Nurbs.plate, ...)");
   const double tolerance = p.number("tolerance", 1e-9);
   p.require(tolerance > 0, "tolerance", "> 0 (metres)", tolerance);
   const long long budget = p.integer("maxControlPoints").value_or(static_cast<long long>(kMaxNurbsControlPoints));
@@ -239,7 +239,6 @@ int nurbsDeform(lua_State* L) {
                report.controlPoints, report.refinements, deformation->fromCache ? ", reused from an earlier frame" : "",
                function ? (", " + std::to_string(function->calls()) + " field evaluations").c_str() : "");
   Shape shape;
-  shape.kind = ShapeKind::Nurbs;
   shape.where = where;
   shape.location_m = surface->location_m;
   shape.nurbs = std::make_shared<const NurbsSurface>(std::move(fitted));

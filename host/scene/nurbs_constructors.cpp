@@ -16,6 +16,7 @@
 #include "nurbs/nurbs_specimens.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
+#include "shapes/registry.h"
 
 namespace dicsynth::scene {
 
@@ -23,7 +24,6 @@ namespace {
 
 Shape nurbsShape(lua_State* L, const Params& p, NurbsSurface surface) {
   Shape shape;
-  shape.kind = ShapeKind::Nurbs;
   shape.where = LuaSandbox::of(L).here(L);
   shape.location_m = p.vec3("location").value_or(dvec3(0));
   shape.nurbs = std::make_shared<const NurbsSurface>(std::move(surface));
@@ -376,7 +376,7 @@ result keeps the shape's location; its (u, v) are:
                 | from pole to pole (9 × 5 points)         | sphere's (u, v) every 90°, not in between
                 |                                         | (a rational arc is not uniform in angle)
 
-Plane (infinite), Triangle and NURBS shapes have no such form here (a NURBS is already one).
+Other shapes (the infinite Plane, Triangle, Cylinder, ...) have no such form here; a NURBS is already one.
 
   Parameter | Value                  | Default  | Meaning
   ----------+------------------------+----------+--------------------------------------------------
@@ -395,27 +395,27 @@ int nurbsFrom(lua_State* L) {
   if (!shape) p.fail("missing required 'shape' (Shape.Rectangle, Shape.Box, Shape.Sphere)");
   const ivec2 degree = integerPair(p, "degree", "{p, q}", 1, kMaxNurbsDegree, {3, 3});
   const std::optional<std::string> face = p.string("face");
-  if (face && shape->kind != ShapeKind::Box) p.fail("'face' is for a Shape.Box only");
-  if (p.has("degree") && shape->kind == ShapeKind::Sphere) p.fail("'degree' is for a Rectangle or a box face (the sphere is biquadratic)");
+  if (face && shape->kind() != ShapeKind::Box) p.fail("'face' is for a Shape.Box only");
+  if (p.has("degree") && shape->kind() == ShapeKind::Sphere) p.fail("'degree' is for a Rectangle or a box face (the sphere is biquadratic)");
   NurbsSurface surface;
-  switch (shape->kind) {
-    case ShapeKind::Rectangle:
-      surface = makeParallelogram(dvec3(-0.5 * shape->size_m.x, -0.5 * shape->size_m.y, 0), dvec3(shape->size_m.x, 0, 0),
-                                  dvec3(0, shape->size_m.y, 0), degree);
+  switch (shape->kind()) {
+    case ShapeKind::Rectangle: {
+      const dvec2 size = std::get<shapes::Rectangle>(shape->analytic).size_m;
+      surface = makeParallelogram(dvec3(-0.5 * size.x, -0.5 * size.y, 0), dvec3(size.x, 0, 0), dvec3(0, size.y, 0), degree);
       break;
+    }
     case ShapeKind::Box:
       if (!face) p.fail("missing required 'face' for a Shape.Box: \"-z\", \"+x\", \"+z\", \"-x\", \"-y\" or \"+y\"");
-      checked(p, [&] { surface = makeBoxFace(0.5 * shape->size_m, *face, degree); });
+      checked(p, [&] { surface = makeBoxFace(std::get<shapes::Box>(shape->analytic).halfSize(), *face, degree); });
       break;
-    case ShapeKind::Sphere: surface = makeSphereNurbs(shape->radius_m); break;
+    case ShapeKind::Sphere: surface = makeSphereNurbs(std::get<shapes::Sphere>(shape->analytic).radius_m); break;
     case ShapeKind::Plane: p.fail("a Shape.Plane is infinite: use a Shape.Rectangle"); break;
     case ShapeKind::Triangle: p.fail("a Shape.Triangle has no NURBS form here (use Shape.Nurbs with a degenerate patch)"); break;
     case ShapeKind::Nurbs: p.fail("'shape' is already a NURBS surface"); break;
-    default: p.fail("this shape kind has no NURBS form"); break;
+    default: p.fail(std::string("a Shape.") + shapes::shapeKindInfo(shape->kind()).name + " has no NURBS form here"); break;
   }
   checked(p, [&] { validateNurbs(surface); });
   Shape result;
-  result.kind = ShapeKind::Nurbs;
   result.where = LuaSandbox::of(L).here(L);
   result.location_m = shape->location_m;
   result.nurbs = std::make_shared<const NurbsSurface>(std::move(surface));

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "model/shape_kinds.h"
+#include "shapes/registry.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
 
@@ -147,7 +147,7 @@ int objectSimple(lua_State* L) {
   object.where = LuaSandbox::of(L).here(L);
   static const std::string kShapeExpected = [] {
     std::string text = "a Shape (";
-    for (const ShapeKindInfo& k : kShapeKinds) text += std::string("Shape.") + k.name + ", ";
+    for (const shapes::ShapeKindInfo& k : shapes::kShapeKinds) text += std::string("Shape.") + k.name + ", ";
     return text + "Nurbs.plate, Nurbs.cylinderSegment, Nurbs.dogbone)";  // the specimens (nurbs_constructors.cpp)
   }();
   const Shape* shape = p.userdata<Shape>("shape", kShapeExpected.c_str());

@@ -9,6 +9,7 @@
 #include "geometry/targets.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
+#include "shapes/registry.h"
 
 namespace dicsynth::scene {
 
@@ -55,10 +56,9 @@ int pushTarget(lua_State* L, const Params& p, TextureKind kind, TargetPattern pa
 
   Object object;
   object.where = LuaSandbox::of(L).here(L);
-  object.shape.kind = ShapeKind::Rectangle;
   object.shape.where = object.where;
   object.shape.location_m = p.vec3("location").value_or(dvec3(0));
-  object.shape.size_m = dvec3(layout.size_m, 0);
+  object.shape.analytic = shapes::Rectangle{layout.size_m};
   object.texture.kind = kind;
   object.texture.where = object.where;
   object.texture.target = pattern;

@@ -421,7 +421,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   const real3 safeD = real3(abs(d.x) > 1e-30 ? d.x : 1e-30, abs(d.y) > 1e-30 ? d.y : 1e-30,
                             abs(d.z) > 1e-30 ? d.z : 1e-30);
   const real3 invD = 1.0 / safeD;
-  const real scale = h_real(h_x(DS_OBJECT_H(object, shape0)));  // surface size (m)
+  const real scale = h_real(h_x(DS_OBJECT_H(object, shape[0])));  // surface size (m)
   const int rootNode = DS_OBJECT(object, extra).x;
   // Rounding allowance of the ray-frame coordinates: the transform rounds ~4 ε of |P| + |o|, the
   // restriction ~2n ε of the patch's extent; 64 ε of both, with |P| from the root's bounds.

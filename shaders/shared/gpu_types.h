@@ -11,6 +11,7 @@
 // Bytes of the structs that also live in uniform blocks, given the bytes of hreal4 (H4) and real4
 // (R4). std140 lays them out exactly as std430 does: every member is a 16- or 32-byte vector (or an
 // array of 16-byte vectors), so no std140 rounding applies. gpu_layout.h checks both formulas.
+#define DS_SHAPE_SLOTS 5  // hreal4 members of the largest shape GPU struct (Shape.Triangle)
 #define DS_GPU_CAMERA_BYTES(H4, R4) (9 * (H4) + 32)
 #define DS_GPU_OBJECT_BYTES(H4, R4) (12 * (H4) + 2 * (R4) + 128)
 #define DS_GPU_LIGHT_BYTES(H4, R4) (3 * (R4) + 32)
@@ -30,11 +31,9 @@ struct GpuCamera {
 
 struct GpuObject {
   hreal4 objectFromWorld[4];  // rows of the 4x4 homography H⁻¹
-  hreal4 shape0;              // Sphere: radius; Box: half sizes; Rect/Plane: w, h; Triangle: p0
-  hreal4 shape1;              // Triangle: p1
-  hreal4 shape2;              // Triangle: p2
-  hreal4 shape3;              // Triangle: uv0.xy, uv1.xy
-  hreal4 shape4;              // Triangle: uv2.xy
+  // The kind's GPU struct (host/shapes/<kind>.h and shaders/shapes/<kind>.glsl): member k in
+  // shape[k], unused slots 0. Nurbs: shape[0].x = the surface size (m), the root node in extra.x.
+  hreal4 shape[DS_SHAPE_SLOTS];
   real4 shading;             // albedo, constant texture value, 0, 0
   real4 material;            // cpu/shading.h: Phong, BlinnPhong: specular ks, shininess n;
                              // GGX: 0, roughness α, F0 (normal-incidence Fresnel reflectance); 0

@@ -1,5 +1,6 @@
-// Closed lists of kinds, shared by C++ (host) and GLSL (shaders). Adding a kind touches this file,
-// one C++ case, one GLSL case and one test. Values are stored in GPU buffers: never renumber.
+// Closed lists of kinds, shared by C++ (host) and GLSL (shaders). Values are stored in GPU buffers:
+// never renumber. A shape kind has a home (host/shapes/<kind>.h, shaders/shapes/<kind>.glsl) and a
+// row in the registries (host/shapes/registry.h, shaders/lib/shapes.glsl): docs/design.md §7.
 #ifndef DS_SHARED_KINDS_H
 #define DS_SHARED_KINDS_H
 
@@ -9,7 +10,8 @@
 #define DS_SHAPE_PLANE 3
 #define DS_SHAPE_RECTANGLE 4
 #define DS_SHAPE_NURBS 5
-#define DS_SHAPE_COUNT 6
+#define DS_SHAPE_CYLINDER 6
+#define DS_SHAPE_COUNT 7
 
 #define DS_SHADER_CONSTANT 0
 #define DS_SHADER_LAMBERT 1
@@ -44,6 +46,7 @@ enum class ShapeKind : int {
   Plane = DS_SHAPE_PLANE,
   Rectangle = DS_SHAPE_RECTANGLE,
   Nurbs = DS_SHAPE_NURBS,
+  Cylinder = DS_SHAPE_CYLINDER,
 };
 enum class ShaderKind : int {
   Constant = DS_SHADER_CONSTANT,

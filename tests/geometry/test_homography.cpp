@@ -18,8 +18,7 @@ PreparedScene sphereUnder(const dmat4& worldFromObject) {
   PreparedObject o;
   o.name = "sphere";
   o.id = 1;
-  o.geometry.kind = DS_SHAPE_SPHERE;
-  o.geometry.radius = 1;
+  o.geometry.analytic = shapes::Sphere{1};
   o.worldFromObject = worldFromObject;
   o.objectFromWorld = glm::inverse(worldFromObject);
   s.objects.push_back(o);

@@ -14,13 +14,13 @@ namespace {
 // The analytic shapes only look at whether a ray leaves their surface, not at where.
 const LocalHit<double> kSomeOrigin;
 
-LocalHit<double> mustHit(const ShapeGeometry<double>& g, dvec3 o, dvec3 d, bool originOnSurface = false) {
+LocalHit<double> mustHit(const ShapeGeometry& g, dvec3 o, dvec3 d, bool originOnSurface = false) {
   LocalHit<double> hit;
   REQUIRE(intersectShape(g, o, d, 0.0, 1e30, originOnSurface ? &kSomeOrigin : nullptr, hit));
   return hit;
 }
 
-bool hits(const ShapeGeometry<double>& g, dvec3 o, dvec3 d, double sMax = 1e30, bool originOnSurface = false) {
+bool hits(const ShapeGeometry& g, dvec3 o, dvec3 d, double sMax = 1e30, bool originOnSurface = false) {
   LocalHit<double> hit;
   return intersectShape(g, o, d, 0.0, sMax, originOnSurface ? &kSomeOrigin : nullptr, hit);
 }
@@ -30,9 +30,7 @@ constexpr double kEps = 1e-14;  // exact arithmetic up to a few ulps of O(1) val
 }  // namespace
 
 TEST_CASE("shapes: sphere hit, normal and (u, v)") {
-  ShapeGeometry<double> g;
-  g.kind = DS_SHAPE_SPHERE;
-  g.radius = 0.5;
+  ShapeGeometry g{shapes::Sphere{0.5}};
   // Straight on from −z: hits the point facing the default camera, u = 1/2, v = 1/2 (equator).
   auto h = mustHit(g, {0, 0, -2}, {0, 0, 2});
   CHECK(h.s == doctest::Approx(0.75).epsilon(kEps));
@@ -62,9 +60,7 @@ TEST_CASE("shapes: sphere hit, normal and (u, v)") {
 }
 
 TEST_CASE("shapes: sphere shadow rays leaving the surface") {
-  ShapeGeometry<double> g;
-  g.kind = DS_SHAPE_SPHERE;
-  g.radius = 1;
+  ShapeGeometry g{shapes::Sphere{1}};
   const dvec3 p{0, 0, -1};
   // Outwards: the only other root is behind (s = 0 is the origin itself) → no self-occlusion.
   CHECK_FALSE(hits(g, p, {0.3, 0.2, -1}, 1e30, true));
@@ -75,9 +71,7 @@ TEST_CASE("shapes: sphere shadow rays leaving the surface") {
 }
 
 TEST_CASE("shapes: box faces, atlas (u, v) and slabs") {
-  ShapeGeometry<double> g;
-  g.kind = DS_SHAPE_BOX;
-  g.halfSize = {1, 2, 3};
+  ShapeGeometry g{shapes::Box{{2, 4, 6}}};  // half sizes 1, 2, 3
   // Front face −z, its centre → cell (0, 0) centre (1/6, 1/4).
   auto h = mustHit(g, {0, 0, -10}, {0, 0, 1});
   CHECK(h.s == doctest::Approx(7.0));
@@ -119,9 +113,7 @@ TEST_CASE("shapes: box faces, atlas (u, v) and slabs") {
 }
 
 TEST_CASE("shapes: rectangle and plane") {
-  ShapeGeometry<double> g;
-  g.kind = DS_SHAPE_RECTANGLE;
-  g.extent = {0.2, 0.1};
+  ShapeGeometry g{shapes::Rectangle{{0.2, 0.1}}};
   auto h = mustHit(g, {0.05, 0.025, -1}, {0, 0, 1});
   CHECK(h.s == doctest::Approx(1.0));
   CHECK(h.uv.x == doctest::Approx(0.75));
@@ -135,8 +127,7 @@ TEST_CASE("shapes: rectangle and plane") {
   CHECK(h.uv.x == doctest::Approx(0.75));
   CHECK(h.uv.y == doctest::Approx(0.3));
 
-  g.kind = DS_SHAPE_PLANE;
-  g.extent = {0.5, 0.25};
+  g.analytic = shapes::Plane{{0.5, 0.25}};
   h = mustHit(g, {1.3, -0.4, -1}, {0, 0, 1});
   // u = fract(1.3/0.5 + 0.5) = fract(3.1) = 0.1; v = fract(−0.4/0.25 + 0.5) = fract(−1.1) = 0.9.
   CHECK(h.uv.x == doctest::Approx(0.1).epsilon(1e-12));
@@ -144,14 +135,8 @@ TEST_CASE("shapes: rectangle and plane") {
 }
 
 TEST_CASE("shapes: triangle barycentric (u, v)") {
-  ShapeGeometry<double> g;
-  g.kind = DS_SHAPE_TRIANGLE;
-  g.p0 = {0, 0, 1};
-  g.p1 = {1, 0, 1};
-  g.p2 = {0, 1, 1};
-  g.uv0 = {0.1, 0.2};
-  g.uv1 = {0.9, 0.2};
-  g.uv2 = {0.1, 0.8};
+  ShapeGeometry g{shapes::Triangle{{dvec3{0, 0, 1}, dvec3{1, 0, 1}, dvec3{0, 1, 1}},
+                                   {dvec2{0.1, 0.2}, dvec2{0.9, 0.2}, dvec2{0.1, 0.8}}}};
   auto h = mustHit(g, {0.25, 0.5, 0}, {0, 0, 1});
   CHECK(h.s == doctest::Approx(1.0));
   // b1 = 0.25, b2 = 0.5 → uv = 0.25 uv0 + 0.25 uv1 + 0.5 uv2.
@@ -164,18 +149,13 @@ TEST_CASE("shapes: triangle barycentric (u, v)") {
 
 TEST_CASE("shapes: float instantiation agrees with double to float accuracy") {
   // What an fp32 path loses on a grazing-free sphere hit at 0.5 m: a few ε relative.
-  ShapeGeometry<double> gd;
-  gd.kind = DS_SHAPE_SPHERE;
-  gd.radius = 0.1;
-  ShapeGeometry<float> gf;
-  gf.kind = DS_SHAPE_SPHERE;
-  gf.radius = 0.1f;
+  const ShapeGeometry g{shapes::Sphere{0.1}};  // the float path rounds the radius to float
   LocalHit<double> hd;
   LocalHit<float> hf;
   for (double x = -0.08; x <= 0.08; x += 0.01) {
     const dvec3 o{0, 0, 0}, d{x, 0.3 * x, 0.5};
-    REQUIRE(intersectShape(gd, o + dvec3(0, 0, -0.5), d, 0.0, 1e30, nullptr, hd));
-    REQUIRE(intersectShape(gf, glm::vec3(o + dvec3(0, 0, -0.5)), glm::vec3(d), 0.0f, 1e30f, nullptr, hf));
+    REQUIRE(intersectShape(g, o + dvec3(0, 0, -0.5), d, 0.0, 1e30, nullptr, hd));
+    REQUIRE(intersectShape(g, glm::vec3(o + dvec3(0, 0, -0.5)), glm::vec3(d), 0.0f, 1e30f, nullptr, hf));
     // Bound: 8 ε of the values involved (|s| ≈ 0.8, uv ≤ 1), ε = 2^-24.
     CHECK(std::abs(double(hf.s) - hd.s) < 8 * 6e-8);
     CHECK(std::abs(double(hf.uv.x) - hd.uv.x) < 8 * 6e-8);

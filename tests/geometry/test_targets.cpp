@@ -109,7 +109,7 @@ TEST_CASE("targets: scene language, frames and features in the world") {
   const Scene scene = loadScene(path, {});
   REQUIRE(scene.objects.size() == 2);
   const Object& board = scene.objects[0];
-  CHECK(board.shape.kind == ShapeKind::Rectangle);
+  CHECK(board.shape.kind() == ShapeKind::Rectangle);
   CHECK(board.texture.kind == TextureKind::Checkerboard);
   CHECK(board.where.line == 2);
   CHECK(scene.objects[1].texture.target.radius_m == doctest::Approx(0.002 / 4));  // default spacing / 4

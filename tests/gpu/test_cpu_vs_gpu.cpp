@@ -43,7 +43,7 @@ TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
   for (const std::string& file : files) {
     const Scene loaded = loadScene(file, {});
     bool hasNurbs = false;
-    for (const Object& o : loaded.objects) hasNurbs |= o.shape.kind == ShapeKind::Nurbs;
+    for (const Object& o : loaded.objects) hasNurbs |= o.shape.kind() == ShapeKind::Nurbs;
     const PreparedScene scene = prepareScene(loaded, {hasNurbs ? kNurbsDownscale : kDownscale});
     RenderOptions options;
     options.samplesPerPixel = kSpp;

@@ -46,7 +46,7 @@ assert(tostring(Shape.Nurbs { degree = {1, 1}; knotsU = {0, 0, 1, 1}; knotsV = {
 )");
   REQUIRE(scene.objects.size() == 1);
   const Shape& shape = scene.objects[0].shape;
-  CHECK(shape.kind == ShapeKind::Nurbs);
+  CHECK(shape.kind() == ShapeKind::Nurbs);
   CHECK(shape.where.line == 3);
   CHECK(shape.location_m == dvec3(0));
   REQUIRE(shape.nurbs);

@@ -41,7 +41,7 @@ TEST_CASE("nurbs: prepared scene holds the surface, hits follow the object trans
   REQUIRE(o.nurbs != nullptr);
   // The scene shape's frame → world (the prepared surface is re-centred by shapeOffset_m).
   const dmat4 worldFromShape = o.worldFromObject * glm::translate(dmat4(1.0), -o.shapeOffset_m);
-  CHECK(o.geometry.kind == DS_SHAPE_NURBS);
+  CHECK(o.geometry.kind() == ShapeKind::Nurbs);
   CHECK(o.geometry.nurbs == o.nurbs.get());
   CHECK(o.nurbs->subPatches.size() >= 8);
   CHECK((ps.features.shapeKinds & (1u << DS_SHAPE_NURBS)) != 0);

@@ -25,7 +25,7 @@ TEST_CASE("nurbs-from: the sphere's NURBS lies on the sphere, meets its (u, v) e
   double worst = 0;
   for (int k = 0; k < 5000; ++k) worst = std::max(worst, std::abs(glm::length(evaluateNurbs(s, unit(rng), unit(rng)).point) - r));
   CHECK(worst <= 2e-17);  // rounding of a 9-term weighted sum and a division: ~6 ulps of 0.02 m (3.5e-18 m)
-  // The analytic sphere (geometry/shapes.h): u = 1/2 + atan2(x, −z)/2π, v = angle from −y / π.
+  // The analytic sphere (host/shapes/sphere.h): u = 1/2 + atan2(x, −z)/2π, v = angle from −y / π.
   for (int i = 0; i <= 4; ++i)
     for (int j = 1; j <= 1; ++j) {
       const double u = i / 4.0, v = j / 2.0, theta = v * std::numbers::pi, phi = 2 * std::numbers::pi * (u - 0.5);

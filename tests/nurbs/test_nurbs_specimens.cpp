@@ -28,7 +28,7 @@ NurbsSurface loadShape(const TempFolder& dir, const std::string& shape, Shape* o
       {});
   REQUIRE(scene.objects.size() == 1);
   const Shape& s = scene.objects[0].shape;
-  REQUIRE(s.kind == ShapeKind::Nurbs);
+  REQUIRE(s.kind() == ShapeKind::Nurbs);
   REQUIRE(s.nurbs);
   if (out) *out = s;
   return *s.nurbs;
@@ -540,7 +540,7 @@ TEST_CASE("nurbs-lua: scenes/nurbs_plate.lua loads, with -D strain and curvature
   const std::string path = std::string(DS_SOURCE_DIR) + "/scenes/nurbs_plate.lua";
   const Scene flat = loadScene(path, {});
   REQUIRE(flat.objects.size() == 1);
-  REQUIRE(flat.objects[0].shape.kind == ShapeKind::Nurbs);
+  REQUIRE(flat.objects[0].shape.kind() == ShapeKind::Nurbs);
   const NurbsSurface& a = *flat.objects[0].shape.nurbs;
   CHECK(flat.objects[0].texture.kind == TextureKind::File);
   CHECK(std::all_of(a.controlPoints.begin(), a.controlPoints.end(),

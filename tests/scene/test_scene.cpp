@@ -83,9 +83,9 @@ object = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 
   const Object& object = scene.objects[0];
   CHECK(object.name == "object");
   CHECK(object.where.line == 4);
-  CHECK(object.shape.kind == ShapeKind::Sphere);
+  CHECK(object.shape.kind() == ShapeKind::Sphere);
   CHECK(object.shape.where.line == 4);
-  CHECK(object.shape.radius_m == 0.1);
+  CHECK(std::get<shapes::Sphere>(object.shape.analytic).radius_m == 0.1);
   CHECK(object.shape.location_m == dvec3(0, 0, 0.5));
   CHECK(object.shader.kind == ShaderKind::Constant);
   CHECK(object.shader.where.line == 5);
@@ -132,21 +132,21 @@ lamp = Light.Point { position = {1, 2, 3} }
     CHECK(object.texture.kind == TextureKind::Constant);
     CHECK(object.texture.value == 1.0);
   }
-  CHECK(scene.objects[0].shape.kind == ShapeKind::Sphere);
-  CHECK(scene.objects[0].shape.radius_m == 2.0);
+  CHECK(scene.objects[0].shape.kind() == ShapeKind::Sphere);
+  CHECK(std::get<shapes::Sphere>(scene.objects[0].shape.analytic).radius_m == 2.0);
   CHECK(scene.objects[0].shader.kind == ShaderKind::Constant);
-  CHECK(scene.objects[1].shape.kind == ShapeKind::Box);
-  CHECK(scene.objects[1].shape.size_m == dvec3(1, 2, 3));
+  CHECK(scene.objects[1].shape.kind() == ShapeKind::Box);
+  CHECK(std::get<shapes::Box>(scene.objects[1].shape.analytic).size_m == dvec3(1, 2, 3));
   CHECK(scene.objects[1].shader.kind == ShaderKind::Lambert);
-  CHECK(scene.objects[2].shape.kind == ShapeKind::Rectangle);
-  CHECK(scene.objects[2].shape.size_m == dvec3(4, 5, 0));
-  CHECK(scene.objects[3].shape.kind == ShapeKind::Plane);
-  CHECK(scene.objects[3].shape.size_m == dvec3(1, 1, 0));
-  CHECK(scene.objects[4].shape.kind == ShapeKind::Triangle);
-  CHECK(scene.objects[4].shape.vertices_m[1] == dvec3(1, 0, 0));
-  CHECK(scene.objects[4].shape.vertexUV[0] == dvec2(0, 0));
-  CHECK(scene.objects[4].shape.vertexUV[1] == dvec2(1, 0));
-  CHECK(scene.objects[4].shape.vertexUV[2] == dvec2(0, 1));
+  CHECK(scene.objects[2].shape.kind() == ShapeKind::Rectangle);
+  CHECK(std::get<shapes::Rectangle>(scene.objects[2].shape.analytic).size_m == dvec2(4, 5));
+  CHECK(scene.objects[3].shape.kind() == ShapeKind::Plane);
+  CHECK(std::get<shapes::Plane>(scene.objects[3].shape.analytic).tileSize_m == dvec2(1, 1));
+  CHECK(scene.objects[4].shape.kind() == ShapeKind::Triangle);
+  CHECK(std::get<shapes::Triangle>(scene.objects[4].shape.analytic).vertices_m[1] == dvec3(1, 0, 0));
+  CHECK(std::get<shapes::Triangle>(scene.objects[4].shape.analytic).vertexUV[0] == dvec2(0, 0));
+  CHECK(std::get<shapes::Triangle>(scene.objects[4].shape.analytic).vertexUV[1] == dvec2(1, 0));
+  CHECK(std::get<shapes::Triangle>(scene.objects[4].shape.analytic).vertexUV[2] == dvec2(0, 1));
 
   REQUIRE(scene.lights.size() == 1);
   CHECK(scene.lights[0].name == "lamp");
@@ -200,35 +200,35 @@ l2 = Light.Point { position = {0, 1, 0}; intensity = {1, 2, 3} }
   const Object& a = scene.objects[0];
   CHECK(a.name == "a");
   CHECK(a.shape.location_m == dvec3(1, 2, 3));
-  CHECK(a.shape.radius_m == 0.5);
+  CHECK(std::get<shapes::Sphere>(a.shape.analytic).radius_m == 0.5);
   CHECK(a.shader.kind == ShaderKind::Lambert);
   CHECK(a.shader.color == dvec3(0.25));
   CHECK(a.texture.kind == TextureKind::Constant);
   CHECK(a.texture.value == 0.75);
   CHECK(a.transform == glm::scale(dmat4(1.0), dvec3(2)));
   const Object& b = scene.objects[1];
-  CHECK(b.shape.kind == ShapeKind::Box);
+  CHECK(b.shape.kind() == ShapeKind::Box);
   CHECK(b.shape.location_m == dvec3(-1, 0, 1));
   CHECK(b.texture.kind == TextureKind::File);
   CHECK(b.texture.path == (dir.path() / "textures/s.png").string());
   CHECK(b.transform == glm::scale(dmat4(1.0), dvec3(1, 2, 3)));
   const Object& p = scene.objects[2];
   CHECK(p.name == "p");
-  CHECK(p.shape.kind == ShapeKind::Plane);
-  CHECK(p.shape.size_m == dvec3(0.05, 0.02, 0));
+  CHECK(p.shape.kind() == ShapeKind::Plane);
+  CHECK(std::get<shapes::Plane>(p.shape.analytic).tileSize_m == dvec2(0.05, 0.02));
   CHECK(p.shape.location_m == dvec3(0, 0, 5));
   const Object& r = scene.objects[3];
-  CHECK(r.shape.kind == ShapeKind::Rectangle);
-  CHECK(r.shape.size_m == dvec3(0.2, 0.1, 0));
+  CHECK(r.shape.kind() == ShapeKind::Rectangle);
+  CHECK(std::get<shapes::Rectangle>(r.shape.analytic).size_m == dvec2(0.2, 0.1));
   CHECK(r.shape.location_m == dvec3(0, 0, 2));
   const Object& t = scene.objects[4];
-  CHECK(t.shape.kind == ShapeKind::Triangle);
-  CHECK(t.shape.vertices_m[0] == dvec3(0, 0, 1));
-  CHECK(t.shape.vertices_m[1] == dvec3(2, 0, 1));
-  CHECK(t.shape.vertices_m[2] == dvec3(0, 3, 1));
-  CHECK(t.shape.vertexUV[0] == dvec2(0.5, 0.5));
-  CHECK(t.shape.vertexUV[1] == dvec2(1, 0.5));
-  CHECK(t.shape.vertexUV[2] == dvec2(0.5, 1));
+  CHECK(t.shape.kind() == ShapeKind::Triangle);
+  CHECK(std::get<shapes::Triangle>(t.shape.analytic).vertices_m[0] == dvec3(0, 0, 1));
+  CHECK(std::get<shapes::Triangle>(t.shape.analytic).vertices_m[1] == dvec3(2, 0, 1));
+  CHECK(std::get<shapes::Triangle>(t.shape.analytic).vertices_m[2] == dvec3(0, 3, 1));
+  CHECK(std::get<shapes::Triangle>(t.shape.analytic).vertexUV[0] == dvec2(0.5, 0.5));
+  CHECK(std::get<shapes::Triangle>(t.shape.analytic).vertexUV[1] == dvec2(1, 0.5));
+  CHECK(std::get<shapes::Triangle>(t.shape.analytic).vertexUV[2] == dvec2(0.5, 1));
   CHECK(t.shape.location_m == dvec3(1, 1, 1));
   CHECK(t.where.line == 13);
   CHECK(t.shape.where.line == 13);
@@ -354,7 +354,7 @@ ball = Object.Simple { shape = Shape.Sphere { radius = radius };
 )",
                                params);
   REQUIRE(scene.objects.size() == 1);
-  CHECK(scene.objects[0].shape.radius_m == 0.25);
+  CHECK(std::get<shapes::Sphere>(scene.objects[0].shape.analytic).radius_m == 0.25);
   CHECK(scene.objects[0].texture.path == (dir.path() / "tex.png").string());
 }
 
@@ -365,10 +365,10 @@ TEST_CASE("scene: defines are served until the scene assigns the name") {
   // The usual idiom: a default that -D overrides.
   Scene scene = loadBody(
       dir, "r = r or 0.1\nb = Object.Simple { shape = Shape.Sphere { radius = r } }\n", params);
-  CHECK(scene.objects.at(0).shape.radius_m == 0.5);
+  CHECK(std::get<shapes::Sphere>(scene.objects.at(0).shape.analytic).radius_m == 0.5);
   scene =
       loadBody(dir, "r = r or 0.1\nb = Object.Simple { shape = Shape.Sphere { radius = r } }\n");
-  CHECK(scene.objects.at(0).shape.radius_m == 0.1);
+  CHECK(std::get<shapes::Sphere>(scene.objects.at(0).shape.analytic).radius_m == 0.1);
 }
 
 TEST_CASE("scene: frame") {
@@ -376,10 +376,10 @@ TEST_CASE("scene: frame") {
   const std::string body =
       "assert(math.type(frame) == 'integer')\n"
       "b = Object.Simple { shape = Shape.Sphere { radius = 1 + frame } }\n";
-  CHECK(loadBody(dir, body).objects.at(0).shape.radius_m == 1.0);  // default frame 0
+  CHECK(std::get<shapes::Sphere>(loadBody(dir, body).objects.at(0).shape.analytic).radius_m == 1.0);  // default frame 0
   SceneParams params;
   params.frame = 7;
-  CHECK(loadBody(dir, body, params).objects.at(0).shape.radius_m == 8.0);
+  CHECK(std::get<shapes::Sphere>(loadBody(dir, body, params).objects.at(0).shape.analytic).radius_m == 8.0);
 }
 
 TEST_CASE("scene: globals are collected and sorted by name") {
@@ -411,7 +411,7 @@ shapeOnly = Shape.Sphere { radius = 97 }
   for (std::size_t i = 0; i < 6; ++i) {
     INFO("objectId " << i + 1);  // objectId = index + 1
     CHECK(scene.objects[i].name == names[i]);
-    CHECK(scene.objects[i].shape.radius_m == radii[i]);
+    CHECK(std::get<shapes::Sphere>(scene.objects[i].shape.analytic).radius_m == radii[i]);
   }
   CHECK(scene.objects[2].where.line == 9);
 }
@@ -430,8 +430,8 @@ assert(load == nil and loadfile == nil and dofile == nil and require == nil)
 assert(collectgarbage == nil and string.dump == nil)
 r = Object.Simple { shape = Shape.Sphere { radius = math.random() } }
 )";
-  const double first = loadBody(dir, body).objects.at(0).shape.radius_m;
-  const double second = loadBody(dir, body).objects.at(0).shape.radius_m;
+  const double first = std::get<shapes::Sphere>(loadBody(dir, body).objects.at(0).shape.analytic).radius_m;
+  const double second = std::get<shapes::Sphere>(loadBody(dir, body).objects.at(0).shape.analytic).radius_m;
   CHECK(first == second);  // same scene, same numbers
   CHECK(first > 0);
   CHECK(first < 1);

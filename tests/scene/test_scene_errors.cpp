@@ -9,6 +9,7 @@
 
 #include "scene/scene.h"
 #include "scene_test_util.h"
+#include "shapes/registry.h"
 
 using namespace dicsynth;
 using dicsynth::test::kCameraLine;
@@ -88,10 +89,12 @@ TEST_CASE("scene: wrong types, missing and non-finite values") {
       "o = Object.Simple { shape = Shape.Sphere { radius = 1 };\n"
       "  shader = Shape.Sphere { radius = 2 } }\n",
       1, "Object.Simple: 'shader' must be a Shader (Shader.Constant, Shader.Lambert, Shader.Phong, Shader.BlinnPhong, Shader.GGX), got Shape");
+  std::string shapeKinds;  // every kind of the registry (host/shapes/registry.h), in number order
+  for (const shapes::ShapeKindInfo& k : shapes::kShapeKinds) shapeKinds += std::string("Shape.") + k.name + ", ";
+  CHECK(shapeKinds.rfind("Shape.Sphere, Shape.Box, Shape.Triangle, Shape.Plane, Shape.Rectangle, Shape.Nurbs, ", 0) == 0);
   checkError(dir, "o = Object.Simple { shape = 1 }\n", 1,
-             "Object.Simple: 'shape' must be a Shape (Shape.Sphere, Shape.Box, Shape.Triangle, "
-             "Shape.Plane, Shape.Rectangle, Shape.Nurbs, Nurbs.plate, Nurbs.cylinderSegment, "
-             "Nurbs.dogbone), got number");
+             "Object.Simple: 'shape' must be a Shape (" + shapeKinds +
+                 "Nurbs.plate, Nurbs.cylinderSegment, Nurbs.dogbone), got number");
   checkError(dir, "o = Object.Simple { shader = Shader.Lambert {} }\n", 1,
              "Object.Simple: missing required 'shape'");
   checkError(dir, "t = Shape.Triangle { vertices = {{0,0,0}, {1,0,0}, {0,'1',0}} }\n", 1,

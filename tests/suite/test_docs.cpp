@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "render/layers.h"
+#include "shapes/registry.h"
 #include "run_cli.h"
 
 using namespace dicsynth;
@@ -172,4 +173,30 @@ TEST_CASE("docs: the output-layer table of docs/outputs.md is the layer schema's
       if (c.name) expected.emplace_back(c.name);
     CHECK(rows[i].second == expected);
   }
+}
+
+TEST_CASE("docs: every shape kind of the registry is in the scene language's table and the (u, v) table") {
+  // host/shapes/registry.h lists the kinds; docs/scene-language.md's "analytic shapes" row names
+  // each constructor and its keys, docs/cameras.md's (u, v) table has a row per kind.
+  auto read = [](const char* name) {
+    std::ifstream in(std::string(DS_SOURCE_DIR) + "/docs/" + name);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  const std::string language = read("scene-language.md"), cameras = read("cameras.md");
+  const std::size_t rowStart = language.find("| analytic shapes |");
+  REQUIRE(rowStart != std::string::npos);
+  const std::string row = language.substr(rowStart, language.find('\n', rowStart) - rowStart);
+  shapes::forEachAnalyticKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    const std::string name = std::string("Shape.") + Kind::kName;
+    INFO(name);
+    CHECK(row.find("`" + name + "`") != std::string::npos);
+    for (const char* key : Kind::kKeys) {
+      INFO(key);
+      CHECK(row.find(key) != std::string::npos);
+    }
+    CHECK(cameras.find("| `" + name + " {") != std::string::npos);
+  });
 }

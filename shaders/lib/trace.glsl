@@ -63,7 +63,10 @@ void ds_hit_attributes(int object, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hre
   hreal s;
   hreal3 point;
   real3 normal;
-  if (DS_HAS_SHAPE(DS_SHAPE_NURBS) && nurbs)
+  // `nurbs` is a literal at every call site (ds_winner_attributes, which asked ds_is_nurbs): after
+  // inlining, glslc keeps one of the two branches per site, not both (a condition on the
+  // specialization constant would keep both, and every copy compiles on every pipeline creation).
+  if (nurbs)
     ds_nurbs_attributes(found, oo, od, s, point, normal, hit.uv);
   else
     ds_analytic_attributes(object, oo, od, found, s, point, normal, hit.uv);

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -21,6 +22,7 @@
 #include "gpu/context.h"
 #include "gpu/renderer.h"
 #include "io/junit.h"
+#include "model/layers.h"
 #include "render/compare.h"
 
 namespace dicsynth::cli {
@@ -78,6 +80,14 @@ std::string toJson(const CompareItem& item, const RenderResult& cpu, const Rende
     c["max_uv_diff"] = json::value(d.maxUvDiff);
     c["max_P_diff_m"] = json::value(d.maxPositionDiff_m);
     c["max_Z_diff_m"] = json::value(d.maxDepthDiff_m);
+    c["max_N_diff"] = json::value(d.maxNormalDiff);
+    // Per layer of the schema: how it is judged, and the statistic that judges the traced ones.
+    Json::Value& layers = c["layers"] = Json::Value(Json::objectValue);
+    for (const LayerSpec& spec : layerSpecs()) {
+      Json::Value& l = layers[spec.name] = Json::Value(Json::objectValue);
+      l["compared"] = comparisonName(spec.compare);
+      if (const std::optional<double> v = layerDifference(d, spec.layer)) l["difference"] = json::value(*v);
+    }
     c["max_geometry_ratio"] = json::value(d.maxGeometryRatio);
     c["geometry_outliers"] = Json::UInt64(d.geometryOutliers);
     Json::Value& wrong = c["wrong_nearest_hits"] = Json::Value(Json::objectValue);
@@ -106,11 +116,11 @@ std::string cameraText(const CameraDifference& d, const Tolerances& tol) {
   return format(
       "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, over tolerance %.3g: %zu px (%zu off edges);"
       " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px (%zu off edges); max |duv| %.3g,"
-      " max |dP| %.3g m, max |dZ| %.3g m; worst error/bound %.3g, over bound: %zu px\n"
+      " max |dP| %.3g m, max |dZ| %.3g m, max |dN| %.3g; worst error/bound %.3g, over bound: %zu px\n"
       "    wrong nearest hits: %zu px (miss %zu, extra hit %zu, other object %zu, farther root %zu, nearer root %zu)\n",
       d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff, tol.radiance,
       d.radianceOutliers, d.radianceOutliersOffEdge, d.pixelsDiffering, d.objectIdMismatches,
-      d.objectIdMismatchesOffEdge, d.maxUvDiff, d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxGeometryRatio,
+      d.objectIdMismatchesOffEdge, d.maxUvDiff, d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxNormalDiff, d.maxGeometryRatio,
       d.geometryOutliers, d.wrongNearestHits(), d.wrongMiss, d.wrongExtraHit, d.wrongOtherObject, d.wrongFartherRoot,
       d.wrongNearerRoot);
 }

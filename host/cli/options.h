@@ -15,7 +15,7 @@ void addRenderArgs(CLI::App& app, RenderArgs& args);
 // --exr-compression: how the ground-truth EXR is compressed (render, sweep).
 void addExrCompressionOption(CLI::App& app, std::string& compression);
 
-// --layers: which outputs are computed and written (render, sweep; render/layers.h).
+// --layers: which outputs are computed and written (render, sweep; model/layers.h).
 void addLayersOption(CLI::App& app, std::string& layers);
 
 // --sweep, --random, --random-seed (sweep/sweep_points.h). `effect` ends the --sweep help text: what

@@ -1,7 +1,7 @@
 // One camera's output pair: the sensor image (TIFF) and its ground truth (OpenEXR).
 //
 // Ground-truth EXR, one part, scanline, zip-compressed (lossless). Its channels, per layer, with
-// their names and types: the layer schema (render/layers.cpp); their meanings, units and which
+// their names and types: the layer schema (model/layers.cpp); their meanings, units and which
 // pixels they refer to: docs/outputs.md. Background pixels hold NaN in Z, P, N and uv (and in disp,
 // flow, disparity where undefined). OpenEXR stores channels sorted by name, so a reader sees them
 // in the file's order (OIIO: Y, Z, mask, objectId, N.*, P.*, uv.*): find them by name.
@@ -100,7 +100,7 @@ ExrChannel uintChannel(std::string name, Get get) {
 }
 
 // The channels of the file: the backend's layers, then the derived ones that `truth` holds, then the
-// sensor's; names and types from the layer schema (render/layers.h), in its order per layer.
+// sensor's; names and types from the layer schema (model/layers.h), in its order per layer.
 std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth* truth,
                                     const SensorImage* sensor, const LayerSet& layers) {
   std::vector<ExrChannel> ch;

@@ -9,7 +9,7 @@
 #include "model/render_result.h"
 #include "model/scene.h"
 #include "render/ground_truth.h"
-#include "render/layers.h"
+#include "model/layers.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth {
@@ -28,7 +28,7 @@ struct OutputInfo {
   // OpenEXR compression of the ground truth (kExrCompressions); every one is lossless for float32
   // and uint32 channels. Only size and writing time differ (README, "Output files").
   std::string exrCompression = "zip";
-  // What is written (--layers): the TIFF with `image`, the EXR's channels by layer (render/layers.h).
+  // What is written (--layers): the TIFF with `image`, the EXR's channels by layer (model/layers.h).
   LayerSet layers = LayerSet::all();
 };
 

@@ -19,7 +19,7 @@
 #include "job/render_args.h"
 #include "model/render_result.h"
 #include "render/ground_truth.h"
-#include "render/layers.h"
+#include "model/layers.h"
 #include "sensor/sensor.h"
 
 namespace dicsynth {
@@ -66,7 +66,7 @@ struct RenderJob {
   bool verbose = true;            // print one line per written camera and the calibration files
   std::string progressLabel;      // prefix of the terminal progress (render: "rendering"); "" = none
   std::string exrCompression = "zip";  // --exr-compression (io/outputs.h, kExrCompressions)
-  LayerSet layers = LayerSet::all();   // --layers (render/layers.h)
+  LayerSet layers = LayerSet::all();   // --layers (model/layers.h)
   bool preview = false;           // --preview: PNGs of each EXR into <outputDir>/preview (io/preview.h)
 };
 

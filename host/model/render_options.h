@@ -46,11 +46,11 @@ struct RenderOptions {
   int frame = 0;
   Precision precision = Precision::Fp32;  // GPU only; the CPU reference is always double
   // false: the GPU backend hands back only radiance and objectId (--layers without P, N, uv, depth
-  // or the layers derived from them: render/layers.h); the ground-truth vectors of CameraImage stay
+  // or the layers derived from them: model/layers.h); the ground-truth vectors of CameraImage stay
   // empty. The CPU reference computes them anyway (they are its trace).
   bool geometry = true;
   // false: no sample ray is traced and CameraImage::radiance is 0 everywhere (--layers without
-  // image, radiance, noise or defects: render/layers.h); only the pixel-centre ground-truth ray is.
+  // image, radiance, noise or defects: model/layers.h); only the pixel-centre ground-truth ray is.
   bool radiance = true;
   // Called from the rendering thread with the fraction of all cameras' pixels done, in [0, 1].
   std::function<void(double)> progress;

@@ -201,6 +201,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
         d.maxPositionDiff_m = worst(d.maxPositionDiff_m, dp);
         d.maxUvDiff = worst(d.maxUvDiff, duv);
         d.maxDepthDiff_m = worst(d.maxDepthDiff_m, std::abs(a.depth_m[i] - b.depth_m[i]));
+        d.maxNormalDiff = worst(d.maxNormalDiff, glm::length(a.normal[i] - b.normal[i]));
         double boundP = tol.position_m, boundUv = tol.uv;
         if (tol.epsilon > 0) {
           // The chief ray starts at the camera centre, or (Orthographic) at the point's foot on the
@@ -239,7 +240,8 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
           }
         }
         if (!(dp <= boundP)) ++(b.depth_m[i] > a.depth_m[i] ? d.wrongFartherRoot : d.wrongNearerRoot);
-        const double ratio = std::max(dp / boundP, duv / boundUv);
+        // Depth is the camera-frame z of the same point: within the position bound too.
+        const double ratio = std::max({dp / boundP, std::abs(a.depth_m[i] - b.depth_m[i]) / boundP, duv / boundUv});
         d.maxGeometryRatio = worst(d.maxGeometryRatio, ratio);
         if (!(ratio <= 1)) ++d.geometryOutliers;
       }
@@ -252,6 +254,19 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
     out.push_back(d);
   }
   return out;
+}
+
+std::optional<double> layerDifference(const CameraDifference& d, Layer layer) {
+  switch (layerSpec(layer).gpu) {
+    case GpuSlot::Radiance: return d.maxRadianceDiff;
+    case GpuSlot::ObjectId: return double(d.objectIdMismatches);
+    case GpuSlot::Position: return d.maxPositionDiff_m;
+    case GpuSlot::Depth: return d.maxDepthDiff_m;
+    case GpuSlot::Uv: return d.maxUvDiff;
+    case GpuSlot::Normal: return d.maxNormalDiff;
+    case GpuSlot::None: break;
+  }
+  return std::nullopt;
 }
 
 bool withinTolerance(const CameraDifference& d, const Tolerances& t) {

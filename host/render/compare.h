@@ -2,10 +2,12 @@
 // Comparison of two renders of the same prepared scene (CPU reference vs GPU), computed in double,
 // and the documented tolerances each GPU precision is held to.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/prepared_scene.h"
+#include "model/layers.h"
 #include "model/render_options.h"
 #include "model/render_result.h"
 
@@ -30,6 +32,7 @@ struct CameraDifference {
   double maxUvDiff = 0;                 // max(|Δu|, |Δv|), u and v taken modulo 1 (periodic seams)
   double maxPositionDiff_m = 0;
   double maxDepthDiff_m = 0;
+  double maxNormalDiff = 0;             // |ΔN| of the unit normals
   double maxGeometryRatio = 0;          // worst |ΔP| or |Δuv| over its per-pixel bound (≤ 1: fine)
   std::size_t geometryOutliers = 0;     // pixels whose P or uv difference exceeds its bound
   // Wrong nearest hits of the pixel-centre ray, by kind, named so that a wrong root shows as one
@@ -81,6 +84,11 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
                                              const RenderResult& test, const Tolerances& tolerances);
 
 bool withinTolerance(const CameraDifference& d, const Tolerances& t);
+
+// The statistic of `d` that judges a layer the GPU returns (by its slot in the layer schema,
+// model/layers.h): the largest difference, or for the object mask the pixels that differ; nothing
+// for the layers derived on the host (judged through the traced ones).
+std::optional<double> layerDifference(const CameraDifference& d, Layer layer);
 
 // The tolerances multiplied by `factor` in (0, 1] (`compare --tolerance-scale`): the radiance and
 // absolute bounds, k (so the conditioned bounds) and the outlier fraction. Stricter only: the

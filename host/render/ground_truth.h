@@ -25,7 +25,7 @@
 #include "core/math.h"
 #include "geometry/prepared_scene.h"
 #include "model/render_result.h"
-#include "render/layers.h"
+#include "model/layers.h"
 #include "render/visibility.h"
 
 namespace dicsynth {

@@ -242,6 +242,7 @@ lamp = Light.Point { position = {0.1, -0.15, 0.1}; intensity = 0.05 }
       if (p == Precision::Fp64) {  // as for every scene of scenes/ (tests/gpu/test_cpu_vs_gpu.cpp)
         CHECK(d.maxRadianceDiff <= 1e-9);
         CHECK(d.maxPositionDiff_m <= 1e-9);
+        CHECK(d.maxNormalDiff <= 1e-9);
         CHECK(d.objectIdMismatches == 0);
       }
     }

@@ -64,6 +64,7 @@ TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
           // The requirement, stated directly.
           CHECK(d.maxRadianceDiff <= 1e-9);
           CHECK(d.maxPositionDiff_m <= 1e-9);
+          CHECK(d.maxNormalDiff <= 1e-9);  // unit normals, computed in double on both sides
           CHECK(d.objectIdMismatches == 0);
         }
       }

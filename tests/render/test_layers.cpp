@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "exr_test_util.h"
 #include "files/image_io.h"
-#include "render/layers.h"
+#include "model/layers.h"
 #include "run_cli.h"
 
 using namespace dicsynth;

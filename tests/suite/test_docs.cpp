@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "render/layers.h"
+#include "model/layers.h"
 #include "shapes/registry.h"
 #include "run_cli.h"
 
@@ -129,14 +129,15 @@ TEST_CASE("docs: every lua and sh snippet of README.md and docs/ runs") {
 
 TEST_CASE("docs: the output-layer table of docs/outputs.md is the layer schema's") {
   // docs/outputs.md lists each --layers name with its file or channels ("P.X/Y/Z" stands for P.X,
-  // P.Y, P.Z); the program's schema is render/layers.cpp. Same names in the same order, the same
+  // P.Y, P.Z); the program's schema is model/layers.cpp. Same names in the same order, the same
   // channels per layer in file order.
   std::ifstream in(std::string(DS_SOURCE_DIR) + "/docs/outputs.md");
   REQUIRE(in);
   std::vector<std::pair<std::string, std::vector<std::string>>> rows;
+  std::vector<std::string> comparisons;  // the last column
   bool inTable = false;
   for (std::string line; std::getline(in, line);) {
-    if (line == "| layer | file or channels | can be produced |") inTable = true;
+    if (line == "| layer | file or channels | can be produced | GPU against CPU (`compare`) |") inTable = true;
     if (!inTable) continue;
     if (line.rfind("|", 0) != 0) break;  // the table's end
     if (line.rfind("| `", 0) != 0) continue;
@@ -162,6 +163,8 @@ TEST_CASE("docs: the output-layer table of docs/outputs.md is the layer schema's
       }
     }
     rows.emplace_back(name, channels);
+    const std::size_t lastBar = line.rfind(" |"), previousBar = line.rfind("| ", lastBar - 1);
+    comparisons.push_back(line.substr(previousBar + 2, lastBar - previousBar - 2));
   }
   REQUIRE(rows.size() == layerSpecs().size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -172,6 +175,7 @@ TEST_CASE("docs: the output-layer table of docs/outputs.md is the layer schema's
     for (const LayerChannel& c : spec.channels)
       if (c.name) expected.emplace_back(c.name);
     CHECK(rows[i].second == expected);
+    CHECK(comparisons[i] == comparisonName(spec.compare));
   }
 }
 

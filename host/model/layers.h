@@ -54,8 +54,9 @@ class LayerSet {
 };
 
 // The schema of the layers: one row per Layer (layers.cpp), which parsing, the backends' needs,
-// the producibility check, the EXR writer's channel names and types (io/outputs.cpp) and the docs'
-// channel tables (tests/suite/test_docs.cpp) all read.
+// the producibility check, the GPU readback (gpu/renderer.cpp), the EXR writer's channel names and
+// types (io/outputs.cpp), the comparison's report (cli/compare.cpp) and the docs' channel tables
+// (tests/suite/test_docs.cpp) all read.
 enum class LayerSource : std::uint8_t {
   Always,    // every camera of every scene
   Rig,       // cameras of a stereo rig (Rig.Stereo)
@@ -63,6 +64,31 @@ enum class LayerSource : std::uint8_t {
   Defects,   // cameras with DefectivePixels
   Deformed,  // frames with a Nurbs.deform surface
 };
+// Where the GPU backend hands a traced value back: a component of render.comp's GpuPixel
+// (shaders/shared/gpu_types.h). The other layers are computed on the host from these.
+enum class GpuSlot : std::uint8_t {
+  None,
+  Radiance,  // uvRadianceId.z: mean radiance over the samples
+  ObjectId,  // uvRadianceId.w: 0 background, else the object's index + 1 (an exact small integer)
+  Position,  // positionDepth.xyz: world P, camera-relative (the camera centre goes back in, in double)
+  Depth,     // positionDepth.w
+  Uv,        // uvRadianceId.xy
+  Normal,    // normal.xyz
+};
+
+// How `dicsynth compare` (render/compare.h) judges a layer of the GPU against the CPU reference.
+enum class Comparison : std::uint8_t {
+  Radiance,  // |ΔL| within the per-pixel radiance bound (shading, texture slope, specular terms)
+  Position,  // |ΔP| within the per-pixel position bound (conditioned on the viewing angle); |ΔZ| reported
+  Uv,        // |Δuv| within the per-pixel uv bound
+  Normal,    // |ΔN| reported; fp64 within 1e-9 (the float variants compute normals in float)
+  Exact,     // equal: every difference is a wrong nearest hit, counted by kind
+  Derived,   // computed on the host in double from P, uv, material points or the camera model: judged
+             // through those
+  Sensor,    // computed on the host from the radiance and the seed: judged through the radiance
+};
+const char* comparisonName(Comparison comparison);  // as docs/outputs.md and compare --json name it
+
 struct LayerChannel {
   const char* name = nullptr;  // EXR channel name
   bool uint32 = false;         // exact 32-bit integers; otherwise float32
@@ -75,6 +101,8 @@ struct LayerSpec {
   bool radiance;         // needs the sample rays (otherwise only the pixel-centre ray is traced)
   LayerSource source;
   const char* without;   // when `source` is missing: why the layer cannot be produced
+  GpuSlot gpu;           // where the GPU backend returns it (None: derived on the host)
+  Comparison compare;    // how the comparison of backends judges it
 };
 const LayerSpec& layerSpec(Layer layer);
 std::span<const LayerSpec> layerSpecs();

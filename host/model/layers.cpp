@@ -1,4 +1,4 @@
-#include "render/layers.h"
+#include "model/layers.h"
 
 #include <iterator>
 
@@ -13,27 +13,33 @@ constexpr LayerChannel F(const char* name) { return {name, false}; }
 constexpr LayerChannel U(const char* name) { return {name, true}; }
 using C = std::array<LayerChannel, 3>;
 constexpr LayerSource A = LayerSource::Always;
+using S = GpuSlot;
+using K = Comparison;
 
 // Rows in the enum's order (checked below).
 constexpr LayerSpec kSpecs[] = {
-    {Layer::Image, "image", C{}, false, true, A, ""},
-    {Layer::Radiance, "radiance", C{F("Y")}, false, true, A, ""},
-    {Layer::Depth, "depth", C{F("Z")}, true, false, A, ""},
-    {Layer::P, "P", C{F("P.X"), F("P.Y"), F("P.Z")}, true, false, A, ""},
-    {Layer::Normal, "normal", C{F("N.X"), F("N.Y"), F("N.Z")}, true, false, A, ""},
-    {Layer::Uv, "uv", C{F("uv.U"), F("uv.V")}, true, false, A, ""},
-    {Layer::Mask, "mask", C{U("objectId"), F("mask")}, false, false, A, ""},
-    {Layer::Disp, "disp", C{F("disp.X"), F("disp.Y"), F("disp.Z")}, true, false, A, ""},
-    {Layer::Flow, "flow", C{F("flow.X"), F("flow.Y"), F("flow.mask")}, true, false, A, ""},
+    {Layer::Image, "image", C{}, false, true, A, "", S::Radiance, K::Radiance},
+    {Layer::Radiance, "radiance", C{F("Y")}, false, true, A, "", S::Radiance, K::Radiance},
+    {Layer::Depth, "depth", C{F("Z")}, true, false, A, "", S::Depth, K::Position},
+    {Layer::P, "P", C{F("P.X"), F("P.Y"), F("P.Z")}, true, false, A, "", S::Position, K::Position},
+    {Layer::Normal, "normal", C{F("N.X"), F("N.Y"), F("N.Z")}, true, false, A, "", S::Normal, K::Normal},
+    {Layer::Uv, "uv", C{F("uv.U"), F("uv.V")}, true, false, A, "", S::Uv, K::Uv},
+    {Layer::Mask, "mask", C{U("objectId"), F("mask")}, false, false, A, "", S::ObjectId, K::Exact},
+    {Layer::Disp, "disp", C{F("disp.X"), F("disp.Y"), F("disp.Z")}, true, false, A, "", S::None, K::Derived},
+    {Layer::Flow, "flow", C{F("flow.X"), F("flow.Y"), F("flow.mask")}, true, false, A, "", S::None, K::Derived},
     {Layer::Disparity, "disparity", C{F("disparity.X"), F("disparity.Y"), F("disparity.mask")}, true, false,
-     LayerSource::Rig, "no camera of the scene belongs to a stereo rig (Rig.Stereo)"},
-    {Layer::Distortion, "distortion", C{F("distortion.X"), F("distortion.Y")}, false, false, A, ""},
+     LayerSource::Rig, "no camera of the scene belongs to a stereo rig (Rig.Stereo)", S::None, K::Derived},
+    {Layer::Distortion, "distortion", C{F("distortion.X"), F("distortion.Y")}, false, false, A, "", S::None,
+     K::Derived},
     {Layer::Noise, "noise", C{F("noiseFree"), F("noise")}, false, true, LayerSource::Sensor,
-     "no camera of the scene has a sensor model (a camera's sensor = Sensor.Emva { ... } or postProcessing)"},
+     "no camera of the scene has a sensor model (a camera's sensor = Sensor.Emva { ... } or postProcessing)", S::None,
+     K::Sensor},
     {Layer::Defects, "defects", C{U("defects")}, false, true, LayerSource::Defects,
-     "no camera of the scene has defective pixels (DefectivePixels { ... } in a camera's postProcessing)"},
+     "no camera of the scene has defective pixels (DefectivePixels { ... } in a camera's postProcessing)", S::None,
+     K::Sensor},
     {Layer::FieldError, "fieldError", C{F("fieldError.X"), F("fieldError.Y"), F("fieldError.Z")}, true, false,
-     LayerSource::Deformed, "no object of the scene has a Nurbs.deform surface in any frame rendered"},
+     LayerSource::Deformed, "no object of the scene has a Nurbs.deform surface in any frame rendered", S::None,
+     K::Derived},
 };
 static_assert(std::size(kSpecs) == std::size_t(Layer::Count), "one row per layer");
 constexpr bool inEnumOrder() {
@@ -54,6 +60,19 @@ std::string knownNames() {
 const LayerSpec& layerSpec(Layer layer) { return kSpecs[std::size_t(layer)]; }
 std::span<const LayerSpec> layerSpecs() { return kSpecs; }
 const char* layerName(Layer layer) { return layerSpec(layer).name; }
+
+const char* comparisonName(Comparison comparison) {
+  switch (comparison) {
+    case Comparison::Radiance: return "radiance bound";
+    case Comparison::Position: return "position bound";
+    case Comparison::Uv: return "uv bound";
+    case Comparison::Normal: return "normal";
+    case Comparison::Exact: return "exact";
+    case Comparison::Derived: return "derived";
+    case Comparison::Sensor: return "sensor";
+  }
+  return "?";
+}
 
 LayerSet LayerSet::all() {
   LayerSet s;

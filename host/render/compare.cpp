@@ -7,9 +7,9 @@
 
 #include "core/error.h"
 #include "cpu/trace.h"
-#include "shapes/registry.h"
 #include "render/shading_tolerance.h"
 #include "sensor/sensor.h"
+#include "shapes/registry.h"
 
 namespace dicsynth {
 

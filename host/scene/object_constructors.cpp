@@ -6,9 +6,9 @@
 #include <cstring>
 #include <filesystem>
 
-#include "shapes/registry.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
+#include "shapes/registry.h"
 
 namespace dicsynth::scene {
 

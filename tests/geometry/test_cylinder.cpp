@@ -11,10 +11,9 @@
 #include <string>
 
 #include "cpu/reference_renderer.h"
-#include "cpu/trace.h"
-#include "geometry/material_point.h"
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
+#include "material_point_check.h"
 #include "render/compare.h"
 #include "scene/scene.h"
 #include "scene_test_util.h"
@@ -172,8 +171,7 @@ TEST_CASE("cylinder: (u, v) of a cap cell outside its disk name no point, and th
 }
 
 TEST_CASE("cylinder: material points of traced hits, turned and projective") {
-  // As tests/geometry/test_material_point.cpp does for the other kinds: trace from the camera, map
-  // the hit to material coordinates and back.
+  // As tests/geometry/test_material_point.cpp does for the other kinds.
   test::TempFolder dir;
   for (const char* shape : {"Shape.Cylinder { radius = 0.04; height = 0.09; location = {0, 0, 0.5} }",
                             "Shape.Cylinder { radius = 0.04; height = 0.09; capped = false; location = {0, 0, 0.5} }"}) {
@@ -181,28 +179,7 @@ TEST_CASE("cylinder: material points of traced hits, turned and projective") {
                                   "homography { 1, 0.02, 0, 0,  -0.01, 1, 0, 0,  0, 0, 1, 0,  0.3, -0.2, 0, 1 } * rotate_x(degrees(-50))"}) {
       CAPTURE(shape);
       CAPTURE(transform);
-      const std::string path = dir.write(
-          "scene.lua", std::string("cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01;"
-                                   " pixelSize = {1e-4, 1e-4} }\n") +
-                           "obj = Object.Simple { shape = " + shape + "; transform = " + transform + " }\n");
-      const PreparedScene scene = prepareScene(loadScene(path, {}));
-      std::mt19937_64 rng(7);
-      std::uniform_real_distribution<double> angle(-0.12, 0.12);
-      int hits = 0;
-      double worst_m = 0;
-      for (int k = 0; k < 2000; ++k) {
-        const dvec3 d{angle(rng), angle(rng), 1};
-        cpu::SurfaceHit hit;
-        if (!cpu::traceNearest(scene, dvec3(0), d, hit)) continue;
-        ++hits;
-        const PreparedObject& o = scene.objects[std::size_t(hit.object)];
-        const auto p = worldPointOfMaterial(o, materialCoordinates(o, hit.uv, hit.position));
-        REQUIRE(p.has_value());
-        worst_m = std::max(worst_m, glm::length(*p - hit.position));
-      }
-      CHECK(hits > 200);
-      // As for the sphere (test_material_point.cpp): double rounding at 0.5 m times atan2's condition.
-      CHECK(worst_m < 1e-12);
+      CHECK(test::checkMaterialPointsOfHits(dir, shape, transform) > 200);
     }
   }
 }

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "shapes/shape_hit.h"
+#include "shapes/sphere.h"
 #include "shared/kinds.h"
 
 namespace dicsynth::shapes {
@@ -57,26 +58,13 @@ struct Cylinder {
     return c;
   }
 
-  // Roots r0 <= r1 of (o + s d)_x² + (o + s d)_z² = r², the sphere's stable formula in the xz-plane:
-  // the discriminant as a (r² − |f|²) with f the ray's closest approach to the axis, roots q/a and
-  // c/q (Haines et al., Ray Tracing Gems ch. 7). False when there are none or the ray runs along
-  // the axis (a = 0).
+  // Roots r0 <= r1 on the side, (o + s d)_x² + (o + s d)_z² = r²: the sphere's stable formula
+  // (host/shapes/sphere.h) in the xz-plane. False when there are none or the ray runs along the
+  // axis (a = 0).
   template <class Real>
   static bool sideRoots(Real radius, glm::vec<3, Real> o, glm::vec<3, Real> d, Real& r0, Real& r1) {
-    const glm::vec<2, Real> o2(o.x, o.z), d2(d.x, d.z);
-    const Real a = glm::dot(d2, d2);
-    if (!(a > 0)) return false;
-    const Real b = glm::dot(o2, d2);
-    const Real c = glm::dot(o2, o2) - radius * radius;
-    const glm::vec<2, Real> f = o2 - (b / a) * d2;
-    const Real disc = radius * radius - glm::dot(f, f);
-    if (!(disc >= 0)) return false;
-    const Real q = -(b + (b >= 0 ? Real(1) : Real(-1)) * std::sqrt(a * disc));
-    if (q == 0) return false;
-    r0 = c / q;
-    r1 = q / a;
-    if (r0 > r1) std::swap(r0, r1);
-    return true;
+    if (!(d.x * d.x + d.z * d.z > 0)) return false;
+    return Sphere::roots(radius, glm::vec<3, Real>(o.x, 0, o.z), glm::vec<3, Real>(d.x, 0, d.z), r0, r1);
   }
 
   // The nearest root and the part it lies on; the attributes are computed from them.

@@ -39,13 +39,12 @@ struct Sphere {
     return s;
   }
 
+  // Roots r0 <= r1 of |o + s d|² = r², or false. |o + s d|² = r²  ⇔  a s² + 2 b s + c = 0; the
+  // discriminant b² − ac is computed as a (r² − |f|²) with f = o − (b/a) d the ray's closest point
+  // to the centre: no cancellation for grazing rays (Haines et al., Ray Tracing Gems ch. 7). Roots
+  // q/a and c/q avoid cancellation too. (Shape.Cylinder uses it in its xz-plane.)
   template <class Real>
-  bool intersect(glm::vec<3, Real> o, glm::vec<3, Real> d, Real sMin, Real sMax, bool originOnSurface,
-                 LocalHit<Real>& hit) const {
-    // |o + s d|² = r²  ⇔  a s² + 2 b s + c = 0. The discriminant b² − ac is computed as
-    // a (r² − |f|²) with f = o − (b/a) d the ray's closest point to the centre: no cancellation for
-    // grazing rays (Haines et al., Ray Tracing Gems ch. 7). Roots q/a and c/q avoid cancellation too.
-    const Real radius = Real(radius_m);
+  static bool roots(Real radius, glm::vec<3, Real> o, glm::vec<3, Real> d, Real& r0, Real& r1) {
     const Real a = glm::dot(d, d);
     const Real b = glm::dot(o, d);
     const Real c = glm::dot(o, o) - radius * radius;
@@ -54,8 +53,17 @@ struct Sphere {
     if (!(disc >= 0)) return false;
     const Real q = -(b + (b >= 0 ? Real(1) : Real(-1)) * std::sqrt(a * disc));
     if (q == 0) return false;
-    Real r0 = c / q, r1 = q / a;
+    r0 = c / q;
+    r1 = q / a;
     if (r0 > r1) std::swap(r0, r1);
+    return true;
+  }
+
+  template <class Real>
+  bool intersect(glm::vec<3, Real> o, glm::vec<3, Real> d, Real sMin, Real sMax, bool originOnSurface,
+                 LocalHit<Real>& hit) const {
+    Real r0 = 0, r1 = 0;
+    if (!roots(Real(radius_m), o, d, r0, r1)) return false;
     if (!pickRoot(r0, r1, sMin, sMax, originOnSurface, hit.s)) return false;
     const glm::vec<3, Real> x = o + hit.s * d;
     hit.point = x;

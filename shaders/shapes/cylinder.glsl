@@ -2,6 +2,7 @@
 // the (u, v) atlas). Included by lib/shapes.glsl (ShapeHit, ds_pick_root, DS_SHAPE_SLOT).
 #ifndef DS_SHAPE_CYLINDER_GLSL
 #define DS_SHAPE_CYLINDER_GLSL
+#include "shapes/sphere.glsl"
 
 struct GpuCylinder {
   hreal4 size;  // radius r (m), half height h/2 (m), capped (1) or open (0), 0
@@ -14,17 +15,12 @@ GpuCylinder ds_cylinder_data(int index) { return GpuCylinder(DS_SHAPE_SLOT(index
 #define DS_CYLINDER_TOP 1
 #define DS_CYLINDER_BOTTOM 2
 
-// Roots r0 <= r1 on the side (the sphere's stable formula in the xz-plane), or false; false also
-// for a ray along the axis.
+// Roots r0 <= r1 on the side: the sphere's (shapes/sphere.glsl) in the xz-plane; false also for a
+// ray along the axis.
 bool ds_cylinder_side_roots(real radius, real3 o, real3 d, out real r0, out real r1) {
-  const real2 o2 = o.xz, d2 = d.xz;
-  const real a = dot(d2, d2), b = dot(o2, d2), c = dot(o2, o2) - radius * radius;
-  const real2 f = o2 - (b / a) * d2;
-  const real disc = radius * radius - dot(f, f);
-  const real q = -(b + (b >= 0.0 ? 1.0 : -1.0) * sqrt(max(a * disc, real(0.0))));
-  r0 = min(c / q, q / a);
-  r1 = max(c / q, q / a);
-  return a > 0.0 && disc >= 0.0 && q != 0.0;
+  r0 = 0.0;
+  r1 = 0.0;
+  return d.x * d.x + d.z * d.z > 0.0 && ds_sphere_roots(radius, real3(o.x, 0.0, o.z), real3(d.x, 0.0, d.z), r0, r1);
 }
 
 bool ds_cylinder_search(GpuCylinder g, real3 o, real3 d, real sMin, real sMax, bool originOnSurface,
@@ -77,16 +73,7 @@ void ds_cylinder_attributes(GpuCylinder g, hreal3 o, hreal3 d, ShapeHit found, o
   if (found.part == DS_CYLINDER_SIDE) {
     s = h(found.s);
 #if defined(DS_DF64)
-    // The side root nearest to the search's, from the stable formula in hreal (as on the sphere).
-    const hreal ox = h_x(o), oz = h_z(o), dx = h_x(d), dz = h_z(d);
-    const hreal a = h_add(h_mul(dx, dx), h_mul(dz, dz)), b = h_add(h_mul(ox, dx), h_mul(oz, dz));
-    const hreal c = h_sub(h_add(h_mul(ox, ox), h_mul(oz, oz)), h_mul(radius, radius));
-    const hreal k = h_div(b, a), fx = h_sub(ox, h_mul(dx, k)), fz = h_sub(oz, h_mul(dz, k));
-    const hreal disc = h_sub(h_mul(radius, radius), h_add(h_mul(fx, fx), h_mul(fz, fz)));
-    const hreal root = h_sqrt(h_gt(disc, h(real(0.0))) ? h_mul(a, disc) : h(real(0.0)));
-    const hreal q = h_neg(h_real(b) >= 0.0 ? h_add(b, root) : h_sub(b, root));
-    const hreal r0 = h_div(c, q), r1 = h_div(q, a);
-    s = abs(h_real(r0) - found.s) <= abs(h_real(r1) - found.s) ? r0 : r1;
+    s = ds_sphere_root_near(radius, h3(h_x(o), h(real(0.0)), h_z(o)), h3(h_x(d), h(real(0.0)), h_z(d)), found.s);
 #endif
     point = h_add(o, h_mul(d, s));
     const hreal px = h_x(point), py = h_y(point), pz = h_z(point);

@@ -22,6 +22,20 @@ bool ds_sphere_roots(real radius, real3 o, real3 d, out real r0, out real r1) {
   return disc >= 0.0 && q != 0.0;
 }
 
+#if defined(DS_DF64)
+// The root nearest to the search's `s`, from the stable formula in hreal (shapes/cylinder.glsl uses
+// it in its xz-plane). In fp32/fp64 hreal is real: the search's root is that very value.
+hreal ds_sphere_root_near(hreal radius, hreal3 o, hreal3 d, real s) {
+  const hreal a = h_dot(d, d), b = h_dot(o, d), c = h_sub(h_dot(o, o), h_mul(radius, radius));
+  const hreal3 f = h_sub(o, h_mul(d, h_div(b, a)));
+  const hreal disc = h_sub(h_mul(radius, radius), h_dot(f, f));
+  const hreal root = h_sqrt(h_gt(disc, h(real(0.0))) ? h_mul(a, disc) : h(real(0.0)));
+  const hreal q = h_neg(h_real(b) >= 0.0 ? h_add(b, root) : h_sub(b, root));
+  const hreal r0 = h_div(c, q), r1 = h_div(q, a);
+  return abs(h_real(r0) - s) <= abs(h_real(r1) - s) ? r0 : r1;
+}
+#endif
+
 bool ds_sphere_search(GpuSphere g, real3 o, real3 d, real sMin, real sMax, bool originOnSurface,
                       inout ShapeHit hit) {
   real r0, r1;
@@ -33,16 +47,7 @@ void ds_sphere_attributes(GpuSphere g, hreal3 o, hreal3 d, ShapeHit found, out h
                           out real3 normal, out hreal2 uv) {
   s = h(found.s);
 #if defined(DS_DF64)
-  // The root nearest to the search's, from the stable formula in hreal. (In fp32/fp64 hreal is
-  // real: the search's root is that very value.)
-  const hreal radius = h_x(g.radius);
-  const hreal a = h_dot(d, d), b = h_dot(o, d), c = h_sub(h_dot(o, o), h_mul(radius, radius));
-  const hreal3 f = h_sub(o, h_mul(d, h_div(b, a)));
-  const hreal disc = h_sub(h_mul(radius, radius), h_dot(f, f));
-  const hreal root = h_sqrt(h_gt(disc, h(real(0.0))) ? h_mul(a, disc) : h(real(0.0)));
-  const hreal q = h_neg(h_real(b) >= 0.0 ? h_add(b, root) : h_sub(b, root));
-  const hreal r0 = h_div(c, q), r1 = h_div(q, a);
-  s = abs(h_real(r0) - found.s) <= abs(h_real(r1) - found.s) ? r0 : r1;
+  s = ds_sphere_root_near(h_x(g.radius), o, d, found.s);
 #endif
   point = h_add(o, h_mul(d, s));
   normal = h_real(point);

@@ -196,6 +196,24 @@ NurbsSurface makeCylinderSegment(const CylinderSegmentSpec& spec) {
   return s;
 }
 
+NurbsSurface makeCylinderSideNurbs(double radius_m, double height_m) {
+  CylinderSegmentSpec spec;
+  spec.radius_m = radius_m;
+  spec.angle_rad = 2 * kPi;
+  spec.height_m = height_m;
+  spec.arcs = 4;
+  NurbsSurface s = makeCylinderSegment(spec);
+  // phi = ±pi give x = ±R sin(pi) = ±1.2e-16 R: the two ends of the turn would miss each other by
+  // that much. The first column is the exact point (sin(-pi) rounds away from 0); the last one is
+  // made the same.
+  for (int j = 0; j < s.countV; ++j) {
+    const std::size_t first = static_cast<std::size_t>(j), last = static_cast<std::size_t>(s.countU - 1) * s.countV + j;
+    s.controlPoints[first].x = 0;
+    s.controlPoints[last] = s.controlPoints[first];
+  }
+  return s;
+}
+
 double cubicBSplineStep(double t) {
   if (t <= 0) return 0;
   if (t >= 1) return 1;

@@ -57,6 +57,11 @@ NurbsSurface makeBoxFace(const dvec3& halfSize, const std::string& face, ivec2 d
 // from pole to pole (v). Points are exactly on the sphere; (u, v) equal the analytic sphere's at
 // the arcs' ends (every 90°) and differ in between (a rational arc is not uniform in angle).
 NurbsSurface makeSphereNurbs(double radius_m);
+// The side of a Shape.Cylinder (axis y, centred on the origin, open): a full turn of
+// makeCylinderSegment in four arcs, degree 3 along y, the seam at the back (u = 0 and 1) closed
+// exactly. (u, v) equal the analytic open cylinder's at the arcs' ends (every 90° in u) and in v
+// everywhere (v = y/h + 1/2).
+NurbsSurface makeCylinderSideNurbs(double radius_m, double height_m);
 
 // A flat dogbone specimen in the xy-plane (facing -z), length along x, centred on the origin.
 struct DogboneSpec {

@@ -375,12 +375,17 @@ result keeps the shape's location; its (u, v) are:
   Sphere        | rational biquadratic, 4 arcs around, 2   | the sphere's poles and seam; equal to the
                 | from pole to pole (9 × 5 points)         | sphere's (u, v) every 90°, not in between
                 |                                         | (a rational arc is not uniform in angle)
+  Cylinder      | its side (capped = false only): 4       | the open cylinder's; u equal to it every
+  (open)        | rational quadratic arcs around, cubic   | 90°, not in between; v = y/h + 1/2
+                | along y (9 × 4 points)                  |
 
-Other shapes (the infinite Plane, Triangle, Cylinder, ...) have no such form here; a NURBS is already one.
+Other shapes (the infinite Plane, Triangle, a capped Cylinder) have no such form here; a NURBS is
+already one.
 
   Parameter | Value                  | Default  | Meaning
   ----------+------------------------+----------+--------------------------------------------------
-  shape     | Shape                  | required | Shape.Rectangle, Shape.Box, Shape.Sphere
+  shape     | Shape                  | required | Shape.Rectangle, Shape.Box, Shape.Sphere, an open
+            |                        |          | Shape.Cylinder
   face      | string                 | required | Box only: which face
             |                        | for Box  |
   degree    | {p, q}                 | {3, 3}   | Rectangle and box faces: degrees 1..5 (flat
@@ -397,6 +402,7 @@ int nurbsFrom(lua_State* L) {
   const std::optional<std::string> face = p.string("face");
   if (face && shape->kind() != ShapeKind::Box) p.fail("'face' is for a Shape.Box only");
   if (p.has("degree") && shape->kind() == ShapeKind::Sphere) p.fail("'degree' is for a Rectangle or a box face (the sphere is biquadratic)");
+  if (p.has("degree") && shape->kind() == ShapeKind::Cylinder) p.fail("'degree' is for a Rectangle or a box face (the cylinder is quadratic around, cubic along)");
   NurbsSurface surface;
   switch (shape->kind()) {
     case ShapeKind::Rectangle: {
@@ -409,6 +415,12 @@ int nurbsFrom(lua_State* L) {
       checked(p, [&] { surface = makeBoxFace(std::get<shapes::Box>(shape->analytic).halfSize(), *face, degree); });
       break;
     case ShapeKind::Sphere: surface = makeSphereNurbs(std::get<shapes::Sphere>(shape->analytic).radius_m); break;
+    case ShapeKind::Cylinder: {
+      const auto& cylinder = std::get<shapes::Cylinder>(shape->analytic);
+      if (cylinder.capped) p.fail("a capped Shape.Cylinder has no NURBS form here (its caps): give capped = false for its side");
+      surface = makeCylinderSideNurbs(cylinder.radius_m, cylinder.height_m);
+      break;
+    }
     case ShapeKind::Plane: p.fail("a Shape.Plane is infinite: use a Shape.Rectangle"); break;
     case ShapeKind::Triangle: p.fail("a Shape.Triangle has no NURBS form here (use Shape.Nurbs with a degenerate patch)"); break;
     case ShapeKind::Nurbs: p.fail("'shape' is already a NURBS surface"); break;

@@ -1,4 +1,5 @@
-// Nurbs.from (nurbs/nurbs_specimens.h: makeParallelogram, makeBoxFace, makeSphereNurbs): the
+// Nurbs.from (nurbs/nurbs_specimens.h: makeParallelogram, makeBoxFace, makeSphereNurbs,
+// makeCylinderSideNurbs): the
 // NURBS forms of analytic shapes. Checked against the analytic shapes rendered by their own
 // intersectors (P and the (u, v) mapping the docs state), and on the sphere against its equation.
 #include <doctest/doctest.h>
@@ -44,7 +45,32 @@ TEST_CASE("nurbs-from: the sphere's NURBS lies on the sphere, meets its (u, v) e
   CHECK(worst <= 1e-16);
 }
 
-TEST_CASE("nurbs-from: box faces, a rectangle and a sphere render as the analytic shapes do (P, and the stated (u, v)), and on the GPU as on the CPU") {
+TEST_CASE("nurbs-from: the open cylinder's NURBS lies on its side, meets its (u, v) every 90 degrees, and closes its seam exactly") {
+  const double r = 0.02, h = 0.08;
+  const NurbsSurface s = makeCylinderSideNurbs(r, h);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  double worstRadius = 0, worstV = 0;
+  for (int k = 0; k < 5000; ++k) {
+    const double u = unit(rng), v = unit(rng);
+    const dvec3 p = evaluateNurbs(s, u, v).point;
+    worstRadius = std::max(worstRadius, std::abs(std::hypot(p.x, p.z) - r));
+    worstV = std::max(worstV, std::abs(p.y - (v - 0.5) * h));
+  }
+  CHECK(worstRadius <= 2e-17);  // as the sphere's: a few ulps of 0.02 m
+  // v = y/h + 1/2: a cubic with evenly spaced points is linear; the rational evaluation (weighted
+  // sums over 3 × 4 points and the division by the weight) rounds ~6 times at |y| <= 0.04 m, whose
+  // ulp is 6.9e-18 m: 6 ulps.
+  CHECK(worstV <= 4e-17);
+  // The analytic cylinder (host/shapes/cylinder.h): u = 1/2 + atan2(x, −z)/2π.
+  for (int i = 0; i <= 4; ++i) {
+    const double u = i / 4.0, phi = 2 * std::numbers::pi * (u - 0.5);
+    CHECK(glm::length(evaluateNurbs(s, u, 0.5).point - dvec3(r * std::sin(phi), 0, -r * std::cos(phi))) <= 1e-17);
+  }
+  for (double v : {0.0, 0.3, 1.0}) CHECK(evaluateNurbs(s, 0.0, v).point == evaluateNurbs(s, 1.0, v).point);
+}
+
+TEST_CASE("nurbs-from: box faces, a rectangle, a sphere and an open cylinder render as the analytic shapes do (P, and the stated (u, v)), and on the GPU as on the CPU") {
   test::TempFolder dir;
   const std::string head =
       "cam = Camera.Pinhole { resolution = {96, 72}; focalLength = 0.012; pixelSize = {6e-5, 6e-5} }\n";
@@ -57,6 +83,7 @@ TEST_CASE("nurbs-from: box faces, a rectangle and a sphere render as the analyti
   const std::string box = "Shape.Box { size = {0.06, 0.04, 0.05}; location = {0, 0, 0.4} }";
   const std::string rect = "Shape.Rectangle { size = {0.06, 0.04}; location = {0, 0, 0.4} }";
   const std::string sphere = "Shape.Sphere { radius = 0.03; location = {0, 0, 0.4} }";
+  const std::string tube = "Shape.Cylinder { radius = 0.02; height = 0.05; capped = false; location = {0, 0, 0.4} }";
   const std::vector<Case> cases = {
       // Turned so that the face looks at the camera (at the origin, looking down +z).
       {"rotate_y(0.4) * rotate_x(-0.3)", box, "Nurbs.from { shape = " + box + "; face = '-z' }", 0, 0, 3, 2, true},
@@ -64,6 +91,7 @@ TEST_CASE("nurbs-from: box faces, a rectangle and a sphere render as the analyti
       {"rotate_x(0.7)", box, "Nurbs.from { shape = " + box + "; face = '-y' }", 1, 1, 3, 2, true},
       {"rotate_y(0.4) * rotate_x(-0.3)", rect, "Nurbs.from { shape = " + rect + " }", 0, 0, 1, 1, true},
       {"rotate_y(0.4) * rotate_x(-0.3)", sphere, "Nurbs.from { shape = " + sphere + " }", 0, 0, 1, 1, false},
+      {"rotate_x(0.6)", tube, "Nurbs.from { shape = " + tube + " }", 0, 0, 1, 1, false},  // inside seen
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
@@ -119,4 +147,9 @@ TEST_CASE("nurbs-from: box faces, a rectangle and a sphere render as the analyti
   const test::CliResult p = test::runCli("render " + plane + " -o " + dir.file("no") + " --backend cpu");
   INFO(p.err);
   CHECK(p.err.find("plane.lua:2: Nurbs.from: a Shape.Plane is infinite") != std::string::npos);
+  const std::string rod = dir.write("rod.lua", head + "s = Nurbs.from { shape = Shape.Cylinder { radius = 1; height = 1 } }\n");
+  const test::CliResult c = test::runCli("render " + rod + " -o " + dir.file("no") + " --backend cpu");
+  INFO(c.err);
+  CHECK(c.err.find("rod.lua:2: Nurbs.from: a capped Shape.Cylinder has no NURBS form here (its caps): give capped = false for its side") !=
+        std::string::npos);
 }

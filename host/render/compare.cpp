@@ -200,7 +200,8 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
         const double duv = uvDiff(a.uv[i], b.uv[i]);
         d.maxPositionDiff_m = worst(d.maxPositionDiff_m, dp);
         d.maxUvDiff = worst(d.maxUvDiff, duv);
-        d.maxDepthDiff_m = worst(d.maxDepthDiff_m, std::abs(a.depth_m[i] - b.depth_m[i]));
+        const double dz = std::abs(a.depth_m[i] - b.depth_m[i]);
+        d.maxDepthDiff_m = worst(d.maxDepthDiff_m, dz);
         d.maxNormalDiff = worst(d.maxNormalDiff, glm::length(a.normal[i] - b.normal[i]));
         double boundP = tol.position_m, boundUv = tol.uv;
         if (tol.epsilon > 0) {
@@ -241,7 +242,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
         }
         if (!(dp <= boundP)) ++(b.depth_m[i] > a.depth_m[i] ? d.wrongFartherRoot : d.wrongNearerRoot);
         // Depth is the camera-frame z of the same point: within the position bound too.
-        const double ratio = std::max({dp / boundP, std::abs(a.depth_m[i] - b.depth_m[i]) / boundP, duv / boundUv});
+        const double ratio = std::max({dp / boundP, dz / boundP, duv / boundUv});
         d.maxGeometryRatio = worst(d.maxGeometryRatio, ratio);
         if (!(ratio <= 1)) ++d.geometryOutliers;
       }

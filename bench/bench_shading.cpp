@@ -22,14 +22,9 @@ using namespace dicsynth;
 
 namespace {
 
-Scene figure1With(ShaderKind kind) {
+Scene figure1With(reflectance::Model model) {
   Scene s = loadScene(std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua", {});
-  Shader& shader = s.objects.at(0).shader;
-  shader.kind = kind;
-  shader.specular = 0.2;  // Phong: a clear coat
-  shader.shininess = 40;
-  shader.roughness = 0.3;  // GGX: rough steel with speckle paint (color stays the diffuse part)
-  shader.f0 = 0.56;
+  s.objects.at(0).shader.model = model;
   Light lamp;
   lamp.name = "lamp";
   lamp.kind = LightKind::Point;
@@ -45,9 +40,9 @@ int main(int argc, char** argv) {
   bench::BenchArgs args{16, 1, 1, ""};
   if (!bench::parseBenchArgs(argc, argv, args)) return 2;
   const int spp = args.spp, downscale = args.downscale, repeat = args.repeat;
-  const PreparedScene lambert = prepareScene(figure1With(ShaderKind::Lambert), {downscale});
-  const PreparedScene phong = prepareScene(figure1With(ShaderKind::Phong), {downscale});
-  const PreparedScene ggx = prepareScene(figure1With(ShaderKind::Ggx), {downscale});
+  const PreparedScene lambert = prepareScene(figure1With(reflectance::Lambert{}), {downscale});
+  const PreparedScene phong = prepareScene(figure1With(reflectance::Phong{{0.2, 40}}), {downscale});  // a clear coat
+  const PreparedScene ggx = prepareScene(figure1With(reflectance::Ggx{0.3, 0.56}), {downscale});  // rough steel, speckle paint
   PreparedScene lambertAllKinds = lambert;  // same data, every shader and light kind compiled in
   lambertAllKinds.features.shaderKinds = ~0u;
   lambertAllKinds.features.lightKinds = ~0u;

@@ -125,7 +125,7 @@ inline Object nurbsObject(const std::string& name, const NurbsSurface& surface, 
   o.shape.where = {"scene.lua", 7};
   o.shape.location_m = location;
   o.shape.nurbs = std::make_shared<NurbsSurface>(surface);
-  o.shader.kind = ShaderKind::Lambert;
+  o.shader.model = reflectance::Lambert{};
   o.texture.value = 0.5;
   o.transform = transform;
   return o;

@@ -128,7 +128,7 @@ inline Scene randomNurbsScene(std::uint64_t seed) {
   sphere.shape.where = sphere.where;
   sphere.shape.analytic = shapes::Sphere{0.3};
   sphere.shape.location_m = {0, 0, 0.8};
-  sphere.shader.kind = ShaderKind::Lambert;
+  sphere.shader.model = reflectance::Lambert{};
   sphere.texture.value = 0.5;
   s.objects.push_back(sphere);
   return s;

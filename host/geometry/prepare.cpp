@@ -223,13 +223,9 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
       o.deformation = so.shape.deformation;
       o.geometry.nurbs = o.nurbs.get();
     }
-    o.shader = so.shader.kind;
+    o.shader = so.shader.model;
     o.albedo = luminance(so.shader.color);
-    o.specular = so.shader.specular;
-    o.shininess = so.shader.shininess;
-    o.roughness = so.shader.roughness;
-    o.f0 = so.shader.f0;
-    anyLit |= o.shader != ShaderKind::Constant;
+    anyLit |= reflectance::kindInfo(o.shader).lit;
     o.textureKind = so.texture.kind;
     if (so.texture.kind == TextureKind::File) {
       o.textureIndex = loadTexture(so.texture, ps.textures, texturesByPath, options.textureCache);
@@ -270,7 +266,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   for (const PreparedObject& o : ps.objects) {
     ps.features.shapeKinds |= 1u << int(o.geometry.kind());
     ps.features.speckleTextures |= o.textureKind == TextureKind::Speckle;
-    ps.features.shaderKinds |= 1u << int(o.shader);
+    ps.features.shaderKinds |= 1u << int(reflectance::kindOf(o.shader));
     if (o.nurbs)
       for (const BezierPatch& p : o.nurbs->patches)
         ps.features.nurbsDegree = std::max({ps.features.nurbsDegree, p.degreeU, p.degreeV});

@@ -34,13 +34,8 @@ struct PreparedObject {
   std::shared_ptr<const PreparedNurbs> nurbs;  // Bézier patches, sub-patches, BVH (Nurbs only)
   std::shared_ptr<const NurbsSurface> surface; // the scene's surface (Nurbs only; scene shape frame)
   std::shared_ptr<const Deformation> deformation;  // Nurbs.deform only: S, d, the fit (scene.h)
-  ShaderKind shader = ShaderKind::Constant;
+  reflectance::Model shader;  // the reflectance model and its parameters (host/reflectance)
   double albedo = 1;          // luminance of the shader colour
-  // Specular parameters (cpu/shading.h): Phong, BlinnPhong: ks, n; GGX: α, F0.
-  double specular = 0;
-  int shininess = 1;
-  double roughness = 0;
-  double f0 = 0;
   TextureKind textureKind = TextureKind::Constant;
   int textureIndex = -1;      // into PreparedScene::textures (File), else -1
   double textureValue = 1;    // Constant: the texture value

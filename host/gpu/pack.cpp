@@ -74,14 +74,10 @@ typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
         o.geometry.analytic);
   }
   g.shading = r4<Layout>(o.albedo, o.textureValue);
-  switch (o.shader) {  // lib/shading.glsl reads these per shader kind
-    case ShaderKind::Constant:
-    case ShaderKind::Lambert: break;
-    case ShaderKind::Phong:
-    case ShaderKind::BlinnPhong: g.material = r4<Layout>(o.specular, double(o.shininess)); break;
-    case ShaderKind::Ggx: g.material = r4<Layout>(0, o.roughness, o.f0); break;
-  }
-  g.kinds = {int(o.geometry.kind()), int(o.shader), o.textureIndex, int(o.id)};
+  // The model's GPU data, read by its GLSL twin (shaders/reflectance/<kind>.glsl).
+  const dvec4 material = std::visit([](const auto& model) { return model.gpu(); }, o.shader);
+  g.material = r4<Layout>(material.x, material.y, material.z, material.w);
+  g.kinds = {int(o.geometry.kind()), int(reflectance::kindOf(o.shader)), o.textureIndex, int(o.id)};
   const TargetTexture& t = o.targetTexture;
   g.target0 = h4<Layout>(t.origin_uv.x, t.origin_uv.y, t.cell_uv.x, t.cell_uv.y);
   g.target1 = h4<Layout>(t.radiusSquared_cells, t.dark, t.light);

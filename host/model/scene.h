@@ -15,6 +15,7 @@
 #include "model/sensor_model.h"
 #include "nurbs/nurbs_fit.h"
 #include "nurbs/nurbs_surface.h"
+#include "reflectance/registry.h"
 #include "shapes/registry.h"
 #include "shared/kinds.h"
 #include "texture/analytic_speckle.h"
@@ -84,14 +85,10 @@ struct Shape {
 };
 
 struct Shader {
-  ShaderKind kind = ShaderKind::Constant;
   SourceLoc where;
   dvec3 color{1, 1, 1};  // linear RGB; the renderer uses its luminance (grayscale sensor)
-  // Specular parameters (host/cpu/shading.h has the formulas; shading_constructors.cpp the docs).
-  double specular = 0;   // Phong, BlinnPhong: ks, the specular lobe's weight
-  int shininess = 1;     // Phong, BlinnPhong: exponent n (an integer, shading.h says why)
-  double roughness = 0;  // GGX: α (Trowbridge-Reitz width; α = perceptual roughness²)
-  double f0 = 0;         // GGX: Fresnel reflectance at normal incidence (Schlick)
+  reflectance::Model model;  // the kind and its own parameters (host/reflectance/<kind>.h)
+  ShaderKind kind() const { return reflectance::kindOf(model); }
 };
 
 // The printed pattern of a calibration target (Target.Checkerboard, Target.CircleGrid); its layout,

@@ -99,7 +99,7 @@ double textureSlope(const PreparedScene& scene, const PreparedObject& o) {
 // Σ I / (π r²) over point and spot lights plus Σ L_a over ambient ones for lit shaders, cos θ,
 // spot cones and shadows dropped; cpu/shading.h).
 double shadingFactor(const PreparedScene& scene, const PreparedObject& o, dvec3 p) {
-  if (o.shader == ShaderKind::Constant) return 1;
+  if (!reflectance::kindInfo(o.shader).lit) return 1;
   double sum = 0;
   for (const auto& l : scene.lights) {
     if (l.kind == LightKind::Ambient) {

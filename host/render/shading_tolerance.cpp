@@ -4,34 +4,6 @@
 #include <cmath>
 
 namespace dicsynth {
-namespace {
-
-bool isSpecular(ShaderKind k) { return k == ShaderKind::Phong || k == ShaderKind::BlinnPhong || k == ShaderKind::Ggx; }
-
-// Largest f_spec · cosθi over light directions, and the largest relative slope of that product
-// per unit change of the lobe's cosines (shading_tolerance.h).
-void lobe(const PreparedObject& o, double cosView, double& maxValue, double& slope) {
-  switch (o.shader) {
-    case ShaderKind::Phong:
-      maxValue = o.specular * (o.shininess + 2) / (2 * kPi);
-      slope = o.shininess;
-      return;
-    case ShaderKind::BlinnPhong:
-      maxValue = o.specular * (o.shininess + 8) / (8 * kPi);
-      slope = o.shininess;
-      return;
-    case ShaderKind::Ggx: {
-      // D ≤ 1/(πα²), F ≤ 1, G₂/(4 cosθi cosθo) · cosθi ≤ 1/(4 cosθo).
-      const double a2 = o.roughness * o.roughness;
-      maxValue = 1 / (kPi * a2 * 4 * cosView);
-      slope = 4 / a2 + 5 + 2 / cosView;
-      return;
-    }
-    default: maxValue = slope = 0;
-  }
-}
-
-}  // namespace
 
 // A B-spline is a convex combination of its coefficients; other textures take values in [0, 1]
 // or their own constants.
@@ -45,16 +17,18 @@ double reflectanceMax(const PreparedScene& scene, const PreparedObject& o) {
 }
 
 bool hasSpecularOrSpotTerms(const PreparedScene& scene, const PreparedObject& o) {
-  if (o.shader == ShaderKind::Constant) return false;
-  if (isSpecular(o.shader)) return true;
+  const reflectance::KindInfo& model = reflectance::kindInfo(o.shader);
+  if (!model.lit) return false;
+  if (model.specular) return true;
   return std::any_of(scene.lights.begin(), scene.lights.end(),
                      [](const PreparedLight& l) { return l.kind == LightKind::Spot; });
 }
 
 double specularRadianceBound(const PreparedScene& scene, const PreparedObject& o, const ShadingErrorInputs& in) {
   if (!hasSpecularOrSpotTerms(scene, o)) return 0;
-  double maxValue = 0, slope = 0;
-  lobe(o, in.cosView, maxValue, slope);
+  // The lobe's largest f_spec · cosθi and its relative slope (the model's home derives them).
+  const reflectance::LobeBound lobe = reflectance::lobeBound(o.shader, in.cosView);
+  const double maxValue = lobe.maxValue, slope = lobe.slope;
   const double own = in.k * in.epsilon;
   const double normalError = own + in.normalSlope * in.positionBound_m;
   const double diffuseMax = in.reflectanceMax / kPi;

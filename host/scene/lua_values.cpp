@@ -327,4 +327,17 @@ std::optional<dvec3> Params::color(const char* key) const {
   return dvec3(rgb[0], rgb[1], rgb[2]);
 }
 
+double Params::gray(const char* key, double fallback, double lo, double hi, const char* range) const {
+  double value = fallback;
+  if (luaType(key) == LUA_TTABLE) {
+    const dvec3 rgb = *color(key);
+    for (double c : {rgb.x, rgb.y, rgb.z}) require(c >= lo && c <= hi, key, range, c);
+    value = luminance(rgb);
+  } else {
+    value = number(key, fallback);
+  }
+  require(value >= lo && value <= hi, key, range, value);
+  return value;
+}
+
 }  // namespace dicsynth::scene

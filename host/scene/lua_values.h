@@ -187,6 +187,9 @@ class Params {
                                              const std::string& countText) const;
   // A colour: one gray number or {r, g, b}.
   std::optional<dvec3> color(const char* key) const;
+  // A number in [lo, hi] (`range` says so in messages), or the Rec. 709 luminance of {r, g, b}
+  // with each component there; `fallback` when absent.
+  double gray(const char* key, double fallback, double lo, double hi, const char* range) const;
   // Userdata of type T; `expected` names it for messages, e.g. "a Shader (Shader.Constant, ...)".
   template <class T>
   const T* userdata(const char* key, const char* expected) const {

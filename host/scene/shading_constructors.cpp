@@ -1,21 +1,17 @@
-// Shader.Constant, Shader.Lambert, Shader.Phong, Shader.BlinnPhong, Shader.GGX; Light.Point,
-// Light.Ambient, Light.Spot. The formulas are in host/cpu/shading.h; the README repeats the tables.
+// Shader.<Kind> for every reflectance model of the registry (host/reflectance/registry.h: each
+// kind's home documents its parameters and formulas); Light.Point, Light.Ambient, Light.Spot (the
+// radiance sum over lights: host/cpu/shading.h). docs/reflectance.md repeats the tables.
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "scene/constructors.h"
+#include "reflectance/registry.h"
 #include "scene/lua_values.h"
 
 namespace dicsynth::scene {
 
 namespace {
-
-constexpr int kMaxShininess = 10000;  // x^n by repeated squaring: ≤ 28 products (cpu/shading.h)
-// GGX's D peaks at 1/(πα²) with a relative slope 4/α² in cos θh: below α = 0.01 a highlight is a
-// near-mirror image of the light, hundreds of times full scale, whose rounding-level differences
-// (the hit position's 1e-15 relative between backends, through that slope) exceed the fp64 GPU
-// variant's 1e-9 of full scale (measured: 3.5e-8 at α = 0.001). Polished metals are α ≈ 0.01-0.05.
-constexpr double kMinRoughness = 0.01;
 
 // A colour parameter: gray number or {r, g, b}, each >= 0.
 dvec3 readColor(const Params& p, const char* key, dvec3 fallback) {
@@ -24,110 +20,18 @@ dvec3 readColor(const Params& p, const char* key, dvec3 fallback) {
   return color;
 }
 
-// A number in [lo, hi], or the luminance of {r, g, b} with each component there.
-double readGray(const Params& p, const char* key, double fallback, double lo, double hi, const char* range) {
-  double value = fallback;
-  if (p.luaType(key) == LUA_TTABLE) {
-    const dvec3 rgb = *p.color(key);
-    for (double c : {rgb.x, rgb.y, rgb.z}) p.require(c >= lo && c <= hi, key, range, c);
-    value = luminance(rgb);
-  } else {
-    value = p.number(key, fallback);
-  }
-  p.require(value >= lo && value <= hi, key, range, value);
-  return value;
-}
-
-const char* shaderName(ShaderKind kind) {
-  switch (kind) {
-    case ShaderKind::Constant: return "Shader.Constant";
-    case ShaderKind::Lambert: return "Shader.Lambert";
-    case ShaderKind::Phong: return "Shader.Phong";
-    case ShaderKind::BlinnPhong: return "Shader.BlinnPhong";
-    case ShaderKind::Ggx: return "Shader.GGX";
-  }
-  return "Shader";
-}
-
-/* ------------------------------------------------------------------------------------------------
-Shader.Constant: the surface shows its colour times the texture, lit or not (no lights needed).
-Shader.Lambert:  an ideal diffuse surface lit by the scene's lights; color is the albedo.
-
-  Parameter | Value                     | Default    | Meaning
-  ----------+---------------------------+------------+---------------------------------------
-  color     | {r, g, b} or gray number  | {1, 1, 1}  | linear RGB, each >= 0; the grayscale
-            |                           |            | sensor sees its Rec. 709 luminance
-
-Example:  Shader.Constant { color = {.2, .8, 1} }      Shader.Lambert { color = 0.7 }
------------------------------------------------------------------------------------------------- */
-template <ShaderKind Kind>
-int shader(lua_State* L) {
-  Params p(L, shaderName(Kind), {"color"});
+// Shader.<Kind> for every kind of the registry: the kind's home documents and parses its own
+// parameters; `color` (the diffuse albedo, its default the home's) all share.
+template <class Kind>
+int shaderConstructor(lua_State* L) {
+  static const std::string name = std::string("Shader.") + Kind::kName;
+  std::vector<const char*> keys{"color"};
+  keys.insert(keys.end(), Kind::kKeys.begin(), Kind::kKeys.end());
+  Params p(L, name, keys);
   Shader shader;
-  shader.kind = Kind;
   shader.where = LuaSandbox::of(L).here(L);
-  shader.color = readColor(p, "color", dvec3(1));
-  pushUserdata(L, std::move(shader));
-  return 1;
-}
-
-/* ------------------------------------------------------------------------------------------------
-Shader.Phong, Shader.BlinnPhong: Lambert's diffuse part (textured) plus an energy-normalized
-specular lobe (not textured), f = ρ/π + f_spec:
-  Phong:       f_spec = specular · (n + 2)/(2π) · max(0, R·V)^n   (R: mirror direction of the light)
-  BlinnPhong:  f_spec = specular · (n + 8)/(8π) · max(0, N·H)^n   (H: half vector of light and view)
-
-  Parameter | Value                     | Default    | Meaning
-  ----------+---------------------------+------------+------------------------------------------
-  color     | {r, g, b} or gray number  | {1, 1, 1}  | diffuse albedo ρ (luminance), × texture
-  specular  | number >= 0               | 0.1        | ks, weight of the lobe (ρ + ks <= 1
-            |                           |            | conserves energy at normal view)
-  shininess | integer in [1, 10000]     | 50         | n: larger, smaller highlight (integer:
-            |                           |            | GPU x^n by repeated squaring, exact)
-
-Example:  Shader.Phong { color = 0.6; specular = 0.3; shininess = 80 }
------------------------------------------------------------------------------------------------- */
-template <ShaderKind Kind>
-int shaderPhong(lua_State* L) {
-  Params p(L, shaderName(Kind), {"color", "specular", "shininess"});
-  Shader shader;
-  shader.kind = Kind;
-  shader.where = LuaSandbox::of(L).here(L);
-  shader.color = readColor(p, "color", dvec3(1));
-  shader.specular = p.number("specular", 0.1);
-  p.require(shader.specular >= 0, "specular", ">= 0", shader.specular);
-  const double n = p.number("shininess", 50);
-  p.require(n == std::floor(n) && n >= 1 && n <= kMaxShininess, "shininess", "an integer in [1, 10000]", n);
-  shader.shininess = int(n);
-  pushUserdata(L, std::move(shader));
-  return 1;
-}
-
-/* ------------------------------------------------------------------------------------------------
-Shader.GGX: Cook-Torrance microfacet reflection for metals, f = ρ/π + D·F·G₂/(4 cosθi cosθo) with
-the GGX (Trowbridge-Reitz) distribution D of width α, Schlick's Fresnel F from F0 and the
-height-correlated Smith masking-shadowing G₂ (formulas: host/cpu/shading.h). The diffuse part ρ
-(× texture) is 0 by default: a bare metal; give `color` for paint (a speckle) on a metal.
-
-  Parameter | Value                     | Default    | Meaning
-  ----------+---------------------------+------------+------------------------------------------
-  color     | {r, g, b} or gray number  | 0          | diffuse albedo ρ (luminance), × texture
-  roughness | number in [0.01, 1]       | 0.3        | α (the "perceptual roughness" squared)
-  f0        | number or {r, g, b}, each | 0.56       | Fresnel reflectance at normal incidence
-            | in [0, 1]                 |            | (luminance): steel 0.56, aluminium 0.91
-
-Example:  Shader.GGX { roughness = 0.2; f0 = 0.91 }
------------------------------------------------------------------------------------------------- */
-int shaderGgx(lua_State* L) {
-  Params p(L, "Shader.GGX", {"color", "roughness", "f0"});
-  Shader shader;
-  shader.kind = ShaderKind::Ggx;
-  shader.where = LuaSandbox::of(L).here(L);
-  shader.color = readColor(p, "color", dvec3(0));
-  shader.roughness = p.number("roughness", 0.3);
-  p.require(shader.roughness >= kMinRoughness && shader.roughness <= 1, "roughness", "in [0.01, 1]",
-            shader.roughness);
-  shader.f0 = readGray(p, "f0", 0.56, 0, 1, "in [0, 1]");
+  shader.color = readColor(p, "color", dvec3(Kind::kDefaultColor));
+  shader.model = Kind::parse(p);
   pushUserdata(L, std::move(shader));
   return 1;
 }
@@ -241,7 +145,7 @@ int lightSpot(lua_State* L) {
 
 int shaderToString(lua_State* L) {
   const Shader* shader = toUserdata<Shader>(L, 1);
-  lua_pushstring(L, shaderName(shader ? shader->kind : ShaderKind::Constant));
+  lua_pushfstring(L, "Shader.%s", shader ? reflectance::kindInfo(shader->model).name : "?");
   return 1;
 }
 
@@ -257,12 +161,14 @@ int lightToString(lua_State* L) {
 void registerShadingConstructors(lua_State* L) {
   registerUserdataType<Shader>(L, {{"__tostring", &shaderToString}});
   registerUserdataType<Light>(L, {{"__tostring", &lightToString}});
-  setConstructorTable(L, "Shader",
-                      {{"Constant", &protectedCall<shader<ShaderKind::Constant>>},
-                       {"Lambert", &protectedCall<shader<ShaderKind::Lambert>>},
-                       {"Phong", &protectedCall<shaderPhong<ShaderKind::Phong>>},
-                       {"BlinnPhong", &protectedCall<shaderPhong<ShaderKind::BlinnPhong>>},
-                       {"GGX", &protectedCall<shaderGgx>}});
+  setConstructorTable(L, "Shader", {});
+  lua_getglobal(L, "Shader");
+  reflectance::forEachKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    lua_pushcfunction(L, &protectedCall<shaderConstructor<Kind>>);
+    lua_setfield(L, -2, Kind::kName);
+  });
+  lua_pop(L, 1);
   setConstructorTable(L, "Light",
                       {{"Point", &protectedCall<lightPoint>},
                        {"Ambient", &protectedCall<lightAmbient>},

@@ -20,7 +20,8 @@ layout(constant_id = DS_SPEC_NURBS_DEGREE) const int NURBS_DEGREE = 3;
 // scene of pinhole cameras with Brown (or no) distortion compiles neither lens sampling nor them.
 layout(constant_id = DS_SPEC_CAMERA_KINDS) const uint CAMERA_KINDS = 0xffffffffu;
 layout(constant_id = DS_SPEC_HAS_RATIONAL_DISTORTION) const bool HAS_RATIONAL_DISTORTION = true;
-// Shader and light kinds present (lib/shading.glsl): a Lambert-only scene compiles no specular code.
+// Shader and light kinds present (lib/shading.glsl): a Lambert-only scene compiles no specular code
+// (HAS_SPECULAR, defined there from its registry of lobes).
 layout(constant_id = DS_SPEC_SHADER_KINDS) const uint SHADER_KINDS = 0xffffffffu;
 layout(constant_id = DS_SPEC_LIGHT_KINDS) const uint LIGHT_KINDS = 0xffffffffu;
 #define DS_HAS_SHADER(kind) ((SHADER_KINDS & (1u << (kind))) != 0u)
@@ -31,6 +32,4 @@ layout(constant_id = DS_SPEC_UNIFORM_SCENE) const bool UNIFORM_SCENE = false;
 layout(constant_id = DS_SPEC_TEXEL_VIEW) const bool TEXEL_VIEW = false;
 layout(constant_id = DS_SPEC_OBJECT_COUNT) const int OBJECT_COUNT = 0;
 layout(constant_id = DS_SPEC_LIGHT_COUNT) const int LIGHT_COUNT = -1;
-// One bit test (an || of specialization-constant expressions trips glslc's optimizer, shaderc 2023).
-#define HAS_SPECULAR ((SHADER_KINDS & ((1u << DS_SHADER_PHONG) | (1u << DS_SHADER_BLINN_PHONG) | (1u << DS_SHADER_GGX))) != 0u)
 #endif

@@ -1,11 +1,13 @@
-// Reflectance models and light kinds: the GPU twin of host/cpu/shading.{h,cpp} (formulas and their
-// derivations there), step by step in `real`. Included by lib/trace.glsl after ds_occluded; expects
-// DS_OBJECT(i, member), DS_LIGHT(i, member), `params` and lib/features.glsl.
+// The radiance sum over lights that every reflectance model shares, and the dispatch to the
+// models' specular lobes: the GPU twin of host/cpu/shading.{h,cpp} (formulas there; each model's
+// own in host/reflectance/<kind>.h), step by step in `real`. Included by lib/trace.glsl after
+// ds_occluded; expects DS_OBJECT(i, member), DS_LIGHT(i, member), `params` and lib/features.glsl.
 #ifndef DS_SHADING_GLSL
 #define DS_SHADING_GLSL
 
 // x^n for an integer n >= 0 by repeated squaring: GLSL has no double pow (docs/design.md §4). At most
-// 2 log2 n products, relative error <= 2n ε (host/cpu/shading.h); x in [0, 1] never overflows.
+// 2 log2 n products, relative error <= 2n ε (host/reflectance/power_lobe.h); x in [0, 1] never
+// overflows.
 real ds_pow_int(real x, int n) {
   real r = real(1.0);
   while (n > 0) {
@@ -26,38 +28,29 @@ real ds_spot_factor(int l, real3 p) {
   return t * t * (real(3.0) - real(2.0) * t);
 }
 
-// f_spec(ωi, ωo): unit normal n, unit wi towards the light, unit wo towards the viewer.
-// material: Phong/BlinnPhong: ks, n; GGX: 0, α, F0 (host/gpu/pack.cpp).
+// The registry of reflectance models with a specular lobe on the GPU (host/reflectance/registry.h
+// is the C++ one): each kind's twin shaders/reflectance/<kind>.glsl defines Gpu<Kind>,
+// ds_<kind>_data(material) and ds_<kind>_lobe. Constant and Lambert have no lobe and no twin:
+// ds_shade_surface below is all of them.
+#include "reflectance/blinn_phong.glsl"
+#include "reflectance/ggx.glsl"
+#include "reflectance/phong.glsl"
+#define DS_SPECULAR_LOBES(X)             \
+  X(DS_SHADER_PHONG, phong)             \
+  X(DS_SHADER_BLINN_PHONG, blinn_phong) \
+  X(DS_SHADER_GGX, ggx)
+// Whether the scene has a model with a lobe (one bit test of the specialization constant: an || of
+// specialization-constant expressions trips glslc's optimizer, shaderc 2023).
+#define DS_LOBE_BIT(KIND, name) | (1u << (KIND))
+#define HAS_SPECULAR ((SHADER_KINDS & (0u DS_SPECULAR_LOBES(DS_LOBE_BIT))) != 0u)
+
+// f_spec(ωi, ωo) of the object's model: unit normal n, unit wi towards the light, unit wo towards
+// the viewer; material: its GpuObject.material. Only the kinds the scene has are compiled in.
 real ds_specular_brdf(int shader, real4 material, real3 n, real3 wi, real3 wo) {
-  if (DS_HAS_SHADER(DS_SHADER_PHONG) && shader == DS_SHADER_PHONG) {
-    const real3 mirror = real(2.0) * dot(n, wi) * n - wi;
-    const int shininess = int(material.y);
-    return material.x * real(shininess + 2) / (real(2.0) * DS_PI) * ds_pow_int(max(dot(mirror, wo), real(0.0)), shininess);
-  }
-  if (DS_HAS_SHADER(DS_SHADER_BLINN_PHONG) && shader == DS_SHADER_BLINN_PHONG) {
-    const int shininess = int(material.y);
-    return material.x * real(shininess + 8) / (real(8.0) * DS_PI) *
-           ds_pow_int(max(dot(n, normalize(wi + wo)), real(0.0)), shininess);
-  }
-  if (DS_HAS_SHADER(DS_SHADER_GGX) && shader == DS_SHADER_GGX) {
-    const real cosI = dot(n, wi), cosO = dot(n, wo);
-    if (!(cosI > real(0.0)) || !(cosO > real(0.0))) return real(0.0);
-    const real3 halfway = normalize(wi + wo);
-    const real a2 = material.y * material.y;
-    // D: Trowbridge-Reitz, q = |N×H|² + (N·H)² α² (no cancellation near the peak)
-    const real cosH = dot(n, halfway);
-    const real3 nxh = cross(n, halfway);
-    const real q = dot(nxh, nxh) + cosH * cosH * a2;
-    const real d = cosH > real(0.0) ? a2 / (DS_PI * q * q) : real(0.0);
-    // F: Schlick
-    const real m = real(1.0) - clamp(dot(wo, halfway), real(0.0), real(1.0));
-    const real m2 = m * m;
-    const real f = material.z + (real(1.0) - material.z) * (m2 * m2 * m);
-    // G₂ / (4 cosθi cosθo): height-correlated Smith
-    const real v = real(0.5) / (cosO * sqrt(cosI * cosI * (real(1.0) - a2) + a2) +
-                                cosI * sqrt(cosO * cosO * (real(1.0) - a2) + a2));
-    return d * f * v;
-  }
+#define DS_LOBE_CASE(KIND, name) \
+  if (DS_HAS_SHADER(KIND) && shader == KIND) return ds_##name##_lobe(ds_##name##_data(material), n, wi, wo);
+  DS_SPECULAR_LOBES(DS_LOBE_CASE)
+#undef DS_LOBE_CASE
   return real(0.0);
 }
 

@@ -35,8 +35,8 @@ struct GpuObject {
   // shape[k], unused slots 0. Nurbs: shape[0].x = the surface size (m), the root node in extra.x.
   hreal4 shape[DS_SHAPE_SLOTS];
   real4 shading;             // albedo, constant texture value, 0, 0
-  real4 material;            // cpu/shading.h: Phong, BlinnPhong: specular ks, shininess n;
-                             // GGX: 0, roughness α, F0 (normal-incidence Fresnel reflectance); 0
+  real4 material;            // the reflectance model's data: its home's gpu() (host/reflectance),
+                             // read by its twin's Gpu<Kind> (shaders/reflectance/<kind>.glsl)
   ivec4 kinds;               // shape kind, shader kind, texture index (-1: constant), objectId
   ivec4 extra;               // Nurbs: root node in the NURBS node buffer; texture kind, 0, 0
   // Checkerboard and CircleGrid textures (host/texture/target_texture.h):

@@ -1,6 +1,7 @@
 // Closed lists of kinds, shared by C++ (host) and GLSL (shaders). Values are stored in GPU buffers:
 // never renumber. A shape kind has a home (host/shapes/<kind>.h, shaders/shapes/<kind>.glsl) and a
-// row in the registries (host/shapes/registry.h, shaders/lib/shapes.glsl): docs/design.md §7.
+// row in the registries (host/shapes/registry.h, shaders/lib/shapes.glsl); a reflectance model
+// (shader kind) has a home in host/reflectance/<kind>.h and, with a lobe, shaders/reflectance/ (docs/design.md §7).
 #ifndef DS_SHARED_KINDS_H
 #define DS_SHARED_KINDS_H
 
@@ -18,6 +19,7 @@
 #define DS_SHADER_PHONG 2
 #define DS_SHADER_BLINN_PHONG 3
 #define DS_SHADER_GGX 4
+#define DS_SHADER_COUNT 5
 
 #define DS_TEXTURE_CONSTANT 0
 #define DS_TEXTURE_FILE 1

@@ -4,6 +4,7 @@
 // change no pixel.
 #include <doctest/doctest.h>
 
+#include <set>
 #include <string>
 #include <utility>
 
@@ -11,6 +12,7 @@
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
 #include "identical_results.h"
+#include "reflectance/registry.h"
 #include "render/compare.h"
 #include "scene/scene.h"
 #include "scene_test_util.h"
@@ -46,9 +48,11 @@ TEST_CASE("cpu-vs-gpu: steepest specular lobes, fp64 to 1e-9 and fp32, df64 with
       {"Shader.BlinnPhong { color = 0.5; specular = 0.5; shininess = 10000 }", 0.05},
       {"Shader.GGX { color = 0.3; roughness = 0.01; f0 = 0.9 }", 0.01},
       {"Shader.GGX { roughness = 1; f0 = 0.3 }", 200.0}};
+  std::set<ShaderKind> covered;
   for (const auto& [shaderText, exposure] : cases) {
     const std::string shader = shaderText;
     const PreparedScene scene = prepareScene(loadScene(dir.write("scene.lua", highlightScene(shader, exposure)), {}));
+    covered.insert(reflectance::kindOf(scene.objects[0].shader));
     RenderOptions options;
     options.samplesPerPixel = 4;
     const RenderResult reference = cpu::render(scene, options);
@@ -69,6 +73,12 @@ TEST_CASE("cpu-vs-gpu: steepest specular lobes, fp64 to 1e-9 and fp32, df64 with
       if (p == Precision::Fp64) CHECK(d.maxRadianceDiff <= 1e-9);
     }
   }
+  // Every model of the registry with a lobe is among the cases (a new one adds its steepest case).
+  for (const reflectance::KindInfo& k : reflectance::kKinds)
+    if (k.specular) {
+      INFO("Shader." << k.name);
+      CHECK(covered.count(k.kind) == 1);
+    }
   test::expectNoValidationMessages();
 }
 

@@ -91,7 +91,7 @@ TEST_CASE("nurbs: a render's ground truth on a plate") {
   Scene scene;
   scene.cameras.push_back(smallCamera());
   Object plate = nurbsObject("plate", plateSurface(0.08, 0.06, 4), {0, 0, 0.5});
-  plate.shader.kind = ShaderKind::Constant;
+  plate.shader.model = reflectance::Constant{};
   scene.objects.push_back(plate);
   const PreparedScene ps = prepareScene(scene);
   RenderOptions options;

@@ -1,6 +1,7 @@
-// Reflectance models and lights (host/cpu/shading.h) against closed forms computed here from angles,
-// independently of the vector code; ambient and several lights on whole renders; the scene
-// constructors' errors. The GPU twins: tests/gpu/test_shading_gpu.cpp and test_cpu_vs_gpu.cpp.
+// Reflectance models (host/reflectance) and lights (host/cpu/shading.h) against closed forms
+// computed here from angles, independently of the vector code; ambient and several lights on whole
+// renders; every registered model from the scene language; the constructors' errors. The GPU
+// twins: tests/gpu/test_shading_gpu.cpp and test_cpu_vs_gpu.cpp.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include "cpu/reference_renderer.h"
 #include "cpu/shading.h"
+#include "reflectance/registry.h"
 #include "scene/scene.h"
 #include "scene_test_util.h"
 
@@ -23,14 +25,19 @@ dvec3 polar(double theta, double phi) {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }
 
-PreparedObject material(ShaderKind kind, double specular, int shininess, double roughness = 0, double f0 = 0) {
+// An object of the given reflectance model (its home's parameters).
+PreparedObject material(reflectance::Model model) {
   PreparedObject o;
-  o.shader = kind;
-  o.specular = specular;
-  o.shininess = shininess;
-  o.roughness = roughness;
-  o.f0 = f0;
+  o.shader = model;
   return o;
+}
+reflectance::Phong phong(double ks, int n) { return {{ks, n}}; }
+reflectance::BlinnPhong blinnPhong(double ks, int n) { return {{ks, n}}; }
+reflectance::Ggx ggx(double alpha, double f0) {
+  reflectance::Ggx g;
+  g.roughness = alpha;
+  g.f0 = f0;
+  return g;
 }
 
 constexpr double kDeg = kPi / 180;
@@ -48,7 +55,7 @@ double simpson(F f, double a, double b, int n) {
 }  // namespace
 
 TEST_CASE("shading: Phong peak at the mirror direction and its value off the peak") {
-  const PreparedObject o = material(ShaderKind::Phong, 0.3, 40);
+  const PreparedObject o = material(phong(0.3, 40));
   const double peak = 0.3 * 42 / (2 * kPi);
   // Light 30° from the normal at azimuth 0; its mirror direction is 30° at azimuth 180°.
   const dvec3 wi = polar(30 * kDeg, 0);
@@ -66,7 +73,7 @@ TEST_CASE("shading: Phong peak at the mirror direction and its value off the pea
 }
 
 TEST_CASE("shading: Blinn-Phong peak when the half vector is the normal, and off the peak") {
-  const PreparedObject o = material(ShaderKind::BlinnPhong, 0.25, 100);
+  const PreparedObject o = material(blinnPhong(0.25, 100));
   const double peak = 0.25 * 108 / (8 * kPi);
   CHECK(cpu::specularBrdf(o, kNormal, polar(25 * kDeg, 0), polar(25 * kDeg, kPi)) == doctest::Approx(peak).epsilon(1e-14));
   // Light at 30°, viewer at 50° on the other side, in one plane: the half vector is 10° off.
@@ -77,7 +84,7 @@ TEST_CASE("shading: Blinn-Phong peak when the half vector is the normal, and off
 TEST_CASE("shading: Phong's normalization gives albedo ks for a viewer on the normal") {
   // With V = N the lobe's angle α is θi, so ∫ f_spec cosθi dωi = ks (n+2)/(2π) 2π ∫ cos^(n+1)θ sinθ dθ.
   for (int n : {1, 10, 200}) {
-    const PreparedObject o = material(ShaderKind::Phong, 0.4, n);
+    const PreparedObject o = material(phong(0.4, n));
     const double albedo = simpson([&](double t) { return cpu::specularBrdf(o, kNormal, polar(t, 0), kNormal) *
                                                          std::cos(t) * std::sin(t) * 2 * kPi; },
                                   0, kPi / 2, 20000);
@@ -91,7 +98,7 @@ TEST_CASE("shading: GGX distribution is normalized, ∫ D cosθh dω = 1") {
     // fine there (μ = 1 − s², s uniform: dμ = 2s ds).
     const double integral = simpson([&](double s) {
       const double mu = 1 - s * s;
-      return 2 * kPi * cpu::ggxD(alpha, mu, s * s * (1 + mu)) * mu * 2 * s;  // 1 − μ² = s²(1 + μ)
+      return 2 * kPi * reflectance::Ggx::distribution(alpha, mu, s * s * (1 + mu)) * mu * 2 * s;  // 1 − μ² = s²(1 + μ)
     }, 0, 1, 200000);
     CHECK(integral == doctest::Approx(1).epsilon(1e-7));
   }
@@ -99,7 +106,7 @@ TEST_CASE("shading: GGX distribution is normalized, ∫ D cosθh dω = 1") {
 
 TEST_CASE("shading: GGX at normal incidence and its Smith term against the tan form") {
   const double alpha = 0.3, f0 = 0.9;
-  const PreparedObject o = material(ShaderKind::Ggx, 0, 1, alpha, f0);
+  const PreparedObject o = material(ggx(alpha, f0));
   // Light and viewer on the normal: D = 1/(πα²), F = F0, G₂ = 1, f = D F G₂ / 4.
   CHECK(cpu::specularBrdf(o, kNormal, kNormal, kNormal) == doctest::Approx(f0 / (kPi * alpha * alpha) / 4).epsilon(1e-14));
   // G₂ = 1/(1 + Λi + Λo), Λ(θ) = (√(1 + α² tan²θ) − 1)/2 (Heitz 2014), against the algebraic form.
@@ -107,13 +114,13 @@ TEST_CASE("shading: GGX at normal incidence and its Smith term against the tan f
   for (double ti : {5.0, 40.0, 80.0})
     for (double to : {0.0, 30.0, 70.0, 89.0}) {
       const double g2 = 1 / (1 + lambda(ti * kDeg) + lambda(to * kDeg));
-      CHECK(cpu::ggxVisibility(alpha, std::cos(ti * kDeg), std::cos(to * kDeg)) ==
+      CHECK(reflectance::Ggx::visibility(alpha, std::cos(ti * kDeg), std::cos(to * kDeg)) ==
             doctest::Approx(g2 / (4 * std::cos(ti * kDeg) * std::cos(to * kDeg))).epsilon(1e-12));
     }
   // Schlick: F0 at 0°, 1 at grazing, F0 + (1 − F0)/32 at 60° (1 − cos 60° = 1/2).
-  CHECK(cpu::schlickFresnel(f0, 1) == f0);
-  CHECK(cpu::schlickFresnel(f0, 0) == 1);
-  CHECK(cpu::schlickFresnel(f0, 0.5) == doctest::Approx(f0 + (1 - f0) / 32).epsilon(1e-15));
+  CHECK(reflectance::Ggx::fresnel(f0, 1) == f0);
+  CHECK(reflectance::Ggx::fresnel(f0, 0) == 1);
+  CHECK(reflectance::Ggx::fresnel(f0, 0.5) == doctest::Approx(f0 + (1 - f0) / 32).epsilon(1e-15));
 }
 
 TEST_CASE("shading: GGX white furnace against an independent integral over half vectors") {
@@ -122,7 +129,7 @@ TEST_CASE("shading: GGX white furnace against an independent integral over half 
   // CDF of D cosθh, θh(ξ) = atan(α √(ξ/(1 − ξ))); with ωo = n the change of variables leaves
   // E = ∫₀¹ G₂(θi = 2θh, θo = 0) [2θh < π/2] dξ, G₂ from the tan form of Λ (not the code's).
   for (double alpha : {0.05, 0.3, 0.8}) {
-    const PreparedObject o = material(ShaderKind::Ggx, 0, 1, alpha, 1.0);
+    const PreparedObject o = material(ggx(alpha, 1.0));
     const double e = simpson([&](double t) { return cpu::specularBrdf(o, kNormal, polar(t, 0), kNormal) *
                                                     std::cos(t) * std::sin(t) * 2 * kPi; },
                              0, kPi / 2 - 1e-9, 400000);
@@ -256,7 +263,32 @@ TEST_CASE("scene: shader and light constructors refuse bad values with file:line
   CHECK(scene.lights[0].kind == LightKind::Spot);
   CHECK(scene.lights[0].direction == dvec3(0, 0, -1));
   CHECK(scene.lights[0].innerAngle_rad == 0.0);
-  CHECK(scene.objects[0].shader.kind == ShaderKind::Phong);
-  CHECK(scene.objects[0].shader.shininess == 7);
-  CHECK(scene.objects[0].shader.specular == 0.1);
+  CHECK(scene.objects[0].shader.kind() == ShaderKind::Phong);
+  CHECK(std::get<reflectance::Phong>(scene.objects[0].shader.model).shininess == 7);
+  CHECK(std::get<reflectance::Phong>(scene.objects[0].shader.model).specular == 0.1);
+}
+
+TEST_CASE("shading: every registered reflectance model from the scene language, its defaults and its keys") {
+  // host/reflectance/registry.h lists the kinds; the Lua binding iterates over it. Each kind with
+  // no parameters given: its number, its default colour (1, GGX's 0: a bare metal), its name in
+  // tostring; an unknown key names `color` and the kind's own keys, in the home's order.
+  TempFolder dir;
+  reflectance::forEachKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    const std::string name = std::string("Shader.") + Kind::kName;
+    INFO(name);
+    const std::string path = dir.write("ok.lua", std::string(kCameraLine) +
+                                                     "assert(tostring(" + name + " {}) == '" + name + "')\n"
+                                                     "s = Object.Simple { shape = Shape.Sphere { radius = 1 }; shader = " +
+                                                     name + " {} }\n");
+    const Scene scene = loadScene(path, {});
+    REQUIRE(scene.objects.size() == 1);
+    const Shader& shader = scene.objects[0].shader;
+    CHECK(shader.kind() == Kind::kKind);
+    CHECK(shader.color == dvec3(Kind::kDefaultColor));
+    std::string keys = "color";
+    for (const char* key : Kind::kKeys) keys += std::string(", ") + key;
+    checkBodyError(dir, "\ns = " + name + " { colour = 1 }\n", 3,
+                   name + ": unknown key 'colour' (did you mean 'color'?); valid keys: " + keys);
+  });
 }

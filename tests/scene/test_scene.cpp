@@ -87,7 +87,7 @@ object = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 
   CHECK(object.shape.where.line == 4);
   CHECK(std::get<shapes::Sphere>(object.shape.analytic).radius_m == 0.1);
   CHECK(object.shape.location_m == dvec3(0, 0, 0.5));
-  CHECK(object.shader.kind == ShaderKind::Constant);
+  CHECK(object.shader.kind() == ShaderKind::Constant);
   CHECK(object.shader.where.line == 5);
   CHECK(object.shader.color == dvec3(0.2, 0.8, 1.0));
   CHECK(object.texture.kind == TextureKind::File);
@@ -134,10 +134,10 @@ lamp = Light.Point { position = {1, 2, 3} }
   }
   CHECK(scene.objects[0].shape.kind() == ShapeKind::Sphere);
   CHECK(std::get<shapes::Sphere>(scene.objects[0].shape.analytic).radius_m == 2.0);
-  CHECK(scene.objects[0].shader.kind == ShaderKind::Constant);
+  CHECK(scene.objects[0].shader.kind() == ShaderKind::Constant);
   CHECK(scene.objects[1].shape.kind() == ShapeKind::Box);
   CHECK(std::get<shapes::Box>(scene.objects[1].shape.analytic).size_m == dvec3(1, 2, 3));
-  CHECK(scene.objects[1].shader.kind == ShaderKind::Lambert);
+  CHECK(scene.objects[1].shader.kind() == ShaderKind::Lambert);
   CHECK(scene.objects[2].shape.kind() == ShapeKind::Rectangle);
   CHECK(std::get<shapes::Rectangle>(scene.objects[2].shape.analytic).size_m == dvec2(4, 5));
   CHECK(scene.objects[3].shape.kind() == ShapeKind::Plane);
@@ -201,7 +201,7 @@ l2 = Light.Point { position = {0, 1, 0}; intensity = {1, 2, 3} }
   CHECK(a.name == "a");
   CHECK(a.shape.location_m == dvec3(1, 2, 3));
   CHECK(std::get<shapes::Sphere>(a.shape.analytic).radius_m == 0.5);
-  CHECK(a.shader.kind == ShaderKind::Lambert);
+  CHECK(a.shader.kind() == ShaderKind::Lambert);
   CHECK(a.shader.color == dvec3(0.25));
   CHECK(a.texture.kind == TextureKind::Constant);
   CHECK(a.texture.value == 0.75);

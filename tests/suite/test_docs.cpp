@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "model/layers.h"
+#include "reflectance/registry.h"
 #include "shapes/registry.h"
 #include "run_cli.h"
 
@@ -202,5 +203,40 @@ TEST_CASE("docs: every shape kind of the registry is in the scene language's tab
       CHECK(row.find(key) != std::string::npos);
     }
     CHECK(cameras.find("| `" + name + " {") != std::string::npos);
+  });
+}
+
+TEST_CASE("docs: every reflectance model of the registry is in the scene language's table and the reflectance tables") {
+  // host/reflectance/registry.h lists the kinds; docs/scene-language.md's "reflectance" row names
+  // each constructor and its keys; docs/reflectance.md has its f_spec row and its parameters.
+  auto read = [](const char* name) {
+    std::ifstream in(std::string(DS_SOURCE_DIR) + "/docs/" + name);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  const std::string language = read("scene-language.md"), page = read("reflectance.md");
+  const std::size_t rowStart = language.find("| reflectance |");
+  REQUIRE(rowStart != std::string::npos);
+  const std::string row = language.substr(rowStart, language.find('\n', rowStart) - rowStart);
+  reflectance::forEachKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    const std::string name = std::string("Shader.") + Kind::kName;
+    INFO(name);
+    CHECK(row.find("`" + name + "`") != std::string::npos);
+    CHECK(page.find("| `" + name + "` | ") != std::string::npos);  // the f_spec table
+    // The parameter table: a row naming the kind, `color` and each key in the rows below it.
+    const std::size_t parameters = page.find("| constructor | parameter |");
+    REQUIRE(parameters != std::string::npos);
+    const std::size_t own = page.find("`" + name + "`", parameters);
+    REQUIRE(own != std::string::npos);
+    const std::size_t next = page.find("\n| `", page.find('\n', own));
+    const std::string rows = page.substr(own, next - own);
+    CHECK(rows.find("`color`") != std::string::npos);
+    for (const char* key : Kind::kKeys) {
+      INFO(key);
+      CHECK(row.find(key) != std::string::npos);
+      CHECK(rows.find(std::string("`") + key + "`") != std::string::npos);
+    }
   });
 }

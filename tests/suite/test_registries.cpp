@@ -1,0 +1,141 @@
+// The C++ registries of kinds (host/shapes/registry.h, host/reflectance/registry.h) against their
+// GLSL twins (the X-lists of shaders/lib/shapes.glsl and shaders/lib/shading.glsl) and the twin
+// files they include, read as text: a kind registered on one side only, or a twin without its
+// struct and functions, fails here rather than as a wrong pixel.
+#include <doctest/doctest.h>
+
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "reflectance/registry.h"
+#include "shapes/registry.h"
+
+using namespace dicsynth;
+
+namespace {
+
+std::string readSource(const std::string& relative) {
+  std::ifstream in(std::string(DS_SOURCE_DIR) + "/" + relative);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// "BlinnPhong" → "blinn_phong", "GGX" → "ggx": the GLSL twin's name of a kind.
+std::string snakeCase(const std::string& name) {
+  std::string out;
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(name[i]);
+    if (i > 0 && std::isupper(c) && std::islower(static_cast<unsigned char>(name[i - 1]))) out += '_';
+    out += char(std::tolower(c));
+  }
+  return out;
+}
+
+// The numbers of shaders/shared/kinds.h: DS_SHAPE_SPHERE → 0, ...
+std::map<std::string, int> kindNumbers() {
+  std::map<std::string, int> numbers;
+  const std::string text = readSource("shaders/shared/kinds.h");
+  const std::regex define(R"(#define (DS_[A-Z_]+) (\d+))");
+  for (std::sregex_iterator it(text.begin(), text.end(), define), end; it != end; ++it)
+    numbers[(*it)[1].str()] = std::stoi((*it)[2].str());
+  return numbers;
+}
+
+// The rows X(DS_KIND, name) of the X-list `list` in `glsl`: kind number → name.
+std::map<int, std::string> xListRows(const std::string& glsl, const std::string& list) {
+  const std::size_t start = glsl.find("#define " + list + "(X)");
+  REQUIRE(start != std::string::npos);
+  // The macro runs to the first line that does not end in a backslash.
+  std::size_t end = start;
+  while ((end = glsl.find('\n', end + 1)) != std::string::npos && glsl[end - 1] == '\\') {
+  }
+  const std::string body = glsl.substr(start, end - start);
+  const std::map<std::string, int> numbers = kindNumbers();
+  std::map<int, std::string> rows;
+  const std::regex row(R"(X\((DS_[A-Z_]+), ([a-z_]+)\))");
+  for (std::sregex_iterator it(body.begin(), body.end(), row), e; it != e; ++it) {
+    INFO((*it)[0].str());
+    REQUIRE(numbers.count((*it)[1].str()) == 1);
+    const int number = numbers.at((*it)[1].str());
+    CHECK(rows.count(number) == 0);  // each kind once
+    rows[number] = (*it)[2].str();
+  }
+  return rows;
+}
+
+// The twin file shaders/<folder>/<name>.glsl is included by `registry` and defines its struct
+// Gpu<Name> (blinn_phong → GpuBlinnPhong, ggx → GpuGgx), ds_<name>_data and each of `functions`
+// (ds_<name>_<function>).
+void checkTwin(const std::string& registry, const std::string& folder, const std::string& name,
+               std::initializer_list<const char*> functions) {
+  const std::string path = folder + "/" + name + ".glsl";
+  INFO("shaders/" << path);
+  CHECK(registry.find("#include \"" + path + "\"") != std::string::npos);
+  REQUIRE(std::filesystem::exists(std::string(DS_SOURCE_DIR) + "/shaders/" + path));
+  const std::string twin = readSource("shaders/" + path);
+  std::string gpuName = "Gpu";
+  for (std::size_t i = 0; i < name.size(); ++i)
+    if (name[i] != '_')
+      gpuName += (i == 0 || name[i - 1] == '_') ? char(std::toupper(static_cast<unsigned char>(name[i]))) : name[i];
+  CHECK(twin.find("struct " + gpuName + " {") != std::string::npos);
+  CHECK(twin.find(gpuName + " ds_" + name + "_data(") != std::string::npos);
+  for (const char* f : functions) CHECK(twin.find(" ds_" + name + "_" + f + "(") != std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("registries: the GLSL shape registry lists every analytic kind of the C++ one, each with its twin") {
+  const std::string glsl = readSource("shaders/lib/shapes.glsl");
+  const std::map<int, std::string> rows = xListRows(glsl, "DS_ANALYTIC_SHAPES");
+  std::set<int> registered;
+  shapes::forEachAnalyticKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    INFO("Shape." << Kind::kName);
+    const int number = int(Kind::kKind);
+    registered.insert(number);
+    REQUIRE(rows.count(number) == 1);
+    CHECK(rows.at(number) == snakeCase(Kind::kName));
+    checkTwin(glsl, "shapes", rows.at(number), {"search", "attributes"});
+  });
+  CHECK(registered.size() == rows.size());  // no GLSL row without a C++ home
+}
+
+TEST_CASE("registries: the GLSL lobe registry lists every reflectance model with a lobe, each with its twin") {
+  const std::string glsl = readSource("shaders/lib/shading.glsl");
+  const std::map<int, std::string> rows = xListRows(glsl, "DS_SPECULAR_LOBES");
+  std::size_t withLobe = 0;
+  reflectance::forEachKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    INFO("Shader." << Kind::kName);
+    const int number = int(Kind::kKind);
+    if (!Kind::kSpecular) {
+      // Constant and Lambert: no lobe, no twin, and the shared code must not need one.
+      CHECK(rows.count(number) == 0);
+      CHECK(!std::filesystem::exists(std::string(DS_SOURCE_DIR) + "/shaders/reflectance/" + snakeCase(Kind::kName) + ".glsl"));
+      return;
+    }
+    ++withLobe;
+    REQUIRE(rows.count(number) == 1);
+    CHECK(rows.at(number) == snakeCase(Kind::kName));
+    checkTwin(glsl, "reflectance", rows.at(number), {"lobe"});
+  });
+  CHECK(withLobe == rows.size());
+  CHECK(withLobe >= 3);  // the scan found the lobes
+}
+
+TEST_CASE("registries: the kinds tables are indexed by number and named once") {
+  std::set<std::string> names;
+  for (const shapes::ShapeKindInfo& k : shapes::kShapeKinds) CHECK(names.insert(std::string("Shape.") + k.name).second);
+  for (const reflectance::KindInfo& k : reflectance::kKinds) {
+    CHECK(names.insert(std::string("Shader.") + k.name).second);
+    CHECK(k.lit == (k.kind != ShaderKind::Constant));
+  }
+  CHECK(names.size() == std::size_t(DS_SHAPE_COUNT + DS_SHADER_COUNT));
+}

@@ -58,7 +58,7 @@ constexpr bool everyKindRegisteredOnce() {
 static_assert(everyKindRegisteredOnce(),
               "every shader kind of shaders/shared/kinds.h has exactly one home in reflectance::Model");
 
-constexpr const KindInfo& kindInfo(ShaderKind kind) { return kKinds[std::size_t(kind)]; }
+constexpr const KindInfo& kindInfo(ShaderKind kind) { return kKinds.at(std::size_t(kind)); }
 inline const KindInfo& kindInfo(const Model& model) { return kindInfo(kindOf(model)); }
 
 // The model's specular lobe f_spec(ωi, ωo) (0 without one) and its bound.

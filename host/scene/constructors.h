@@ -1,7 +1,12 @@
 #pragma once
 // The scene language: constructors (Camera.Pinhole { ... }, Shape.Sphere { ... }, ...) and
 // transform functions (translate, rotate_y, ...) as Lua globals. One file per category; each
-// constructor's user documentation sits at the top of the code that reads its parameters.
+// constructor's user documentation sits at the top of the code that reads its parameters (or in
+// the kind's home: host/shapes, host/reflectance).
+#include <string>
+
+#include "reflectance/registry.h"
+
 struct lua_State;
 
 namespace dicsynth::scene {
@@ -25,8 +30,15 @@ void registerRigConstructors(lua_State* L);     // rig_constructors.cpp: Rig
 void registerSensorConstructors(lua_State* L);  // sensor_constructors.cpp: Sensor, Blur,
                                                 //   Vignetting, Dust, DefectivePixels
 
-// What a 'shader' parameter must be, for error messages.
-inline constexpr const char* kShaderExpected =
-    "a Shader (Shader.Constant, Shader.Lambert, Shader.Phong, Shader.BlinnPhong, Shader.GGX)";
+// What a 'shader' parameter must be, for error messages: every model of the registry
+// (host/reflectance/registry.h), in number order.
+inline const char* shaderExpected() {
+  static const std::string text = [] {
+    std::string list;
+    for (const reflectance::KindInfo& k : reflectance::kKinds) list += std::string(list.empty() ? "" : ", ") + "Shader." + k.name;
+    return "a Shader (" + list + ")";
+  }();
+  return text.c_str();
+}
 
 }  // namespace dicsynth::scene

@@ -154,7 +154,7 @@ int objectSimple(lua_State* L) {
   if (!shape) p.fail("missing required 'shape'");
   object.shape = *shape;
   if (const Shader* shader =
-          p.userdata<Shader>("shader", kShaderExpected)) {
+          p.userdata<Shader>("shader", shaderExpected())) {
     object.shader = *shader;
   } else {
     object.shader.where = object.where;

@@ -62,7 +62,7 @@ int pushTarget(lua_State* L, const Params& p, TextureKind kind, TargetPattern pa
   object.texture.kind = kind;
   object.texture.where = object.where;
   object.texture.target = pattern;
-  if (const Shader* shader = p.userdata<Shader>("shader", kShaderExpected)) {
+  if (const Shader* shader = p.userdata<Shader>("shader", shaderExpected())) {
     object.shader = *shader;
   } else {
     object.shader.where = object.where;

@@ -88,7 +88,8 @@ TEST_CASE("scene: wrong types, missing and non-finite values") {
       dir,
       "o = Object.Simple { shape = Shape.Sphere { radius = 1 };\n"
       "  shader = Shape.Sphere { radius = 2 } }\n",
-      1, "Object.Simple: 'shader' must be a Shader (Shader.Constant, Shader.Lambert, Shader.Phong, Shader.BlinnPhong, Shader.GGX), got Shape");
+      1, "Object.Simple: 'shader' must be a Shader (Shader.Constant, Shader.Lambert, Shader.Phong, Shader.BlinnPhong, "
+         "Shader.GGX), got Shape");  // the registry's models in number order (a new one appends)
   std::string shapeKinds;  // every kind of the registry (host/shapes/registry.h), in number order
   for (const shapes::ShapeKindInfo& k : shapes::kShapeKinds) shapeKinds += std::string("Shape.") + k.name + ", ";
   CHECK(shapeKinds.rfind("Shape.Sphere, Shape.Box, Shape.Triangle, Shape.Plane, Shape.Rectangle, Shape.Nurbs, ", 0) == 0);

@@ -126,7 +126,7 @@ inline Object nurbsObject(const std::string& name, const NurbsSurface& surface, 
   o.shape.location_m = location;
   o.shape.nurbs = std::make_shared<NurbsSurface>(surface);
   o.shader.model = reflectance::Lambert{};
-  o.texture.value = 0.5;
+  o.texture.model = textures::Constant{0.5};
   o.transform = transform;
   return o;
 }

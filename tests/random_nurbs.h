@@ -129,7 +129,7 @@ inline Scene randomNurbsScene(std::uint64_t seed) {
   sphere.shape.analytic = shapes::Sphere{0.3};
   sphere.shape.location_m = {0, 0, 0.8};
   sphere.shader.model = reflectance::Lambert{};
-  sphere.texture.value = 0.5;
+  sphere.texture.model = textures::Constant{0.5};
   s.objects.push_back(sphere);
   return s;
 }

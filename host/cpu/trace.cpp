@@ -57,26 +57,10 @@ bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosi
   return false;
 }
 
-namespace {
-
-double textureValue(const PreparedScene& scene, const PreparedObject& obj, dvec2 uv) {
-  switch (obj.textureKind) {
-    case TextureKind::Constant: return obj.textureValue;
-    case TextureKind::Checkerboard:
-    case TextureKind::CircleGrid: return targetTextureValue(obj.targetTexture, uv);
-    case TextureKind::Speckle: return speckleTextureValue(obj.speckleTexture, uv);
-    case TextureKind::File: break;
-  }
-  const PreparedTexture& tex = scene.textures[std::size_t(obj.textureIndex)];
-  return bsplineLookup(tex.values().data(), tex.width, tex.height, std::clamp(uv.x, 0.0, 1.0),
-                       std::clamp(uv.y, 0.0, 1.0), tex.interpolation);
-}
-
-}  // namespace
-
 double shade(const PreparedScene& scene, const SurfaceHit& hit) {
   const PreparedObject& obj = scene.objects[std::size_t(hit.object)];
-  const double reflectance = obj.albedo * textureValue(scene, obj, hit.uv);
+  // The texture's value at the hit (its home, host/textures/<kind>.h, evaluates it).
+  const double reflectance = obj.albedo * textures::at(obj.texture, hit.uv);
   return shadeSurface(scene, hit, reflectance);  // cpu/shading.cpp
 }
 

@@ -115,8 +115,8 @@ void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, cons
 }
 
 // One prepared texture per (file, interpolation): the coefficients depend on the kernel.
-int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::map<std::string, int>& byPath,
-                TextureCache* cache) {
+int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<PreparedTexture>& textures,
+                std::map<std::string, int>& byPath, TextureCache* cache) {
   const std::string key = std::to_string(int(t.interpolation)) + ":" + t.path;
   if (auto it = byPath.find(key); it != byPath.end()) return it->second;
   if (cache)
@@ -128,7 +128,7 @@ int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::m
   try {
     image = readGrayImage(t.path);
   } catch (const InputError& e) {
-    throw InputError(t.where, std::string("Texture.File: ") + e.what());
+    throw InputError(where, std::string("Texture.File: ") + e.what());
   }
   // Texels are reflectances: finite and >= 0 (as Texture.Speckle's dark and light). One NaN would
   // spread through the B-spline prefilter into every pixel of the image.
@@ -136,7 +136,7 @@ int loadTexture(const Texture& t, std::vector<PreparedTexture>& textures, std::m
     const double v = image.pixels[i];
     if (std::isfinite(v) && v >= 0) continue;
     const std::size_t x = i % std::size_t(image.width), y = i / std::size_t(image.width);
-    throw InputError(t.where, "Texture.File: " + t.path + ": " + (std::isfinite(v) ? "negative texel " + shortestNumber(v) : std::string("non-finite texel")) +
+    throw InputError(where, "Texture.File: " + t.path + ": " + (std::isfinite(v) ? "negative texel " + shortestNumber(v) : std::string("non-finite texel")) +
                                   " at (" + std::to_string(x) + ", " + std::to_string(y) +
                                   ") (x, y from the top-left; texels are reflectances: finite and >= 0)");
   }
@@ -226,22 +226,24 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     o.shader = so.shader.model;
     o.albedo = luminance(so.shader.color);
     anyLit |= reflectance::kindInfo(o.shader).lit;
-    o.textureKind = so.texture.kind;
-    if (so.texture.kind == TextureKind::File) {
-      o.textureIndex = loadTexture(so.texture, ps.textures, texturesByPath, options.textureCache);
-    } else {
-      o.textureValue = so.texture.value;
+    o.texture = so.texture.model;
+    if (auto* file = std::get_if<textures::File>(&o.texture)) {
+      // The image, decoded and prefiltered once per path and kernel, shared with the texture table.
+      file->index = loadTexture(*file, so.texture.where, ps.textures, texturesByPath, options.textureCache);
+      const PreparedTexture& image = ps.textures[std::size_t(file->index)];
+      file->coefficients = image.coefficients;
+      file->width = image.width;
+      file->height = image.height;
     }
-    if (so.texture.kind == TextureKind::Speckle) o.speckleTexture = so.texture.speckle;
     o.worldFromObject = glm::translate(dmat4(1.0), so.shape.location_m) * so.transform *
                         glm::translate(dmat4(1.0), o.shapeOffset_m);
     o.objectFromWorld = isAffine(o.worldFromObject) ? glm::affineInverse(o.worldFromObject)
                                                     : glm::inverse(o.worldFromObject);
-    if (isTargetTexture(so.texture.kind)) {
+    if (const textures::TargetPattern* pattern = textures::targetPattern(so.texture.model)) {
       // The target's rectangle is centred on rectangleCentre_m of the target frame
       // (Target.* constructors: transform = worldFromTarget · translate(rectangleCentre_m)).
-      auto layout = std::make_shared<const TargetLayout>(targetLayout(so.texture.kind, so.texture.target));
-      o.targetTexture = layout->texture;
+      auto layout = std::make_shared<const TargetLayout>(targetLayout(so.texture.kind(), *pattern));
+      textures::targetDrawing(o.texture)->drawn = layout->texture;
       o.worldFromTarget = o.worldFromObject * glm::translate(dmat4(1.0), -layout->rectangleCentre_m);
       o.target = std::move(layout);
       checkTargetInFront(o, so, ps.cameras);
@@ -265,7 +267,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     ps.features.quinticTextures |= t.interpolation == Interpolation::Quintic;
   for (const PreparedObject& o : ps.objects) {
     ps.features.shapeKinds |= 1u << int(o.geometry.kind());
-    ps.features.speckleTextures |= o.textureKind == TextureKind::Speckle;
+    ps.features.speckleTextures |= textures::kindOf(o.texture) == TextureKind::Speckle;
     ps.features.shaderKinds |= 1u << int(reflectance::kindOf(o.shader));
     if (o.nurbs)
       for (const BezierPatch& p : o.nurbs->patches)

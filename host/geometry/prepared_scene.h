@@ -36,11 +36,9 @@ struct PreparedObject {
   std::shared_ptr<const Deformation> deformation;  // Nurbs.deform only: S, d, the fit (scene.h)
   reflectance::Model shader;  // the reflectance model and its parameters (host/reflectance)
   double albedo = 1;          // luminance of the shader colour
-  TextureKind textureKind = TextureKind::Constant;
-  int textureIndex = -1;      // into PreparedScene::textures (File), else -1
-  double textureValue = 1;    // Constant: the texture value
-  TargetTexture targetTexture;  // Checkerboard, CircleGrid: the pattern in (u, v)
-  AnalyticSpeckle speckleTexture;  // Speckle: the Boolean model in (u, v)
+  // The texture and its parameters (host/textures), prepared: a File's image (shared with
+  // PreparedScene::textures[index]), a target's drawing in (u, v).
+  textures::Model texture;
   // A calibration target's layout and features (geometry/targets.h); null for other objects.
   std::shared_ptr<const TargetLayout> target;
   dmat4 worldFromTarget{1.0};   // the target frame in the world (targets only; rigid)

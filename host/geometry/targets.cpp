@@ -4,7 +4,7 @@
 
 namespace dicsynth {
 
-TargetLayout targetLayout(TextureKind kind, const TargetPattern& p) {
+TargetLayout targetLayout(TextureKind kind, const textures::TargetPattern& p) {
   DS_CHECK(isTargetTexture(kind), "targetLayout: not a target texture");
   DS_CHECK(p.cols >= 1 && p.rows >= 1 && p.spacing_m > 0 && p.border_m >= 0, "targetLayout: invalid pattern");
   const double s = p.spacing_m, b = p.border_m;

@@ -38,7 +38,7 @@ struct TargetFeature {
 
 struct TargetLayout {
   TextureKind kind = TextureKind::Checkerboard;
-  TargetPattern pattern;
+  textures::TargetPattern pattern;
   dvec2 size_m{0};             // the rectangle, w × h
   dvec3 rectangleCentre_m{0};  // its centre in the target frame (z = 0)
   int perRow = 0, rows = 0;    // features per row, rows of features (OpenCV's patternSize)
@@ -48,7 +48,7 @@ struct TargetLayout {
 
 // `kind` is TextureKind::Checkerboard or TextureKind::CircleGrid; the pattern must be valid
 // (checked by the constructors in host/scene/target_constructors.cpp).
-TargetLayout targetLayout(TextureKind kind, const TargetPattern& pattern);
+TargetLayout targetLayout(TextureKind kind, const textures::TargetPattern& pattern);
 
 // Whether a texture kind is a calibration target's.
 inline bool isTargetTexture(TextureKind kind) {

@@ -18,6 +18,13 @@
 namespace dicsynth::gpu {
 namespace {
 
+// std::visit over a set of lambdas, one per kind (or per base of kinds).
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+
+
 template <class Layout>
 typename Layout::real4 r4(double x, double y = 0, double z = 0, double w = 0) {
   return toReal4(x, y, z, w, static_cast<typename Layout::real4*>(nullptr));
@@ -73,16 +80,25 @@ typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
         },
         o.geometry.analytic);
   }
-  g.shading = r4<Layout>(o.albedo, o.textureValue);
+  // The texture's GPU data, each kind in its own members (read by its GLSL twin,
+  // shaders/textures/<twin>.glsl); the other kinds' members keep their defaults.
+  double textureValue = 1;  // Constant: GpuObject.shading.y
+  int textureIndex = -1;    // File: the texel buffer's texture, GpuObject.kinds.z
+  TargetTexture t;          // Checkerboard, CircleGrid: target0, target1, targetInfo
+  AnalyticSpeckle sp;       // Speckle: speckleInfo, speckle0, speckleCdf
+  std::visit(Overloaded{[&](const textures::Constant& c) { textureValue = c.value; },
+                        [&](const textures::File& f) { textureIndex = f.index; },
+                        [&](const textures::TargetDrawing& target) { t = target.drawn; },
+                        [&](const textures::Speckle& s) { sp = s.model; }},
+             o.texture);
+  g.shading = r4<Layout>(o.albedo, textureValue);
   // The model's GPU data, read by its GLSL twin (shaders/reflectance/<kind>.glsl).
   const dvec4 material = std::visit([](const auto& model) { return model.gpu(); }, o.shader);
   g.material = r4<Layout>(material.x, material.y, material.z, material.w);
-  g.kinds = {int(o.geometry.kind()), int(reflectance::kindOf(o.shader)), o.textureIndex, int(o.id)};
-  const TargetTexture& t = o.targetTexture;
+  g.kinds = {int(o.geometry.kind()), int(reflectance::kindOf(o.shader)), textureIndex, int(o.id)};
   g.target0 = h4<Layout>(t.origin_uv.x, t.origin_uv.y, t.cell_uv.x, t.cell_uv.y);
   g.target1 = h4<Layout>(t.radiusSquared_cells, t.dark, t.light);
   g.targetInfo = {t.cols, t.rows, t.asymmetric ? 1 : 0, 0};
-  const AnalyticSpeckle& sp = o.speckleTexture;
   g.speckleInfo = {int(sp.seed), 0, 0, 0};  // the seed's bits (uint(int) in the shader)
   g.speckle0 = h4<Layout>(sp.cellsPerUv.x, sp.cellsPerUv.y, sp.dark, sp.light);
   for (int q = 0; q < 4; ++q)
@@ -200,7 +216,7 @@ PackedFrame<Layout> packFrame(const PreparedScene& scene, const PackedScene<Layo
   for (const auto& c : scene.cameras) f.cameras.push_back(packCamera<Layout>(c, spp, f.origin_m));
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     f.objects.push_back(packObject<Layout>(scene.objects[i], f.origin_m));
-    f.objects.back().extra = {packed.nurbsRoots[i], int(scene.objects[i].textureKind), 0, 0};
+    f.objects.back().extra = {packed.nurbsRoots[i], int(textures::kindOf(scene.objects[i].texture)), 0, 0};
   }
   for (const auto& l : scene.lights) {
     const dvec3 position = l.position_m - f.origin_m;

@@ -17,9 +17,8 @@
 #include "nurbs/nurbs_surface.h"
 #include "reflectance/registry.h"
 #include "shapes/registry.h"
+#include "textures/registry.h"
 #include "shared/kinds.h"
-#include "texture/analytic_speckle.h"
-#include "texture/bspline.h"
 
 namespace dicsynth {
 
@@ -91,27 +90,10 @@ struct Shader {
   ShaderKind kind() const { return reflectance::kindOf(model); }
 };
 
-// The printed pattern of a calibration target (Target.Checkerboard, Target.CircleGrid); its layout,
-// the target frame and its features are defined in host/geometry/targets.h.
-struct TargetPattern {
-  int cols = 0, rows = 0;   // Checkerboard: squares per row, rows of squares. CircleGrid: circles
-                            // per row, rows (OpenCV's patternSize)
-  bool asymmetric = false;  // CircleGrid: OpenCV's CALIB_CB_ASYMMETRIC_GRID layout
-  double spacing_m = 0;     // Checkerboard: square size. CircleGrid: OpenCV's squareSize (row
-                            // pitch; centres in a row are 2·spacing apart when asymmetric)
-  double radius_m = 0;      // CircleGrid: dot radius
-  double border_m = 0;      // light margin around the squares / around the dots' edges
-  double dark = 0, light = 1;  // texture values of the dark and the light parts
-};
-
 struct Texture {
-  TextureKind kind = TextureKind::Constant;
   SourceLoc where;
-  double value = 1;      // Constant
-  std::string path;      // File: resolved path (relative paths resolve against the scene's folder)
-  TargetPattern target;  // Checkerboard, CircleGrid
-  Interpolation interpolation = Interpolation::Cubic;  // File
-  AnalyticSpeckle speckle;  // Speckle (texture/analytic_speckle.h)
+  textures::Model model;  // the kind and its own parameters (host/textures/<kind>.h)
+  TextureKind kind() const { return textures::kindOf(model); }
 };
 
 struct Object {

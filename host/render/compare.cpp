@@ -73,27 +73,13 @@ double wrappedDiff(double a, double b) {
 
 double uvDiff(dvec2 a, dvec2 b) { return std::max(wrappedDiff(a.x, b.x), wrappedDiff(a.y, b.y)); }
 
-// Radiance per unit uv of an object's texture: the B-spline's slope is bounded by the largest
-// difference of neighbouring coefficients per texel (its derivative is a quadratic B-spline, a
-// convex combination, of those differences), times texels per unit uv, times the albedo.
-// Target textures (Checkerboard, CircleGrid) are steps, not slopes: 0 here. A sample within the uv
-// error of an edge may land on the other side; in fp32 that is one of the off-edge discontinuities
-// counted against the outlier fraction (below); in df64/fp64 the uv error (≲ 1e-12 of a square) makes
-// it improbable (~1e-7 per image).
-double textureSlope(const PreparedScene& scene, const PreparedObject& o) {
-  if (o.textureIndex < 0) return 0;
-  const PreparedTexture& t = scene.textures[std::size_t(o.textureIndex)];
-  const std::vector<double>& c = t.values();
-  double sx = 0, sy = 0;
-  const auto w = std::size_t(t.width), h = std::size_t(t.height);
-  for (std::size_t y = 0; y < h; ++y)
-    for (std::size_t x = 0; x < w; ++x) {
-      const double here = c[y * w + x];
-      if (x + 1 < w) sx = std::max(sx, std::abs(c[y * w + x + 1] - here));
-      if (y + 1 < h) sy = std::max(sy, std::abs(c[(y + 1) * w + x] - here));
-    }
-  return o.albedo * std::max(sx * double(t.width), sy * double(t.height));
-}
+// Radiance per unit uv of an object's texture: its home's slope bound (a B-spline's, from its
+// coefficients' differences) times the albedo. Target textures (Checkerboard, CircleGrid) and
+// Texture.Speckle are steps, not slopes: 0 here. A sample within the uv error of an edge may land on
+// the other side; in fp32 that is one of the off-edge discontinuities counted against the outlier
+// fraction (below); in df64/fp64 the uv error (≲ 1e-12 of a square) makes it improbable (~1e-7 per
+// image).
+double textureSlope(const PreparedScene&, const PreparedObject& o) { return o.albedo * textures::slopePerUv(o.texture); }
 
 // Upper bound of the shading factor multiplying albedo × texture at a point (1 for Constant;
 // Σ I / (π r²) over point and spot lights plus Σ L_a over ambient ones for lit shaders, cos θ,

@@ -5,15 +5,10 @@
 
 namespace dicsynth {
 
-// A B-spline is a convex combination of its coefficients; other textures take values in [0, 1]
-// or their own constants.
-double reflectanceMax(const PreparedScene& scene, const PreparedObject& o) {
-  double t = std::max({1.0, o.textureValue, o.targetTexture.light, o.targetTexture.dark});
-  if (o.textureKind == TextureKind::Speckle)
-    t = std::max({t, std::abs(o.speckleTexture.light), std::abs(o.speckleTexture.dark)});
-  if (o.textureKind == TextureKind::File && o.textureIndex >= 0)
-    for (double c : scene.textures[std::size_t(o.textureIndex)].values()) t = std::max(t, std::abs(c));
-  return o.albedo * t;
+// The texture's largest |value| (its home bounds it: a B-spline by its largest coefficient, the
+// others by their constants), floored at 1.
+double reflectanceMax(const PreparedScene&, const PreparedObject& o) {
+  return o.albedo * std::max(1.0, textures::maxValue(o.texture));
 }
 
 bool hasSpecularOrSpotTerms(const PreparedScene& scene, const PreparedObject& o) {

@@ -1,122 +1,33 @@
-// Texture.Constant, Texture.File, Texture.Speckle, Object.Simple (Shader.* and Light.*:
-// shading_constructors.cpp).
+// Texture.<Kind> for the kinds of the texture registry (host/textures/registry.h: each kind's home
+// documents and parses its parameters), Object.Simple (Shader.* and Light.*:
+// shading_constructors.cpp; Target.*: target_constructors.cpp).
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
 #include "shapes/registry.h"
+#include "textures/registry.h"
 
 namespace dicsynth::scene {
 
 namespace {
 
-/* ------------------------------------------------------------------------------------------------
-Texture.Constant: the same value everywhere.
-
-  Parameter | Value   | Default | Meaning
-  ----------+---------+---------+--------------------------------------
-  value     | number  | 1       | >= 0, multiplies the shader's colour
-
-Example:  Texture.Constant { value = 0.5 }
------------------------------------------------------------------------------------------------- */
-int textureConstant(lua_State* L) {
-  Params p(L, "Texture.Constant", {"value"});
-  Texture texture;
-  texture.kind = TextureKind::Constant;
-  texture.where = LuaSandbox::of(L).here(L);
-  texture.value = p.number("value", 1.0);
-  p.require(texture.value >= 0, "value", ">= 0", texture.value);
-  pushUserdata(L, std::move(texture));
-  return 1;
-}
-
-/* ------------------------------------------------------------------------------------------------
-Texture.File: an image (e.g. a speckle pattern) glued on the surface's (u, v) parameters.
-
-  Parameter     | Value   | Default  | Meaning
-  --------------+---------+----------+---------------------------------------------------------
-  fileName      | string  | required | image file; a relative path is relative to the scene
-                |         |          | file's folder, not to the working directory
-  interpolation | string  | "cubic"  | "cubic": interpolating cubic B-spline (4×4 texels);
-                |         |          | "quintic": interpolating quintic B-spline (6×6 texels),
-                |         |          | less interpolation bias (texture/bspline.h, README)
-
-The file must exist and be readable when the constructor runs (the error names the line); it is
-decoded later, when the scene is prepared.
-
-Example:  Texture.File { fileName = "speckle.tif"; interpolation = "quintic" }
------------------------------------------------------------------------------------------------- */
-int textureFile(lua_State* L) {
-  Params p(L, "Texture.File", {"fileName", "interpolation"});
+// Texture.<Kind> for every kind of the registry whose constructor is in the Texture table: the
+// kind's home documents and parses its parameters (host/textures/<kind>.h).
+template <class Kind>
+int textureConstructor(lua_State* L) {
+  const std::vector<const char*> keys(Kind::kKeys.begin(), Kind::kKeys.end());
+  Params p(L, Kind::kConstructor, keys);
   const LuaSandbox& sandbox = LuaSandbox::of(L);
   Texture texture;
-  texture.kind = TextureKind::File;
   texture.where = sandbox.here(L);
-  const std::optional<std::string> fileName = p.string("fileName");
-  if (!fileName) p.fail("missing required 'fileName'");
-  if (fileName->empty()) p.fail("'fileName' must not be empty");
-  const std::string interpolation = p.string("interpolation").value_or("cubic");
-  if (interpolation == "cubic")
-    texture.interpolation = Interpolation::Cubic;
-  else if (interpolation == "quintic")
-    texture.interpolation = Interpolation::Quintic;
-  else
-    p.fail("'interpolation' must be \"cubic\" or \"quintic\", got \"" + interpolation + "\"");
-
-  // Resolve against the scene's folder, then check the file can be read.
-  const std::filesystem::path given(*fileName);
-  const std::filesystem::path resolved = given.is_absolute() ? given : sandbox.sceneDir() / given;
-  texture.path = resolved.string();
-  std::string name = "'" + *fileName + "'";
-  if (texture.path != *fileName) name += " (resolved to '" + texture.path + "')";
-  std::error_code ec;
-  if (std::filesystem::is_directory(resolved, ec))
-    p.fail("cannot read " + name + ": it is a folder");
-  if (std::filesystem::exists(resolved, ec) && !std::filesystem::is_regular_file(resolved, ec))
-    p.fail("cannot read " + name + ": not a regular file");
-  std::FILE* file = std::fopen(texture.path.c_str(), "rb");
-  if (file == nullptr) p.fail("cannot read " + name + ": " + std::strerror(errno));
-  std::fclose(file);
-  pushUserdata(L, std::move(texture));
-  return 1;
-}
-
-/* ------------------------------------------------------------------------------------------------
-Texture.Speckle: an analytic speckle in (u, v): dark disks of one radius from a seeded Boolean
-(Poisson) model on a light background, decided exactly per sample; no image, no interpolation.
-Model and formulas: host/texture/analytic_speckle.h.
-
-  Parameter | Value   | Default | Meaning
-  ----------+---------+---------+------------------------------------------------------------
-  radius    | number  | 0.005   | disk radius in u units (fraction of the surface's u range),
-            |         |         | > 0; on a w-wide rectangle a radius of ρ metres is ρ / w
-  density   | number  | 0.5     | expected fraction of the area covered, in (0, 0.95]
-  aspect    | number  | 1       | the surface's v length / u length (e.g. h / w of a
-            |         |         | rectangle), so that disks are round on the surface
-  seed      | integer | 1       | 0 … 2^32 − 1; the same seed gives the same disks everywhere
-  dark      | number  | 0       | texture value inside the disks, >= 0
-  light     | number  | 1       | texture value outside, >= 0
-
-Example:  Texture.Speckle { radius = 0.004; density = 0.5; aspect = 0.5; seed = 7 }
------------------------------------------------------------------------------------------------- */
-int textureSpeckle(lua_State* L) {
-  Params p(L, "Texture.Speckle", {"radius", "density", "aspect", "seed", "dark", "light"});
-  Texture texture;
-  texture.kind = TextureKind::Speckle;
-  texture.where = LuaSandbox::of(L).here(L);
-  const long long seed = p.integer("seed").value_or(1);
-  p.require(seed >= 0 && seed <= 0xffffffffLL, "seed", "an integer in 0 .. 2^32 - 1", double(seed));
-  try {
-    texture.speckle = makeAnalyticSpeckle(p.number("radius", 0.005), p.number("density", 0.5),
-                                          p.number("aspect", 1.0), std::uint32_t(seed), p.number("dark", 0.0),
-                                          p.number("light", 1.0));
-  } catch (const InputError& e) {
-    p.fail(e.what());
-  }
+  texture.model = Kind::parse(p, sandbox.sceneDir());
   pushUserdata(L, std::move(texture));
   return 1;
 }
@@ -141,6 +52,19 @@ Example:
                           shader = Shader.Lambert {}; texture = Texture.File { fileName = "s.tif" };
                           transform = rotate_y(degrees(35)) }
 ------------------------------------------------------------------------------------------------ */
+// What a 'texture' parameter must be: the registry's Texture.* kinds, in number order.
+const std::string& textureExpected() {
+  static const std::string text = [] {
+    std::string list;
+    textures::forEachKind([&](auto kind) {
+      using Kind = typename decltype(kind)::type;
+      if constexpr (textures::isTextureConstructor<Kind>()) list += std::string(list.empty() ? "" : ", ") + Kind::kConstructor;
+    });
+    return "a Texture (" + list + ")";
+  }();
+  return text;
+}
+
 int objectSimple(lua_State* L) {
   Params p(L, "Object.Simple", {"shape", "shader", "texture", "transform"});
   Object object;
@@ -160,7 +84,7 @@ int objectSimple(lua_State* L) {
     object.shader.where = object.where;
   }
   if (const Texture* texture =
-          p.userdata<Texture>("texture", "a Texture (Texture.Constant, Texture.File, Texture.Speckle)")) {
+          p.userdata<Texture>("texture", textureExpected().c_str())) {
     object.texture = *texture;
   } else {
     object.texture.where = object.where;
@@ -187,18 +111,15 @@ int objectSimple(lua_State* L) {
 
 int textureToString(lua_State* L) {
   const Texture* texture = toUserdata<Texture>(L, 1);
-  lua_pushstring(L, texture && texture->kind == TextureKind::File      ? "Texture.File"
-                    : texture && texture->kind == TextureKind::Speckle ? "Texture.Speckle"
-                                                                       : "Texture.Constant");
+  lua_pushstring(L, texture ? textures::kindInfo(texture->model).constructor : "Texture");
   return 1;
 }
 
+// A target is an Object whose texture is a target's (its constructor's name); any other, Object.Simple.
 int objectToString(lua_State* L) {
   const Object* object = toUserdata<Object>(L, 1);
-  const TextureKind kind = object ? object->texture.kind : TextureKind::Constant;
-  lua_pushstring(L, kind == TextureKind::Checkerboard ? "Target.Checkerboard"
-                    : kind == TextureKind::CircleGrid ? "Target.CircleGrid"
-                                                      : "Object.Simple");
+  const bool target = object && textures::targetPattern(object->texture.model) != nullptr;
+  lua_pushstring(L, target ? textures::kindInfo(object->texture.model).constructor : "Object.Simple");
   return 1;
 }
 
@@ -207,11 +128,16 @@ int objectToString(lua_State* L) {
 void registerObjectConstructors(lua_State* L) {
   registerUserdataType<Texture>(L, {{"__tostring", &textureToString}});
   registerUserdataType<Object>(L, {{"__tostring", &objectToString}});
-  setConstructorTable(
-      L, "Texture",
-      {{"Constant", &protectedCall<textureConstant>},
-       {"File", &protectedCall<textureFile>},
-       {"Speckle", &protectedCall<textureSpeckle>}});
+  setConstructorTable(L, "Texture", {});
+  lua_getglobal(L, "Texture");
+  textures::forEachKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    if constexpr (textures::isTextureConstructor<Kind>()) {
+      lua_pushcfunction(L, &protectedCall<textureConstructor<Kind>>);
+      lua_setfield(L, -2, Kind::kName);
+    }
+  });
+  lua_pop(L, 1);
   setConstructorTable(L, "Object", {{"Simple", &protectedCall<objectSimple>}});
 }
 

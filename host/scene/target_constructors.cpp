@@ -47,7 +47,7 @@ dmat4 readRigidTransform(const Params& p) {
 
 // The Object of a target: a Rectangle carrying the pattern, placed so that the target frame lands
 // at worldFromTarget = translate(location) · transform (see geometry/targets.h).
-int pushTarget(lua_State* L, const Params& p, TextureKind kind, TargetPattern pattern) {
+int pushTarget(lua_State* L, const Params& p, TextureKind kind, textures::TargetPattern pattern) {
   pattern.dark = p.number("dark", kDefaultDark);
   pattern.light = p.number("light", kDefaultLight);
   p.require(pattern.dark >= 0, "dark", ">= 0", pattern.dark);
@@ -59,9 +59,11 @@ int pushTarget(lua_State* L, const Params& p, TextureKind kind, TargetPattern pa
   object.shape.where = object.where;
   object.shape.location_m = p.vec3("location").value_or(dvec3(0));
   object.shape.analytic = shapes::Rectangle{layout.size_m};
-  object.texture.kind = kind;
   object.texture.where = object.where;
-  object.texture.target = pattern;
+  if (kind == TextureKind::Checkerboard)
+    object.texture.model = textures::Checkerboard{{pattern, {}}};
+  else
+    object.texture.model = textures::CircleGrid{{pattern, {}}};
   if (const Shader* shader = p.userdata<Shader>("shader", shaderExpected())) {
     object.shader = *shader;
   } else {
@@ -103,7 +105,7 @@ Example:  board = Target.Checkerboard { squares = {10, 7}; squareSize = 0.015;
 int targetCheckerboard(lua_State* L) {
   Params p(L, "Target.Checkerboard",
            {"squares", "squareSize", "border", "dark", "light", "location", "transform", "shader"});
-  TargetPattern pattern;
+  textures::TargetPattern pattern;
   std::tie(pattern.cols, pattern.rows) = readCounts(p, "squares", "{cols, rows}", 2);
   pattern.spacing_m = p.requiredNumber("squareSize");
   p.require(pattern.spacing_m > 0, "squareSize", "> 0 (metres)", pattern.spacing_m);
@@ -139,7 +141,7 @@ Example:  dots = Target.CircleGrid { circles = {4, 11}; spacing = 0.01; asymmetr
 int targetCircleGrid(lua_State* L) {
   Params p(L, "Target.CircleGrid", {"circles", "spacing", "asymmetric", "radius", "border", "dark", "light",
                                      "location", "transform", "shader"});
-  TargetPattern pattern;
+  textures::TargetPattern pattern;
   std::tie(pattern.cols, pattern.rows) = readCounts(p, "circles", "{cols, rows}", 2);
   pattern.spacing_m = p.requiredNumber("spacing");
   p.require(pattern.spacing_m > 0, "spacing", "> 0 (metres)", pattern.spacing_m);
@@ -199,9 +201,9 @@ int targetPoses(lua_State* L) {
            {"target", "cameras", "count", "seed", "distance", "tilt", "roll", "margin", "tries"});
   const Object* target = p.userdata<Object>("target", "a Target (Target.Checkerboard, Target.CircleGrid)");
   if (!target) p.fail("missing required 'target' (a Target.Checkerboard or Target.CircleGrid)");
-  if (!isTargetTexture(target->texture.kind))
-    p.fail("'target' must be a Target (Target.Checkerboard, Target.CircleGrid), got an Object.Simple");
-  const TargetLayout layout = targetLayout(target->texture.kind, target->texture.target);
+  const textures::TargetPattern* pattern = textures::targetPattern(target->texture.model);
+  if (!pattern) p.fail("'target' must be a Target (Target.Checkerboard, Target.CircleGrid), got an Object.Simple");
+  const TargetLayout layout = targetLayout(target->texture.kind(), *pattern);
 
   std::vector<Camera> cameras;
   if (p.luaType("cameras") != LUA_TTABLE) p.fail("missing required 'cameras' = {camera1, camera2, ...}");

@@ -26,7 +26,7 @@
 // neighbour cell (di, dj) is at dx = (fx − di) − cx, dy = (fy − dj) − cy (cx, cy ∈ [0, 1) its
 // centre in its cell) and covers the point when dx·dx + dy·dy ≤ 1/4. Each step is one IEEE operation
 // (separate statements here, `precise` in the shader: no fused multiply-add), so the fp64 shader
-// makes bit-identical decisions for the same (u, v). shaders/lib/texture.glsl (ds_speckle_texture)
+// makes bit-identical decisions for the same (u, v). shaders/textures/speckle.glsl (ds_speckle_value)
 // is the GPU twin, all in the variant's hreal: df64 decides to ~2^-44 of a cell, fp32 to ~x·2^-23
 // cells (the rounding of x = u · cellsPerU dominates), which can flip only samples that close to a
 // disk edge (tests/texture/test_analytic_speckle.cpp bounds it; host/render/compare.cpp excuses such pixels).

@@ -18,7 +18,7 @@
 // mirrored about its edges), both in the prefilter and in the lookup, so interpolation stays exact
 // at texel centres right up to the edge.
 //
-// shaders/lib/texture.glsl evaluates the same sums with the same weights and index rule.
+// shaders/textures/file.glsl evaluates the same sums with the same weights and index rule.
 #include <cmath>
 #include <cstddef>
 #include <vector>

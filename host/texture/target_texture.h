@@ -2,7 +2,7 @@
 // Calibration-target textures (Target.Checkerboard, Target.CircleGrid) drawn analytically in the
 // surface's (u, v): every point is exactly dark or light, so an edge is a true step, blurred only by
 // the pixel's stratified samples (and the sensor). No image, no interpolation, no aliasing filter.
-// shaders/lib/texture.glsl (ds_target_texture) is the GPU twin, operation for operation; the
+// shaders/textures/target.glsl (ds_target_value) is the GPU twin, operation for operation; the
 // layout that fills a TargetTexture from a target's size is in host/geometry/targets.cpp.
 //
 // Cell coordinates (cx, cy) = ((u, v) − origin_uv) / cell_uv: one unit is one `spacing` of the

@@ -26,6 +26,7 @@
 #define DS_TEXTURE_CHECKERBOARD 2  // calibration targets, drawn analytically (texture/target_texture.h)
 #define DS_TEXTURE_CIRCLE_GRID 3
 #define DS_TEXTURE_SPECKLE 4  // analytic Boolean-model speckle in (u, v) (texture/analytic_speckle.h)
+#define DS_TEXTURE_COUNT 5
 
 #define DS_LIGHT_POINT 0
 #define DS_LIGHT_AMBIENT 1

@@ -20,8 +20,8 @@ using namespace dicsynth;
 
 namespace {
 
-TargetPattern checkerPattern() {
-  TargetPattern p;
+textures::TargetPattern checkerPattern() {
+  textures::TargetPattern p;
   p.cols = 5;
   p.rows = 4;
   p.spacing_m = 0.01;
@@ -39,7 +39,7 @@ dvec2 uvOf(const TargetLayout& l, dvec2 target_m) {
 }  // namespace
 
 TEST_CASE("targets: checkerboard texture, layout and inner corners") {
-  const TargetPattern p = checkerPattern();
+  const textures::TargetPattern p = checkerPattern();
   const TargetLayout l = targetLayout(TextureKind::Checkerboard, p);
   CHECK(l.size_m.x == doctest::Approx(5 * 0.01 + 2 * 0.004));
   CHECK(l.size_m.y == doctest::Approx(4 * 0.01 + 2 * 0.004));
@@ -72,7 +72,7 @@ TEST_CASE("targets: checkerboard texture, layout and inner corners") {
 
 TEST_CASE("targets: circle grids, symmetric and asymmetric (OpenCV layout)") {
   for (bool asymmetric : {false, true}) {
-    TargetPattern p = checkerPattern();
+    textures::TargetPattern p = checkerPattern();
     p.cols = 4;
     p.rows = 5;
     p.asymmetric = asymmetric;
@@ -110,9 +110,10 @@ TEST_CASE("targets: scene language, frames and features in the world") {
   REQUIRE(scene.objects.size() == 2);
   const Object& board = scene.objects[0];
   CHECK(board.shape.kind() == ShapeKind::Rectangle);
-  CHECK(board.texture.kind == TextureKind::Checkerboard);
+  CHECK(board.texture.kind() == TextureKind::Checkerboard);
   CHECK(board.where.line == 2);
-  CHECK(scene.objects[1].texture.target.radius_m == doctest::Approx(0.002 / 4));  // default spacing / 4
+  CHECK(std::get<textures::CircleGrid>(scene.objects[1].texture.model).pattern.radius_m ==
+        doctest::Approx(0.002 / 4));  // default spacing / 4
   const PreparedScene ps = prepareScene(scene);
   // worldFromTarget = translate(location) · transform: the first corner at the location, the row
   // direction turned by 10° about y.
@@ -265,7 +266,7 @@ TEST_CASE("targets: Target.poses is deterministic and keeps every feature inside
   // Same seed, same list; another seed, other poses; no two poses alike.
   CHECK(prepareScene(loadScene(scene, {{}, 3})).objects[0].worldFromTarget == first[3]);
   for (std::size_t i = 1; i < first.size(); ++i) CHECK(first[i] != first[i - 1]);
-  TargetPattern p = checkerPattern();
+  textures::TargetPattern p = checkerPattern();
   const TargetLayout layout = targetLayout(TextureKind::Checkerboard, p);
   const Scene s = loadScene(scene, {});
   TargetPoseOptions o;

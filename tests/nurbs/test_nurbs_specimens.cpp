@@ -542,7 +542,7 @@ TEST_CASE("nurbs-lua: scenes/nurbs_plate.lua loads, with -D strain and curvature
   REQUIRE(flat.objects.size() == 1);
   REQUIRE(flat.objects[0].shape.kind() == ShapeKind::Nurbs);
   const NurbsSurface& a = *flat.objects[0].shape.nurbs;
-  CHECK(flat.objects[0].texture.kind == TextureKind::File);
+  CHECK(flat.objects[0].texture.kind() == TextureKind::File);
   CHECK(std::all_of(a.controlPoints.begin(), a.controlPoints.end(),
                     [](const dvec3& p) { return p.z == 0.0; }));
   SceneParams params;

@@ -90,9 +90,9 @@ object = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 
   CHECK(object.shader.kind() == ShaderKind::Constant);
   CHECK(object.shader.where.line == 5);
   CHECK(object.shader.color == dvec3(0.2, 0.8, 1.0));
-  CHECK(object.texture.kind == TextureKind::File);
+  CHECK(object.texture.kind() == TextureKind::File);
   CHECK(object.texture.where.line == 5);
-  CHECK(object.texture.path == (dir.path() / "speckle.tif").string());
+  CHECK(std::get<textures::File>(object.texture.model).path == (dir.path() / "speckle.tif").string());
 
   // rotate_y(35°): right-handed, maps x to (cos a, 0, -sin a) and z to (sin a, 0, cos a).
   const double a = 35.0 * std::numbers::pi / 180.0;
@@ -129,8 +129,8 @@ lamp = Light.Point { position = {1, 2, 3} }
     CHECK(object.shape.location_m == dvec3(0));
     CHECK(object.transform == dmat4(1.0));
     CHECK(object.shader.color == dvec3(1, 1, 1));
-    CHECK(object.texture.kind == TextureKind::Constant);
-    CHECK(object.texture.value == 1.0);
+    CHECK(object.texture.kind() == TextureKind::Constant);
+    CHECK(std::get<textures::Constant>(object.texture.model).value == 1.0);
   }
   CHECK(scene.objects[0].shape.kind() == ShapeKind::Sphere);
   CHECK(std::get<shapes::Sphere>(scene.objects[0].shape.analytic).radius_m == 2.0);
@@ -203,14 +203,14 @@ l2 = Light.Point { position = {0, 1, 0}; intensity = {1, 2, 3} }
   CHECK(std::get<shapes::Sphere>(a.shape.analytic).radius_m == 0.5);
   CHECK(a.shader.kind() == ShaderKind::Lambert);
   CHECK(a.shader.color == dvec3(0.25));
-  CHECK(a.texture.kind == TextureKind::Constant);
-  CHECK(a.texture.value == 0.75);
+  CHECK(a.texture.kind() == TextureKind::Constant);
+  CHECK(std::get<textures::Constant>(a.texture.model).value == 0.75);
   CHECK(a.transform == glm::scale(dmat4(1.0), dvec3(2)));
   const Object& b = scene.objects[1];
   CHECK(b.shape.kind() == ShapeKind::Box);
   CHECK(b.shape.location_m == dvec3(-1, 0, 1));
-  CHECK(b.texture.kind == TextureKind::File);
-  CHECK(b.texture.path == (dir.path() / "textures/s.png").string());
+  CHECK(b.texture.kind() == TextureKind::File);
+  CHECK(std::get<textures::File>(b.texture.model).path == (dir.path() / "textures/s.png").string());
   CHECK(b.transform == glm::scale(dmat4(1.0), dvec3(1, 2, 3)));
   const Object& p = scene.objects[2];
   CHECK(p.name == "p");
@@ -355,7 +355,7 @@ ball = Object.Simple { shape = Shape.Sphere { radius = radius };
                                params);
   REQUIRE(scene.objects.size() == 1);
   CHECK(std::get<shapes::Sphere>(scene.objects[0].shape.analytic).radius_m == 0.25);
-  CHECK(scene.objects[0].texture.path == (dir.path() / "tex.png").string());
+  CHECK(std::get<textures::File>(scene.objects[0].texture.model).path == (dir.path() / "tex.png").string());
 }
 
 TEST_CASE("scene: defines are served until the scene assigns the name") {

@@ -27,6 +27,7 @@
 #include "model/layers.h"
 #include "reflectance/registry.h"
 #include "shapes/registry.h"
+#include "textures/registry.h"
 #include "run_cli.h"
 
 using namespace dicsynth;
@@ -239,4 +240,32 @@ TEST_CASE("docs: every reflectance model of the registry is in the scene languag
       CHECK(rows.find(std::string("`") + key + "`") != std::string::npos);
     }
   });
+}
+
+TEST_CASE("docs: every Texture.* kind of the registry is in the scene language's table with its keys") {
+  // host/textures/registry.h lists the kinds; docs/scene-language.md's "textures" row names each
+  // Texture.* constructor and its keys (the targets' kinds are documented with Target.*).
+  std::ifstream in(std::string(DS_SOURCE_DIR) + "/docs/scene-language.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string language = text.str();
+  const std::size_t rowStart = language.find("| textures |");
+  REQUIRE(rowStart != std::string::npos);
+  const std::string row = language.substr(rowStart, language.find('\n', rowStart) - rowStart);
+  int documented = 0;
+  textures::forEachKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    INFO(Kind::kConstructor);
+    if constexpr (textures::isTextureConstructor<Kind>()) {
+      ++documented;
+      CHECK(row.find(std::string("`") + Kind::kConstructor + "`") != std::string::npos);
+      for (const char* key : Kind::kKeys) {
+        INFO(key);
+        CHECK(row.find(key) != std::string::npos);
+      }
+    } else {
+      CHECK(language.find(std::string("`") + Kind::kConstructor + "`") != std::string::npos);
+    }
+  });
+  CHECK(documented >= 3);  // the scan found them
 }

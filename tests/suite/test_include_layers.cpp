@@ -15,8 +15,8 @@
 namespace {
 
 // Bottom to top; the same list as docs/design.md §2 (a new folder must be placed in both).
-constexpr std::array<const char*, 19> kLayers = {
-    "core", "shapes", "reflectance", "files", "camera", "texture", "nurbs", "model", "sensor", "geometry",
+constexpr std::array<const char*, 20> kLayers = {
+    "core", "shapes", "reflectance", "files", "camera", "texture", "textures", "nurbs", "model", "sensor", "geometry",
     "cpu",  "gpu",    "render", "io",    "scene",   "job",   "sweep", "cli",    "python"};
 
 int layerOf(const std::string& folder) {

@@ -1,6 +1,6 @@
-// The C++ registries of kinds (host/shapes/registry.h, host/reflectance/registry.h) against their
-// GLSL twins (the X-lists of shaders/lib/shapes.glsl and shaders/lib/shading.glsl) and the twin
-// files they include, read as text: a kind registered on one side only, or a twin without its
+// The C++ registries of kinds (host/shapes, host/reflectance, host/textures: registry.h) against
+// their GLSL twins (the X-lists of shaders/lib/shapes.glsl, shading.glsl and texture.glsl) and the
+// twin files they include, read as text: a kind registered on one side only, or a twin without its
 // struct and functions, fails here rather than as a wrong pixel.
 #include <doctest/doctest.h>
 
@@ -15,6 +15,7 @@
 
 #include "reflectance/registry.h"
 #include "shapes/registry.h"
+#include "textures/registry.h"
 
 using namespace dicsynth;
 
@@ -130,6 +131,44 @@ TEST_CASE("registries: the GLSL lobe registry lists every reflectance model with
   CHECK(withLobe >= 3);  // the scan found the lobes
 }
 
+TEST_CASE("registries: the GLSL texture registry draws every texture kind of the C++ one with its twin") {
+  // Rows X(twin, compiled, drawn): the twin, its specialization test, the kinds it draws.
+  const std::string glsl = readSource("shaders/lib/texture.glsl");
+  const std::size_t start = glsl.find("#define DS_TEXTURES(X)");
+  REQUIRE(start != std::string::npos);
+  std::size_t end = start;
+  while ((end = glsl.find('\n', end + 1)) != std::string::npos && glsl[end - 1] == '\\') {
+  }
+  const std::string body = glsl.substr(start, end - start);
+  const std::map<std::string, int> numbers = kindNumbers();
+  std::map<int, std::string> twinOfKind;
+  std::set<std::string> twins;
+  const std::regex row(R"(X\(([a-z_]+), ([A-Za-z_]+), ([^)]*)\))"), kindName(R"(DS_TEXTURE_[A-Z_]+)");
+  for (std::sregex_iterator it(body.begin(), body.end(), row), e; it != e; ++it) {
+    const std::string twin = (*it)[1].str(), drawn = (*it)[3].str();
+    INFO((*it)[0].str());
+    twins.insert(twin);
+    for (std::sregex_iterator k(drawn.begin(), drawn.end(), kindName), ke; k != ke; ++k) {
+      REQUIRE(numbers.count(k->str()) == 1);
+      CHECK(twinOfKind.count(numbers.at(k->str())) == 0);  // each kind drawn by one twin
+      twinOfKind[numbers.at(k->str())] = twin;
+    }
+  }
+  CHECK(twins.size() >= 3);  // the scan found the rows
+  textures::forEachKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    INFO(Kind::kConstructor);
+    const int number = int(Kind::kKind);
+    if (Kind::kTwin == nullptr) {
+      CHECK(twinOfKind.count(number) == 0);  // Texture.Constant: GpuObject.shading.y, no twin
+      return;
+    }
+    REQUIRE(twinOfKind.count(number) == 1);
+    CHECK(twinOfKind.at(number) == Kind::kTwin);
+    checkTwin(glsl, "textures", Kind::kTwin, {"value"});
+  });
+}
+
 TEST_CASE("registries: the kinds tables are indexed by number and named once") {
   std::set<std::string> names;
   for (const shapes::ShapeKindInfo& k : shapes::kShapeKinds) CHECK(names.insert(std::string("Shape.") + k.name).second);
@@ -137,5 +176,6 @@ TEST_CASE("registries: the kinds tables are indexed by number and named once") {
     CHECK(names.insert(std::string("Shader.") + k.name).second);
     CHECK(k.lit == (k.kind != ShaderKind::Constant));
   }
-  CHECK(names.size() == std::size_t(DS_SHAPE_COUNT + DS_SHADER_COUNT));
+  for (const textures::KindInfo& k : textures::kKinds) CHECK(names.insert(k.constructor).second);
+  CHECK(names.size() == std::size_t(DS_SHAPE_COUNT + DS_SHADER_COUNT + DS_TEXTURE_COUNT));
 }

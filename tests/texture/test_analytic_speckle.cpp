@@ -1,4 +1,4 @@
-// Texture.Speckle (host/texture/analytic_speckle.h, shaders/lib/texture.glsl): the GPU decides
+// Texture.Speckle (host/texture/analytic_speckle.h, shaders/textures/speckle.glsl): the GPU decides
 // exactly as the CPU in fp64 and flips fp32/df64 samples only within the derived distance of a disk
 // edge; the covered fraction matches the requested density; the pattern is fixed by the seed and
 // glued to (u, v); the Texture.File kernels agree between CPU and GPU; scene errors.
@@ -41,8 +41,7 @@ PreparedScene probeScene(const AnalyticSpeckle& speckle) {
   PreparedScene ps;
   ps.cameras.emplace_back();
   ps.objects.resize(3);
-  ps.objects[0].textureKind = TextureKind::Speckle;
-  ps.objects[0].speckleTexture = speckle;
+  ps.objects[0].texture = textures::Speckle{speckle};
   for (int k = 0; k < 2; ++k) {
     PreparedTexture t;
     t.width = 37;
@@ -52,9 +51,14 @@ PreparedScene probeScene(const AnalyticSpeckle& speckle) {
     for (std::uint32_t i = 0; i < 37u * 23u; ++i) c.push_back(testUnit(99, i));
     bsplinePrefilter(c, t.width, t.height, t.interpolation);
     t.coefficients = std::make_shared<const std::vector<double>>(std::move(c));
+    textures::File file;
+    file.index = k;
+    file.coefficients = t.coefficients;
+    file.width = t.width;
+    file.height = t.height;
+    file.interpolation = t.interpolation;
+    ps.objects[std::size_t(k + 1)].texture = file;
     ps.textures.push_back(std::move(t));
-    ps.objects[std::size_t(k + 1)].textureKind = TextureKind::File;
-    ps.objects[std::size_t(k + 1)].textureIndex = k;
   }
   return ps;
 }

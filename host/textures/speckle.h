@@ -1,0 +1,62 @@
+#pragma once
+// Texture.Speckle: its parameters, parsing, value and bounds (the model and its arithmetic:
+// host/texture/analytic_speckle.h). GLSL twin: shaders/textures/speckle.glsl.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/math.h"
+#include "shared/kinds.h"
+#include "texture/analytic_speckle.h"
+
+namespace dicsynth::textures {
+
+/* ------------------------------------------------------------------------------------------------
+Texture.Speckle: an analytic speckle in (u, v): dark disks of one radius from a seeded Boolean
+(Poisson) model on a light background, decided exactly per sample; no image, no interpolation.
+Model and formulas: host/texture/analytic_speckle.h.
+
+  Parameter | Value   | Default | Meaning
+  ----------+---------+---------+------------------------------------------------------------
+  radius    | number  | 0.005   | disk radius in u units (fraction of the surface's u range),
+            |         |         | > 0; on a w-wide rectangle a radius of ρ metres is ρ / w
+  density   | number  | 0.5     | expected fraction of the area covered, in (0, 0.95]
+  aspect    | number  | 1       | the surface's v length / u length (e.g. h / w of a
+            |         |         | rectangle), so that disks are round on the surface
+  seed      | integer | 1       | 0 … 2^32 − 1; the same seed gives the same disks everywhere
+  dark      | number  | 0       | texture value inside the disks, >= 0
+  light     | number  | 1       | texture value outside, >= 0
+
+Example:  Texture.Speckle { radius = 0.004; density = 0.5; aspect = 0.5; seed = 7 }
+------------------------------------------------------------------------------------------------ */
+struct Speckle {
+  static constexpr TextureKind kKind = TextureKind::Speckle;
+  static constexpr const char* kName = "Speckle";
+  static constexpr const char* kConstructor = "Texture.Speckle";
+  static constexpr std::array<const char*, 6> kKeys{"radius", "density", "aspect", "seed", "dark", "light"};
+  static constexpr const char* kTwin = "speckle";
+
+  AnalyticSpeckle model;
+
+  template <class Params>
+  static Speckle parse(const Params& p, const std::filesystem::path&) {
+    const long long seed = p.integer("seed").value_or(1);
+    p.require(seed >= 0 && seed <= 0xffffffffLL, "seed", "an integer in 0 .. 2^32 - 1", double(seed));
+    Speckle s;
+    try {
+      s.model = makeAnalyticSpeckle(p.number("radius", 0.005), p.number("density", 0.5), p.number("aspect", 1.0),
+                                    std::uint32_t(seed), p.number("dark", 0.0), p.number("light", 1.0));
+    } catch (const InputError& e) {
+      p.fail(e.what());
+    }
+    return s;
+  }
+
+  double at(dvec2 uv) const { return speckleTextureValue(model, uv); }
+  double maxValue() const { return std::max(std::abs(model.light), std::abs(model.dark)); }
+  double slopePerUv() const { return 0; }  // steps, as the targets'
+};
+
+}  // namespace dicsynth::textures

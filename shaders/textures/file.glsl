@@ -1,0 +1,95 @@
+// Texture.File on the GPU: the twin of host/textures/file.h. Interpolating cubic or quintic
+// B-spline lookup from prefiltered coefficients in the texel buffer, the twin of
+// host/texture/bspline.h (kernels, coordinates and border rule documented there). The texel
+// coordinate x = u W − 1/2 is formed in hreal and split into its integer part and a fraction in
+// [0, 1): the fraction, rounded to `real`, is then exact to ~1e-7 texel in every variant (in df64
+// the texture position error does not grow with W). Weights and sum in `real`. Included by
+// lib/texture.glsl; expects `textures[]` (GpuTexture) and DS_TEXEL(i) (coefficient i, a real).
+#ifndef DS_TEXTURES_FILE_GLSL
+#define DS_TEXTURES_FILE_GLSL
+
+struct GpuFile {
+  int index;  // the image in textures[] (GpuObject.kinds.z)
+};
+
+GpuFile ds_file_data(int object) { return GpuFile(DS_OBJECT(object, kinds).z); }
+
+// Half-sample symmetric index into [0, n) for k in [-n, 2n − 1] (lookups need k in [-3, n + 2]; for
+// n ≤ 2, where -3 < -n, the reflections still give mirrorIndex(): checked for n = 1, 2),
+// equal to mirrorIndex() of host/texture/bspline.h there. Two reflections instead of a modulo:
+// integer division has no SIMD instruction and costs dozens of cycles per lane on a CPU device.
+// The final clamp only matters for n = 1, where every index is texel 0 anyway.
+int ds_mirror_index(int k, int n) {
+  k = k < 0 ? -1 - k : k;
+  k = k >= n ? 2 * n - 1 - k : k;
+  return clamp(k, 0, n - 1);
+}
+
+void ds_bspline_weights(real f, out real w[4]) {
+  const real f2 = f * f, f3 = f2 * f, g = 1.0 - f;
+  w[0] = g * g * g / 6.0;
+  w[1] = (3.0 * f3 - 6.0 * f2 + 4.0) / 6.0;
+  w[2] = (-3.0 * f3 + 3.0 * f2 + 3.0 * f + 1.0) / 6.0;
+  w[3] = f3 / 6.0;
+}
+
+// Quintic weights β⁵(f − k), k = −2 … 3 (host/texture/bspline.h quinticWeights, same Horner forms).
+void ds_quintic_weights(real f, out real w[6]) {
+  const real g = 1.0 - f;
+  w[0] = g * g * g * g * g / 120.0;
+  w[1] = (26.0 + f * (-50.0 + f * (20.0 + f * (20.0 + f * (-20.0 + f * 5.0))))) / 120.0;
+  w[2] = (66.0 + f * f * (-60.0 + f * f * (30.0 + f * -10.0))) / 120.0;
+  w[3] = (26.0 + f * (50.0 + f * (20.0 + f * (-20.0 + f * (-20.0 + f * 10.0))))) / 120.0;
+  w[4] = (1.0 + f * (5.0 + f * (10.0 + f * (10.0 + f * (5.0 + f * -5.0))))) / 120.0;
+  w[5] = f * f * f * f * f / 120.0;
+}
+
+// Texel coordinate u·n − 1/2 of a clamped u, as integer part and fraction.
+void ds_texel_coordinate(hreal u, int n, out int index, out real fraction) {
+  u = h_lt(u, h(real(0.0))) ? h(real(0.0)) : h_gt(u, h(real(1.0))) ? h(real(1.0)) : u;
+  const hreal x = h_sub(h_mul(u, h(real(n))), h(real(0.5)));
+  const hreal whole = h_floor(x);
+  index = int(h_real(whole));
+  fraction = h_real(h_sub(x, whole));
+}
+
+real ds_texture_lookup(int texture, hreal2 uv) {
+  const ivec4 info = textures[texture].info;
+  const int width = info.x, height = info.y, offset = info.z;
+  int ix, iy;
+  real fx, fy;
+  ds_texel_coordinate(h_x(uv), width, ix, fx);
+  ds_texel_coordinate(h_y(uv), height, iy, fy);
+  if (HAS_QUINTIC_TEXTURES && info.w == 1) {
+    real qx[6], qy[6];
+    ds_quintic_weights(fx, qx);
+    ds_quintic_weights(fy, qy);
+    int qcols[6];
+    for (int i = 0; i < 6; ++i) qcols[i] = ds_mirror_index(ix + i - 2, width);
+    real qsum = 0.0;
+    for (int j = 0; j < 6; ++j) {
+      const int rowStart = offset + ds_mirror_index(iy + j - 2, height) * width;
+      real rowSum = 0.0;
+      for (int i = 0; i < 6; ++i) rowSum += qx[i] * DS_TEXEL(rowStart + qcols[i]);
+      qsum += qy[j] * rowSum;
+    }
+    return qsum;
+  }
+  real wx[4], wy[4];
+  ds_bspline_weights(fx, wx);
+  ds_bspline_weights(fy, wy);
+  int cols[4];
+  for (int i = 0; i < 4; ++i) cols[i] = ds_mirror_index(ix + i - 1, width);
+  real sum = 0.0;
+  for (int j = 0; j < 4; ++j) {
+    const int rowStart = offset + ds_mirror_index(iy + j - 1, height) * width;
+    real rowSum = 0.0;
+    for (int i = 0; i < 4; ++i) rowSum += wx[i] * DS_TEXEL(rowStart + cols[i]);
+    sum += wy[j] * rowSum;
+  }
+  return sum;
+}
+
+real ds_file_value(GpuFile g, hreal2 uv) { return ds_texture_lookup(g.index, uv); }
+
+#endif

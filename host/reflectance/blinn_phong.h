@@ -49,8 +49,6 @@ struct BlinnPhong : PowerLobe {
   }
   // Peak ks (n + 8)/(8π); relative slope n, as Phong's.
   LobeBound lobeBound(double) const { return {specular * (shininess + 8) / (8 * kPi), double(shininess)}; }
-  // GpuObject.material, read by GpuBlinnPhong (shaders/reflectance/blinn_phong.glsl): ks, n, 0, 0.
-  dvec4 gpu() const { return {specular, double(shininess), 0, 0}; }
 };
 
 }  // namespace dicsynth::reflectance

@@ -49,8 +49,6 @@ struct Phong : PowerLobe {
   }
   // Peak ks (n + 2)/(2π); (x^n)' / x^n = n/x, n at the peak.
   LobeBound lobeBound(double) const { return {specular * (shininess + 2) / (2 * kPi), double(shininess)}; }
-  // GpuObject.material, read by GpuPhong (shaders/reflectance/phong.glsl): ks, n, 0, 0.
-  dvec4 gpu() const { return {specular, double(shininess), 0, 0}; }
 };
 
 }  // namespace dicsynth::reflectance

@@ -3,6 +3,8 @@
 // weight ks and its integer exponent n.
 #include <cmath>
 
+#include "core/math.h"
+
 namespace dicsynth::reflectance {
 
 // Shininess is an integer (1 ≤ n ≤ 10⁴): GLSL has no double pow, and x^n by repeated squaring
@@ -24,6 +26,9 @@ struct PowerLobe {
     lobe.shininess = int(n);
     return lobe;
   }
+
+  // GpuObject.material, read by GpuPhong and GpuBlinnPhong (shaders/reflectance/): ks, n, 0, 0.
+  dvec4 gpu() const { return {specular, double(shininess), 0, 0}; }
 };
 
 }  // namespace dicsynth::reflectance

@@ -6,8 +6,6 @@
 // specular lobe is shaders/lib/shading.glsl (DS_SPECULAR_LOBES).
 #include <array>
 #include <cstddef>
-#include <type_traits>
-#include <utility>
 #include <variant>
 
 #include "reflectance/blinn_phong.h"
@@ -15,6 +13,7 @@
 #include "reflectance/ggx.h"
 #include "reflectance/lambert.h"
 #include "reflectance/phong.h"
+#include "core/kind_variant.h"
 #include "shared/kinds.h"
 
 namespace dicsynth::reflectance {
@@ -24,14 +23,10 @@ using Model = std::variant<Constant, Lambert, Phong, BlinnPhong, Ggx>;
 // Calls f(std::type_identity<Kind>{}) for every kind.
 template <class F>
 constexpr void forEachKind(F&& f) {
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    (f(std::type_identity<std::variant_alternative_t<I, Model>>{}), ...);
-  }(std::make_index_sequence<std::variant_size_v<Model>>{});
+  forEachAlternative<Model>(f);
 }
 
-inline ShaderKind kindOf(const Model& model) {
-  return std::visit([](const auto& m) { return std::decay_t<decltype(m)>::kKind; }, model);
-}
+inline ShaderKind kindOf(const Model& model) { return kindOfAlternative(model); }
 
 struct KindInfo {
   ShaderKind kind;

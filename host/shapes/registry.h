@@ -6,8 +6,6 @@
 // Shape.Nurbs has a home of its own: host/nurbs, geometry/nurbs_*, shaders/lib/nurbs.glsl.
 #include <array>
 #include <cstddef>
-#include <type_traits>
-#include <utility>
 #include <variant>
 
 #include "shapes/box.h"
@@ -16,23 +14,20 @@
 #include "shapes/rectangle.h"
 #include "shapes/sphere.h"
 #include "shapes/triangle.h"
+#include "core/kind_variant.h"
 #include "shared/kinds.h"
 
 namespace dicsynth::shapes {
 
 using Analytic = std::variant<Sphere, Box, Triangle, Plane, Rectangle, Cylinder>;
 
-// Calls f(std::type_identity<Kind>{}) for every analytic kind.
+// Calls f(std::type_identity<Kind>{}) for every kind.
 template <class F>
 constexpr void forEachAnalyticKind(F&& f) {
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    (f(std::type_identity<std::variant_alternative_t<I, Analytic>>{}), ...);
-  }(std::make_index_sequence<std::variant_size_v<Analytic>>{});
+  forEachAlternative<Analytic>(f);
 }
 
-inline ShapeKind kindOf(const Analytic& shape) {
-  return std::visit([](const auto& s) { return std::decay_t<decltype(s)>::kKind; }, shape);
-}
+inline ShapeKind kindOf(const Analytic& shape) { return kindOfAlternative(shape); }
 
 struct ShapeKindInfo {
   ShapeKind kind;

@@ -11,6 +11,7 @@
 #include <utility>
 #include <variant>
 
+#include "core/kind_variant.h"
 #include "shared/kinds.h"
 #include "textures/constant.h"
 #include "textures/file.h"
@@ -24,14 +25,10 @@ using Model = std::variant<Constant, File, Checkerboard, CircleGrid, Speckle>;
 // Calls f(std::type_identity<Kind>{}) for every kind.
 template <class F>
 constexpr void forEachKind(F&& f) {
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    (f(std::type_identity<std::variant_alternative_t<I, Model>>{}), ...);
-  }(std::make_index_sequence<std::variant_size_v<Model>>{});
+  forEachAlternative<Model>(f);
 }
 
-inline TextureKind kindOf(const Model& model) {
-  return std::visit([](const auto& m) { return std::decay_t<decltype(m)>::kKind; }, model);
-}
+inline TextureKind kindOf(const Model& model) { return kindOfAlternative(model); }
 
 struct KindInfo {
   TextureKind kind;

@@ -1,11 +1,7 @@
 // Texture.<Kind> for the kinds of the texture registry (host/textures/registry.h: each kind's home
 // documents and parses its parameters), Object.Simple (Shader.* and Light.*:
 // shading_constructors.cpp; Target.*: target_constructors.cpp).
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 

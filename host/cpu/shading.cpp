@@ -12,10 +12,10 @@ double spotFactor(const PreparedLight& light, dvec3 point) {
   return t * t * (3 - 2 * t);
 }
 
-double shadeSurface(const PreparedScene& scene, const SurfaceHit& hit, double reflectance) {
+double shadeSurface(const PreparedScene& scene, const SurfaceHit& hit, double rho) {
   const PreparedObject& obj = scene.objects[std::size_t(hit.object)];
-  const dicsynth::reflectance::KindInfo& model = dicsynth::reflectance::kindInfo(obj.shader);  // `reflectance`: ρ here
-  if (!model.lit) return reflectance;
+  const reflectance::KindInfo& model = reflectance::kindInfo(obj.shader);
+  if (!model.lit) return rho;
   const dvec3 toViewer = -glm::normalize(hit.rayDirection);
   // Irradiance-like sums: diffuse Σ I s cosθ / r², specular Σ f_spec I s cosθ / r², ambient Σ L_a.
   double diffuse = 0, specular = 0, ambient = 0;
@@ -35,7 +35,7 @@ double shadeSurface(const PreparedScene& scene, const SurfaceHit& hit, double re
     diffuse += e;
     if (model.specular) specular += specularBrdf(obj, hit.normal, toLight / r, toViewer) * e;
   }
-  return reflectance * diffuse / kPi + specular + reflectance * ambient;
+  return rho * diffuse / kPi + specular + rho * ambient;
 }
 
 }  // namespace dicsynth::cpu

@@ -33,8 +33,8 @@ double spotFactor(const PreparedLight& light, dvec3 point);
 
 struct SurfaceHit;
 
-// L above for a hit whose diffuse reflectance is ρ = albedo × texture (cpu/trace.cpp looks the
-// texture up), seen along the hit's ray. Shadow rays by cpu::occluded.
-double shadeSurface(const PreparedScene& scene, const SurfaceHit& hit, double reflectance);
+// L above for a hit whose diffuse reflectance is rho = ρ = albedo × texture (cpu/trace.cpp looks
+// the texture up), seen along the hit's ray. Shadow rays by cpu::occluded.
+double shadeSurface(const PreparedScene& scene, const SurfaceHit& hit, double rho);
 
 }  // namespace dicsynth::cpu

@@ -24,7 +24,6 @@ struct Overloaded : F... {
   using F::operator()...;
 };
 
-
 template <class Layout>
 typename Layout::real4 r4(double x, double y = 0, double z = 0, double w = 0) {
   return toReal4(x, y, z, w, static_cast<typename Layout::real4*>(nullptr));

@@ -79,7 +79,7 @@ double uvDiff(dvec2 a, dvec2 b) { return std::max(wrappedDiff(a.x, b.x), wrapped
 // the other side; in fp32 that is one of the off-edge discontinuities counted against the outlier
 // fraction (below); in df64/fp64 the uv error (≲ 1e-12 of a square) makes it improbable (~1e-7 per
 // image).
-double textureSlope(const PreparedScene&, const PreparedObject& o) { return o.albedo * textures::slopePerUv(o.texture); }
+double textureSlope(const PreparedObject& o) { return o.albedo * textures::slopePerUv(o.texture); }
 
 // Upper bound of the shading factor multiplying albedo × texture at a point (1 for Constant;
 // Σ I / (π r²) over point and spot lights plus Σ L_a over ambient ones for lit shaders, cos θ,
@@ -147,10 +147,10 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
   std::vector<char> specularTerms;  // per object: hasSpecularOrSpotTerms (a loop over the lights)
   for (const auto& o : scene.objects) {
     specularTerms.push_back(hasSpecularOrSpotTerms(scene, o));
-    reflectances.push_back(tol.epsilon > 0 && specularTerms.back() ? reflectanceMax(scene, o) : 0.0);
+    reflectances.push_back(tol.epsilon > 0 && specularTerms.back() ? reflectanceMax(o) : 0.0);
     const dvec4 h = o.worldFromObject * dvec4(0, 0, 0, 1);
     objectOrigins.push_back(dvec3(h) / h.w);
-    slopes.push_back(tol.epsilon > 0 ? textureSlope(scene, o) : 0.0);
+    slopes.push_back(tol.epsilon > 0 ? textureSlope(o) : 0.0);
   }
   std::vector<CameraDifference> out;
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {

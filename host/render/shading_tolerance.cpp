@@ -7,7 +7,7 @@ namespace dicsynth {
 
 // The texture's largest |value| (its home bounds it: a B-spline by its largest coefficient, the
 // others by their constants), floored at 1.
-double reflectanceMax(const PreparedScene&, const PreparedObject& o) {
+double reflectanceMax(const PreparedObject& o) {
   return o.albedo * std::max(1.0, textures::maxValue(o.texture));
 }
 

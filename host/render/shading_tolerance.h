@@ -30,7 +30,7 @@ struct ShadingErrorInputs {
 };
 
 // Largest diffuse reflectance albedo × texture of o (scans a file texture: compute once per object).
-double reflectanceMax(const PreparedScene& scene, const PreparedObject& o);
+double reflectanceMax(const PreparedObject& o);
 
 // Radiance bound (scene units, before exposure) of the specular and spot terms; 0 for
 // Constant objects and scenes without spot lights or specular shaders.

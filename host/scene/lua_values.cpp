@@ -66,6 +66,10 @@ int runProtected(lua_State* L, int (*body)(lua_State*)) {
 
 void setConstructorTable(lua_State* L, const char* name,
                          std::initializer_list<luaL_Reg> functions) {
+  setConstructorTable(L, name, std::vector<luaL_Reg>(functions));
+}
+
+void setConstructorTable(lua_State* L, const char* name, const std::vector<luaL_Reg>& functions) {
   lua_createtable(L, 0, static_cast<int>(functions.size()));
   for (const luaL_Reg& function : functions) {
     lua_pushcfunction(L, function.func);

@@ -150,6 +150,8 @@ T* toUserdata(lua_State* L, int index) {
 
 // Sets global `name` to a table of constructors, e.g. Shape = { Sphere = ..., Box = ... }.
 void setConstructorTable(lua_State* L, const char* name, std::initializer_list<luaL_Reg> functions);
+// The same from a list built at run time (one constructor per kind of a registry).
+void setConstructorTable(lua_State* L, const char* name, const std::vector<luaL_Reg>& functions);
 
 // The type of a value as messages name it: "Shape" for our userdata, else Lua's type name.
 std::string typeName(lua_State* L, int index);

@@ -124,16 +124,13 @@ int objectToString(lua_State* L) {
 void registerObjectConstructors(lua_State* L) {
   registerUserdataType<Texture>(L, {{"__tostring", &textureToString}});
   registerUserdataType<Object>(L, {{"__tostring", &objectToString}});
-  setConstructorTable(L, "Texture", {});
-  lua_getglobal(L, "Texture");
+  std::vector<luaL_Reg> constructors;
   textures::forEachKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
-    if constexpr (textures::isTextureConstructor<Kind>()) {
-      lua_pushcfunction(L, &protectedCall<textureConstructor<Kind>>);
-      lua_setfield(L, -2, Kind::kName);
-    }
+    if constexpr (textures::isTextureConstructor<Kind>())
+      constructors.push_back({Kind::kName, &protectedCall<textureConstructor<Kind>>});
   });
-  lua_pop(L, 1);
+  setConstructorTable(L, "Texture", constructors);
   setConstructorTable(L, "Object", {{"Simple", &protectedCall<objectSimple>}});
 }
 

@@ -161,14 +161,12 @@ int lightToString(lua_State* L) {
 void registerShadingConstructors(lua_State* L) {
   registerUserdataType<Shader>(L, {{"__tostring", &shaderToString}});
   registerUserdataType<Light>(L, {{"__tostring", &lightToString}});
-  setConstructorTable(L, "Shader", {});
-  lua_getglobal(L, "Shader");
+  std::vector<luaL_Reg> constructors;
   reflectance::forEachKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
-    lua_pushcfunction(L, &protectedCall<shaderConstructor<Kind>>);
-    lua_setfield(L, -2, Kind::kName);
+    constructors.push_back({Kind::kName, &protectedCall<shaderConstructor<Kind>>});
   });
-  lua_pop(L, 1);
+  setConstructorTable(L, "Shader", constructors);
   setConstructorTable(L, "Light",
                       {{"Point", &protectedCall<lightPoint>},
                        {"Ambient", &protectedCall<lightAmbient>},

@@ -39,14 +39,12 @@ int shapeToString(lua_State* L) {
 
 void registerShapeConstructors(lua_State* L) {
   registerUserdataType<Shape>(L, {{"__tostring", &shapeToString}});
-  setConstructorTable(L, "Shape", {});
-  lua_getglobal(L, "Shape");
+  std::vector<luaL_Reg> constructors;
   shapes::forEachAnalyticKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
-    lua_pushcfunction(L, &protectedCall<shapeConstructor<Kind>>);
-    lua_setfield(L, -2, Kind::kName);
+    constructors.push_back({Kind::kName, &protectedCall<shapeConstructor<Kind>>});
   });
-  lua_pop(L, 1);
+  setConstructorTable(L, "Shape", constructors);
 }
 
 }  // namespace dicsynth::scene

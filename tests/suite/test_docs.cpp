@@ -29,6 +29,7 @@
 #include "shapes/registry.h"
 #include "textures/registry.h"
 #include "run_cli.h"
+#include "temp_folder.h"
 
 using namespace dicsynth;
 
@@ -67,6 +68,27 @@ std::vector<Block> blocks() {
     }
   }
   return out;
+}
+
+// A page of docs/, whole.
+std::string docText(const char* name) { return test::readBytes(std::string(DS_SOURCE_DIR) + "/docs/" + name); }
+
+// The line of `text` that starts with `prefix` (a table row).
+std::string tableRow(const std::string& text, const std::string& prefix) {
+  const std::size_t start = text.find(prefix);
+  REQUIRE(start != std::string::npos);
+  return text.substr(start, text.find('\n', start) - start);
+}
+
+// A scene-language row names `constructor` (in backticks) and each of `keys`.
+template <class Keys>
+void checkConstructorRow(const std::string& row, const std::string& constructor, const Keys& keys) {
+  INFO(constructor);
+  CHECK(row.find("`" + constructor + "`") != std::string::npos);
+  for (const char* key : keys) {
+    INFO(key);
+    CHECK(row.find(key) != std::string::npos);
+  }
 }
 
 }  // namespace
@@ -184,25 +206,12 @@ TEST_CASE("docs: the output-layer table of docs/outputs.md is the layer schema's
 TEST_CASE("docs: every shape kind of the registry is in the scene language's table and the (u, v) table") {
   // host/shapes/registry.h lists the kinds; docs/scene-language.md's "analytic shapes" row names
   // each constructor and its keys, docs/cameras.md's (u, v) table has a row per kind.
-  auto read = [](const char* name) {
-    std::ifstream in(std::string(DS_SOURCE_DIR) + "/docs/" + name);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  };
-  const std::string language = read("scene-language.md"), cameras = read("cameras.md");
-  const std::size_t rowStart = language.find("| analytic shapes |");
-  REQUIRE(rowStart != std::string::npos);
-  const std::string row = language.substr(rowStart, language.find('\n', rowStart) - rowStart);
+  const std::string row = tableRow(docText("scene-language.md"), "| analytic shapes |"), cameras = docText("cameras.md");
   shapes::forEachAnalyticKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
     const std::string name = std::string("Shape.") + Kind::kName;
+    checkConstructorRow(row, name, Kind::kKeys);
     INFO(name);
-    CHECK(row.find("`" + name + "`") != std::string::npos);
-    for (const char* key : Kind::kKeys) {
-      INFO(key);
-      CHECK(row.find(key) != std::string::npos);
-    }
     CHECK(cameras.find("| `" + name + " {") != std::string::npos);
   });
 }
@@ -210,21 +219,12 @@ TEST_CASE("docs: every shape kind of the registry is in the scene language's tab
 TEST_CASE("docs: every reflectance model of the registry is in the scene language's table and the reflectance tables") {
   // host/reflectance/registry.h lists the kinds; docs/scene-language.md's "reflectance" row names
   // each constructor and its keys; docs/reflectance.md has its f_spec row and its parameters.
-  auto read = [](const char* name) {
-    std::ifstream in(std::string(DS_SOURCE_DIR) + "/docs/" + name);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  };
-  const std::string language = read("scene-language.md"), page = read("reflectance.md");
-  const std::size_t rowStart = language.find("| reflectance |");
-  REQUIRE(rowStart != std::string::npos);
-  const std::string row = language.substr(rowStart, language.find('\n', rowStart) - rowStart);
+  const std::string row = tableRow(docText("scene-language.md"), "| reflectance |"), page = docText("reflectance.md");
   reflectance::forEachKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
     const std::string name = std::string("Shader.") + Kind::kName;
+    checkConstructorRow(row, name, Kind::kKeys);
     INFO(name);
-    CHECK(row.find("`" + name + "`") != std::string::npos);
     CHECK(page.find("| `" + name + "` | ") != std::string::npos);  // the f_spec table
     // The parameter table: a row naming the kind, `color` and each key in the rows below it.
     const std::size_t parameters = page.find("| constructor | parameter |");
@@ -236,7 +236,6 @@ TEST_CASE("docs: every reflectance model of the registry is in the scene languag
     CHECK(rows.find("`color`") != std::string::npos);
     for (const char* key : Kind::kKeys) {
       INFO(key);
-      CHECK(row.find(key) != std::string::npos);
       CHECK(rows.find(std::string("`") + key + "`") != std::string::npos);
     }
   });
@@ -245,25 +244,15 @@ TEST_CASE("docs: every reflectance model of the registry is in the scene languag
 TEST_CASE("docs: every Texture.* kind of the registry is in the scene language's table with its keys") {
   // host/textures/registry.h lists the kinds; docs/scene-language.md's "textures" row names each
   // Texture.* constructor and its keys (the targets' kinds are documented with Target.*).
-  std::ifstream in(std::string(DS_SOURCE_DIR) + "/docs/scene-language.md");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string language = text.str();
-  const std::size_t rowStart = language.find("| textures |");
-  REQUIRE(rowStart != std::string::npos);
-  const std::string row = language.substr(rowStart, language.find('\n', rowStart) - rowStart);
+  const std::string language = docText("scene-language.md"), row = tableRow(language, "| textures |");
   int documented = 0;
   textures::forEachKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
-    INFO(Kind::kConstructor);
     if constexpr (textures::isTextureConstructor<Kind>()) {
       ++documented;
-      CHECK(row.find(std::string("`") + Kind::kConstructor + "`") != std::string::npos);
-      for (const char* key : Kind::kKeys) {
-        INFO(key);
-        CHECK(row.find(key) != std::string::npos);
-      }
+      checkConstructorRow(row, Kind::kConstructor, Kind::kKeys);
     } else {
+      INFO(Kind::kConstructor);
       CHECK(language.find(std::string("`") + Kind::kConstructor + "`") != std::string::npos);
     }
   });

@@ -6,27 +6,21 @@
 
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include "reflectance/registry.h"
 #include "shapes/registry.h"
+#include "temp_folder.h"
 #include "textures/registry.h"
 
 using namespace dicsynth;
 
 namespace {
 
-std::string readSource(const std::string& relative) {
-  std::ifstream in(std::string(DS_SOURCE_DIR) + "/" + relative);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string readSource(const std::string& relative) { return test::readBytes(std::string(DS_SOURCE_DIR) + "/" + relative); }
 
 // "BlinnPhong" → "blinn_phong", "GGX" → "ggx": the GLSL twin's name of a kind.
 std::string snakeCase(const std::string& name) {
@@ -49,15 +43,20 @@ std::map<std::string, int> kindNumbers() {
   return numbers;
 }
 
-// The rows X(DS_KIND, name) of the X-list `list` in `glsl`: kind number → name.
-std::map<int, std::string> xListRows(const std::string& glsl, const std::string& list) {
+// The definition of the X-list macro `list` in `glsl`: it runs to the first line that does not end
+// in a backslash.
+std::string xListBody(const std::string& glsl, const std::string& list) {
   const std::size_t start = glsl.find("#define " + list + "(X)");
   REQUIRE(start != std::string::npos);
-  // The macro runs to the first line that does not end in a backslash.
   std::size_t end = start;
   while ((end = glsl.find('\n', end + 1)) != std::string::npos && glsl[end - 1] == '\\') {
   }
-  const std::string body = glsl.substr(start, end - start);
+  return glsl.substr(start, end - start);
+}
+
+// The rows X(DS_KIND, name) of the X-list `list` in `glsl`: kind number → name.
+std::map<int, std::string> xListRows(const std::string& glsl, const std::string& list) {
+  const std::string body = xListBody(glsl, list);
   const std::map<std::string, int> numbers = kindNumbers();
   std::map<int, std::string> rows;
   const std::regex row(R"(X\((DS_[A-Z_]+), ([a-z_]+)\))");
@@ -134,12 +133,7 @@ TEST_CASE("registries: the GLSL lobe registry lists every reflectance model with
 TEST_CASE("registries: the GLSL texture registry draws every texture kind of the C++ one with its twin") {
   // Rows X(twin, compiled, drawn): the twin, its specialization test, the kinds it draws.
   const std::string glsl = readSource("shaders/lib/texture.glsl");
-  const std::size_t start = glsl.find("#define DS_TEXTURES(X)");
-  REQUIRE(start != std::string::npos);
-  std::size_t end = start;
-  while ((end = glsl.find('\n', end + 1)) != std::string::npos && glsl[end - 1] == '\\') {
-  }
-  const std::string body = glsl.substr(start, end - start);
+  const std::string body = xListBody(glsl, "DS_TEXTURES");
   const std::map<std::string, int> numbers = kindNumbers();
   std::map<int, std::string> twinOfKind;
   std::set<std::string> twins;

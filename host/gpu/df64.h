@@ -35,6 +35,17 @@ double joinDf64(Df64 d);
 // ---- Self-test ----
 inline constexpr double kDf64MaxRelError = 0x1p-44;  // an operation passes at or below this
 
+// Whether renders may use the fma TwoProd variant (DS_SPEC_DF64_FMA) where the self-test found fma
+// exact and the variant within its bounds. They may not: on an NVIDIA H100 (driver 580.159.04,
+// 2026-11-26) fma was exact and the fma variant passed the probe, whose operands come from a
+// buffer, yet inside the render shader it kept only float accuracy where an operand is a
+// compile-time constant: the uv of boxes (÷ 3), spheres and cylinders (÷ 2π) came out 4e-8 off
+// (box.lua: 8489 px over the df64 bound; figure1.lua 60,107 px) while Dekker's split passed the
+// same comparisons on the same machine (bench/RESULTS.md, "GPU machines"). A probe cannot prove
+// what a compiler does to constants in another shader, so the fma variant is measured and
+// reported (`dicsynth devices`) but renders use Dekker's split on every device.
+inline constexpr bool kRendersUseFma = false;
+
 struct Df64OpError {
   std::string name;            // "add", "mul", "div", "dot", … (see df64_cases.cpp)
   double maxRelError = 0.0;    // largest over the inputs (dot, cross: relative to Σ|aᵢbᵢ|)
@@ -47,7 +58,7 @@ struct Df64OpError {
 
 struct Df64SelfTest {
   bool fmaExact = false;  // fma(a, b, c) rounded once on every probe input
-  bool useFma = false;    // DS_SPEC_DF64_FMA for this device: fmaExact and the fma variant passed
+  bool useFma = false;    // DS_SPEC_DF64_FMA: kRendersUseFma, fmaExact and the fma variant passed
   bool passed = false;    // every operation of the variant in use passed
   std::vector<Df64OpError> dekker;  // TwoProd by Dekker's split (always measured)
   std::vector<Df64OpError> fma;     // TwoProd by fma (measured only where fmaExact)
@@ -58,6 +69,8 @@ struct Df64SelfTest {
   // The variant in use (fma when useFma) and its worst operation (largest maxRelError; an
   // unnormalized result counts as failing first).
   const std::vector<Df64OpError>& ops() const { return useFma ? fma : dekker; }
+  // fmaExact and every operation of the fma variant within its bounds (used in renders or not).
+  bool fmaPassed() const;
   const Df64OpError& worst() const;
 };
 

@@ -27,8 +27,10 @@
 // error bounds for basic building blocks of double-word arithmetic", ACM TOMS 44(2), 2017.
 //
 // Specialization constant DS_SPEC_DF64_FMA (shared/bindings.h; default false): TwoProd by
-// fma(a, b, −p) instead of Dekker's split. Set it only where the self-test proved fma exact (it is
-// not fused on lavapipe: fma(a, b, −p) is then 0 and a product keeps only float accuracy).
+// fma(a, b, −p) instead of Dekker's split. Only the self-test's probe sets it (it is not fused on
+// lavapipe: fma(a, b, −p) is then 0 and a product keeps only float accuracy); renders never do, since
+// on an NVIDIA H100 the variant lost its error term in the render shader where an operand was a
+// compile-time constant although the probe passed (host/gpu/df64.h, kRendersUseFma).
 #ifndef DS_DF64_GLSL
 #define DS_DF64_GLSL
 

@@ -1,0 +1,95 @@
+#!/bin/bash
+# Runs on a machine with a real GPU, from the repository's root, with a bundle made by
+# scripts/gpu-bundle.sh: the CPU-vs-GPU checks and the benchmarks whose figures bench/RESULTS.md
+# records per device ("GPU machines"). Each step has a time limit and the whole a budget, so that a
+# lease of a few minutes returns whatever finished; steps run in order of importance (correctness
+# first) and one left out for lack of time says so in LOGDIR/summary.txt.
+#   env       the driver, `dicsynth devices`, one small render per precision (pipeline compilation)
+#   checks    dicsynth_gpu_checks but its longest case: the randomized NURBS test (1.08e6 rays per
+#             precision), visibility, shading, analytic shapes, df64 arithmetic, under the
+#             validation layer
+#   scenes    its longest case: every scene of scenes/ in fp64, df64 and fp32 against the CPU
+#   compare   `dicsynth compare scenes --downscale 4` in fp32, df64 and fp64
+#   bench     `dicsynth bench` (run time versus error, Figure 1, NURBS plate, dogbone)
+#   process   bench/bench_process.sh (whole processes, Figure 1, 1600x1200, 16 spp; fixed overhead)
+#   long      the randomized NURBS test's long run (140 scenes, 1.08e7 rays per precision)
+# Seen on an NVIDIA H100 with 16 cores (2026-11-26, bench/RESULTS.md "GPU machines"): env 8 s, the
+# NURBS test 53 s, scenes 189 s (NVIDIA compiles a pipeline per scene and precision, 1-5 s each,
+# under validation), bench 22 s, process ~50 s. A machine lent for 15 minutes, start included,
+# runs env to process in one call of ~420 s.
+# Usage: scripts/gpu-checks.sh BUNDLE LOGDIR [BUDGET_S] [STEPS...]   (default 420 s, all steps)
+set -u
+B=$(cd "$1" && pwd)
+LOG=$2
+BUDGET=${3:-420}
+shift $(($# < 3 ? $# : 3))
+STEPS=${*:-env checks scenes compare bench process long}
+mkdir -p "$LOG"
+LOG=$(cd "$LOG" && pwd)
+ROOT=$(pwd)
+T0=$(date +%s)
+
+# The binaries carry the paths they were built with (the source folder: scenes, docs; the build
+# folder: DS_BINARY of the CLI tests). Where those don't exist here, they are made to point here.
+SRC=$(cat "$B/source-dir")
+BUILD=$(cat "$B/build-dir")
+if [ ! -e "$SRC" ]; then mkdir -p "$(dirname "$SRC")" && ln -s "$ROOT" "$SRC"; fi
+mkdir -p "$BUILD"
+cp "$B/bin/dicsynth" "$B/bin/dicsynth_gpu_checks" "$BUILD/"
+
+export LD_LIBRARY_PATH="$B/lib"
+# Debian 12's libstdc++ only where the machine's is older (or missing).
+"$BUILD/dicsynth" --version >/dev/null 2>&1 || export LD_LIBRARY_PATH="$B/lib:$B/lib-gcc"
+export VK_LAYER_PATH="$B/layers"
+# NVIDIA's container images keep the driver's manifest outside the loader's search path.
+ICD=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+if [ -f "$ICD" ] && [ -z "${VK_DRIVER_FILES:-}" ]; then export VK_DRIVER_FILES=$ICD VK_ICD_FILENAMES=$ICD; fi
+DS="$BUILD/dicsynth"
+CHECKS="$BUILD/dicsynth_gpu_checks"
+
+left() { echo $((BUDGET - ($(date +%s) - T0))); }
+# step NAME LIMIT_S COMMAND: runs the shell command COMMAND (functions below exported) into
+# LOGDIR/NAME.txt, unless fewer than 20 s of the budget are left.
+step() {
+  local name=$1 limit=$2 cmd=$3 l t rc
+  case " $STEPS " in *" $name "*) ;; *) return ;; esac
+  l=$(left)
+  if [ "$l" -lt 20 ]; then echo "$name: skipped, ${l} s of the budget left" >>"$LOG/summary.txt"; return; fi
+  [ "$limit" -gt "$l" ] && limit=$l
+  t=$(date +%s)
+  timeout -k 5 "$limit" bash -c "$cmd" >>"$LOG/$name.txt" 2>&1
+  rc=$?
+  echo "$name: exit $rc after $(($(date +%s) - t)) s (limit $limit s)" >>"$LOG/summary.txt"
+}
+
+env_step() {
+  nvidia-smi -L 2>&1 || true
+  uname -a
+  echo "LD_LIBRARY_PATH=$LD_LIBRARY_PATH VK_DRIVER_FILES=${VK_DRIVER_FILES:-}"
+  ldd "$DS" | grep "not found" || true
+  "$DS" --version
+  "$DS" devices
+  for p in fp32 df64 fp64; do
+    local t=$(date +%s.%N)
+    "$DS" render scenes/box.lua -o /tmp/gpu-checks-box --downscale 4 --precision $p
+    echo "box $p: $(awk -v a="$t" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }') s (process, first run of the precision)"
+  done
+}
+compare_step() {
+  for p in fp32 df64 fp64; do "$DS" compare scenes --downscale 4 --precision $p; done
+}
+long_step() { DICSYNTH_NURBS_RANDOM_SCENES=140 "$CHECKS" -tc="nurbs-random: GPU*"; }
+export -f env_step compare_step long_step
+export DS CHECKS BUILD
+
+step env 60 env_step
+SCENES_CASE='cpu-vs-gpu: every scene in scenes/*'
+export SCENES_CASE
+step checks 150 'DICSYNTH_VALIDATION=1 "$CHECKS" --duration=true -tce="$SCENES_CASE"'
+step scenes 240 'DICSYNTH_VALIDATION=1 "$CHECKS" --duration=true -tc="$SCENES_CASE"'
+step compare 120 compare_step
+step bench 60 '"$DS" bench -o /tmp/gpu-checks-bench --runs 3'
+step process 90 'bench/bench_process.sh "$BUILD" 3 16'
+step long 200 long_step
+echo "total $(($(date +%s) - T0)) s" >>"$LOG/summary.txt"
+cat "$LOG/summary.txt"

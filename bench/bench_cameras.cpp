@@ -61,10 +61,8 @@ int main(int argc, char** argv) {
   // 1. Thin lens against its chief-ray pinhole.
   const Scene lensScene = loadScene(dir + "thin_lens.lua", {});
   Scene pinholeScene = lensScene;
-  for (Camera& c : pinholeScene.cameras) {
-    c.kind = CameraKind::Pinhole;
-    c.focalLength_m = c.focalLength_m * c.focusDistance_m / (c.focusDistance_m - c.focalLength_m);
-  }
+  // The chief ray's pinhole: focal length = the thin lens's image distance v.
+  for (Camera& c : pinholeScene.cameras) c.model = cameras::Pinhole{.focalLength_m = c.focalScale()};
   const PreparedScene lens = prepareScene(lensScene, {downscale});
   const PreparedScene pinhole = prepareScene(pinholeScene, {downscale});
   std::printf("device: %s; %dx%d px, %d spp, best of %d\n\n", ctx.info().name.c_str(),

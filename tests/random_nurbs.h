@@ -86,7 +86,7 @@ inline Camera randomTestCamera(RandomSource& rng) {
   c.width_px = 320;
   c.height_px = 240;
   c.principalPoint_px = {159.5 + rng.uniform(-5, 5), 119.5 + rng.uniform(-5, 5)};
-  c.focalLength_m = 0.012;
+  c.model = cameras::Pinhole{.focalLength_m = 0.012};
   c.pixelSize_m = {4.4e-6, 4.4e-6};
   c.distortion.kind = DistortionKind::Brown;
   c.distortion.k1 = rng.uniform(-0.2, 0.2);

@@ -19,7 +19,7 @@ void renderCamera(const PreparedScene& scene, std::size_t cameraIndex, const Ren
   const Strata strata = strataFor(options.samplesPerPixel);
   const double side = std::sqrt(pc.camera.fillFactor);
   const auto width = std::size_t(pc.camera.width_px);
-  const bool thinLens = model.kind == CameraKind::ThinLens;
+  const bool thinLens = cameras::cameraKindInfo(model.kind).samplesLens;
 
   parallelFor(std::size_t(pc.camera.height_px), [&](std::size_t y) {
     for (std::size_t x = 0; x < width; ++x) {
@@ -29,7 +29,7 @@ void renderCamera(const PreparedScene& scene, std::size_t cameraIndex, const Ren
       // Ground truth: the ray through the exact pixel centre (a thin lens's chief ray).
       const CameraRay<double> chief = worldRay(model, centre);
       if (traceNearest(scene, chief.origin, chief.direction, hit)) {
-        image.depth_m[i] = hit.t;  // camera-frame z of the direction is 1 (camera/pinhole.h)
+        image.depth_m[i] = hit.t;  // camera-frame z of the direction is 1 (cameras/rays.h)
         image.position_m[i] = hit.position;
         image.normal[i] = hit.normal;
         image.uv[i] = hit.uv;

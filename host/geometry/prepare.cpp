@@ -156,18 +156,11 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
 
 PinholeModel<double> pinholeModel(const Camera& c) {
   PinholeModel<double> m;
-  m.kind = c.kind;
+  m.kind = c.kind();
   // Distance from the lens to the sensor (the chief ray's pinhole focal length), or for a
-  // telecentric lens the magnification: fx = it / pixel size (camera/pinhole.h).
-  double scale = c.focalLength_m;
-  if (c.kind == CameraKind::ThinLens) {
-    const double f = c.focalLength_m, u = c.focusDistance_m;
-    scale = f * u / (u - f);  // image distance v: 1/f = 1/u + 1/v (the constructor checks u > f)
-    m.lensRadius = 0.5 * c.aperture_m;
-    m.lensRadiusOverFocus = m.lensRadius / u;
-  } else if (c.kind == CameraKind::Orthographic) {
-    scale = c.magnification;
-  }
+  // telecentric lens the magnification: fx = it / pixel size (cameras/<kind>.h).
+  const double scale = c.focalScale();
+  std::visit([&m](const auto& kind) { kind.prepareLens(m); }, c.model);
   m.fx = scale / c.pixelSize_m.x;
   m.fy = scale / c.pixelSize_m.y;
   m.cx = c.principalPoint_px.x;
@@ -260,7 +253,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   for (const PreparedCamera& c : ps.cameras) {
     ps.features.distortion |= c.model.distorted;
     ps.features.rationalDistortion |= c.camera.distortion.kind == DistortionKind::Rational;
-    ps.features.cameraKinds |= 1u << int(c.camera.kind);
+    ps.features.cameraKinds |= 1u << int(c.camera.kind());
   }
   ps.features.fileTextures = !ps.textures.empty();
   for (const PreparedTexture& t : ps.textures)

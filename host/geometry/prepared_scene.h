@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "camera/pinhole.h"
+#include "cameras/rays.h"
 #include "geometry/nurbs_bvh.h"
 #include "geometry/shapes.h"
 #include "geometry/targets.h"

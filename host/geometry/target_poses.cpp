@@ -74,8 +74,8 @@ std::vector<dmat4> generateTargetPoses(const TargetLayout& layout, const std::ve
     base += m.centre / double(cameras.size());
     forward += m.worldFromCamera[2];
     right += m.worldFromCamera[0];
-    double& halfX = c.kind == CameraKind::Orthographic ? orthoHalfX : tanHalfX;
-    double& halfY = c.kind == CameraKind::Orthographic ? orthoHalfY : tanHalfY;
+    double& halfX = c.kindInfo().telecentric ? orthoHalfX : tanHalfX;
+    double& halfY = c.kindInfo().telecentric ? orthoHalfY : tanHalfY;
     halfX = std::min(halfX, 0.5 * c.width_px / m.fx);
     halfY = std::min(halfY, 0.5 * c.height_px / m.fy);
   }

@@ -10,7 +10,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "camera/pinhole.h"
+#include "cameras/rays.h"
 #include "core/phase_timer.h"
 #include "gpu/buffer.h"
 #include "gpu/df64.h"

@@ -72,19 +72,16 @@ std::string yamlString(const std::string& key, const std::string& value) {
 // What OpenCV's pinhole model cannot say (README "Calibration files"). ThinLens: the camera matrix is
 // its chief ray's pinhole (exact for projections and the ground truth); the blur (aperture, focus)
 // is extra. Orthographic: OpenCV has no telecentric camera; the matrix holds px per metre of object
-// and the distortion acts on metric coordinates (camera/pinhole.h): only dicsynth's model reads it.
+// and the distortion acts on metric coordinates (cameras/orthographic.h): only dicsynth's model reads it.
 std::string yamlLens(const Camera& camera, const std::string& side) {
-  switch (camera.kind) {
-    case CameraKind::Pinhole: return "";
-    case CameraKind::ThinLens:
-      return yamlString("camera_model" + side, "thin_lens") + "focal_length_m" + side + ": " +
-             exactNumber(camera.focalLength_m) + "\naperture_m" + side + ": " + exactNumber(camera.aperture_m) +
-             "\nfocus_distance_m" + side + ": " + exactNumber(camera.focusDistance_m) + "\n";
-    case CameraKind::Orthographic:
-      return yamlString("camera_model" + side, "orthographic") + "magnification" + side + ": " +
-             exactNumber(camera.magnification) + "\n";
-  }
-  return "";
+  return std::visit(
+      [&side](const auto& kind) {
+        if (kind.kOpenCv) return std::string();
+        std::string text = yamlString("camera_model" + side, kind.kModelName);
+        for (const auto& [name, value] : kind.header()) text += name + side + ": " + exactNumber(value) + "\n";
+        return text;
+      },
+      camera.model);
 }
 
 // The intrinsics of one camera; `side` ("", "_left", "_right") ends every key.

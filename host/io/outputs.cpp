@@ -180,20 +180,13 @@ void addMetadata(Imf::Header& header, const Camera& camera, const OutputInfo& in
   for (const auto& [object, text] : info.deformations) attribute(("dicsynth:deformation:" + object).c_str(), text);
   attribute("dicsynth:camera_matrix", formatNumbers(cv.cameraMatrix));
   attribute("dicsynth:distortion_coefficients", formatNumbers(cv.distortion));
-  // The camera kind and what OpenCV's matrix cannot say (README "Outputs"; camera/pinhole.h).
-  switch (camera.kind) {
-    case CameraKind::Pinhole: attribute("dicsynth:camera_model", "pinhole"); break;
-    case CameraKind::ThinLens:
-      attribute("dicsynth:camera_model", "thin_lens");
-      attribute("dicsynth:focal_length_m", exactNumber(camera.focalLength_m));
-      attribute("dicsynth:aperture_m", exactNumber(camera.aperture_m));
-      attribute("dicsynth:focus_distance_m", exactNumber(camera.focusDistance_m));
-      break;
-    case CameraKind::Orthographic:
-      attribute("dicsynth:camera_model", "orthographic");
-      attribute("dicsynth:magnification", exactNumber(camera.magnification));
-      break;
-  }
+  // The camera kind and what OpenCV's matrix cannot say (README "Outputs"; cameras/<kind>.h: header()).
+  std::visit(
+      [&](const auto& kind) {
+        attribute("dicsynth:camera_model", kind.kModelName);
+        for (const auto& [name, value] : kind.header()) attribute((std::string("dicsynth:") + name).c_str(), exactNumber(value));
+      },
+      camera.model);
   attribute("dicsynth:R", formatNumbers(cv.R));
   attribute("dicsynth:t", formatNumbers(cv.t));
   attribute("dicsynth:image_size",

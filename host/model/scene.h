@@ -15,6 +15,7 @@
 #include "model/sensor_model.h"
 #include "nurbs/nurbs_fit.h"
 #include "nurbs/nurbs_surface.h"
+#include "cameras/registry.h"
 #include "reflectance/registry.h"
 #include "shapes/registry.h"
 #include "textures/registry.h"
@@ -36,14 +37,11 @@ struct Distortion {
 struct Camera {
   std::string name;  // the scene's global variable name, e.g. "camera1"
   SourceLoc where;
-  CameraKind kind = CameraKind::Pinhole;
+  // The kind and its own parameters (host/cameras/<kind>.h); what follows, every kind shares.
+  cameras::Model model;
   int width_px = 0, height_px = 0;
   dvec2 principalPoint_px{0, 0};  // OpenCV pixel frame: centre of the top-left pixel is (0, 0)
-  double focalLength_m = 0;   // Pinhole: pinhole distance; ThinLens: the lens's focal length f
   dvec2 pixelSize_m{0, 0};
-  double aperture_m = 0;       // ThinLens: aperture diameter A (from `aperture` or f/`fNumber`)
-  double focusDistance_m = 0;  // ThinLens: object distance u in focus, along the axis from the lens
-  double magnification = 0;    // Orthographic: image size / object size
   double fillFactor = 1;   // area fraction of the pixel that is sensitive, (0, 1]
   int bitsPerPixel = 8;    // 1..16
   double exposure = 1;     // digital number = round(clamp(exposure * radiance, 0, 1) * (2^bits - 1))
@@ -55,6 +53,14 @@ struct Camera {
   // Sensor model and post-processors (`sensor`, `postProcessing`; host/sensor). Empty: the plain
   // digitization above, exactly as without them.
   SensorModel sensor;
+
+  CameraKind kind() const { return cameras::kindOf(model); }
+  const cameras::CameraKindInfo& kindInfo() const { return cameras::cameraKindInfo(kind()); }
+  // fx × pixel size: the lens-to-sensor distance (m) of a perspective camera, the magnification of a
+  // telecentric one (cameras/<kind>.h).
+  double focalScale() const {
+    return std::visit([](const auto& k) { return k.focalScale(); }, model);
+  }
 };
 
 // A shape in its own frame; `location` places that frame's origin in the object's frame.

@@ -34,7 +34,7 @@ Scene calibrationScene() {
   c.width_px = 128;
   c.height_px = 96;
   c.principalPoint_px = {63.5, 47.5};
-  c.focalLength_m = 0.012;
+  c.model = cameras::Pinhole{.focalLength_m = 0.012};
   c.pixelSize_m = {5.5e-5, 5.5e-5};
   s.cameras.push_back(c);
 

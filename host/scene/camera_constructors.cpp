@@ -1,7 +1,9 @@
-// Camera.Pinhole, Camera.ThinLens, Camera.Orthographic; Distortion.Brown, Distortion.Rational.
+// Camera.<Kind> for every kind of host/cameras/registry.h (the parameters they share; each kind's own
+// are its home's); Distortion.Brown, Distortion.Rational.
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/constructors.h"
@@ -134,18 +136,17 @@ dmat4 lookAtPose(const Params& p, const dvec3& position, const dvec3& lookAt, co
 }
 
 /* ------------------------------------------------------------------------------------------------
-Camera.Pinhole: an ideal pinhole camera with a rectangular sensor of square-grid pixels.
-Pixel coordinates are OpenCV's: the centre of the top-left pixel is (0, 0), x right, y down.
-The camera frame is OpenCV's: x right, y down, z forward (along the optical axis).
-Every camera kind shares the parameters of this table except focalLength (kCommonCameraKeys,
-readCommonCamera below); the models are defined in host/camera/pinhole.h.
+Camera.<Kind> (every kind: Camera.Pinhole, Camera.ThinLens, Camera.Orthographic): a camera with a
+rectangular sensor of square-grid pixels. Pixel coordinates are OpenCV's: the centre of the
+top-left pixel is (0, 0), x right, y down. The camera frame is OpenCV's: x right, y down, z forward
+(along the optical axis). Every kind reads the parameters of this table (kCommonCameraKeys,
+readCommonCamera below) and its own (host/cameras/<kind>.h: focalLength, magnification, ...).
 
   Parameter      | Value                  | Default            | Meaning
   ---------------+------------------------+--------------------+----------------------------------
   resolution     | {w, h} integers, px    | required           | image size, each 1..65535
   principalPoint | {cx, cy}, px           | {(w-1)/2, (h-1)/2} | where the optical axis meets the
                  |                        |                    | image (default: geometric centre)
-  focalLength    | number, m              | required           | > 0
   pixelSize      | {sx, sy}, m            | required           | pixel pitch, each > 0, sx / sy
                  |                        |                    | in 1e-3..1e3
   fillFactor     | number                 | 1                  | sensitive fraction of a pixel's
@@ -168,11 +169,6 @@ Pose: give `transform`, or `position` with optional `lookAt`/`up`, not both. Wit
 camera sits at the origin looking down +z and its frame is the world frame. With lookAt:
   z = normalize(lookAt - position), y = normalize(-(up - (up · z) z)), x = cross(y, z).
 Without lookAt the camera at `position` keeps the world's orientation.
-
-Example:
-  left = Camera.Pinhole { resolution = {1600, 1200}; focalLength = 0.012;
-                          pixelSize = {4.4e-6, 4.4e-6}; bitsPerPixel = 10;
-                          position = {-0.1, 0, 0}; lookAt = {0, 0, 0.5} }
 ------------------------------------------------------------------------------------------------ */
 
 // The keys every Camera.* constructor reads through readCommonCamera.
@@ -180,16 +176,11 @@ const std::vector<const char*> kCommonCameraKeys = {
     "resolution", "principalPoint", "pixelSize", "fillFactor", "bitsPerPixel", "exposure",
     "distortion", "transform", "position", "lookAt", "up", "sensor", "postProcessing"};
 
-std::vector<const char*> cameraKeys(std::initializer_list<const char*> own) {
-  std::vector<const char*> keys = kCommonCameraKeys;
-  keys.insert(keys.end(), own.begin(), own.end());
-  return keys;
-}
-
 // Sensor, distortion and pose: the parameters every camera kind shares (table above).
-Camera readCommonCamera(lua_State* L, const Params& p, CameraKind kind) {
+// `kind`: the kind's defaults until its own parameters are read (the sensor's checks ask its properties).
+Camera readCommonCamera(lua_State* L, const Params& p, const cameras::Model& kind) {
   Camera camera;
-  camera.kind = kind;
+  camera.model = kind;
   camera.where = LuaSandbox::of(L).here(L);
 
   // Sensor
@@ -246,95 +237,22 @@ Camera readCommonCamera(lua_State* L, const Params& p, CameraKind kind) {
   return camera;
 }
 
-int cameraPinhole(lua_State* L) {
-  Params p(L, "Camera.Pinhole", cameraKeys({"focalLength"}));
-  Camera camera = readCommonCamera(L, p, CameraKind::Pinhole);
-  camera.focalLength_m = p.requiredNumber("focalLength");
-  p.require(camera.focalLength_m > 0, "focalLength", "> 0 (metres)", camera.focalLength_m);
-  pushUserdata(L, std::move(camera));
-  return 1;
-}
-
-/* ------------------------------------------------------------------------------------------------
-Camera.ThinLens: a thin lens with a finite aperture: depth of field. The parameters of
-Camera.Pinhole (except that focalLength is the lens's focal length f), plus:
-
-  Parameter      | Value        | Default  | Meaning
-  ---------------+--------------+----------+------------------------------------------------------
-  focalLength    | number, m    | required | the lens's focal length f, > 0
-  focusDistance  | number, m    | required | object distance u in focus, from the lens along the
-                 |              |          | optical axis; > focalLength
-  fNumber        | number       | -        | N: aperture diameter A = f / N; > 0
-  aperture       | number, m    | -        | aperture diameter A, > 0 (exactly one of the two)
-
-The sensor sits at the image distance v = f u / (u - f) (1/f = 1/u + 1/v), so the image of the
-plane in focus is sharp and the chief ray (through the lens centre) is the pinhole of focal length
-v: fx = v / pixelSize.x. Each sample traces a ray from its own point of the lens disk (uniform,
-deterministic, the same on both renderers) through the chief ray's point on the plane in focus; a
-point at depth d is spread over a disk of diameter c = A v |1/u - 1/d| on the sensor. Projections,
-ground truth and feature files use the chief ray (host/camera/pinhole.h).
-
-Example:
-  cam = Camera.ThinLens { resolution = {800, 600}; pixelSize = {5e-6, 5e-6}; focalLength = 0.05;
-                          fNumber = 2.8; focusDistance = 0.5 }
------------------------------------------------------------------------------------------------- */
-int cameraThinLens(lua_State* L) {
-  Params p(L, "Camera.ThinLens", cameraKeys({"focalLength", "focusDistance", "fNumber", "aperture"}));
-  Camera camera = readCommonCamera(L, p, CameraKind::ThinLens);
-  camera.focalLength_m = p.requiredNumber("focalLength");
-  p.require(camera.focalLength_m > 0, "focalLength", "> 0 (metres)", camera.focalLength_m);
-  camera.focusDistance_m = p.requiredNumber("focusDistance");
-  p.require(camera.focusDistance_m > camera.focalLength_m, "focusDistance",
-            "> focalLength (metres; a lens cannot focus closer than its focal length)",
-            camera.focusDistance_m);
-  const std::optional<double> fNumber = p.number("fNumber"), aperture = p.number("aperture");
-  if (fNumber.has_value() == aperture.has_value())
-    p.fail("give exactly one of 'fNumber' (f / aperture diameter) and 'aperture' (diameter, metres)");
-  if (fNumber) {
-    p.require(*fNumber > 0, "fNumber", "> 0", *fNumber);
-    camera.aperture_m = camera.focalLength_m / *fNumber;
-  } else {
-    p.require(*aperture > 0, "aperture", "> 0 (diameter, metres)", *aperture);
-    camera.aperture_m = *aperture;
-  }
-  pushUserdata(L, std::move(camera));
-  return 1;
-}
-
-/* ------------------------------------------------------------------------------------------------
-Camera.Orthographic: a telecentric lens (parallel projection), for high-magnification set-ups.
-The parameters of Camera.Pinhole except focalLength, plus:
-
-  Parameter      | Value      | Default  | Meaning
-  ---------------+------------+----------+--------------------------------------------------------
-  magnification  | number     | required | image size / object size, > 0 (dimensionless)
-
-A point at (X, Y, Z) of the camera frame appears at x = cx + m X'' / sx, y = cy + m Y'' / sy where
-(X'', Y'') = distort(X, Y): the normalized coordinates of a telecentric camera are the metric X, Y
-(so distortion coefficients carry units: k1 in m⁻², k2 in m⁻⁴, ...). Rays run parallel to the
-optical axis from the plane Z = 0 of the camera frame (the camera's `position`), so only what lies
-in front of that plane is seen and the depth Z is the distance along the axis from it.
-
-Example:
-  cam = Camera.Orthographic { resolution = {640, 480}; pixelSize = {5e-6, 5e-6};
-                              magnification = 0.5; position = {0, 0, -0.1} }
------------------------------------------------------------------------------------------------- */
-int cameraOrthographic(lua_State* L) {
-  Params p(L, "Camera.Orthographic", cameraKeys({"magnification"}));
-  Camera camera = readCommonCamera(L, p, CameraKind::Orthographic);
-  camera.magnification = p.requiredNumber("magnification");
-  p.require(camera.magnification > 0, "magnification", "> 0 (image size / object size)",
-            camera.magnification);
+// Camera.<Kind>: the common parameters, then the kind's own (its home parses them).
+template <class Kind>
+int cameraConstructor(lua_State* L) {
+  std::vector<const char*> keys = kCommonCameraKeys;
+  keys.insert(keys.end(), Kind::kKeys.begin(), Kind::kKeys.end());
+  Params p(L, std::string("Camera.") + Kind::kName, keys);
+  Camera camera = readCommonCamera(L, p, Kind{});
+  camera.model = Kind::parse(p);
   pushUserdata(L, std::move(camera));
   return 1;
 }
 
 int cameraToString(lua_State* L) {
   const Camera* camera = toUserdata<Camera>(L, 1);
-  const char* kind = "Camera.Pinhole";
-  if (camera && camera->kind == CameraKind::ThinLens) kind = "Camera.ThinLens";
-  if (camera && camera->kind == CameraKind::Orthographic) kind = "Camera.Orthographic";
-  lua_pushfstring(L, "%s(%dx%d)", kind, camera ? camera->width_px : 0, camera ? camera->height_px : 0);
+  const char* kind = camera ? camera->kindInfo().name : cameras::Pinhole::kName;
+  lua_pushfstring(L, "Camera.%s(%dx%d)", kind, camera ? camera->width_px : 0, camera ? camera->height_px : 0);
   return 1;
 }
 
@@ -350,9 +268,12 @@ int distortionToString(lua_State* L) {
 void registerCameraConstructors(lua_State* L) {
   registerUserdataType<Camera>(L, {{"__tostring", &cameraToString}});
   registerUserdataType<Distortion>(L, {{"__tostring", &distortionToString}});
-  setConstructorTable(L, "Camera", {{"Pinhole", &protectedCall<cameraPinhole>},
-                                     {"ThinLens", &protectedCall<cameraThinLens>},
-                                     {"Orthographic", &protectedCall<cameraOrthographic>}});
+  std::vector<luaL_Reg> kinds;
+  cameras::forEachCameraKind([&](auto kind) {
+    using K = typename decltype(kind)::type;
+    kinds.push_back({K::kName, &protectedCall<cameraConstructor<K>>});
+  });
+  setConstructorTable(L, "Camera", kinds);
   setConstructorTable(L, "Distortion", {{"Brown", &protectedCall<distortionBrown>},
                                          {"Rational", &protectedCall<distortionRational>}});
 }

@@ -88,11 +88,15 @@ int rigStereo(lua_State* L) {
   auto camera = [&](const char* key) {
     const Camera* given = p.userdata<Camera>(key, "a Camera (Camera.Pinhole { ... })");
     if (given == nullptr) p.fail(std::string("missing required '") + key + "' = Camera.Pinhole { ... }");
-    if (given->kind == CameraKind::Orthographic)
-      p.fail(Params::quote(key) +
-             " is a Camera.Orthographic: Rig.Stereo places perspective cameras (Pinhole, ThinLens) by "
-             "their optical centres, which a telecentric camera lacks; give each telecentric camera "
+    if (given->kindInfo().telecentric) {
+      std::string perspective;
+      for (const auto& k : cameras::kCameraKinds)
+        if (!k.telecentric) perspective += std::string(perspective.empty() ? "" : ", ") + k.name;
+      p.fail(Params::quote(key) + " is a Camera." + given->kindInfo().name +
+             ": Rig.Stereo places perspective cameras (" + perspective +
+             ") by their optical centres, which a telecentric camera lacks; give each telecentric camera "
              "its own transform instead");
+    }
     if (given->poseGiven)
       p.fail(Params::quote(key) +
              " has a pose of its own (transform, position, lookAt or up): the rig places its "

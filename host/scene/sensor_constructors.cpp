@@ -288,7 +288,7 @@ void readCameraSensor(lua_State* L, const Params& p, Camera& camera) {
         break;
       case PostProcessorValue::Kind::Vignetting:
         once(m.vignetting.has_value(), "Vignetting");
-        if (v.vignetting.kind == VignettingKind::Cos4 && camera.kind == CameraKind::Orthographic)
+        if (v.vignetting.kind == VignettingKind::Cos4 && camera.kindInfo().telecentric)
           p.fail("Vignetting.Cos4: a telecentric (orthographic) camera's chief rays are parallel to the axis, so it "
                  "has no cos⁴ fall-off; use Vignetting.Radial");
         m.vignetting = v.vignetting;

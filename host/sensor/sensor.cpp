@@ -43,11 +43,8 @@ std::vector<double> opticalImage(const std::vector<double>& radiance, const Came
   if (m.vignetting || !m.dust.empty()) {
     // cos⁴ is measured from the sensor: the chief ray's angle is set by the distance from the lens centre
     // to the sensor, the pinhole distance, which for a thin lens is the image distance v = f u / (u − f)
-    // (camera/pinhole.h). Orthographic cameras are refused at scene load (no fall-off to model).
-    const double sensorDistance_m =
-        camera.kind == CameraKind::ThinLens
-            ? camera.focalLength_m * camera.focusDistance_m / (camera.focusDistance_m - camera.focalLength_m)
-            : camera.focalLength_m;
+    // (cameras/thin_lens.h). Telecentric cameras are refused at scene load (no fall-off to model).
+    const double sensorDistance_m = camera.kindInfo().telecentric ? 0.0 : camera.focalScale();
     const VignettingGeometry g{w, h, camera.principalPoint_px.x, camera.principalPoint_px.y,
                                camera.pixelSize_m.x, camera.pixelSize_m.y, sensorDistance_m};
     if (m.vignetting && m.vignetting->kind == VignettingKind::Cos4)

@@ -1,5 +1,7 @@
 // Camera models (pinhole, thin lens, orthographic), lens distortion and pixel/lens sampling: the GPU
-// twin of host/camera/distortion.h, pinhole.h and sampling.h (same formulas, same Newton start and stopping rule, same strata).
+// twin of host/camera/distortion.h, pinhole.h, sampling.h and host/cameras/rays.h (same formulas,
+// same Newton start and stopping rule, same strata); each kind's own ray is in its twin,
+// shaders/cameras/<kind>.glsl.
 // Everything that places the ray runs in hreal (lib/real.glsl).
 #ifndef DS_CAMERA_GLSL
 #define DS_CAMERA_GLSL
@@ -7,6 +9,17 @@
 #include "shared/rng.h"
 #include "shared/kinds.h"
 #include "lib/features.glsl"
+// GpuCamera (shared/gpu_types.h) is defined by the including shader (render.comp).
+#include "cameras/orthographic.glsl"
+#include "cameras/thin_lens.glsl"
+
+// The registry of camera kinds on the GPU (host/cameras/registry.h is the C++ one): each kind but
+// the pinhole (the default: from the camera centre along (x', y', 1)) has a twin
+// shaders/cameras/<name>.glsl defining Gpu<Name>, ds_<name>_data(GpuCamera) and
+// ds_<name>_ray(data, x', y', lens, out origin, out direction) in the camera frame.
+#define DS_CAMERAS(X)                         \
+  X(DS_CAMERA_ORTHOGRAPHIC, orthographic)     \
+  X(DS_CAMERA_THIN_LENS, thin_lens)
 
 // Brown coefficients, and OpenCV's rational (k4..k6) and thin-prism (s1..s4) terms, which only
 // HAS_RATIONAL_DISTORTION scenes evaluate (with them zero they change nothing: camera/distortion.h).
@@ -123,7 +136,7 @@ struct UndistortStart {
 
 // The ray of a sample at the distorted image position `pixel` through the unit-disk lens point
 // `lens` (ThinLens only): origin (camera-relative world, m) and direction (world frame, camera-frame
-// z = 1 so that t = depth), as cameraRay() in host/camera/pinhole.h. False when the distortion
+// z = 1 so that t = depth), as cameraRay() in host/cameras/rays.h. False when the distortion
 // cannot be inverted there.
 // df64: Newton runs in float to convergence, then two steps whose residual is evaluated in df64
 // (iterative refinement: each step multiplies the error by ~ε_float·cond(J) ≈ 1e-6, so two steps
@@ -172,17 +185,14 @@ bool ds_camera_ray(GpuCamera cam, hreal2 pixel, bool distorted, real2 lens, bool
   hreal3 dc = h3(x, y, one);
   origin = centre;
   hreal3 oc;
-  bool offset = false;  // the ray starts off the camera centre
-  if (DS_HAS_CAMERA(DS_CAMERA_ORTHOGRAPHIC) && cam.flags.y == DS_CAMERA_ORTHOGRAPHIC) {
-    oc = h3(x, y, zero);
-    dc = h3(zero, zero, one);
-    offset = true;
-  } else if (DS_HAS_CAMERA(DS_CAMERA_THIN_LENS) && cam.flags.y == DS_CAMERA_THIN_LENS) {
-    const hreal a = h(lens.x), b = h(lens.y), radius = h_x(cam.lens), radiusOverFocus = h_y(cam.lens);
-    oc = h3(h_mul(radius, a), h_mul(radius, b), zero);
-    dc = h3(h_sub(x, h_mul(radiusOverFocus, a)), h_sub(y, h_mul(radiusOverFocus, b)), one);
-    offset = true;
+  bool offset = false;  // the ray starts off the camera centre (the pinhole's starts on it)
+#define DS_CAMERA_CASE(KIND, name)                                  \
+  if (!offset && DS_HAS_CAMERA(KIND) && cam.flags.y == KIND) {      \
+    ds_##name##_ray(ds_##name##_data(cam), x, y, lens, oc, dc);     \
+    offset = true;                                                  \
   }
+  DS_CAMERAS(DS_CAMERA_CASE)
+#undef DS_CAMERA_CASE
   if (offset)
     origin = h_add(centre, h3(h_dot(h_xyz(cam.worldFromCamera[0]), oc), h_dot(h_xyz(cam.worldFromCamera[1]), oc),
                               h_dot(h_xyz(cam.worldFromCamera[2]), oc)));

@@ -23,7 +23,7 @@ struct GpuCamera {
   hreal4 brown1;              // p2, side of the sensitive square (px), 0, 0
   ivec4 size;                // width, height, strataX, strataY
   ivec4 flags;               // distorted (0/1), camera kind (DS_CAMERA_*), 0, 0
-  // Camera models (host/camera/pinhole.h, distortion.h). Orthographic: intrinsics.xy = px per metre.
+  // Camera models (host/cameras/<kind>.h, camera/distortion.h). Orthographic: intrinsics.xy = px per metre.
   hreal4 rational0;          // k4, k5, k6, s1 (Distortion.Rational; 0 for Brown)
   hreal4 rational1;          // s2, s3, s4, 0
   hreal4 lens;               // ThinLens: lens radius R (m), R / focus distance, 0, 0

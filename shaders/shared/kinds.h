@@ -1,7 +1,9 @@
 // Closed lists of kinds, shared by C++ (host) and GLSL (shaders). Values are stored in GPU buffers:
 // never renumber. A shape kind has a home (host/shapes/<kind>.h, shaders/shapes/<kind>.glsl) and a
 // row in the registries (host/shapes/registry.h, shaders/lib/shapes.glsl); a reflectance model
-// (shader kind) has a home in host/reflectance/<kind>.h and, with a lobe, shaders/reflectance/ (docs/design.md §7).
+// (shader kind) has a home in host/reflectance/<kind>.h and, with a lobe, shaders/reflectance/; a
+// texture in host/textures/ and shaders/textures/; a camera in host/cameras/ and shaders/cameras/
+// (docs/design.md §7).
 #ifndef DS_SHARED_KINDS_H
 #define DS_SHARED_KINDS_H
 
@@ -33,8 +35,9 @@
 #define DS_LIGHT_SPOT 2
 
 #define DS_CAMERA_PINHOLE 0
-#define DS_CAMERA_THIN_LENS 1      // pinhole chief ray + a lens disk sampled per sample (host/camera/pinhole.h)
+#define DS_CAMERA_THIN_LENS 1      // pinhole chief ray + a lens disk sampled per sample (host/cameras/thin_lens.h)
 #define DS_CAMERA_ORTHOGRAPHIC 2   // telecentric: rays parallel to the optical axis
+#define DS_CAMERA_COUNT 3
 
 #define DS_DISTORTION_NONE 0
 #define DS_DISTORTION_BROWN 1

@@ -139,7 +139,7 @@ TEST_CASE("camera thin lens: fNumber and aperture diameter are equivalent") {
       dir, edgeScene("Camera.ThinLens { resolution = {64, 16}; pixelSize = {1e-5, 1e-5}; focalLength = 0.05; "
                      "aperture = 0.00625; focusDistance = 0.5 }",
                      0.6));
-  CHECK(byNumber.cameras[0].camera.aperture_m == 0.00625);
+  CHECK(std::get<cameras::ThinLens>(byNumber.cameras[0].camera.model).aperture_m == 0.00625);
   CHECK(byNumber.cameras[0].model.lensRadius == byDiameter.cameras[0].model.lensRadius);
   const RenderResult a = renderCpu(byNumber, 4), b = renderCpu(byDiameter, 4);
   CHECK(a.cameras[0].radiance == b.cameras[0].radiance);

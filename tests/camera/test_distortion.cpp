@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "camera/distortion.h"
-#include "camera/pinhole.h"
+#include "cameras/rays.h"
 #include "distortion_test_util.h"
 #include "geometry/prepared_scene.h"
 
@@ -93,7 +93,7 @@ TEST_CASE("distortion: a distortion that folds inside the image is refused") {
   cam.width_px = 1600;
   cam.height_px = 1200;
   cam.principalPoint_px = {799.5, 599.5};
-  cam.focalLength_m = 0.012;
+  cam.model = cameras::Pinhole{.focalLength_m = 0.012};
   cam.pixelSize_m = {4.4e-6, 4.4e-6};
   cam.distortion = {DistortionKind::Brown, -4.0, 0, 0, 0, 0};  // ρ r = r − 4 r³ folds at r = 0.289
   scene.cameras.push_back(cam);

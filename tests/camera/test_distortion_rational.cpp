@@ -10,7 +10,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "camera/distortion.h"
-#include "camera/pinhole.h"
+#include "cameras/rays.h"
 #include "distortion_test_util.h"
 #include "geometry/prepared_scene.h"
 #include "io/opencv_camera.h"

@@ -34,7 +34,7 @@ Camera makeCamera(const std::string& name, int width, int height, double f, cons
   c.name = name;
   c.width_px = width;
   c.height_px = height;
-  c.focalLength_m = f;
+  c.model = cameras::Pinhole{.focalLength_m = f};
   c.pixelSize_m = {3.45e-6, 3.47e-6};
   c.principalPoint_px = {width / 2.0 - 3.3, height / 2.0 + 1.7};
   c.bitsPerPixel = 12;

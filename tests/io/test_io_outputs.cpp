@@ -34,7 +34,7 @@ Camera testCamera() {
   camera.width_px = 7;
   camera.height_px = 5;
   camera.principalPoint_px = {3.1, 1.9};
-  camera.focalLength_m = 0.035;
+  camera.model = cameras::Pinhole{.focalLength_m = 0.035};
   camera.pixelSize_m = {3.45e-6, 3.3e-6};  // non-square: fx != fy
   camera.fillFactor = 0.7;
   camera.bitsPerPixel = 10;
@@ -199,8 +199,8 @@ TEST_CASE("io: ground-truth EXR metadata parses back to the exact values") {
   CHECK(spec.find_attribute("DateTime") == nullptr);
 
   // Camera matrix and distortion: exact doubles (17 significant digits round-trip).
-  const double fx = camera.focalLength_m / camera.pixelSize_m.x;
-  const double fy = camera.focalLength_m / camera.pixelSize_m.y;
+  const double fx = camera.focalScale() / camera.pixelSize_m.x;
+  const double fy = camera.focalScale() / camera.pixelSize_m.y;
   CHECK(parseNumbers(text("dicsynth:camera_matrix")) ==
         std::vector<double>{fx, 0, 3.1, 0, fy, 1.9, 0, 0, 1});
   CHECK(parseNumbers(text("dicsynth:distortion_coefficients")) ==

@@ -24,7 +24,7 @@ Camera smallCamera() {
   c.name = "cam";
   c.width_px = 64;
   c.height_px = 48;
-  c.focalLength_m = 0.012;
+  c.model = cameras::Pinhole{.focalLength_m = 0.012};
   c.pixelSize_m = {4.4e-5, 4.4e-5};  // 64 px ≈ 0.12 m at 0.5 m
   c.principalPoint_px = {31.5, 23.5};
   return c;

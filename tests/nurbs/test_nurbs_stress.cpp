@@ -33,7 +33,7 @@ Camera stressCamera(dvec3 position, dvec3 target, double focal_m = 0.012) {
   c.name = "cam";
   c.width_px = c.height_px = kSide;
   c.principalPoint_px = {(kSide - 1) / 2.0, (kSide - 1) / 2.0};
-  c.focalLength_m = focal_m;
+  c.model = cameras::Pinhole{.focalLength_m = focal_m};
   c.pixelSize_m = {4.4e-6, 4.4e-6};
   const dvec3 z = glm::normalize(target - position);
   const dvec3 up{0, -1, 0};

@@ -63,11 +63,11 @@ object = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 
   CHECK(camera.name == "camera1");
   CHECK(camera.where.file == path);
   CHECK(camera.where.line == 1);
-  CHECK(camera.kind == CameraKind::Pinhole);
+  CHECK(camera.kind() == CameraKind::Pinhole);
   CHECK(camera.width_px == 1600);
   CHECK(camera.height_px == 1200);
   CHECK(camera.principalPoint_px == dvec2(800, 600));
-  CHECK(camera.focalLength_m == 0.012);
+  CHECK(std::get<cameras::Pinhole>(camera.model).focalLength_m == 0.012);
   CHECK(camera.pixelSize_m == dvec2(4.4e-6, 4.4e-6));
   CHECK(camera.fillFactor == 0.9);
   CHECK(camera.bitsPerPixel == 10);
@@ -183,7 +183,7 @@ l2 = Light.Point { position = {0, 1, 0}; intensity = {1, 2, 3} }
   CHECK(camera.width_px == 640);
   CHECK(camera.height_px == 480);
   CHECK(camera.principalPoint_px == dvec2(320.25, 239.75));
-  CHECK(camera.focalLength_m == 0.025);
+  CHECK(std::get<cameras::Pinhole>(camera.model).focalLength_m == 0.025);
   CHECK(camera.pixelSize_m == dvec2(3.45e-6, 3.5e-6));
   CHECK(camera.fillFactor == 0.5);
   CHECK(camera.bitsPerPixel == 16);

@@ -188,7 +188,7 @@ Camera flatFieldCamera(int width, int height, const EmvaSensor& sensor) {
   camera.width_px = width;
   camera.height_px = height;
   camera.bitsPerPixel = 12;
-  camera.focalLength_m = 0.01;
+  camera.model = cameras::Pinhole{.focalLength_m = 0.01};
   camera.pixelSize_m = {5e-6, 5e-6};
   camera.principalPoint_px = {(width - 1) / 2.0, (height - 1) / 2.0};
   camera.sensor.emva = sensor;

@@ -28,7 +28,7 @@ Camera idealCamera(int width, int height, int bits = 16) {
   camera.width_px = width;
   camera.height_px = height;
   camera.bitsPerPixel = bits;
-  camera.focalLength_m = 0.01;
+  camera.model = cameras::Pinhole{.focalLength_m = 0.01};
   camera.pixelSize_m = {1e-5, 1e-5};
   camera.principalPoint_px = {(width - 1) / 2.0, (height - 1) / 2.0};
   return camera;
@@ -166,11 +166,9 @@ TEST_CASE("sensor: the pipeline applies vignetting and dust to the radiance") {
 
 TEST_CASE("sensor: cos4 vignetting of a thin lens is measured from the image distance") {
   // A thin lens of f = 8 mm focused at u = 0.4 m puts the sensor at v = f u / (u - f) = 8.163 mm
-  // (camera/pinhole.h): the chief ray of a pixel r px off-axis leaves at tan θ = r · 10 µm / v.
+  // (cameras/thin_lens.h): the chief ray of a pixel r px off-axis leaves at tan θ = r · 10 µm / v.
   Camera camera = idealCamera(101, 81);
-  camera.kind = CameraKind::ThinLens;
-  camera.focalLength_m = 0.008;
-  camera.focusDistance_m = 0.4;
+  camera.model = cameras::ThinLens{.focalLength_m = 0.008, .focusDistance_m = 0.4};
   camera.sensor.vignetting = Vignetting{VignettingKind::Cos4, {}};
   const double v = 0.008 * 0.4 / (0.4 - 0.008);
   const SensorImage image = applySensor(std::vector<double>(101 * 81, 0.5), camera, {1, 0, 0});

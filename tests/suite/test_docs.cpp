@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "model/layers.h"
+#include "cameras/registry.h"
 #include "reflectance/registry.h"
 #include "shapes/registry.h"
 #include "textures/registry.h"
@@ -238,6 +239,19 @@ TEST_CASE("docs: every reflectance model of the registry is in the scene languag
       INFO(key);
       CHECK(rows.find(std::string("`") + key + "`") != std::string::npos);
     }
+  });
+}
+
+TEST_CASE("docs: every Camera.<Kind> of the registry is in the scene language's table with its keys") {
+  // host/cameras/registry.h lists the kinds; docs/scene-language.md's "cameras" row names each
+  // constructor and its own keys, docs/cameras.md has a section per kind.
+  const std::string row = tableRow(docText("scene-language.md"), "| cameras |"), page = docText("cameras.md");
+  cameras::forEachCameraKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    const std::string name = std::string("Camera.") + Kind::kName;
+    checkConstructorRow(row, name, Kind::kKeys);
+    INFO(name);
+    CHECK(page.find("`" + name) != std::string::npos);
   });
 }
 

@@ -15,9 +15,9 @@
 namespace {
 
 // Bottom to top; the same list as docs/design.md §2 (a new folder must be placed in both).
-constexpr std::array<const char*, 20> kLayers = {
-    "core", "shapes", "reflectance", "files", "camera", "texture", "textures", "nurbs", "model", "sensor", "geometry",
-    "cpu",  "gpu",    "render", "io",    "scene",   "job",   "sweep", "cli",    "python"};
+constexpr std::array<const char*, 21> kLayers = {
+    "core", "shapes", "reflectance", "files", "camera", "cameras", "texture", "textures", "nurbs", "model", "sensor",
+    "geometry", "cpu", "gpu", "render", "io", "scene", "job", "sweep", "cli", "python"};
 
 int layerOf(const std::string& folder) {
   const auto it = std::find(kLayers.begin(), kLayers.end(), folder);

@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 
+#include "cameras/registry.h"
 #include "reflectance/registry.h"
 #include "shapes/registry.h"
 #include "temp_folder.h"
@@ -163,6 +164,30 @@ TEST_CASE("registries: the GLSL texture registry draws every texture kind of the
   });
 }
 
+TEST_CASE("registries: the GLSL camera registry lists every camera kind of the C++ one with a twin") {
+  const std::string glsl = readSource("shaders/lib/camera.glsl");
+  const std::map<int, std::string> rows = xListRows(glsl, "DS_CAMERAS");
+  std::size_t withTwin = 0;
+  cameras::forEachCameraKind([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    INFO("Camera." << Kind::kName);
+    const int number = int(Kind::kKind);
+    if (Kind::kTwin == nullptr) {
+      // The pinhole: the default branch of ds_camera_ray, no row and no twin file.
+      CHECK(rows.count(number) == 0);
+      CHECK(!std::filesystem::exists(std::string(DS_SOURCE_DIR) + "/shaders/cameras/" + snakeCase(Kind::kName) + ".glsl"));
+      return;
+    }
+    ++withTwin;
+    REQUIRE(rows.count(number) == 1);
+    CHECK(rows.at(number) == std::string(Kind::kTwin));
+    CHECK(rows.at(number) == snakeCase(Kind::kName));
+    checkTwin(glsl, "cameras", rows.at(number), {"ray"});
+  });
+  CHECK(withTwin == rows.size());
+  CHECK(withTwin >= 2);  // the scan found them
+}
+
 TEST_CASE("registries: the kinds tables are indexed by number and named once") {
   std::set<std::string> names;
   for (const shapes::ShapeKindInfo& k : shapes::kShapeKinds) CHECK(names.insert(std::string("Shape.") + k.name).second);
@@ -171,5 +196,6 @@ TEST_CASE("registries: the kinds tables are indexed by number and named once") {
     CHECK(k.lit == (k.kind != ShaderKind::Constant));
   }
   for (const textures::KindInfo& k : textures::kKinds) CHECK(names.insert(k.constructor).second);
-  CHECK(names.size() == std::size_t(DS_SHAPE_COUNT + DS_SHADER_COUNT + DS_TEXTURE_COUNT));
+  for (const cameras::CameraKindInfo& k : cameras::kCameraKinds) CHECK(names.insert(std::string("Camera.") + k.name).second);
+  CHECK(names.size() == std::size_t(DS_SHAPE_COUNT + DS_SHADER_COUNT + DS_TEXTURE_COUNT + DS_CAMERA_COUNT));
 }

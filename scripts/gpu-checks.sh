@@ -12,6 +12,9 @@
 #   compare   `dicsynth compare scenes --downscale 4` in fp32, df64 and fp64
 #   bench     `dicsynth bench` (run time versus error, Figure 1, NURBS plate, dogbone)
 #   process   bench/bench_process.sh (whole processes, Figure 1, 1600x1200, 16 spp; fixed overhead)
+#   phases    one render's phases (DICSYNTH_TIMINGS=1): Figure 1 fp32 with all layers and with the
+#             image alone, the dogbone in df64 and fp64 (on the H100 every frame took ~0.1 s
+#             whatever the precision: where the time goes)
 #   long      the randomized NURBS test's long run (140 scenes, 1.08e7 rays per precision)
 # Seen on an NVIDIA H100 with 16 cores (2026-11-26, bench/RESULTS.md "GPU machines"): env 8 s, the
 # NURBS test 53 s, scenes 189 s (NVIDIA compiles a pipeline per scene and precision, 1-5 s each,
@@ -23,7 +26,7 @@ B=$(cd "$1" && pwd)
 LOG=$2
 BUDGET=${3:-420}
 shift $(($# < 3 ? $# : 3))
-STEPS=${*:-env checks scenes compare bench process long}
+STEPS=${*:-env checks scenes compare bench process phases long}
 mkdir -p "$LOG"
 LOG=$(cd "$LOG" && pwd)
 ROOT=$(pwd)
@@ -35,7 +38,14 @@ SRC=$(cat "$B/source-dir")
 BUILD=$(cat "$B/build-dir")
 if [ ! -e "$SRC" ]; then mkdir -p "$(dirname "$SRC")" && ln -s "$ROOT" "$SRC"; fi
 mkdir -p "$BUILD"
-cp "$B/bin/dicsynth" "$B/bin/dicsynth_gpu_checks" "$BUILD/"
+for bin in dicsynth dicsynth_gpu_checks; do
+  # Never replace another build's binary (on the machine that made the bundle, an older bundle).
+  if [ -e "$BUILD/$bin" ] && ! cmp -s "$B/bin/$bin" "$BUILD/$bin"; then
+    echo "gpu-checks: $BUILD/$bin differs from the bundle's: remake the bundle (scripts/gpu-bundle.sh)" >&2
+    exit 2
+  fi
+  cp "$B/bin/$bin" "$BUILD/"
+done
 
 export LD_LIBRARY_PATH="$B/lib"
 # Debian 12's libstdc++ only where the machine's is older (or missing).
@@ -78,8 +88,18 @@ env_step() {
 compare_step() {
   for p in fp32 df64 fp64; do "$DS" compare scenes --downscale 4 --precision $p; done
 }
+phases_step() {
+  local args
+  for args in "figure1 fp32 all" "figure1 fp32 image" "dogbone df64 all" "dogbone fp64 all"; do
+    set -- $args
+    echo "== $1 $2 --layers $3"
+    "$DS" render "scenes/$1.lua" -o /tmp/gpu-checks-phases --precision "$2" --layers "$3" >/dev/null
+    DICSYNTH_TIMINGS=1 "$DS" render "scenes/$1.lua" -o /tmp/gpu-checks-phases --precision "$2" --layers "$3" 2>&1 |
+      grep '^timings'
+  done
+}
 long_step() { DICSYNTH_NURBS_RANDOM_SCENES=140 "$CHECKS" -tc="nurbs-random: GPU*"; }
-export -f env_step compare_step long_step
+export -f env_step compare_step phases_step long_step
 export DS CHECKS BUILD
 
 step env 60 env_step
@@ -90,6 +110,7 @@ step scenes 240 'DICSYNTH_VALIDATION=1 "$CHECKS" --duration=true -tc="$SCENES_CA
 step compare 120 compare_step
 step bench 60 '"$DS" bench -o /tmp/gpu-checks-bench --runs 3'
 step process 90 'bench/bench_process.sh "$BUILD" 3 16'
+step phases 60 phases_step
 step long 200 long_step
 echo "total $(($(date +%s) - T0)) s" >>"$LOG/summary.txt"
 cat "$LOG/summary.txt"

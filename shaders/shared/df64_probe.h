@@ -25,7 +25,9 @@
 #define DS_DF64_OP_COMPARE 17     // width 1: result hi = (lt, le, gt, ge), lo.x = eq, as 0/1
 #define DS_DF64_OP_CONSTANTS 18   // result component 0..2 = DF_PI, DF_TWO_PI, DF_HALF_PI
 #define DS_DF64_OP_FMA 19         // result hi.x = fma(a.hi.x, b.hi.x, a.lo.x): is fma exact?
-#define DS_DF64_OP_COUNT 20
+#define DS_DF64_OP_FLOAT_DIV 20   // width 1..4: result hi = a.hi / b.hi, the device's float division
+#define DS_DF64_OP_FLOAT_SQRT 21  // width 1..4: result hi = sqrt(a.hi), the device's float sqrt
+#define DS_DF64_OP_COUNT 22
 
 #ifdef __cplusplus
 #include <cstdint>

@@ -116,6 +116,56 @@ TEST_CASE("df64: the fma probe tells a fused fma from an unfused one") {
   CHECK(fused[0].hi[0] == 0x1p-24f);
 }
 
+TEST_CASE("df64: the div and sqrt bounds follow the device's float division and sqrt") {
+  // Host-side: float items whose results are off by a known amount, and the bounds evaluate()
+  // then documents (shaders/lib/df64.glsl: div ((2 + δ)² + 3)u², sqrt (ε²/2 + (1 + δ)ε + 1)u²,
+  // ε = σ + 1/2).
+  auto bound = [](const std::vector<gpu::Df64OpError>& ops, const char* name) {
+    for (const auto& e : ops)
+      if (e.name == name) return e.bound / 0x1p-48;
+    FAIL("no operation " << name);
+    return 0.0;
+  };
+  // No float items: correct rounding (δ = σ = 1), the table's 12u² and 5.125u².
+  const auto none = gpu::df64::evaluate({}, {});
+  CHECK(bound(none, "div") == 12.0);
+  CHECK(bound(none, "div_scalar") == 12.0);
+  CHECK(bound(none, "sqrt") == 5.125);
+  CHECK(bound(none, "mul") == 8.0);  // the others keep their constants
+
+  auto item = [](int op, float a, float b) {
+    gpu::Df64ProbeItem it{};
+    it.op = std::uint32_t(op);
+    it.width = 1;
+    it.aHi[0] = a;
+    it.bHi[0] = b;
+    return it;
+  };
+  // 1/3 two ulps above its float (fl(1/3) is 1/3 ulp high, an ulp there 2^-25: 7/3 · 2^-25 over
+  // 1/3 = 3.5u) and sqrt(2) correctly rounded (≤ 1u, counted as 1).
+  std::vector<gpu::Df64ProbeItem> items = {item(DS_DF64_OP_FLOAT_DIV, 1.0f, 3.0f), item(DS_DF64_OP_FLOAT_SQRT, 2.0f, 0.0f)};
+  std::vector<gpu::Df64ProbeResult> results(2);
+  results[0].hi[0] = std::nextafter(std::nextafter(1.0f / 3.0f, 1.0f), 1.0f);
+  results[1].hi[0] = std::sqrt(2.0f);
+  const gpu::df64::FloatAccuracy f = gpu::df64::floatAccuracy(items, results);
+  const long double third = 1.0L / 3;
+  const double expectedDiv = double(((long double)(results[0].hi[0]) - third) / third / 0x1p-24L);
+  CHECK(f.divU == doctest::Approx(expectedDiv).epsilon(1e-12));
+  CHECK(f.divU > 3.4);
+  CHECK(f.divU < 3.6);
+  CHECK(f.sqrtU == 1.0);
+  const auto measured = gpu::df64::evaluate(items, results);
+  CHECK(bound(measured, "div") == doctest::Approx((2 + f.divU) * (2 + f.divU) + 3));
+  CHECK(bound(measured, "sqrt") == doctest::Approx(1.5 * 1.5 / 2 + (1 + f.divU) * 1.5 + 1));
+  // Beyond what Vulkan allows (a NaN division, a sqrt 100 ulps off): the bounds stop growing at the
+  // specification's 5u and 9u, so such a device fails them instead of loosening them.
+  results[0].hi[0] = NAN;
+  results[1].hi[0] = std::sqrt(2.0f) * (1.0f + 100 * 0x1p-23f);
+  const gpu::df64::FloatAccuracy g = gpu::df64::floatAccuracy(items, results);
+  CHECK(g.divU == 5.0);
+  CHECK(g.sqrtU == 9.0);
+}
+
 TEST_CASE("df64: host split and join") {
   // Doubles of every exponent float can hold with lo normal: |x − (hi + lo)| ≤ 2^-48 |x|.
   double worst = 0;

@@ -73,6 +73,12 @@ void main() {
     r = df4(vec4(DF_PI.hi, DF_TWO_PI.hi, DF_HALF_PI.hi, 0.0), vec4(DF_PI.lo, DF_TWO_PI.lo, DF_HALF_PI.lo, 0.0));
   } else if (op == DS_DF64_OP_FMA) {
     r.hi.x = fma(a.hi.x, b.hi.x, a.lo.x);
+  } else if (op == DS_DF64_OP_FLOAT_DIV) {
+    precise const vec4 q = a.hi / b.hi;  // as df_div and df_sqrt divide
+    r.hi = q;
+  } else if (op == DS_DF64_OP_FLOAT_SQRT) {
+    precise const vec4 y = sqrt(a.hi);  // as df_sqrt's first guess
+    r.hi = y;
   } else if (width == 1u) {
     const df1 x = probe1(op, df_x(a), bs);
     r = df4(vec4(x.hi, 0.0, 0.0, 0.0), vec4(x.lo, 0.0, 0.0, 0.0));

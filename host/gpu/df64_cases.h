@@ -17,7 +17,8 @@ std::vector<Df64ProbeItem> makeItems(std::size_t randomInputsPerOp);
 // The device's float division and sqrt, which df_div and df_sqrt build on: their largest
 // relative errors in units of u = 2^-24 over the probe's float items (1 where none were probed:
 // correct rounding, what the documented bounds assume), clamped to what Vulkan allows (division
-// 2.5 ulp, sqrt as 1/inversesqrt). NVIDIA's sqrt is not correctly rounded (bench/RESULTS.md).
+// 2.5 ulp, sqrt as 1/inversesqrt). On an NVIDIA H100 df64 sqrt exceeded the bound derived for
+// correctly rounded ones (bench/RESULTS.md), which suggests its float sqrt is not.
 struct FloatAccuracy {
   double divU = 1;
   double sqrtU = 1;

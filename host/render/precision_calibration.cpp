@@ -16,6 +16,7 @@
 #include "gpu/df64.h"
 #include "gpu/renderer.h"
 #include "nurbs/nurbs_specimens.h"
+#include "render/compare.h"
 #include "render/geometric_error.h"
 #include "shapes/registry.h"
 
@@ -70,7 +71,7 @@ std::string cacheKey() {
 }
 
 // The cache file: JSON (core/json.h; doubles with 17 digits read back bit-exact).
-constexpr int kCacheVersion = 2;  // 1: a line-based text format
+constexpr int kCacheVersion = 3;  // 1: a line-based text format; 2: before the tolerance check
 
 std::string serialize(const PrecisionCalibration& c, const std::string& key) {
   Json::Value d(Json::objectValue);
@@ -147,11 +148,12 @@ PrecisionCalibration measure(gpu::Context& context, gpu::Renderer& renderer) {
         result = renderer.render(scene, options);
         best = std::min(best, result.renderSeconds);
       }
-      m.available = true;
       m.mraysPerSecond = rays / best / 1e6;
       const GeometricError e = meter.measure(result.cameras[0]);
       // A wrong hit is an error no bound accepts.
       m.maxErrorPx = e.wrongHits > 0 ? std::numeric_limits<double>::max() : e.maxPx;
+      m.unavailable = calibrationExcess(scene, reference, result, p);
+      m.available = m.unavailable.empty();
     }
     c.modes.push_back(m);
   }
@@ -160,6 +162,16 @@ PrecisionCalibration measure(gpu::Context& context, gpu::Renderer& renderer) {
 }
 
 }  // namespace
+
+std::string calibrationExcess(const PreparedScene& scene, const RenderResult& reference, const RenderResult& gpu,
+                              Precision precision) {
+  const Tolerances tolerances = tolerancesFor(precision);
+  for (const CameraDifference& d : compareResults(scene, reference, gpu, tolerances))
+    if (!withinTolerance(d, tolerances))
+      return std::string("over the ") + toString(precision) + " tolerances on the calibration scene: " +
+             describeExcess(d, tolerances);
+  return "";
+}
 
 PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& renderer) {
   const std::string path = gpu::deviceCachePath(context, "precision-calibration"), key = cacheKey();

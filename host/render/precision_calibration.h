@@ -3,13 +3,15 @@
 // error stays under a bound (`--max-error-px`, default 1e-6 px). A short calibration renders one
 // small fixed scene (a curved NURBS plate and a sphere, 128 × 96 px, 2 spp) in every precision the
 // device offers (fp32; df64 if its self-test passes; fp64 if it has shaderFloat64), measures speed
-// and geometric error against the CPU reference (render/geometric_error.h), and caches the result
-// per device, driver and renderer build in the cache folder. The error measured there stands for
+// and geometric error against the CPU reference (render/geometric_error.h), admits a precision
+// only within its own `compare` tolerances there (calibrationExcess), and caches the result per
+// device, driver and renderer build in the cache folder. The error measured there stands for
 // what the precision achieves on this device; a scene's own error is what `compare`/`bench` report.
 #include <string>
 #include <vector>
 
 #include "model/render_options.h"
+#include "model/render_result.h"
 
 namespace dicsynth {
 
@@ -17,11 +19,12 @@ namespace gpu {
 class Context;
 class Renderer;
 }  // namespace gpu
+struct PreparedScene;
 
 struct PrecisionMeasurement {
   Precision precision = Precision::Fp32;
   bool available = false;
-  std::string unavailable;   // why not (no shaderFloat64, df64 self-test failed)
+  std::string unavailable;   // why not (no shaderFloat64, df64 self-test failed, over its tolerances)
   double mraysPerSecond = 0; // camera rays of the calibration scene per second (best of 2 runs)
   double maxErrorPx = 0;     // geometric error against the CPU reference, px
 };
@@ -32,6 +35,14 @@ struct PrecisionCalibration {
   std::string cachePath;  // "" without a cache folder
   double seconds = 0;     // wall time of the calibration (that of the original run when cached)
 };
+
+// Why a precision's render of the calibration scene is not admitted, "" when it is: it must stay
+// within that precision's own tolerances against the CPU reference (render/compare.h, what
+// `compare` applies). A device whose arithmetic or compiler breaks a precision fails here and
+// --precision auto never picks it: on an NVIDIA H100 df64 built on fma products kept only float
+// accuracy in the render shader though its self-test passed (bench/RESULTS.md, "GPU machines").
+std::string calibrationExcess(const PreparedScene& scene, const RenderResult& reference, const RenderResult& gpu,
+                              Precision precision);
 
 // The device's calibration: read from the cache when valid for this device, driver and renderer
 // build, else measured (a few seconds) and cached.

@@ -4,10 +4,13 @@
 
 #include <filesystem>
 
+#include "cpu/reference_renderer.h"
+#include "geometry/prepared_scene.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
 #include "render/precision_calibration.h"
 #include "run_cli.h"
+#include "scene/scene.h"
 #include "temp_folder.h"
 
 using namespace dicsynth;
@@ -21,6 +24,28 @@ TEST_CASE("calibration: choosePrecision takes the fastest mode under the bound")
   c.modes[2].available = false;  // no shaderFloat64
   CHECK((choosePrecision(c, 1e-6) == Precision::Df64));  // (( )): no doctest decomposition of an enum
   CHECK_THROWS_AS(choosePrecision(c, 1e-12), InputError);
+}
+
+TEST_CASE("calibration: a precision over its own tolerances is not admitted") {
+  // What the NVIDIA H100 did with df64 built on fma products (bench/RESULTS.md, "GPU machines"):
+  // P exact, uv off by 4e-8 (float accuracy) on the sphere. A copy of the CPU reference altered so
+  // is over df64's tolerances (uv to ~k 2^-44 relative) and within fp32's (~k 2^-24).
+  const PreparedScene scene = prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua", {}), {16});
+  RenderOptions options;
+  options.samplesPerPixel = 1;
+  const RenderResult reference = cpu::render(scene, options);
+  for (Precision p : {Precision::Fp32, Precision::Df64, Precision::Fp64}) CHECK(calibrationExcess(scene, reference, reference, p).empty());
+  RenderResult altered = reference;
+  CameraImage& image = altered.cameras[0];
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < image.pixelCount(); ++i)
+    if (image.objectId[i] != 0) image.uv[i] += dvec2(4e-8, -4e-8), ++changed;
+  REQUIRE(changed > 100);
+  const std::string df64 = calibrationExcess(scene, reference, altered, Precision::Df64);
+  MESSAGE("df64: " << df64);
+  CHECK(df64.find("over the df64 tolerances on the calibration scene") == 0);
+  CHECK_FALSE(calibrationExcess(scene, reference, altered, Precision::Fp64).empty());
+  CHECK(calibrationExcess(scene, reference, altered, Precision::Fp32).empty());
 }
 
 TEST_CASE("calibration: measured on the device, cached, and read back") {

@@ -15,8 +15,8 @@
 
 // The registry of camera kinds on the GPU (host/cameras/registry.h is the C++ one): each kind but
 // the pinhole (the default: from the camera centre along (x', y', 1)) has a twin
-// shaders/cameras/<name>.glsl defining Gpu<Name>, ds_<name>_data(GpuCamera) and
-// ds_<name>_ray(data, x', y', lens, out origin, out direction) in the camera frame.
+// shaders/cameras/<name>.glsl defining ds_<name>_ray(GpuCamera, x', y', lens, out origin,
+// out direction) in the camera frame (and, with data of its own, Gpu<Name> and ds_<name>_data).
 #define DS_CAMERAS(X)                         \
   X(DS_CAMERA_ORTHOGRAPHIC, orthographic)     \
   X(DS_CAMERA_THIN_LENS, thin_lens)
@@ -188,7 +188,7 @@ bool ds_camera_ray(GpuCamera cam, hreal2 pixel, bool distorted, real2 lens, bool
   bool offset = false;  // the ray starts off the camera centre (the pinhole's starts on it)
 #define DS_CAMERA_CASE(KIND, name)                                  \
   if (!offset && DS_HAS_CAMERA(KIND) && cam.flags.y == KIND) {      \
-    ds_##name##_ray(ds_##name##_data(cam), x, y, lens, oc, dc);     \
+    ds_##name##_ray(cam, x, y, lens, oc, dc);                       \
     offset = true;                                                  \
   }
   DS_CAMERAS(DS_CAMERA_CASE)

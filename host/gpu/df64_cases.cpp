@@ -100,6 +100,18 @@ class CaseRng {
   std::uint32_t key_, counter_ = 0;
 };
 
+// Every draw below is a statement of its own: C++ leaves the order of the operands and arguments of
+// one expression to the compiler, and the inputs are to be the same on every platform. (Where
+// draws once shared an expression, the statements keep GCC 12's order: the inputs are unchanged.)
+
+// A float of random sign, binary exponent in [eMin, eMax] and 24-bit mantissa.
+float randomFloat(CaseRng& r, int eMin, int eMax) {
+  const float sign = float(r.sign());
+  const int exponent = r.range(eMin, eMax);
+  const float mantissa = 1.0f + float(r.next() >> 9) * 0x1p-23f;
+  return sign * std::ldexp(mantissa, exponent);
+}
+
 // A lo with 24 random bits, k ≥ 1 binades below half an ulp of hi: |lo| < ulp(hi)/2.
 float randomLo(CaseRng& r, float hi, int k) {
   if (hi == 0.0f) return 0.0f;
@@ -110,8 +122,12 @@ float randomLo(CaseRng& r, float hi, int k) {
 // A random number of binary exponent in [eMin, eMax]: a split 53-bit double (most), a plain float,
 // a lo far below hi's last bit (hi + lo spans up to 64 bits), or a lo of exactly half an ulp.
 Num randomNum(CaseRng& r, int eMin, int eMax) {
-  const double m = 1.0 + double(r.next() >> 6) * 0x1p-26 + double(r.next() >> 6) * 0x1p-52;
-  Num n = num(r.sign() * std::ldexp(m, r.range(eMin, eMax)));
+  const double high = double(r.next() >> 6) * 0x1p-26;
+  const double low = double(r.next() >> 6) * 0x1p-52;
+  const double m = 1.0 + high + low;
+  const double sign = r.sign();
+  const int exponent = r.range(eMin, eMax);
+  Num n = num(sign * std::ldexp(m, exponent));
   switch (r.below(8)) {
     case 0: n.lo = 0.0f; break;
     case 1: n.lo = randomLo(r, n.hi, r.range(2, 16)); break;
@@ -137,7 +153,9 @@ Num partner(CaseRng& r, Num a, float s) {
       b.lo = randomLo(r, b.hi, r.range(1, 16));
       break;
     default: {
-      const double d = r.sign() * std::ldexp(1.0 + double(r.next() >> 8) * 0x1p-24, -r.range(1, 50));
+      const double sign = r.sign();
+      const int k = r.range(1, 50);
+      const double d = sign * std::ldexp(1.0 + double(r.next() >> 8) * 0x1p-24, -k);
       b = num((double(b.hi) + double(b.lo)) * (1.0 + d));
     }
   }
@@ -287,9 +305,11 @@ Df64ProbeItem randomVectorItem(int op, int width, CaseRng& r) {
     setB(item, width - 1, num(-s / a(width - 1)));
   } else if (cancel) {
     // b nearly parallel to a: every cross component cancels.
-    const double c = r.sign() * std::ldexp(1.0, r.range(-10, 10));
+    const double cSign = r.sign();
+    const double c = cSign * std::ldexp(1.0, r.range(-10, 10));
     for (int k = 0; k < 3; ++k) {
-      const double d = r.sign() * std::ldexp(1.0, -r.range(1, 50));
+      const double dSign = r.sign();
+      const double d = dSign * std::ldexp(1.0, -r.range(1, 50));
       setB(item, k, num(joinDf64({item.aHi[k], item.aLo[k]}) * c * (1.0 + d)));
     }
   }
@@ -457,15 +477,12 @@ std::vector<Df64ProbeItem> makeItems(std::size_t randomInputsPerOp) {
   // four components per item.
   for (int op : {DS_DF64_OP_FLOAT_DIV, DS_DF64_OP_FLOAT_SQRT}) {
     CaseRng r(std::uint32_t(op) + 1u);
-    auto randomFloat = [&r](int eMin, int eMax) {
-      return std::ldexp(1.0f + float(r.next() >> 9) * 0x1p-23f, r.range(eMin, eMax));
-    };
     for (std::size_t i = 0; i < randomInputsPerOp; i += 4) {
       Df64ProbeItem item = makeItem(op, 4);
       for (int k = 0; k < 4; ++k) {
-        item.aHi[k] = float(r.sign()) * randomFloat(-60, 60);
+        item.aHi[k] = randomFloat(r, -60, 60);
         if (op == DS_DF64_OP_FLOAT_SQRT) item.aHi[k] = std::fabs(item.aHi[k]);
-        item.bHi[k] = float(r.sign()) * randomFloat(-50, 50);
+        item.bHi[k] = randomFloat(r, -50, 50);
       }
       items.push_back(item);
     }
@@ -577,12 +594,9 @@ std::vector<Df64ProbeItem> makeFmaItems() {
   };
   add(1.0f + 0x1p-12f, 1.0f + 0x1p-12f, -(1.0f + 0x1p-11f));
   CaseRng r(0xf3au);
-  auto randomFloat = [&](int eMin, int eMax) {
-    return float(r.sign()) * std::ldexp(1.0f + float(r.next() >> 9) * 0x1p-23f, r.range(eMin, eMax));
-  };
   for (int i = 0; i < 255; ++i) {
-    const float a = randomFloat(-10, 10), b = randomFloat(-10, 10);
-    add(a, b, i % 2 == 0 ? -(a * b) : randomFloat(-12, 12));
+    const float a = randomFloat(r, -10, 10), b = randomFloat(r, -10, 10);
+    add(a, b, i % 2 == 0 ? -(a * b) : randomFloat(r, -12, 12));
   }
   return items;
 }

@@ -58,7 +58,7 @@ struct Df64OpError {
 
 struct Df64SelfTest {
   bool fmaExact = false;  // fma(a, b, c) rounded once on every probe input
-  bool useFma = false;    // DS_SPEC_DF64_FMA: kRendersUseFma, fmaExact and the fma variant passed
+  bool useFma = false;    // DS_SPEC_DF64_FMA: kRendersUseFma and fmaPassed()
   bool passed = false;    // every operation of the variant in use passed
   std::vector<Df64OpError> dekker;  // TwoProd by Dekker's split (always measured)
   std::vector<Df64OpError> fma;     // TwoProd by fma (measured only where fmaExact)

@@ -11,6 +11,11 @@ namespace dicsynth {
 
 std::filesystem::path codeFolder();
 
+// The GNU build ID (hex) of that binary: it changes whenever the code is rebuilt differently, so
+// files that only this exact code may read back (core/cache_dir.h's caches) are keyed by it. ""
+// when the binary carries none (linked without --build-id).
+std::string codeBuildId();
+
 class LoadableModule {
  public:
   explicit LoadableModule(std::string fileName) : fileName_(std::move(fileName)) {}

@@ -124,6 +124,15 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
       textures.push_back(std::move(*cached));
       return byPath[key] = int(textures.size()) - 1;
     }
+  // Across processes: the disk cache, keyed by the file's content.
+  const TextureDiskCache* disk = cache && cache->disk().enabled() ? &cache->disk() : nullptr;
+  const std::string digest = disk ? TextureDiskCache::contentDigest(t.path) : "";
+  if (disk)
+    if (auto stored = disk->find(digest, t.path, t.interpolation)) {
+      cache->insert(*stored);
+      textures.push_back(std::move(*stored));
+      return byPath[key] = int(textures.size()) - 1;
+    }
   GrayImage image;
   try {
     image = readGrayImage(t.path);
@@ -148,6 +157,8 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
   bsplinePrefilter(image.pixels, pt.width, pt.height, t.interpolation);
   pt.coefficients = std::make_shared<const std::vector<double>>(std::move(image.pixels));
   if (cache) cache->insert(pt);
+  // Stored only when the file still holds the content hashed before it was decoded.
+  if (disk && !digest.empty() && TextureDiskCache::contentDigest(t.path) == digest) disk->store(digest, pt);
   textures.push_back(std::move(pt));
   return byPath[key] = int(textures.size()) - 1;
 }

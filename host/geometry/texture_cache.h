@@ -3,7 +3,8 @@
 // reading plus B-spline prefiltering a 4096×2048 texture costs about a second on this machine
 // (bench/RESULTS.md, "Sweeps"). An entry is keyed by the path and the interpolation (the prefiltered
 // coefficients depend on the kernel) and checked against the file's size and modification time, so a
-// texture edited during a run is read again.
+// texture edited during a run is read again. Optionally backed by a TextureDiskCache, which keeps
+// large prepared textures across processes.
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -13,11 +14,16 @@
 #include <utility>
 
 #include "geometry/prepared_scene.h"
+#include "geometry/texture_disk_cache.h"
 
 namespace dicsynth {
 
 class TextureCache {
  public:
+  TextureCache() = default;
+  explicit TextureCache(TextureDiskCache disk) : disk_(std::move(disk)) {}
+  const TextureDiskCache& disk() const { return disk_; }
+
   // The prepared texture of `path` with `interpolation` when cached and the file is unchanged. It
   // shares the cached coefficient array (PreparedTexture::coefficients): nothing is copied.
   std::optional<PreparedTexture> find(const std::string& path, Interpolation interpolation) const {
@@ -56,6 +62,7 @@ class TextureCache {
     if (ec) return std::nullopt;
     return s;
   }
+  TextureDiskCache disk_{"", 0};  // none unless given
   mutable std::mutex mutex_;  // a sweep prepares on a worker thread
   std::map<std::pair<std::string, Interpolation>, Entry> entries_;
 };

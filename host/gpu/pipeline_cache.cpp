@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -23,11 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string envOrEmpty(const char* name) {
-  const char* value = std::getenv(name);
-  return value ? value : "";
-}
-
 std::vector<uint8_t> readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return {};
@@ -35,14 +29,6 @@ std::vector<uint8_t> readFile(const std::string& path) {
 }
 
 }  // namespace
-
-std::string resolveCacheDir(const std::string& option) {
-  if (!option.empty()) return option;
-  if (auto dir = envOrEmpty("DICSYNTH_CACHE_DIR"); !dir.empty()) return dir;
-  if (auto xdg = envOrEmpty("XDG_CACHE_HOME"); !xdg.empty()) return xdg + "/dicsynth";
-  if (auto home = envOrEmpty("HOME"); !home.empty()) return home + "/.cache/dicsynth";
-  return "";
-}
 
 bool pipelineCacheHeaderMatches(std::span<const uint8_t> data,
                                 const VkPhysicalDeviceProperties& properties) {

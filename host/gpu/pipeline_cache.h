@@ -10,15 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "core/cache_dir.h"  // resolveCacheDir: the folder ContextOptions::cacheDir names
 #include "gpu/vk_handle.h"
 
 namespace dicsynth::gpu {
 
 struct DeviceInfo;
 
-// The folder ContextOptions::cacheDir names: the option, else $DICSYNTH_CACHE_DIR, else
-// $XDG_CACHE_HOME/dicsynth, else $HOME/.cache/dicsynth; "" when none of them is set.
-std::string resolveCacheDir(const std::string& option);
 
 // True when `data` starts with a VkPipelineCacheHeaderVersionOne for this vendor/device/UUID.
 bool pipelineCacheHeaderMatches(std::span<const std::uint8_t> data,

@@ -51,7 +51,7 @@ class RenderSession {
   std::unique_ptr<gpu::Renderer> renderer_;
   std::optional<Precision> precision_;
   std::optional<VisibilityTracer> visibility_;  // visibilityTracer(), once decided
-  TextureCache textures_;
+  TextureCache textures_{TextureDiskCache::fromEnvironment()};  // across points, and across processes on disk
 };
 
 struct RenderJob {

@@ -395,10 +395,10 @@ std::vector<std::uint8_t> queryAll(Context& context, const ComputePipeline& pipe
 static_assert(DS_RENDER_VARIANT_COUNT == kPrecisions.size(),
               "CMakeLists.txt's DS_PRECISIONS and model/render_options.h's DS_PRECISIONS differ");
 
-std::span<const std::uint32_t> renderSpirv(Precision precision) {
+std::span<const std::uint32_t> renderSpirv(Precision precision, bool nurbs) {
   switch (precision) {
 #define DS_PRECISION_SPIRV(E, name) \
-  case Precision::E: return spirv::render_##name;
+  case Precision::E: return nurbs ? std::span<const std::uint32_t>(spirv::render_##name) : spirv::render_##name##_analytic;
     DS_PRECISIONS(DS_PRECISION_SPIRV)
 #undef DS_PRECISION_SPIRV
   }
@@ -453,7 +453,7 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
                                             {DS_SPEC_TEXEL_VIEW, r.texelView ? 1u : 0u},
                                             {DS_SPEC_OBJECT_COUNT, std::uint32_t(r.objectCount)},
                                             {DS_SPEC_LIGHT_COUNT, std::uint32_t(r.lightCount)}};
-    const std::span<const std::uint32_t> spirv = renderSpirv(precision);
+    const std::span<const std::uint32_t> spirv = renderSpirv(precision, (used.shapeKinds & (1u << DS_SHAPE_NURBS)) != 0);
     const std::uint32_t pushBytes = sizeof(fp32::GpuTileParams);  // the same in every variant
     std::vector<BindingKind> bindings(DS_BINDING_COUNT, BindingKind::Storage);
     bindings[DS_BINDING_CAMERAS_UNIFORM] = BindingKind::Uniform;

@@ -61,7 +61,8 @@ Scene calibrationScene() {
 std::string cacheKey() {
   std::uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a over every variant's SPIR-V
   for (Precision p : kPrecisions)
-    for (std::uint32_t word : gpu::renderSpirv(p)) hash = (hash ^ word) * 0x100000001b3ull;
+    for (bool nurbs : {true, false})
+      for (std::uint32_t word : gpu::renderSpirv(p, nurbs)) hash = (hash ^ word) * 0x100000001b3ull;
   // And the df64 product renders use: a calibration measured while renders took fma products
   // (before 2026-11-26; 2.4e-6 px of df64 error on an NVIDIA H100) is not reused.
   char buf[80];

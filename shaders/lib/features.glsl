@@ -13,6 +13,14 @@ layout(constant_id = DS_SPEC_HAS_QUINTIC_TEXTURES) const bool HAS_QUINTIC_TEXTUR
 // which otherwise run every case of a switch whose value they cannot prove uniform.
 layout(constant_id = DS_SPEC_SHAPE_KINDS) const uint SHAPE_KINDS = 0xffffffffu;
 #define DS_HAS_SHAPE(kind) ((SHAPE_KINDS & (1u << (kind))) != 0u)
+// The NURBS search is most of the module (55 % of fp32's SPIR-V), and lavapipe translates and
+// optimizes all of it on every pipeline creation, specialized out or not: CMake also builds each
+// variant with DS_NO_NURBS, which scenes without NURBS use (host/gpu/renderer.cpp, renderSpirv).
+#if defined(DS_NO_NURBS)
+#define DS_HAS_NURBS false
+#else
+#define DS_HAS_NURBS DS_HAS_SHAPE(DS_SHAPE_NURBS)
+#endif
 // Every NURBS patch of the scene arrives raised to this degree in u and v (host/gpu/pack.cpp), so
 // the patch loops have constant bounds: unrolled, the control points stay in registers.
 layout(constant_id = DS_SPEC_NURBS_DEGREE) const int NURBS_DEGREE = 3;

@@ -76,7 +76,7 @@ void ds_hit_attributes(int object, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hre
   if (dot(hit.normal, h_real(d)) > 0.0) hit.normal = -hit.normal;
 }
 
-bool ds_is_nurbs(int object) { return DS_HAS_SHAPE(DS_SHAPE_NURBS) && DS_OBJECT(object, kinds).x == DS_SHAPE_NURBS; }
+bool ds_is_nurbs(int object) { return DS_HAS_NURBS && DS_OBJECT(object, kinds).x == DS_SHAPE_NURBS; }
 
 // One object's hit along a ray of ds_trace_nearest: world t (float), what the search found, and the
 // ray in the object's frame (for its attributes). object −1: none.
@@ -189,7 +189,7 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, bool ties, out SurfaceHit hit) {
     if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_search_limit(nearest, w, ties), false, found))
       ds_keep_nearer(i, found, oo, od, w, ties, nearest);
   }
-  if (DS_HAS_SHAPE(DS_SHAPE_NURBS)) {
+  if (DS_HAS_NURBS) {
     [[dont_unroll]] for (int i = 0; i < ds_object_count(); ++i) {
       if (!ds_is_nurbs(i)) continue;
       hreal3 oo, od;
@@ -237,7 +237,7 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
     if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_object_param(1.0, h_real(w)), i == hit.object, found))
       return true;
   }
-  if (DS_HAS_SHAPE(DS_SHAPE_NURBS)) {
+  if (DS_HAS_NURBS) {
     [[dont_unroll]] for (int i = 0; i < ds_object_count(); ++i) {
       if (!ds_is_nurbs(i)) continue;
       hreal3 oo, od;

@@ -118,7 +118,9 @@ std::string TextureDiskCache::contentDigest(const std::string& path) {
 }
 
 std::string TextureDiskCache::fileFor(const std::string& digest, Interpolation interpolation) const {
-  return folder_ + "/" + digest + "-" + std::to_string(int(interpolation)) + ".bin";
+  // The build in the name too: the CLI and the Python module (two binaries) keep their own files
+  // instead of overwriting each other's on every alternation.
+  return folder_ + "/" + digest + "-" + std::to_string(int(interpolation)) + "-" + codeBuildId().substr(0, 16) + ".bin";
 }
 
 std::optional<PreparedTexture> TextureDiskCache::find(const std::string& digest, const std::string& path,

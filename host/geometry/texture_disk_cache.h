@@ -5,7 +5,7 @@
 // Key: the SHA-256 of the file's bytes (not its name or date: a copy of a texture on a cluster node
 // hits, an edited one misses), the interpolation, and the build ID of the code that prepared it
 // (core/module_folder.h: any rebuild of the decoder or the prefilter invalidates every entry).
-// Files: <cache folder>/textures/<digest>-<interpolation>.bin, written atomically (core/atomic_file.h:
+// Files: <cache folder>/textures/<digest>-<interpolation>-<build ID prefix>.bin, written atomically (core/atomic_file.h:
 // concurrent writers each leave a complete file, the last rename wins), read with a check of the
 // whole header and an Adler-32 of the coefficients, so a damaged, truncated or foreign file is
 // ignored (and rewritten). The folder is kept under a size limit, least recently used first.

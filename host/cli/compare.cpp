@@ -234,7 +234,9 @@ int runCompare(const CompareCommand& cmd) {
   co.device = cmd.args.device;
   gpu::Context context(co);
   gpu::Renderer renderer(context);
-  TextureCache textures;  // a folder's scenes and a sweep's points often share their file textures
+  // A folder's scenes and a sweep's points often share their file textures; large ones are also
+  // kept on disk for the next process, as `render` keeps them (geometry/texture_disk_cache.h).
+  TextureCache textures{TextureDiskCache::fromEnvironment()};
   RenderOptions options = base;
   options.precision = resolvePrecision(cmd.args, context, renderer);
 

@@ -5,7 +5,8 @@
 #include <link.h>
 
 #include <cstdint>
-#include <cstdio>
+
+#include "core/hex.h"
 
 namespace dicsynth {
 
@@ -51,11 +52,7 @@ int findBuildId(dl_phdr_info* info, std::size_t, void* data) {
       const unsigned char* name = p + sizeof(ElfW(Nhdr));
       const unsigned char* desc = name + ((note->n_namesz + 3) & ~3u);
       if (note->n_type == NT_GNU_BUILD_ID && note->n_namesz == 4 && desc + note->n_descsz <= end) {
-        char hex[3];
-        for (std::uint32_t k = 0; k < note->n_descsz; ++k) {
-          std::snprintf(hex, sizeof hex, "%02x", desc[k]);
-          search->id += hex;
-        }
+        search->id = hexString({desc, note->n_descsz});
         return 1;
       }
       p = desc + ((note->n_descsz + 3) & ~3u);

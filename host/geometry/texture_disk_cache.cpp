@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/cache_dir.h"
 #include "core/error.h"
+#include "core/hex.h"
 #include "core/module_folder.h"
 #include "core/parallel.h"
 
@@ -43,7 +44,7 @@ static_assert(sizeof(FileHeader) == 8 + 6 * 4 + 8 + 64 + 64);
 
 // Adler-32 of the coefficients' bytes, computed in pieces on all cores and combined in order
 // (zlib's adler32_combine: the same value as one pass). One pass took ~35 ms for Figure 1's 67 MB
-// on this 2-core machine, a third of reading the file back.
+// on this 2-core machine, about half of the prepare phase on a hit (0.079 s; 0.062 s in pieces).
 std::uint32_t adlerOf(const std::vector<double>& values) {
   const auto* bytes = reinterpret_cast<const Bytef*>(values.data());
   const std::size_t total = values.size() * sizeof(double), piece = std::size_t(8) << 20;
@@ -108,13 +109,7 @@ std::string TextureDiskCache::contentDigest(const std::string& path) {
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
   if (EVP_DigestFinal_ex(context.get(), digest, &length) != 1) return "";
-  std::string hex;
-  char pair[3];
-  for (unsigned int i = 0; i < length; ++i) {
-    std::snprintf(pair, sizeof pair, "%02x", digest[i]);
-    hex += pair;
-  }
-  return hex;
+  return hexString({digest, length});
 }
 
 std::string TextureDiskCache::fileFor(const std::string& digest, Interpolation interpolation) const {

@@ -3,10 +3,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
 #include <cstring>
 
 #include "core/error.h"
+#include "core/hex.h"
 #include "gpu/instance.h"
 #include "gpu/vk_check.h"
 
@@ -49,12 +49,6 @@ bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
                      [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
-std::string uuidHex(const uint8_t (&uuid)[VK_UUID_SIZE]) {
-  char hex[2 * VK_UUID_SIZE + 1];
-  for (unsigned i = 0; i < VK_UUID_SIZE; ++i) std::snprintf(hex + 2 * i, 3, "%02x", unsigned(uuid[i]));
-  return hex;
-}
-
 std::string apiVersionString(uint32_t v) {
   return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
          "." + std::to_string(VK_API_VERSION_PATCH(v));
@@ -94,7 +88,7 @@ DeviceInfo queryDeviceInfo(VkPhysicalDevice device, uint32_t index) {
   info.shaderInt64 = features.shaderInt64 == VK_TRUE;
   info.maxStorageBufferRange = base.limits.maxStorageBufferRange;
   info.subgroupSize = subgroup.subgroupSize;
-  info.pipelineCacheUUID = uuidHex(base.pipelineCacheUUID);
+  info.pipelineCacheUUID = hexString(base.pipelineCacheUUID);
   return info;
 }
 

@@ -16,9 +16,6 @@ DeviceInfo queryDeviceInfo(VkPhysicalDevice device, uint32_t index);
 // "0: llvmpipe (LLVM 15.0.6, 256 bits) [CPU], 1: …" for error messages.
 std::string describeDevices(const std::vector<DeviceInfo>& devices);
 
-// 32 lowercase hex digits of a VK_UUID_SIZE-byte UUID (DeviceInfo::pipelineCacheUUID).
-std::string uuidHex(const uint8_t (&uuid)[VK_UUID_SIZE]);
-
 // Whether the physical device offers a device extension.
 bool hasDeviceExtension(VkPhysicalDevice device, const char* name);
 

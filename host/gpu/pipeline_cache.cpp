@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/hex.h"
 #include "gpu/device_query.h"
 #include "gpu/vk_check.h"
 
@@ -48,7 +49,7 @@ PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& 
                              std::string folder)
     : device_(device) {
   if (!folder.empty())
-    path_ = (fs::path(folder) / ("pipelines-" + uuidHex(properties.pipelineCacheUUID) + ".bin")).string();
+    path_ = (fs::path(folder) / ("pipelines-" + hexString(properties.pipelineCacheUUID) + ".bin")).string();
 
   std::vector<uint8_t> data = path_.empty() ? std::vector<uint8_t>{} : readFile(path_);
   if (!pipelineCacheHeaderMatches(data, properties)) data.clear();  // absent, damaged or foreign

@@ -25,7 +25,7 @@ namespace dicsynth::gpu {
 // The SPIR-V of render.comp for a precision variant (built by CMakeLists.txt, two per variant):
 // with the NURBS search (`nurbs`), or without it, for scenes without NURBS (the same code
 // otherwise: lavapipe creates its pipelines 2-3x faster, shaders/lib/features.glsl).
-std::span<const std::uint32_t> renderSpirv(Precision precision, bool nurbs = true);
+std::span<const std::uint32_t> renderSpirv(Precision precision, bool nurbs);
 
 struct RendererOptions {
   // false: run every feature's code whatever the scene uses (the benchmark's baseline for what

@@ -13,7 +13,7 @@ function(ds_embed_shader name source)
   endforeach()
   add_custom_command(
     OUTPUT ${inc}
-    COMMAND ${GLSLC} --target-env=vulkan1.2 -O -Werror -I ${CMAKE_SOURCE_DIR}/shaders
+    COMMAND ${GLSLC} --target-env=vulkan1.2 -O -Werror -I ${CMAKE_SOURCE_DIR}/shaders -I ${DS_GENERATED}
             ${defs} -MD -MF ${inc}.d -mfmt=num -o ${inc} ${source}
     DEPENDS ${source}
     DEPFILE ${inc}.d

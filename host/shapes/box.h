@@ -29,6 +29,10 @@ struct Box {
   static constexpr const char* kName = "Box";
   static constexpr bool kCurved = false;
   static constexpr const char* kKeys[] = {"size"};
+  // Its (u, v) in docs/cameras.md's table (tests/suite/test_docs.cpp writes that row from this).
+  static constexpr const char* kUv =
+      "`size = {sx, sy, sz}`: a 3×2 atlas of faces, each seen from outside: row 0: −z (front), "
+      "+x, +z (back); row 1: −x, −y (top), +y (bottom); side faces upright (image-down = +y)";
 
   dvec3 size_m{0};  // full edge lengths
 

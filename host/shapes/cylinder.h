@@ -39,6 +39,13 @@ struct Cylinder {
   static constexpr const char* kName = "Cylinder";
   static constexpr bool kCurved = true;
   static constexpr const char* kKeys[] = {"radius", "height", "capped"};
+  // Its (u, v) in docs/cameras.md's table (tests/suite/test_docs.cpp writes that row from this).
+  static constexpr const char* kUv =
+      "axis along y, centred on `location`; u = ½ + atan2(x, −z)/2π around the axis (as on the "
+      "sphere). Open (`capped = false`): the side covers [0, 1]², v = y/height + ½. Capped (the "
+      "default): the side covers v ∈ [0, ½], v = (y/height + ½)/2, and the caps, each seen from "
+      "outside, lie in the cells v ∈ (½, 1]: the top cap (y = −height/2) at u ∈ [0, ½], the "
+      "bottom cap at u ∈ [½, 1], the disk inscribed in its cell (s = x/2r + ½, t = ∓z/2r + ½)";
 
   double radius_m = 0;
   double height_m = 0;

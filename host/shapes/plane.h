@@ -52,6 +52,10 @@ struct Plane {
   static constexpr const char* kName = "Plane";
   static constexpr bool kCurved = false;
   static constexpr const char* kKeys[] = {"tileSize"};
+  // Its (u, v) in docs/cameras.md's table (tests/suite/test_docs.cpp writes that row from this).
+  static constexpr const char* kUv =
+      "`tileSize = {w, h}`: infinite plane z = 0; u = fract(x/w + ½), v = fract(y/h + ½): the "
+      "texture repeats every tile";
 
   dvec2 tileSize_m{1, 1};
 

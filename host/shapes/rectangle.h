@@ -26,6 +26,9 @@ struct Rectangle {
   static constexpr const char* kName = "Rectangle";
   static constexpr bool kCurved = false;
   static constexpr const char* kKeys[] = {"size"};
+  // Its (u, v) in docs/cameras.md's table (tests/suite/test_docs.cpp writes that row from this).
+  static constexpr const char* kUv =
+      "`size = {w, h}`: plane z = 0 facing −z, u = x/w + ½, v = y/h + ½";
 
   dvec2 size_m{0};
 

@@ -28,6 +28,10 @@ struct Sphere {
   static constexpr const char* kName = "Sphere";
   static constexpr bool kCurved = true;  // render/compare.cpp bounds grazing errors of curved kinds
   static constexpr const char* kKeys[] = {"radius"};
+  // Its (u, v) in docs/cameras.md's table (tests/suite/test_docs.cpp writes that row from this).
+  static constexpr const char* kUv =
+      "u = ½ + atan2(x, −z)/2π (u = ½ faces the camera, seam at the back), v = polar angle from "
+      "the −y pole / π (v = 0 at the top of the image)";
 
   double radius_m = 0;
 

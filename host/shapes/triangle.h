@@ -32,6 +32,9 @@ struct Triangle {
   static constexpr const char* kName = "Triangle";
   static constexpr bool kCurved = false;
   static constexpr const char* kKeys[] = {"vertices", "uv"};
+  // Its (u, v) in docs/cameras.md's table (tests/suite/test_docs.cpp writes that row from this).
+  static constexpr const char* kUv =
+      "barycentric blend of the vertices' uv (default {0,0}, {1,0}, {0,1})";
 
   std::array<dvec3, 3> vertices_m{};
   std::array<dvec2, 3> vertexUV{dvec2{0, 0}, dvec2{1, 0}, dvec2{0, 1}};

@@ -1,9 +1,9 @@
 // Closed lists of kinds, shared by C++ (host) and GLSL (shaders). Values are stored in GPU buffers:
-// never renumber. A shape kind has a home (host/shapes/<kind>.h, shaders/shapes/<kind>.glsl) and a
-// row in the registries (host/shapes/registry.h, shaders/lib/shapes.glsl); a reflectance model
-// (shader kind) has a home in host/reflectance/<kind>.h and, with a lobe, shaders/reflectance/; a
-// texture in host/textures/ and shaders/textures/; a camera in host/cameras/ and shaders/cameras/
-// (docs/design.md §7).
+// never renumber. An analytic shape kind has a home (host/shapes/<kind>.h, shaders/shapes/<kind>.glsl)
+// and a row of DS_ANALYTIC_SHAPES below, from which CMakeLists.txt generates both registries'
+// includes; a reflectance model (shader kind) has a home in host/reflectance/<kind>.h and, with a
+// lobe, shaders/reflectance/; a texture in host/textures/ and shaders/textures/; a camera in
+// host/cameras/ and shaders/cameras/ (docs/design.md §7).
 #ifndef DS_SHARED_KINDS_H
 #define DS_SHARED_KINDS_H
 
@@ -15,6 +15,21 @@
 #define DS_SHAPE_NURBS 5
 #define DS_SHAPE_CYLINDER 6
 #define DS_SHAPE_COUNT 7
+
+// The analytic shape kinds (every kind but NURBS), one row each: X(number, C++ type, file), the
+// file naming the home host/shapes/<file>.h (struct shapes::<type>) and its GLSL twin
+// shaders/shapes/<file>.glsl (Gpu<Type>, ds_<file>_data, ds_<file>_search, ds_<file>_attributes).
+// host/shapes/registry.h builds the variant shapes::Analytic from it, in this order, and
+// shaders/lib/shapes.glsl its dispatch; CMakeLists.txt reads the rows (one per line, as written
+// here) to generate the includes of the homes and twins. A new analytic kind is its number above,
+// a row here, its home, its twin and its test (docs/design.md §7).
+#define DS_ANALYTIC_SHAPES(X)                \
+  X(DS_SHAPE_SPHERE, Sphere, sphere)          \
+  X(DS_SHAPE_BOX, Box, box)                   \
+  X(DS_SHAPE_TRIANGLE, Triangle, triangle)    \
+  X(DS_SHAPE_PLANE, Plane, plane)             \
+  X(DS_SHAPE_RECTANGLE, Rectangle, rectangle) \
+  X(DS_SHAPE_CYLINDER, Cylinder, cylinder)
 
 #define DS_SHADER_CONSTANT 0
 #define DS_SHADER_LAMBERT 1

@@ -16,23 +16,8 @@
 
 namespace dicsynth::shapes {
 
-namespace detail {
-// std::variant of the types after the first: the X-list expands to "void, Sphere, Box, ...".
-template <class First, class... Kinds>
-struct VariantOfRest {
-  using type = std::variant<Kinds...>;
-};
-}  // namespace detail
-
-#define DS_SHAPE_TYPE(KIND, Type, file) , Type
-using Analytic = detail::VariantOfRest<void DS_ANALYTIC_SHAPES(DS_SHAPE_TYPE)>::type;
-#undef DS_SHAPE_TYPE
-
-// Each row's type is its number's home.
-#define DS_SHAPE_ROW_MATCHES(KIND, Type, file) \
-  static_assert(int(Type::kKind) == KIND, "DS_ANALYTIC_SHAPES: " #Type "'s home has another kind number");
-DS_ANALYTIC_SHAPES(DS_SHAPE_ROW_MATCHES)
-#undef DS_SHAPE_ROW_MATCHES
+using Analytic = VariantOfRest<void DS_ANALYTIC_SHAPES(DS_KIND_TYPE)>::type;
+DS_ANALYTIC_SHAPES(DS_KIND_ROW_MATCHES)
 
 // Calls f(std::type_identity<Kind>{}) for every kind.
 template <class F>

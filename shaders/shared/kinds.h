@@ -1,9 +1,8 @@
 // Closed lists of kinds, shared by C++ (host) and GLSL (shaders). Values are stored in GPU buffers:
-// never renumber. An analytic shape kind has a home (host/shapes/<kind>.h, shaders/shapes/<kind>.glsl)
-// and a row of DS_ANALYTIC_SHAPES below, from which CMakeLists.txt generates both registries'
-// includes; a reflectance model (shader kind) has a home in host/reflectance/<kind>.h and, with a
-// lobe, shaders/reflectance/; a texture in host/textures/ and shaders/textures/; a camera in
-// host/cameras/ and shaders/cameras/ (docs/design.md §7).
+// never renumber. A shape, reflectance model or camera kind has a home (host/<folder>/<kind>.h,
+// and a GLSL twin shaders/<folder>/<kind>.glsl where it needs one) and a row in its family's X-list
+// below, from which both registries are built; a texture has a home in host/textures/ and
+// shaders/textures/ and a line in each of its two registries (docs/design.md §7).
 #ifndef DS_SHARED_KINDS_H
 #define DS_SHARED_KINDS_H
 
@@ -16,13 +15,15 @@
 #define DS_SHAPE_CYLINDER 6
 #define DS_SHAPE_COUNT 7
 
-// The analytic shape kinds (every kind but NURBS), one row each: X(number, C++ type, file), the
-// file naming the home host/shapes/<file>.h (struct shapes::<type>) and its GLSL twin
-// shaders/shapes/<file>.glsl (Gpu<Type>, ds_<file>_data, ds_<file>_search, ds_<file>_attributes).
-// host/shapes/registry.h builds the variant shapes::Analytic from it, in this order, and
-// shaders/lib/shapes.glsl its dispatch; CMakeLists.txt reads the rows (one per line, as written
-// here) to generate the includes of the homes and twins. A new analytic kind is its number above,
-// a row here, its home, its twin and its test (docs/design.md §7).
+// Each family's kinds, one row each: X(number, C++ type, file), the file naming the kind's home
+// host/<folder>/<file>.h (struct <Type> in the family's namespace) and, where it has one, its GLSL
+// twin shaders/<folder>/<file>.glsl. The C++ registries (host/<folder>/registry.h) build their
+// variant from these rows, in this order; CMakeLists.txt reads them (the only "X(DS_<FAMILY>_"
+// text here) to generate the includes of the homes and twins and each GLSL registry's list of
+// twins (DS_<FAMILY>_TWINS). A new kind is its number above, its row here, its home, its twin and
+// its test (docs/design.md §7).
+// Analytic shapes (every kind but NURBS; each has a twin: Gpu<Type>, ds_<file>_data,
+// ds_<file>_search, ds_<file>_attributes).
 #define DS_ANALYTIC_SHAPES(X)                \
   X(DS_SHAPE_SPHERE, Sphere, sphere)          \
   X(DS_SHAPE_BOX, Box, box)                   \
@@ -37,6 +38,14 @@
 #define DS_SHADER_BLINN_PHONG 3
 #define DS_SHADER_GGX 4
 #define DS_SHADER_COUNT 5
+
+// Reflectance models; a twin is a specular lobe (Gpu<Type>, ds_<file>_data, ds_<file>_lobe).
+#define DS_REFLECTANCE_MODELS(X)                      \
+  X(DS_SHADER_CONSTANT, Constant, constant)          \
+  X(DS_SHADER_LAMBERT, Lambert, lambert)             \
+  X(DS_SHADER_PHONG, Phong, phong)                   \
+  X(DS_SHADER_BLINN_PHONG, BlinnPhong, blinn_phong)  \
+  X(DS_SHADER_GGX, Ggx, ggx)
 
 #define DS_TEXTURE_CONSTANT 0
 #define DS_TEXTURE_FILE 1
@@ -53,6 +62,13 @@
 #define DS_CAMERA_THIN_LENS 1      // pinhole chief ray + a lens disk sampled per sample (host/cameras/thin_lens.h)
 #define DS_CAMERA_ORTHOGRAPHIC 2   // telecentric: rays parallel to the optical axis
 #define DS_CAMERA_COUNT 3
+
+// Camera kinds; a twin is the camera-frame ray of a kind other than the pinhole
+// (ds_<file>_ray(GpuCamera, ...); with data of its own, Gpu<Type> and ds_<file>_data).
+#define DS_CAMERA_MODELS(X)                                \
+  X(DS_CAMERA_PINHOLE, Pinhole, pinhole)                   \
+  X(DS_CAMERA_THIN_LENS, ThinLens, thin_lens)              \
+  X(DS_CAMERA_ORTHOGRAPHIC, Orthographic, orthographic)
 
 #define DS_DISTORTION_NONE 0
 #define DS_DISTORTION_BROWN 1

@@ -1,6 +1,7 @@
-// The C++ registries of kinds (host/shapes, host/reflectance, host/textures: registry.h) against
-// their GLSL twins (the X-lists of shaders/shared/kinds.h (shapes), shaders/lib/shading.glsl and
-// texture.glsl) and the twin files they include, read as text: a kind registered on one side only, or a twin without its
+// The C++ registries of kinds (host/shapes, host/reflectance, host/textures, host/cameras:
+// registry.h) against the kinds list's rows (shaders/shared/kinds.h), the GLSL registries (the
+// X-lists CMakeLists.txt generates from those rows under <build>/generated/registry/, and
+// shaders/lib/texture.glsl's own) and the twin files they include, read as text: a kind registered on one side only, or a twin without its
 // struct and functions, fails here rather than as a wrong pixel.
 #include <doctest/doctest.h>
 
@@ -10,6 +11,7 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <variant>
 
 #include "cameras/registry.h"
 #include "reflectance/registry.h"
@@ -22,6 +24,11 @@ using namespace dicsynth;
 namespace {
 
 std::string readSource(const std::string& relative) { return test::readBytes(std::string(DS_SOURCE_DIR) + "/" + relative); }
+
+// A file CMakeLists.txt generated from the kinds list: generated/registry/<name>.
+std::string readGenerated(const std::string& name) {
+  return test::readBytes(std::string(DS_GENERATED_DIR) + "/registry/" + name);
+}
 
 // "BlinnPhong" → "blinn_phong", "GGX" → "ggx": the GLSL twin's name of a kind.
 std::string snakeCase(const std::string& name) {
@@ -55,18 +62,34 @@ std::string xListBody(const std::string& glsl, const std::string& list) {
   return glsl.substr(start, end - start);
 }
 
-// The rows X(DS_KIND, name) (or X(DS_KIND, Type, name)) of the X-list `list` in `glsl`: kind number → name.
+// The rows X(DS_KIND, name) of the X-list `list` in `glsl`: kind number → name.
 std::map<int, std::string> xListRows(const std::string& glsl, const std::string& list) {
   const std::string body = xListBody(glsl, list);
   const std::map<std::string, int> numbers = kindNumbers();
   std::map<int, std::string> rows;
-  const std::regex row(R"(X\((DS_[A-Z_]+), (?:[A-Za-z]+, )?([a-z_]+)\))");
+  const std::regex row(R"(X\((DS_[A-Z_]+), ([a-z_]+)\))");
   for (std::sregex_iterator it(body.begin(), body.end(), row), e; it != e; ++it) {
     INFO((*it)[0].str());
     REQUIRE(numbers.count((*it)[1].str()) == 1);
     const int number = numbers.at((*it)[1].str());
     CHECK(rows.count(number) == 0);  // each kind once
     rows[number] = (*it)[2].str();
+  }
+  return rows;
+}
+
+// The rows X(DS_<KIND>, Type, file) of the family's X-list in kinds.h: kind number → file; each
+// row's file is its type's name in snake case (host/<folder>/<file>.h holds struct <Type>).
+std::map<int, std::string> kindsListRows(const std::string& list) {
+  const std::string body = xListBody(readSource("shaders/shared/kinds.h"), list);
+  std::map<int, std::string> rows;
+  const std::regex row(R"(X\((DS_[A-Z_]+), ([A-Za-z]+), ([a-z_]+)\))");
+  for (std::sregex_iterator it(body.begin(), body.end(), row), e; it != e; ++it) {
+    INFO((*it)[0].str());
+    CHECK((*it)[3].str() == snakeCase((*it)[2].str()));
+    const int number = kindNumbers().at((*it)[1].str());
+    CHECK(rows.count(number) == 0);
+    rows[number] = (*it)[3].str();
   }
   return rows;
 }
@@ -93,33 +116,41 @@ void checkTwin(const std::string& registry, const std::string& folder, const std
 }  // namespace
 
 TEST_CASE("registries: the GLSL shape registry lists every analytic kind of the C++ one, each with its twin") {
-  // One X-list (kinds.h) drives both registries; what can still part is a row against its home's
-  // kKind and name (registry.h static_asserts the number), and the includes CMakeLists.txt
-  // generates from the rows (registry/shape_twins.glsl, beside the build's SPIR-V).
-  const std::map<int, std::string> rows = xListRows(readSource("shaders/shared/kinds.h"), "DS_ANALYTIC_SHAPES");
-  const std::string glsl = test::readBytes(std::string(DS_GENERATED_DIR) + "/registry/shape_twins.glsl");
-  REQUIRE(readSource("shaders/lib/shapes.glsl").find("#include \"registry/shape_twins.glsl\"") != std::string::npos);
+  // The kinds list's rows drive both registries (registry.h static_asserts each row's number
+  // against its home); what can still part is a row's file against its home's name, and the
+  // includes and list generated from the rows.
+  const std::map<int, std::string> kinds = kindsListRows("DS_ANALYTIC_SHAPES");
+  const std::string glsl = readGenerated("shape_twins.glsl");
+  const std::map<int, std::string> rows = xListRows(glsl, "DS_SHAPE_TWINS");
+  CHECK(readSource("shaders/lib/shapes.glsl").find("#include \"registry/shape_twins.glsl\"") != std::string::npos);
   std::set<int> registered;
   shapes::forEachAnalyticKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
     INFO("Shape." << Kind::kName);
     const int number = int(Kind::kKind);
     registered.insert(number);
+    REQUIRE(kinds.count(number) == 1);
+    CHECK(kinds.at(number) == snakeCase(Kind::kName));
     REQUIRE(rows.count(number) == 1);
     CHECK(rows.at(number) == snakeCase(Kind::kName));
     checkTwin(glsl, "shapes", rows.at(number), {"search", "attributes"});
   });
   CHECK(registered.size() == rows.size());  // no GLSL row without a C++ home
+  CHECK(registered.size() == kinds.size());
 }
 
 TEST_CASE("registries: the GLSL lobe registry lists every reflectance model with a lobe, each with its twin") {
-  const std::string glsl = readSource("shaders/lib/shading.glsl");
-  const std::map<int, std::string> rows = xListRows(glsl, "DS_SPECULAR_LOBES");
+  const std::map<int, std::string> kinds = kindsListRows("DS_REFLECTANCE_MODELS");
+  const std::string glsl = readGenerated("reflectance_twins.glsl");
+  const std::map<int, std::string> rows = xListRows(glsl, "DS_REFLECTANCE_TWINS");
+  CHECK(readSource("shaders/lib/shading.glsl").find("#include \"registry/reflectance_twins.glsl\"") != std::string::npos);
   std::size_t withLobe = 0;
   reflectance::forEachKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
     INFO("Shader." << Kind::kName);
     const int number = int(Kind::kKind);
+    REQUIRE(kinds.count(number) == 1);
+    CHECK(kinds.at(number) == snakeCase(Kind::kName));
     if (!Kind::kSpecular) {
       // Constant and Lambert: no lobe, no twin, and the shared code must not need one.
       CHECK(rows.count(number) == 0);
@@ -133,6 +164,7 @@ TEST_CASE("registries: the GLSL lobe registry lists every reflectance model with
   });
   CHECK(withLobe == rows.size());
   CHECK(withLobe >= 3);  // the scan found the lobes
+  CHECK(kinds.size() == std::variant_size_v<reflectance::Model>);
 }
 
 TEST_CASE("registries: the GLSL texture registry draws every texture kind of the C++ one with its twin") {
@@ -169,13 +201,17 @@ TEST_CASE("registries: the GLSL texture registry draws every texture kind of the
 }
 
 TEST_CASE("registries: the GLSL camera registry lists every camera kind of the C++ one with a twin") {
-  const std::string glsl = readSource("shaders/lib/camera.glsl");
-  const std::map<int, std::string> rows = xListRows(glsl, "DS_CAMERAS");
+  const std::map<int, std::string> kinds = kindsListRows("DS_CAMERA_MODELS");
+  const std::string glsl = readGenerated("camera_twins.glsl");
+  const std::map<int, std::string> rows = xListRows(glsl, "DS_CAMERA_TWINS");
+  CHECK(readSource("shaders/lib/camera.glsl").find("#include \"registry/camera_twins.glsl\"") != std::string::npos);
   std::size_t withTwin = 0;
   cameras::forEachCameraKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
     INFO("Camera." << Kind::kName);
     const int number = int(Kind::kKind);
+    REQUIRE(kinds.count(number) == 1);
+    CHECK(kinds.at(number) == snakeCase(Kind::kName));
     if (Kind::kTwin == nullptr) {
       // The pinhole: the default branch of ds_camera_ray, no row and no twin file.
       CHECK(rows.count(number) == 0);
@@ -195,6 +231,7 @@ TEST_CASE("registries: the GLSL camera registry lists every camera kind of the C
   });
   CHECK(withTwin == rows.size());
   CHECK(withTwin >= 2);  // the scan found them
+  CHECK(kinds.size() == std::variant_size_v<cameras::Model>);
 }
 
 TEST_CASE("registries: the kinds tables are indexed by number and named once") {

@@ -121,7 +121,10 @@ std::string LayerSet::text() const {
   if (all_) return "all";
   std::string out;
   for (std::uint32_t l = 0; l < std::uint32_t(Layer::Count); ++l)
-    if (has(Layer(l))) out += (out.empty() ? "" : ",") + std::string(kSpecs[l].name);
+    if (has(Layer(l))) {
+      if (!out.empty()) out += ',';
+      out += kSpecs[l].name;
+    }
   return out;
 }
 

@@ -180,7 +180,10 @@ std::string describeSensor(const SensorModel& m, int bitsPerPixel) {
       add("Vignetting.Cos4");
     } else {
       std::string c;
-      for (double a : m.vignetting->coefficients) c += (c.empty() ? "" : ",") + exactNumber(a);
+      for (double a : m.vignetting->coefficients) {
+        if (!c.empty()) c += ',';
+        c += exactNumber(a);
+      }
       add("Vignetting.Radial coefficients=" + c);
     }
   }

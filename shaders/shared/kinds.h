@@ -18,9 +18,9 @@
 // Each family's kinds, one row each: X(number, C++ type, file), the file naming the kind's home
 // host/<folder>/<file>.h (struct <Type> in the family's namespace) and, where it has one, its GLSL
 // twin shaders/<folder>/<file>.glsl. The C++ registries (host/<folder>/registry.h) build their
-// variant from these rows, in this order; CMakeLists.txt reads them (the only "X(DS_<FAMILY>_"
-// text here) to generate the includes of the homes and twins and each GLSL registry's list of
-// twins (DS_<FAMILY>_TWINS). A new kind is its number above, its row here, its home, its twin and
+// variant from these rows, in this order; cmake/KindRegistry.cmake reads them (the only
+// "X(DS_<FAMILY>_" text here) to generate the includes of the homes and twins and each GLSL
+// registry's list of twins (DS_<FAMILY>_TWINS). A new kind is its number above, its row here, its home, its twin and
 // its test (docs/design.md §7).
 // Analytic shapes (every kind but NURBS; each has a twin: Gpu<Type>, ds_<file>_data,
 // ds_<file>_search, ds_<file>_attributes).

@@ -1,8 +1,9 @@
 // The C++ registries of kinds (host/shapes, host/reflectance, host/textures, host/cameras:
 // registry.h) against the kinds list's rows (shaders/shared/kinds.h), the GLSL registries (the
-// X-lists CMakeLists.txt generates from those rows under <build>/generated/registry/, and
-// shaders/lib/texture.glsl's own) and the twin files they include, read as text: a kind registered on one side only, or a twin without its
-// struct and functions, fails here rather than as a wrong pixel.
+// X-lists cmake/KindRegistry.cmake generates from those rows under <build>/generated/registry/,
+// and shaders/lib/texture.glsl's own) and the twin files they include, read as text: a kind
+// registered on one side only, or a twin without its struct and functions, fails here rather than
+// as a wrong pixel.
 #include <doctest/doctest.h>
 
 #include <cctype>
@@ -25,7 +26,7 @@ namespace {
 
 std::string readSource(const std::string& relative) { return test::readBytes(std::string(DS_SOURCE_DIR) + "/" + relative); }
 
-// A file CMakeLists.txt generated from the kinds list: generated/registry/<name>.
+// A file cmake/KindRegistry.cmake generated from the kinds list: generated/registry/<name>.
 std::string readGenerated(const std::string& name) {
   return test::readBytes(std::string(DS_GENERATED_DIR) + "/registry/" + name);
 }

@@ -3,8 +3,11 @@
 # "X(DS_<PREFIX>_" text in kinds.h), naming its home host/<folder>/<file>.h and its GLSL twin
 # shaders/<folder>/<file>.glsl. ds_kind_registry writes, under generated/registry/:
 #   <family>_homes.h    #include of every home (the C++ registry host/<folder>/registry.h);
-#   <family>_twins.glsl #include of every twin that exists, and DS_<FAMILY>_TWINS(X): X(number, file)
-#                       for those rows in row order (the GLSL registry's dispatch).
+#   <family>_twins.glsl #include of every twin that exists, DS_<FAMILY>_TWINS(X): X(number, file)
+#                       for those rows in row order (the GLSL registry's dispatch), and
+#                       DS_<FAMILY>_TWIN_FILES(X): X(file) per twin in the
+#                       order of its first row, with DS_<FAMILY>_KINDS_<file>, the bit mask of the
+#                       kinds it draws (textures: the two targets share a twin).
 # So a new kind needs no line in either registry. A missing home, or a missing twin where every
 # kind must have one (TWINS_REQUIRED), stops the configuration.
 # Needs DS_KINDS_TEXT (the text of kinds.h) and DS_GENERATED.
@@ -22,6 +25,7 @@ function(ds_kind_registry family prefix folder)
   set(twin_rows "#define DS_${FAMILY}_TWINS(X)")
   set(home_files)
   set(twin_files)
+  set(twin_order)
   foreach(row ${rows})
     string(REGEX REPLACE "^X\\((DS_[A-Z_]+), [A-Za-z]+, ([a-z_]+)\\)$" "\\1;\\2" parts ${row})
     list(GET parts 0 number)
@@ -33,11 +37,17 @@ function(ds_kind_registry family prefix folder)
     if(EXISTS ${CMAKE_SOURCE_DIR}/shaders/${folder}/${file}.glsl)
       list(APPEND twin_files ${file})
       string(APPEND twin_rows " X(${number}, ${file})")
+      if(NOT file IN_LIST twin_order)
+        list(APPEND twin_order ${file})
+        set(mask_${file} "0u")
+      endif()
+      string(APPEND mask_${file} " | (1u << ${number})")
     elseif(ARG_TWINS_REQUIRED)
       message(FATAL_ERROR "shaders/shared/kinds.h: the row '${row}' names shaders/${folder}/${file}.glsl, which does not exist")
     endif()
   endforeach()
   list(REMOVE_DUPLICATES home_files)
+  list(REMOVE_DUPLICATES twin_files)
   list(SORT home_files)
   list(SORT twin_files)
   foreach(file ${home_files})
@@ -47,6 +57,14 @@ function(ds_kind_registry family prefix folder)
     string(APPEND twins "#include \"${folder}/${file}.glsl\"\n")
   endforeach()
   string(APPEND twins "${twin_rows}\n")
+  string(APPEND twins "#define DS_${FAMILY}_TWIN_FILES(X)")
+  foreach(file ${twin_order})
+    string(APPEND twins " X(${file})")
+  endforeach()
+  string(APPEND twins "\n")
+  foreach(file ${twin_order})
+    string(APPEND twins "#define DS_${FAMILY}_KINDS_${file} (${mask_${file}})\n")
+  endforeach()
   ds_write_if_changed(${DS_GENERATED}/registry/${family}_homes.h "${homes}")
   ds_write_if_changed(${DS_GENERATED}/registry/${family}_twins.glsl "${twins}")
 endfunction()

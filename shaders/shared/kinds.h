@@ -1,8 +1,7 @@
 // Closed lists of kinds, shared by C++ (host) and GLSL (shaders). Values are stored in GPU buffers:
-// never renumber. A shape, reflectance model or camera kind has a home (host/<folder>/<kind>.h,
-// and a GLSL twin shaders/<folder>/<kind>.glsl where it needs one) and a row in its family's X-list
-// below, from which both registries are built; a texture has a home in host/textures/ and
-// shaders/textures/ and a line in each of its two registries (docs/design.md §7).
+// never renumber. A shape, reflectance model, texture or camera kind has a home
+// (host/<folder>/<file>.h, and a GLSL twin shaders/<folder>/<file>.glsl where it needs one) and a
+// row in its family's X-list below, from which both registries are built (docs/design.md §7).
 #ifndef DS_SHARED_KINDS_H
 #define DS_SHARED_KINDS_H
 
@@ -53,6 +52,16 @@
 #define DS_TEXTURE_CIRCLE_GRID 3
 #define DS_TEXTURE_SPECKLE 4  // analytic Boolean-model speckle in (u, v) (texture/analytic_speckle.h)
 #define DS_TEXTURE_COUNT 5
+
+// Textures; a twin draws one or more kinds (the two targets share target.glsl): Gpu<Twin>,
+// ds_<twin>_data, ds_<twin>_value, and DS_TEXTURE_COMPILED_<twin>, the specialization test that
+// compiles it in. Texture.Constant has none: its value is GpuObject.shading.y.
+#define DS_TEXTURE_MODELS(X)                                 \
+  X(DS_TEXTURE_CONSTANT, Constant, constant)                 \
+  X(DS_TEXTURE_FILE, File, file)                             \
+  X(DS_TEXTURE_CHECKERBOARD, Checkerboard, target)           \
+  X(DS_TEXTURE_CIRCLE_GRID, CircleGrid, target)              \
+  X(DS_TEXTURE_SPECKLE, Speckle, speckle)
 
 #define DS_LIGHT_POINT 0
 #define DS_LIGHT_AMBIENT 1

@@ -7,6 +7,8 @@
 // lib/texture.glsl; expects `textures[]` (GpuTexture) and DS_TEXEL(i) (coefficient i, a real).
 #ifndef DS_TEXTURES_FILE_GLSL
 #define DS_TEXTURES_FILE_GLSL
+// Compiled in where the scene has a file texture (lib/features.glsl).
+#define DS_TEXTURE_COMPILED_file HAS_FILE_TEXTURES
 
 struct GpuFile {
   int index;  // the image in textures[] (GpuObject.kinds.z)

@@ -6,6 +6,8 @@
 // Included by lib/texture.glsl.
 #ifndef DS_TEXTURES_SPECKLE_GLSL
 #define DS_TEXTURES_SPECKLE_GLSL
+// Compiled in where the scene has a speckle texture (lib/features.glsl).
+#define DS_TEXTURE_COMPILED_speckle HAS_SPECKLE_TEXTURES
 
 struct GpuSpeckle {
   hreal4 cells;    // cells per u, cells per v, dark, light (GpuObject.speckle0)

@@ -4,6 +4,8 @@
 // (u, v) is known; only the dark/light value is `real`. Included by lib/texture.glsl.
 #ifndef DS_TEXTURES_TARGET_GLSL
 #define DS_TEXTURES_TARGET_GLSL
+// No specialization constant switches the targets out: always compiled in.
+#define DS_TEXTURE_COMPILED_target true
 
 struct GpuTarget {
   hreal4 cells;       // origin_uv.xy, cell_uv.xy (GpuObject.target0)

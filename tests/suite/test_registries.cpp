@@ -79,15 +79,14 @@ std::map<int, std::string> xListRows(const std::string& glsl, const std::string&
   return rows;
 }
 
-// The rows X(DS_<KIND>, Type, file) of the family's X-list in kinds.h: kind number → file; each
-// row's file is its type's name in snake case (host/<folder>/<file>.h holds struct <Type>).
+// The rows X(DS_<KIND>, Type, file) of the family's X-list in kinds.h: kind number → file
+// (host/<folder>/<file>.h holds struct <Type>).
 std::map<int, std::string> kindsListRows(const std::string& list) {
   const std::string body = xListBody(readSource("shaders/shared/kinds.h"), list);
   std::map<int, std::string> rows;
   const std::regex row(R"(X\((DS_[A-Z_]+), ([A-Za-z]+), ([a-z_]+)\))");
   for (std::sregex_iterator it(body.begin(), body.end(), row), e; it != e; ++it) {
     INFO((*it)[0].str());
-    CHECK((*it)[3].str() == snakeCase((*it)[2].str()));
     const int number = kindNumbers().at((*it)[1].str());
     CHECK(rows.count(number) == 0);
     rows[number] = (*it)[3].str();
@@ -169,36 +168,49 @@ TEST_CASE("registries: the GLSL lobe registry lists every reflectance model with
 }
 
 TEST_CASE("registries: the GLSL texture registry draws every texture kind of the C++ one with its twin") {
-  // Rows X(twin, compiled, drawn): the twin, its specialization test, the kinds it draws.
-  const std::string glsl = readSource("shaders/lib/texture.glsl");
-  const std::string body = xListBody(glsl, "DS_TEXTURES");
+  // The generated list: X(twin) per twin, and DS_TEXTURE_KINDS_<twin>, the mask of the kinds it
+  // draws (the two targets share target.glsl); each twin names its specialization test.
+  const std::map<int, std::string> kinds = kindsListRows("DS_TEXTURE_MODELS");
+  const std::string glsl = readGenerated("texture_twins.glsl");
+  CHECK(readSource("shaders/lib/texture.glsl").find("#include \"registry/texture_twins.glsl\"") != std::string::npos);
+  const std::string list = xListBody(glsl, "DS_TEXTURE_TWIN_FILES");
   const std::map<std::string, int> numbers = kindNumbers();
   std::map<int, std::string> twinOfKind;
   std::set<std::string> twins;
-  const std::regex row(R"(X\(([a-z_]+), ([A-Za-z_]+), ([^)]*)\))"), kindName(R"(DS_TEXTURE_[A-Z_]+)");
-  for (std::sregex_iterator it(body.begin(), body.end(), row), e; it != e; ++it) {
-    const std::string twin = (*it)[1].str(), drawn = (*it)[3].str();
-    INFO((*it)[0].str());
+  const std::regex row(R"(X\(([a-z_]+)\))"), kindName(R"(DS_TEXTURE_[A-Z_]+)");
+  for (std::sregex_iterator it(list.begin(), list.end(), row), e; it != e; ++it) {
+    const std::string twin = (*it)[1].str();
+    INFO(twin);
     twins.insert(twin);
+    const std::string maskName = "#define DS_TEXTURE_KINDS_" + twin + " ";
+    const std::size_t at = glsl.find(maskName);
+    REQUIRE(at != std::string::npos);
+    const std::string drawn = glsl.substr(at + maskName.size(), glsl.find('\n', at) - at - maskName.size());
     for (std::sregex_iterator k(drawn.begin(), drawn.end(), kindName), ke; k != ke; ++k) {
       REQUIRE(numbers.count(k->str()) == 1);
       CHECK(twinOfKind.count(numbers.at(k->str())) == 0);  // each kind drawn by one twin
       twinOfKind[numbers.at(k->str())] = twin;
     }
+    CHECK(readSource("shaders/textures/" + twin + ".glsl").find("#define DS_TEXTURE_COMPILED_" + twin + " ") !=
+          std::string::npos);
   }
   CHECK(twins.size() >= 3);  // the scan found the rows
   textures::forEachKind([&](auto kind) {
     using Kind = typename decltype(kind)::type;
     INFO(Kind::kConstructor);
     const int number = int(Kind::kKind);
+    REQUIRE(kinds.count(number) == 1);
     if (Kind::kTwin == nullptr) {
+      CHECK(kinds.at(number) == snakeCase(Kind::kName));
       CHECK(twinOfKind.count(number) == 0);  // Texture.Constant: GpuObject.shading.y, no twin
       return;
     }
+    CHECK(kinds.at(number) == std::string(Kind::kTwin));  // the row names the home and twin file
     REQUIRE(twinOfKind.count(number) == 1);
     CHECK(twinOfKind.at(number) == Kind::kTwin);
     checkTwin(glsl, "textures", Kind::kTwin, {"value"});
   });
+  CHECK(kinds.size() == std::variant_size_v<textures::Model>);
 }
 
 TEST_CASE("registries: the GLSL camera registry lists every camera kind of the C++ one with a twin") {

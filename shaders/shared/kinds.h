@@ -19,8 +19,9 @@
 // twin shaders/<folder>/<file>.glsl. The C++ registries (host/<folder>/registry.h) build their
 // variant from these rows, in this order; cmake/KindRegistry.cmake reads them (the only
 // "X(DS_<FAMILY>_" text here) to generate the includes of the homes and twins and each GLSL
-// registry's list of twins (DS_<FAMILY>_TWINS). A new kind is its number above, its row here, its home, its twin and
-// its test (docs/design.md §7).
+// registry's list of twins (DS_<FAMILY>_TWINS), and the C++ enums below take their enumerators
+// from them. A new kind is its number above, its row here, its home, its twin and its test
+// (docs/design.md §7).
 // Analytic shapes (every kind but NURBS; each has a twin: Gpu<Type>, ds_<file>_data,
 // ds_<file>_search, ds_<file>_attributes).
 #define DS_ANALYTIC_SHAPES(X)                \
@@ -85,35 +86,14 @@
 
 #ifdef __cplusplus
 namespace dicsynth {
-enum class ShapeKind : int {
-  Sphere = DS_SHAPE_SPHERE,
-  Box = DS_SHAPE_BOX,
-  Triangle = DS_SHAPE_TRIANGLE,
-  Plane = DS_SHAPE_PLANE,
-  Rectangle = DS_SHAPE_RECTANGLE,
-  Nurbs = DS_SHAPE_NURBS,
-  Cylinder = DS_SHAPE_CYLINDER,
-};
-enum class ShaderKind : int {
-  Constant = DS_SHADER_CONSTANT,
-  Lambert = DS_SHADER_LAMBERT,
-  Phong = DS_SHADER_PHONG,
-  BlinnPhong = DS_SHADER_BLINN_PHONG,
-  Ggx = DS_SHADER_GGX,
-};
-enum class TextureKind : int {
-  Constant = DS_TEXTURE_CONSTANT,
-  File = DS_TEXTURE_FILE,
-  Checkerboard = DS_TEXTURE_CHECKERBOARD,
-  CircleGrid = DS_TEXTURE_CIRCLE_GRID,
-  Speckle = DS_TEXTURE_SPECKLE,
-};
+// The enumerators of the families with an X-list come from its rows: <Type> = DS_<FAMILY>_<NAME>.
+#define DS_KIND_ENUMERATOR(KIND, Type, file) Type = KIND,
+enum class ShapeKind : int { DS_ANALYTIC_SHAPES(DS_KIND_ENUMERATOR) Nurbs = DS_SHAPE_NURBS };
+enum class ShaderKind : int { DS_REFLECTANCE_MODELS(DS_KIND_ENUMERATOR) };
+enum class TextureKind : int { DS_TEXTURE_MODELS(DS_KIND_ENUMERATOR) };
+enum class CameraKind : int { DS_CAMERA_MODELS(DS_KIND_ENUMERATOR) };
+#undef DS_KIND_ENUMERATOR
 enum class LightKind : int { Point = DS_LIGHT_POINT, Ambient = DS_LIGHT_AMBIENT, Spot = DS_LIGHT_SPOT };
-enum class CameraKind : int {
-  Pinhole = DS_CAMERA_PINHOLE,
-  ThinLens = DS_CAMERA_THIN_LENS,
-  Orthographic = DS_CAMERA_ORTHOGRAPHIC,
-};
 enum class DistortionKind : int {
   None = DS_DISTORTION_NONE,
   Brown = DS_DISTORTION_BROWN,

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <initializer_list>
+#include <string>
 #include <lua.hpp>
 
 #include "scene/scene.h"
@@ -27,6 +29,21 @@ void checkError(const TempFolder& dir, const std::string& text, int line, const 
   CHECK(message == path + ":" + std::to_string(line) + ": " + rest);
 }
 
+// One row of a table of error cases: the scene's text, the line the error must name, the rest of
+// the message after "PATH:LINE: ".
+struct ErrorCase {
+  std::string scene;
+  int line;
+  std::string message;
+};
+
+void checkErrors(const TempFolder& dir, std::initializer_list<ErrorCase> cases) {
+  for (const ErrorCase& c : cases) {
+    INFO(c.scene);
+    checkError(dir, c.scene, c.line, c.message);
+  }
+}
+
 // Up to Lua 5.4.4 the memory error names the exact line; later versions give the line of the
 // last count hook (see LuaSandbox::allocate), which these tests then do not pin down.
 constexpr bool kExactMemoryLine = LUA_VERSION_RELEASE_NUM <= 50404;
@@ -45,9 +62,14 @@ void checkMemoryError(const TempFolder& dir, const std::string& text, int line,
 
 TEST_CASE("scene: syntax errors name their line") {
   TempFolder dir;
-  checkError(dir, "a = 1\nb = = 2\n", 2, "unexpected symbol near '='");
-  checkError(dir, "a = 1\n\n\nb = \"unfinished\n", 4, "unfinished string near '\"unfinished'");
-  checkError(dir, "#!/usr/bin/env dicsynth\nx = (\n", 3, "unexpected symbol near <eof>");
+  checkErrors(dir, {
+      {"a = 1\nb = = 2\n",
+       2, "unexpected symbol near '='"},
+      {"a = 1\n\n\nb = \"unfinished\n",
+       4, "unfinished string near '\"unfinished'"},
+      {"#!/usr/bin/env dicsynth\nx = (\n",
+       3, "unexpected symbol near <eof>"},
+  });
 }
 
 TEST_CASE("scene: binary chunks are refused") {
@@ -58,32 +80,37 @@ TEST_CASE("scene: binary chunks are refused") {
 
 TEST_CASE("scene: unknown keys are errors that list the valid keys") {
   TempFolder dir;
-  checkError(dir, "\n\ns = Shape.Sphere { raduis = 0.1 }\n", 3,
-             "Shape.Sphere: unknown key 'raduis' (did you mean 'radius'?); valid keys: radius, "
-             "location");
-  checkError(dir, "s = Shape.Box { size = {1, 1, 1}; colour = 1; zz = 2 }\n", 1,
-             "Shape.Box: unknown keys 'colour', 'zz'; valid keys: size, location");
-  checkError(dir, "s = Shape.Sphere { 0.1 }\n", 1,
-             "Shape.Sphere: parameters must be named (key = value), got a value at [1]; valid "
-             "keys: radius, location");
-  checkError(dir, "s = Shape.Sphere(0.1)\n", 1,
-             "Shape.Sphere: expected a table of parameters { key = value; ... }, got number");
+  checkErrors(dir, {
+      {"\n\ns = Shape.Sphere { raduis = 0.1 }\n",
+       3, "Shape.Sphere: unknown key 'raduis' (did you mean 'radius'?); valid keys: radius, "
+          "location"},
+      {"s = Shape.Box { size = {1, 1, 1}; colour = 1; zz = 2 }\n",
+       1, "Shape.Box: unknown keys 'colour', 'zz'; valid keys: size, location"},
+      {"s = Shape.Sphere { 0.1 }\n",
+       1, "Shape.Sphere: parameters must be named (key = value), got a value at [1]; valid "
+          "keys: radius, location"},
+      {"s = Shape.Sphere(0.1)\n",
+       1, "Shape.Sphere: expected a table of parameters { key = value; ... }, got number"},
+  });
 }
 
 TEST_CASE("scene: wrong types, missing and non-finite values") {
   TempFolder dir;
-  checkError(dir, "x = 1\ns = Shape.Sphere { radius = \"0.1\" }\n", 2,
-             "Shape.Sphere: 'radius' must be a number, got string");
-  checkError(dir, "s = Shape.Sphere {}\n", 1, "Shape.Sphere: missing required 'radius'");
-  checkError(dir, "s = Shape.Sphere { radius = 1/0 }\n", 1,
-             "Shape.Sphere: 'radius' must be finite, got inf");
-  checkError(dir, "s = Shape.Sphere { radius = 1; location = {0, 0, -1/0} }\n", 1,
-             "Shape.Sphere: 'location'[3] must be finite, got -inf");
-  checkError(dir, "s = Shape.Sphere { radius = 1; location = {0, 0} }\n", 1,
-             "Shape.Sphere: 'location' must be {x, y, z} (3 numbers), got 2 values");
-  checkError(dir, "s = Shape.Sphere { radius = 1; location = {x = 0, y = 0, z = 0} }\n", 1,
-             "Shape.Sphere: 'location' must be {x, y, z} (3 numbers), got a table with named or "
-             "missing entries");
+  checkErrors(dir, {
+      {"x = 1\ns = Shape.Sphere { radius = \"0.1\" }\n",
+       2, "Shape.Sphere: 'radius' must be a number, got string"},
+      {"s = Shape.Sphere {}\n",
+       1, "Shape.Sphere: missing required 'radius'"},
+      {"s = Shape.Sphere { radius = 1/0 }\n",
+       1, "Shape.Sphere: 'radius' must be finite, got inf"},
+      {"s = Shape.Sphere { radius = 1; location = {0, 0, -1/0} }\n",
+       1, "Shape.Sphere: 'location'[3] must be finite, got -inf"},
+      {"s = Shape.Sphere { radius = 1; location = {0, 0} }\n",
+       1, "Shape.Sphere: 'location' must be {x, y, z} (3 numbers), got 2 values"},
+      {"s = Shape.Sphere { radius = 1; location = {x = 0, y = 0, z = 0} }\n",
+       1, "Shape.Sphere: 'location' must be {x, y, z} (3 numbers), got a table with named or "
+          "missing entries"},
+  });
   checkError(
       dir,
       "o = Object.Simple { shape = Shape.Sphere { radius = 1 };\n"
@@ -93,80 +120,88 @@ TEST_CASE("scene: wrong types, missing and non-finite values") {
   std::string shapeKinds;  // every kind of the registry (host/shapes/registry.h), in number order
   for (const shapes::ShapeKindInfo& k : shapes::kShapeKinds) shapeKinds += std::string("Shape.") + k.name + ", ";
   CHECK(shapeKinds.rfind("Shape.Sphere, Shape.Box, Shape.Triangle, Shape.Plane, Shape.Rectangle, Shape.Nurbs, ", 0) == 0);
-  checkError(dir, "o = Object.Simple { shape = 1 }\n", 1,
-             "Object.Simple: 'shape' must be a Shape (" + shapeKinds +
-                 "Nurbs.plate, Nurbs.cylinderSegment, Nurbs.dogbone), got number");
-  checkError(dir, "o = Object.Simple { shader = Shader.Lambert {} }\n", 1,
-             "Object.Simple: missing required 'shape'");
-  checkError(dir, "t = Shape.Triangle { vertices = {{0,0,0}, {1,0,0}, {0,'1',0}} }\n", 1,
-             "Shape.Triangle: 'vertices'[3][2] must be a number, got string");
-  checkError(dir, "t = Texture.File { fileName = 3 }\n", 1,
-             "Texture.File: 'fileName' must be a string, got number");
+  checkErrors(dir, {
+      {"o = Object.Simple { shape = 1 }\n",
+       1, "Object.Simple: 'shape' must be a Shape (" + shapeKinds +
+          "Nurbs.plate, Nurbs.cylinderSegment, Nurbs.dogbone), got number"},
+      {"o = Object.Simple { shader = Shader.Lambert {} }\n",
+       1, "Object.Simple: missing required 'shape'"},
+      {"t = Shape.Triangle { vertices = {{0,0,0}, {1,0,0}, {0,'1',0}} }\n",
+       1, "Shape.Triangle: 'vertices'[3][2] must be a number, got string"},
+      {"t = Texture.File { fileName = 3 }\n",
+       1, "Texture.File: 'fileName' must be a string, got number"},
+  });
 }
 
 TEST_CASE("scene: out-of-range values") {
   TempFolder dir;
   const std::string cam = "c = Camera.Pinhole { focalLength = 0.01; pixelSize = {1e-5, 1e-5}; ";
-  checkError(dir, "s = Shape.Sphere { radius = -1 }\n", 1,
-             "Shape.Sphere: 'radius' must be > 0 (metres), got -1");
-  checkError(dir, cam + "resolution = {0, 10} }\n", 1,
-             "Camera.Pinhole: 'resolution' must be two integers in 1..65535, got 0");
-  checkError(dir, cam + "resolution = {10.5, 10} }\n", 1,
-             "Camera.Pinhole: 'resolution' must be two integers in 1..65535, got 10.5");
-  checkError(dir, cam + "resolution = {10, 10}; bitsPerPixel = 17 }\n", 1,
-             "Camera.Pinhole: 'bitsPerPixel' must be an integer in 1..16, got 17");
-  checkError(dir, cam + "resolution = {10, 10}; bitsPerPixel = 8.5 }\n", 1,
-             "Camera.Pinhole: 'bitsPerPixel' must be an integer, got 8.5");
-  checkError(dir, cam + "resolution = {10, 10}; fillFactor = 1.5 }\n", 1,
-             "Camera.Pinhole: 'fillFactor' must be in (0, 1], got 1.5");
-  checkError(dir, "c = Camera.Pinhole { resolution = {10, 10}; pixelSize = {1e-5, 1e-5} }\n", 1,
-             "Camera.Pinhole: missing required 'focalLength'");
-  checkError(dir, "d = Distortion.Brown { radial = {1, 2, 3, 4} }\n", 1,
-             "Distortion.Brown: 'radial' must be {k1[, k2[, k3]]} (1 to 3 numbers), got 4 values");
-  checkError(dir, "s = Shader.Lambert { color = {1, -0.5, 1} }\n", 1,
-             "Shader.Lambert: 'color' must be >= 0, got -0.5");
-  checkError(dir, "l = Light.Point { position = {0, 0, 0}; intensity = 0 }\n", 1,
-             "Light.Point: 'intensity' must be > 0, got 0");
+  checkErrors(dir, {
+      {"s = Shape.Sphere { radius = -1 }\n",
+       1, "Shape.Sphere: 'radius' must be > 0 (metres), got -1"},
+      {cam + "resolution = {0, 10} }\n",
+       1, "Camera.Pinhole: 'resolution' must be two integers in 1..65535, got 0"},
+      {cam + "resolution = {10.5, 10} }\n",
+       1, "Camera.Pinhole: 'resolution' must be two integers in 1..65535, got 10.5"},
+      {cam + "resolution = {10, 10}; bitsPerPixel = 17 }\n",
+       1, "Camera.Pinhole: 'bitsPerPixel' must be an integer in 1..16, got 17"},
+      {cam + "resolution = {10, 10}; bitsPerPixel = 8.5 }\n",
+       1, "Camera.Pinhole: 'bitsPerPixel' must be an integer, got 8.5"},
+      {cam + "resolution = {10, 10}; fillFactor = 1.5 }\n",
+       1, "Camera.Pinhole: 'fillFactor' must be in (0, 1], got 1.5"},
+      {"c = Camera.Pinhole { resolution = {10, 10}; pixelSize = {1e-5, 1e-5} }\n",
+       1, "Camera.Pinhole: missing required 'focalLength'"},
+      {"d = Distortion.Brown { radial = {1, 2, 3, 4} }\n",
+       1, "Distortion.Brown: 'radial' must be {k1[, k2[, k3]]} (1 to 3 numbers), got 4 values"},
+      {"s = Shader.Lambert { color = {1, -0.5, 1} }\n",
+       1, "Shader.Lambert: 'color' must be >= 0, got -0.5"},
+      {"l = Light.Point { position = {0, 0, 0}; intensity = 0 }\n",
+       1, "Light.Point: 'intensity' must be > 0, got 0"},
+  });
   checkError(
       dir, "t = Shape.Triangle { vertices = {{0,0,0}, {1,1,1}, {2,2,2}} }\n", 1,
       "Shape.Triangle: 'vertices' must span a triangle, but they are coincident or collinear");
-  checkError(dir,
-             "\no = Object.Simple { shape = Shape.Sphere { radius = 1 };\n"
-             "  transform = homography {1,0,0,0, 0,1,0,0, 0,0,0,0, 0,0,0,1} }\n",
-             2, "Object.Simple: 'transform' must be invertible, but its determinant is 0");
-  checkError(dir, "s = scale(1, 0, 1)\n", 1, "scale: factors must be non-zero, got 0");
-  checkError(dir, "r = rotate_y()\n", 1,
-             "rotate_y: expected one angle in radians, got 0 arguments");
-  checkError(dir, "t = translate(1, 2)\n", 1,
-             "translate: expected translate(x, y, z) or translate{x, y, z}, got 2 arguments");
-  checkError(dir, "\nt = translate(1, 2, 3) * 2\n", 2,
-             "'*' composes two transforms, got Transform * number");
+  checkErrors(dir, {
+      {"\no = Object.Simple { shape = Shape.Sphere { radius = 1 };\n"
+       "  transform = homography {1,0,0,0, 0,1,0,0, 0,0,0,0, 0,0,0,1} }\n",
+       2, "Object.Simple: 'transform' must be invertible, but its determinant is 0"},
+      {"s = scale(1, 0, 1)\n",
+       1, "scale: factors must be non-zero, got 0"},
+      {"r = rotate_y()\n",
+       1, "rotate_y: expected one angle in radians, got 0 arguments"},
+      {"t = translate(1, 2)\n",
+       1, "translate: expected translate(x, y, z) or translate{x, y, z}, got 2 arguments"},
+      {"\nt = translate(1, 2, 3) * 2\n",
+       2, "'*' composes two transforms, got Transform * number"},
+  });
 }
 
 TEST_CASE("scene: camera pose errors") {
   TempFolder dir;
   const std::string cam =
       "c = Camera.Pinhole { resolution = {8, 8}; focalLength = 0.01; pixelSize = {1e-5, 1e-5};\n  ";
-  checkError(dir, cam + "transform = translate(1, 0, 0); position = {0, 0, 0} }\n", 1,
-             "Camera.Pinhole: give either 'transform' or 'position'/'lookAt'/'up', not both");
-  checkError(dir, cam + "transform = scale(2) }\n", 1,
-             "Camera.Pinhole: 'transform' (worldFromCamera) must be rigid, a rotation and a "
-             "translation, but its 3x3 part is not orthonormal (max |R^T R - I| = 3)");
-  checkError(dir, cam + "transform = scale(1, 1, -1) }\n", 1,
-             "Camera.Pinhole: 'transform' (worldFromCamera) must be rigid, a rotation and a "
-             "translation, but it mirrors (determinant -1)");
-  checkError(dir, cam + "transform = homography{1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,1,1} }\n", 1,
-             "Camera.Pinhole: 'transform' (worldFromCamera) must be rigid, a rotation and a "
-             "translation, but its bottom row is not 0 0 0 1");
-  checkError(dir, cam + "position = {1, 2, 3}; lookAt = {1, 2, 3} }\n", 1,
-             "Camera.Pinhole: 'lookAt' must differ from 'position'");
-  checkError(dir, cam + "lookAt = {0, 5, 0} }\n", 1,
-             "Camera.Pinhole: 'up' must not be zero or parallel to the viewing direction (lookAt - "
-             "position)");
-  checkError(dir, cam + "up = {0, 0, 1} }\n", 1,
-             "Camera.Pinhole: 'up' needs 'lookAt' (it orients the viewing direction)");
-  checkError(dir, cam + "distortion = Shape.Sphere { radius = 1 } }\n", 1,
-             "Camera.Pinhole: 'distortion' must be a Distortion (Distortion.Brown, Distortion.Rational), got Shape");
+  checkErrors(dir, {
+      {cam + "transform = translate(1, 0, 0); position = {0, 0, 0} }\n",
+       1, "Camera.Pinhole: give either 'transform' or 'position'/'lookAt'/'up', not both"},
+      {cam + "transform = scale(2) }\n",
+       1, "Camera.Pinhole: 'transform' (worldFromCamera) must be rigid, a rotation and a "
+          "translation, but its 3x3 part is not orthonormal (max |R^T R - I| = 3)"},
+      {cam + "transform = scale(1, 1, -1) }\n",
+       1, "Camera.Pinhole: 'transform' (worldFromCamera) must be rigid, a rotation and a "
+          "translation, but it mirrors (determinant -1)"},
+      {cam + "transform = homography{1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,1,1} }\n",
+       1, "Camera.Pinhole: 'transform' (worldFromCamera) must be rigid, a rotation and a "
+          "translation, but its bottom row is not 0 0 0 1"},
+      {cam + "position = {1, 2, 3}; lookAt = {1, 2, 3} }\n",
+       1, "Camera.Pinhole: 'lookAt' must differ from 'position'"},
+      {cam + "lookAt = {0, 5, 0} }\n",
+       1, "Camera.Pinhole: 'up' must not be zero or parallel to the viewing direction (lookAt - "
+          "position)"},
+      {cam + "up = {0, 0, 1} }\n",
+       1, "Camera.Pinhole: 'up' needs 'lookAt' (it orients the viewing direction)"},
+      {cam + "distortion = Shape.Sphere { radius = 1 } }\n",
+       1, "Camera.Pinhole: 'distortion' must be a Distortion (Distortion.Brown, Distortion.Rational), got Shape"},
+  });
 }
 
 TEST_CASE("scene: a missing texture file names the line, the given and the resolved path") {
@@ -183,34 +218,49 @@ TEST_CASE("scene: a missing texture file names the line, the given and the resol
 
 TEST_CASE("scene: runtime errors and error() calls") {
   TempFolder dir;
-  checkError(dir, "x = 1\n\nerror(\"x\")\n", 3, "x");
-  checkError(dir, "local function f()\n  error('deep')\nend\n\nf()\n", 2, "deep");
-  checkError(dir, "error({})\n", 1, "(error object is a table value)");
-  checkError(dir, "x = 1\nerror('two\\nlines')\n", 2, "two\\nlines");
-  checkError(dir, "x = 1\nlocal y = nil + 1\n", 2, "attempt to perform arithmetic on a nil value");
-  checkError(dir, "x = 1\nShape.Spere { radius = 1 }\n", 2,
-             "attempt to call a nil value (field 'Spere')");
-  checkError(dir,
-             "\nlocal ok = pcall(Shape.Sphere, {})\nerror(select(2, pcall(Shape.Sphere, {})), 0)\n",
-             3, "Shape.Sphere: missing required 'radius'");
+  checkErrors(dir, {
+      {"x = 1\n\nerror(\"x\")\n",
+       3, "x"},
+      {"local function f()\n  error('deep')\nend\n\nf()\n",
+       2, "deep"},
+      {"error({})\n",
+       1, "(error object is a table value)"},
+      {"x = 1\nerror('two\\nlines')\n",
+       2, "two\\nlines"},
+      {"x = 1\nlocal y = nil + 1\n",
+       2, "attempt to perform arithmetic on a nil value"},
+      {"x = 1\nShape.Spere { radius = 1 }\n",
+       2, "attempt to call a nil value (field 'Spere')"},
+      {"\nlocal ok = pcall(Shape.Sphere, {})\nerror(select(2, pcall(Shape.Sphere, {})), 0)\n",
+       3, "Shape.Sphere: missing required 'radius'"},
+  });
 }
 
 TEST_CASE("scene: sandboxed functions are absent") {
   TempFolder dir;
-  checkError(dir, "x = 1\nlocal f = io.open('/etc/passwd')\n", 2,
-             "attempt to index a nil value (global 'io')");
-  checkError(dir, "os.exit(1)\n", 1, "attempt to index a nil value (global 'os')");
-  checkError(dir, "\nrequire('socket')\n", 2, "attempt to call a nil value (global 'require')");
-  checkError(dir, "load('return 1')\n", 1, "attempt to call a nil value (global 'load')");
-  checkError(dir, "loadfile('x.lua')\n", 1, "attempt to call a nil value (global 'loadfile')");
-  checkError(dir, "dofile('x.lua')\n", 1, "attempt to call a nil value (global 'dofile')");
-  checkError(dir, "collectgarbage()\n", 1, "attempt to call a nil value (global 'collectgarbage')");
-  checkError(dir, "\n\nlocal s = string.dump(print)\n", 3,
-             "attempt to call a nil value (field 'dump')");
-  checkError(dir, "local t = setmetatable({}, { __gc = function() while true do end end })\n", 1,
-             "setmetatable: __gc metamethods are not allowed in scenes (finalizers run outside "
-             "the instruction limit)");
-  checkError(dir, "setmetatable(_G, nil)\n", 1, "cannot change a protected metatable");
+  checkErrors(dir, {
+      {"x = 1\nlocal f = io.open('/etc/passwd')\n",
+       2, "attempt to index a nil value (global 'io')"},
+      {"os.exit(1)\n",
+       1, "attempt to index a nil value (global 'os')"},
+      {"\nrequire('socket')\n",
+       2, "attempt to call a nil value (global 'require')"},
+      {"load('return 1')\n",
+       1, "attempt to call a nil value (global 'load')"},
+      {"loadfile('x.lua')\n",
+       1, "attempt to call a nil value (global 'loadfile')"},
+      {"dofile('x.lua')\n",
+       1, "attempt to call a nil value (global 'dofile')"},
+      {"collectgarbage()\n",
+       1, "attempt to call a nil value (global 'collectgarbage')"},
+      {"\n\nlocal s = string.dump(print)\n",
+       3, "attempt to call a nil value (field 'dump')"},
+      {"local t = setmetatable({}, { __gc = function() while true do end end })\n",
+       1, "setmetatable: __gc metamethods are not allowed in scenes (finalizers run outside "
+          "the instruction limit)"},
+      {"setmetatable(_G, nil)\n",
+       1, "cannot change a protected metatable"},
+  });
 }
 
 TEST_CASE("scene: a runaway loop stops at the instruction limit") {

@@ -229,7 +229,8 @@ Error cutShortError(std::size_t count, const char* what, const std::string& firs
 
 // Which geometric values a hit pixel hands back: the layer schema's GPU slots of the layers that
 // need the backend's geometry (model/layers.h), read once per render so that the per-pixel loop
-// below is straight-line code (a switch per pixel and slot cost ~6 % of a 1-spp Figure 1 render).
+// below is straight-line code (a switch per pixel and slot was slower: bench/RESULTS.md, "Figures
+// moved from code comments").
 // The radiance and the object are read for every pixel.
 struct GeometrySlots {
   bool position = false, depth = false, uv = false, normal = false;

@@ -107,7 +107,7 @@ class Renderer {
   // textures' shared coefficient arrays in order, held so that no other array can take their
   // addresses, and the variant. Texels are matched by identity, not by bytes: comparing them would
   // mean repacking ~34 MB per render (Figure 1); with the texture cache's copy, which sharing also
-  // removed, that was ~14 % of a sweep point's time on lavapipe (bench/RESULTS.md, "Sweeps").
+  // removed, was a visible share of a sweep point's time on lavapipe (bench/RESULTS.md, "Sweeps").
   // Sweep points share the arrays through the texture cache (geometry/texture_cache.h).
   struct CachedTexels {
     std::vector<std::shared_ptr<const std::vector<double>>> sources;

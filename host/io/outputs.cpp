@@ -72,8 +72,8 @@ std::string tiffDescription(const Camera& camera, const OutputInfo& info) {
 
 // One EXR channel: its name, its type and how to fill it. fill(first, count, out, stride) writes the
 // 32-bit words of pixels first .. first + count − 1 to out[0], out[stride], ...: one inlined loop per
-// channel and band of rows (a std::function call per pixel and channel cost ~3 % of a sweep point's
-// CPU in perf).
+// channel and band of rows (a std::function call per pixel and channel showed in perf: bench/
+// RESULTS.md, "Sweeps").
 struct ExrChannel {
   std::string name;
   bool uintValue = false;  // objectId, defects: exact 32-bit integers; the others float32
@@ -242,8 +242,8 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
   const int width = image.width_px;
   Imf::Header header(width, image.height_px);
   header.compression() = exrCompression(info.exrCompression);
-  // zlib level 1 for zip and zips: on Figure 1 (1600 × 1200, 20 channels, 2 cores) the write takes
-  // ~13 % less time than at OpenEXR's default level 4 for a 0.75 % larger file (bench/RESULTS.md).
+  // zlib level 1 for zip and zips: on Figure 1 the write is faster than at OpenEXR's default level 4
+  // for a slightly larger file (bench/RESULTS.md, "Speed as a user times it").
   header.zipCompressionLevel() = 1;
   for (const ExrChannel& c : channels)  // objectId, defects: exact 32-bit integers; the others float32
     header.channels().insert(c.name, Imf::Channel(c.uintValue ? Imf::UINT : Imf::FLOAT));

@@ -52,9 +52,9 @@ std::vector<dvec2> computeDistortionField(const PreparedCamera& pc) {
 
 // The field depends only on the image size, the intrinsics and the distortion coefficients, which
 // the points of a sweep rarely change, while computing it (a Newton inversion per pixel, in double)
-// cost about 9 % of a sweep point's CPU time (bench/RESULTS.md). So the last two fields computed are
-// kept, keyed by exactly those numbers (compared exactly), so that a sweep computes each camera's
-// once; two entries: the two cameras of a stereo rig.
+// was a visible share of a sweep point's CPU time (bench/RESULTS.md, "Sweeps"). So the last two
+// fields computed are kept, keyed by exactly those numbers (compared exactly), so that a sweep
+// computes each camera's once; two entries: the two cameras of a stereo rig.
 std::vector<dvec2> distortionField(const PreparedCamera& pc) {
   const auto& m = pc.model;
   const auto& k = m.brown;

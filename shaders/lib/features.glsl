@@ -13,9 +13,10 @@ layout(constant_id = DS_SPEC_HAS_QUINTIC_TEXTURES) const bool HAS_QUINTIC_TEXTUR
 // which otherwise run every case of a switch whose value they cannot prove uniform.
 layout(constant_id = DS_SPEC_SHAPE_KINDS) const uint SHAPE_KINDS = 0xffffffffu;
 #define DS_HAS_SHAPE(kind) ((SHAPE_KINDS & (1u << (kind))) != 0u)
-// The NURBS search is most of the module (55 % of fp32's SPIR-V), and lavapipe translates and
-// optimizes all of it on every pipeline creation, specialized out or not: CMake also builds each
-// variant with DS_NO_NURBS, which scenes without NURBS use (host/gpu/renderer.cpp, renderSpirv).
+// The NURBS search is most of the module (bench/RESULTS.md, "Render modules without the NURBS
+// search"), and lavapipe translates and optimizes all of it on every pipeline creation, specialized
+// out or not: CMake also builds each variant with DS_NO_NURBS, which scenes without NURBS use
+// (host/gpu/renderer.cpp, renderSpirv).
 #if defined(DS_NO_NURBS)
 #define DS_HAS_NURBS false
 #else

@@ -100,7 +100,8 @@ struct NearestHit {
   // hit is ground truth (`ties`: the pixel-centre ray, visibility queries). Sample rays order by
   // float t: their radiance is float arithmetic in df64 anyway, a misordered sample needs its ray
   // within float rounding (~1e-8 of the distance) of a crossing line, and the band's bookkeeping
-  // cost scenes of several objects 12-16 % in df64 on every sample (bench/RESULTS.md).
+  // cost scenes of several objects in df64 on every sample (bench/RESULTS.md, "The edge rules and
+  // the df64 tie band").
   Candidate second;
 #endif
 };

@@ -1,6 +1,6 @@
 # ds_kind_registry(FAMILY PREFIX FOLDER [TWINS_REQUIRED])
-# Each family's X-list in shaders/shared/kinds.h has a row X(DS_<PREFIX>_<NAME>, <Type>, <file>) per kind (the only
-# "X(DS_<PREFIX>_" text in kinds.h), naming its home host/<folder>/<file>.h and its GLSL twin
+# Each family's X-list in shaders/shared/kinds.h has a row X(DS_<PREFIX>_<NAME>, <Type>, <file>)
+# per kind (the only "X(DS_<PREFIX>_" text in kinds.h), naming its home host/<folder>/<file>.h and its GLSL twin
 # shaders/<folder>/<file>.glsl. ds_kind_registry writes, under generated/registry/:
 #   <family>_homes.h    #include of every home (the C++ registry host/<folder>/registry.h);
 #   <family>_twins.glsl #include of every twin that exists, DS_<FAMILY>_TWINS(X): X(number, file)

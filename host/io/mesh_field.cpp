@@ -29,7 +29,8 @@ const VtkModule& vtkModule() {
   return module;
 }
 
-// Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "literal" + std::string&&.
+// Appended piece by piece: on "literal" + std::string&& chains GCC 12 warns -Wrestrict (silenced for
+// it in CMakeLists.txt) and, in the message below, -Wfree-nonheap-object; both false positives.
 std::string point(const dvec3& p) {
   std::string out = "(";
   for (int c = 0; c < 3; ++c) (out += shortestNumber(p[c])) += c < 2 ? ", " : ")";

@@ -61,8 +61,8 @@ class ReferenceFrame {
  public:
   // `otherFrames` false: only the reference frame itself will be derived (a single-frame render, every
   // sweep point), so the projections x_ref(m), which only other frames' flow uses, are not computed
-  // (a distortion inversion per pixel in projectToImage's fold test; its share of a sweep point's CPU
-  // is in bench/RESULTS.md, "Sweeps").
+  // (a distortion inversion per pixel in projectToImage's fold test; its share of a sweep point's
+  // CPU is in bench/RESULTS.md, "Sweeps").
   // `motion` false: no layer derived from it is asked for (--layers without disp and flow): it only
   // keeps the scene, and deriveTruth finds no view.
   ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result, bool otherFrames = true,

@@ -1,5 +1,6 @@
 // Camera.Orthographic on the GPU: the twin of host/cameras/orthographic.h (read it for the model).
-// Included by lib/camera.glsl (DS_CAMERA_TWINS), which builds the world ray from this camera-frame one.
+// Included through lib/camera.glsl's registry (DS_CAMERA_TWINS), which builds the world ray from
+// this camera-frame one.
 // It has no data of its own: the magnification is in the intrinsics (px per metre of object).
 #ifndef DS_CAMERAS_ORTHOGRAPHIC_GLSL
 #define DS_CAMERAS_ORTHOGRAPHIC_GLSL

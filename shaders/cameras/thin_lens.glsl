@@ -1,5 +1,6 @@
 // Camera.ThinLens on the GPU: the twin of host/cameras/thin_lens.h (read it for the model).
-// Included by lib/camera.glsl (DS_CAMERA_TWINS), which builds the world ray from this camera-frame one.
+// Included through lib/camera.glsl's registry (DS_CAMERA_TWINS), which builds the world ray from
+// this camera-frame one.
 #ifndef DS_CAMERAS_THIN_LENS_GLSL
 #define DS_CAMERAS_THIN_LENS_GLSL
 

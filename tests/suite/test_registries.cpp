@@ -83,11 +83,13 @@ std::map<int, std::string> xListRows(const std::string& glsl, const std::string&
 // (host/<folder>/<file>.h holds struct <Type>).
 std::map<int, std::string> kindsListRows(const std::string& list) {
   const std::string body = xListBody(readSource("shaders/shared/kinds.h"), list);
+  const std::map<std::string, int> numbers = kindNumbers();
   std::map<int, std::string> rows;
   const std::regex row(R"(X\((DS_[A-Z_]+), ([A-Za-z]+), ([a-z_]+)\))");
   for (std::sregex_iterator it(body.begin(), body.end(), row), e; it != e; ++it) {
     INFO((*it)[0].str());
-    const int number = kindNumbers().at((*it)[1].str());
+    REQUIRE(numbers.count((*it)[1].str()) == 1);
+    const int number = numbers.at((*it)[1].str());
     CHECK(rows.count(number) == 0);
     rows[number] = (*it)[3].str();
   }

@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <iterator>
+#include <type_traits>
 #include <limits>
 #include <variant>
 
@@ -163,8 +164,23 @@ int packNurbs(const PreparedNurbs& n, int degree, PackedScene<Layout>& p) {
     const dvec2 margin = 0.125 * (sp.localMax - sp.localMin);
     std::array<dvec4, kMaxBezierPoints> points;
     extractBezier(bp.points.data(), bp.degreeU, bp.degreeV, sp.localMin - margin, sp.localMax + margin, points.data());
-    for (std::size_t i = 0; i < bp.points.size(); ++i)
-      p.nurbsPoints.push_back(h4<Layout>(points[i].x, points[i].y, points[i].z, points[i].w));
+    if constexpr (std::is_same_v<typename Layout::hreal4, df64x4>) {
+      // df64: an anchor A (the mean of the points' positions, w = 1) first, then the points
+      // relative to it, (X − w A, w): the float search then works in coordinates of the
+      // sub-patch's size, and the df64 ray is placed next to it in df64 (shaders/lib/nurbs.glsl,
+      // "the ray frame anchored at the sub-patch").
+      dvec3 anchor{0};
+      for (std::size_t i = 0; i < bp.points.size(); ++i) anchor += dvec3(points[i]) / points[i].w;
+      anchor /= double(bp.points.size());
+      p.nurbsPoints.push_back(h4<Layout>(anchor.x, anchor.y, anchor.z, 1));
+      for (std::size_t i = 0; i < bp.points.size(); ++i) {
+        const dvec3 x = dvec3(points[i]) - points[i].w * anchor;
+        p.nurbsPoints.push_back(h4<Layout>(x.x, x.y, x.z, points[i].w));
+      }
+    } else {
+      for (std::size_t i = 0; i < bp.points.size(); ++i)
+        p.nurbsPoints.push_back(h4<Layout>(points[i].x, points[i].y, points[i].z, points[i].w));
+    }
   }
   return nodeOffset;
 }

@@ -473,6 +473,9 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   int na = 0, nb = 0, depth = 0;
   uint axisBits = 0u, lowerFirstBits = 0u, secondBits = 0u;
   real2 lo = real2(0.0), hi = real2(1.0);  // the box enlarged by 1/8, in the stored points' coordinates
+#if defined(DS_DF64)
+  real sShift = 0.0;  // the ray frame's origin: oh + sShift dh (the MODE_SUBPATCH step)
+#endif
   // Newton's state in the current box, and what its examination said.
   real2 t = real2(0.5);
   int newtonSteps = 0;
@@ -505,7 +508,29 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
     if (mode == DS_NURBS_MODE_SUBPATCH) {
       local = nurbsSubPatches[k].local;
       info = nurbsSubPatches[k].info;
+#if defined(DS_DF64)
+      // The ray frame anchored at the sub-patch: its points are stored relative to an anchor A
+      // (host/gpu/pack.cpp), and the frame's origin is the df64 ray's point o' = oh + sShift dh
+      // nearest A (sShift in float: any value keeps o' on the df64 ray), placed relative to A in
+      // df64 and only then rounded. So the float coordinates of the search carry rounding errors
+      // of the sub-patch's size and the ray's distance from it (ε |o' − A|, ε |X − w A|), where
+      // coordinates of the object frame carried ε |o| (~2e-8 m at 0.3 m): a ray passing that
+      // close inside a fold's tangency was taken for a miss by the float search, which excluded
+      // the near roots' boxes (tests/nurbs/test_nurbs_random.cpp's long run, scene 52). The
+      // float direction d errs by ~ε rad, ε |X − o'| at the points: of the same size. `pad`, sized
+      // for object-frame coordinates, is kept: larger than these errors, it only costs subdivision.
+      {
+        const hreal3 anchorOffset = h_sub(h_xyz(nurbsPoints[info.z]), oh);  // A − oh
+        sShift = dot(h_real(anchorOffset), d) / (dLength * dLength);
+        const real3 origin = h_real(h_sub(h_mul(dh, sShift), anchorOffset));  // o' − A
+        RayPlanes anchored = planes;
+        anchored.c1 = dot(planes.n1, origin);
+        anchored.c2 = dot(planes.n2, origin);
+        ds_points_load_ray(info.z + 1, anchored, dn, dot(dn, origin), cp);  // [-1/8, 9/8]², as below
+      }
+#else
       ds_points_load_ray(info.z, planes, dn, c3, cp);  // the sub-patch enlarged by 1/8: [-1/8, 9/8]²
+#endif
       ia = 0u;
       ib = 0u;
       na = 0;
@@ -526,7 +551,12 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
         ds_restrict_curves(q, 1, NURBS_DEGREE + 1, lo.x, hi.x);  // along a, each column j
       }
       real2 start;
+#if defined(DS_DF64)
+      const int outcome = ds_examine_box(q, pad, (sMin - sShift) * dLength - pad, (sMax - sShift) * dLength + pad, start,
+                                         split, lowerFirst);
+#else
       const int outcome = ds_examine_box(q, pad, sMin * dLength - pad, sMax * dLength + pad, start, split, lowerFirst);
+#endif
       last = depth >= DS_NURBS_MAX_BOX_DEPTH;
       if (outcome == DS_BOX_EMPTY) {
         boxDone = true;
@@ -597,7 +627,11 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
 #if defined(DS_FP32)
           if (beyondEdge && length(S.xy) > DS_NURBS_RESIDUAL_TOLERANCE * scale * abs(S.w)) keep = false;
 #endif
+#if defined(DS_DF64)
+          s = sShift + S.z / (S.w * dLength);
+#else
           s = S.z / (S.w * dLength);
+#endif
         }
 #if defined(DS_DF64)
         // Near the surface's own edge the float root cannot tell inside from outside (hit or

@@ -73,7 +73,9 @@ struct GpuNurbsNode {
 
 struct GpuNurbsSubPatch {
   vec4 local;  // aMin, bMin, aMax, bMax: range of the patch's local parameters (dyadic: exact in float)
-  ivec4 info;  // patch, degenerate (0/1: informative, the search treats every sub-patch alike), first of its own control points (range enlarged by 1/8), 0
+  // patch, degenerate (0/1: informative, the search treats every sub-patch alike), first of its own
+  // control points (range enlarged by 1/8; df64: an anchor, then the points relative to it), 0
+  ivec4 info;
 };
 
 struct GpuNurbsPatch {

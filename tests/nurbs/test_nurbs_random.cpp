@@ -21,7 +21,9 @@
 // What the suite's scenes found (fixed): df64 kept the farther of two crossing surfaces whose hits
 // were within float rounding along the ray (lib/trace.glsl, the tie band); df64 lost a root 1e-6
 // from a knot line and one 2.5e-6 inside a surface edge with wild weights, and fp32 accepted a hit
-// 5.7 µm beyond an edge next to a pole (lib/nurbs.glsl, the edge rules).
+// 5.7 µm beyond an edge next to a pole (lib/nurbs.glsl, the edge rules). The long run's scene 52
+// found df64's float search losing a fold's near roots where the ray passed ~1e-8 m inside its
+// tangency (object-frame rounding; lib/nurbs.glsl, the anchored ray frame, fixed it).
 #include <doctest/doctest.h>
 
 #include <algorithm>

@@ -364,12 +364,14 @@ int ds_examine_box(real4 q[DS_NURBS_MAX_POINTS], real pad, real zLo, real zHi, o
 
   // Undecided: the split direction (spatially longer side) and which half to search first, from
   // the control net: chords along a and b, mean z of the first and last rows along a or b.
+  // A heuristic (any split is correct): one reciprocal per point instead of three divisions.
+  real3 net[DS_NURBS_MAX_POINTS];
+  [[unroll]] for (int i = 0; i < DS_NURBS_MAX_POINTS; ++i) net[i] = real3(0.0);
+  [[unroll]] for (int i = 0; i < DS_NURBS_POINTS; ++i) net[i] = q[i].xyz * (1.0 / q[i].w);
   real chordA = 0.0, chordB = 0.0, zA0 = 0.0, zA1 = 0.0, zB0 = 0.0, zB1 = 0.0;
   [[unroll]] for (int k = 0; k <= n; ++k) {
-    // A heuristic (any split is correct): one reciprocal per point instead of three divisions.
-    const real3 a0 = q[k].xyz * (1.0 / q[k].w), a1 = q[n * (n + 1) + k].xyz * (1.0 / q[n * (n + 1) + k].w);
-    const real3 b0 = q[k * (n + 1)].xyz * (1.0 / q[k * (n + 1)].w);
-    const real3 b1 = q[k * (n + 1) + n].xyz * (1.0 / q[k * (n + 1) + n].w);
+    const real3 a0 = net[k], a1 = net[n * (n + 1) + k];
+    const real3 b0 = net[k * (n + 1)], b1 = net[k * (n + 1) + n];
     chordA = max(chordA, dot(a1 - a0, a1 - a0));
     chordB = max(chordB, dot(b1 - b0, b1 - b0));
     zA0 += a0.z;
@@ -378,6 +380,23 @@ int ds_examine_box(real4 q[DS_NURBS_MAX_POINTS], real pad, real zLo, real zHi, o
     zB1 += b1.z;
   }
   split = chordA >= chordB ? 0 : 1;
+  // A chord underestimates a side whose ends meet (a row through a pole, a row that loops back):
+  // halving the other side then never shrinks the box's hull across this one, and its slabs
+  // multiply, undecided, down to the last depth (a ray 3 mm from a surface with a pole and wild
+  // weights took all of lavapipe's loop budget: tests/nurbs/test_nurbs_random.cpp's long run,
+  // scene 104). So the longest leg of the control net along each side overrules the chords when
+  // the other side's is 4 times the chosen one's (n · the longest leg bounds a row's length; on
+  // an even net legs and chords agree and nothing changes).
+  real legA = 0.0, legB = 0.0;
+  [[unroll]] for (int i = 0; i < n; ++i)
+    [[unroll]] for (int j = 0; j <= n; ++j) {
+      const real3 alongA = net[(i + 1) * (n + 1) + j] - net[i * (n + 1) + j];
+      const real3 alongB = net[j * (n + 1) + i + 1] - net[j * (n + 1) + i];
+      legA = max(legA, dot(alongA, alongA));
+      legB = max(legB, dot(alongB, alongB));
+    }
+  if (split == 0 && legB > 16.0 * legA) split = 1;
+  else if (split == 1 && legA > 16.0 * legB) split = 0;
   lowerFirst = split == 0 ? zA0 <= zA1 : zB0 <= zB1;
   return DS_BOX_SPLIT;
 }

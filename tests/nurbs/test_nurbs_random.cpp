@@ -197,8 +197,12 @@ void compareScene(gpu::Renderer& renderer, const Scene& sceneIn, std::array<Tall
     } catch (const Error& e) {
       // Mesa 22's loop budget (render.comp's sentinel): an honest refusal, not an answer; counted
       // and named, and the scene's other precisions still compared.
-      if (std::string(e.what()).find("cut the shader's loops short") == std::string::npos) throw;
-      t.refused.push_back(label);
+      const std::string message = e.what(), marker = "cut the shader's loops short on ";
+      const std::size_t at = message.find(marker);
+      if (at == std::string::npos) throw;
+      // "N pixels (first: ...)": how many, and where to look.
+      const std::size_t from = at + marker.size(), to = message.find("):", from);
+      t.refused.push_back(label + " (" + message.substr(from, to == std::string::npos ? 0 : to + 1 - from) + ")");
       continue;
     }
     for (std::size_t i = 0; i < pixels; ++i) {

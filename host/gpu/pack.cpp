@@ -7,8 +7,8 @@
 #include <bit>
 #include <cmath>
 #include <iterator>
-#include <type_traits>
 #include <limits>
+#include <type_traits>
 #include <variant>
 
 #include "camera/sampling.h"

@@ -1,13 +1,14 @@
 # ds_kind_registry(FAMILY PREFIX FOLDER [TWINS_REQUIRED])
 # Each family's X-list in shaders/shared/kinds.h has a row X(DS_<PREFIX>_<NAME>, <Type>, <file>)
-# per kind (the only "X(DS_<PREFIX>_" text in kinds.h), naming its home host/<folder>/<file>.h and its GLSL twin
-# shaders/<folder>/<file>.glsl. ds_kind_registry writes, under generated/registry/:
+# per kind (the only "X(DS_<PREFIX>_" text in kinds.h), naming its home host/<folder>/<file>.h
+# and its GLSL twin shaders/<folder>/<file>.glsl. ds_kind_registry writes, under
+# generated/registry/:
 #   <family>_homes.h    #include of every home (the C++ registry host/<folder>/registry.h);
 #   <family>_twins.glsl #include of every twin that exists, DS_<FAMILY>_TWINS(X): X(number, file)
 #                       for those rows in row order (the GLSL registry's dispatch), and
-#                       DS_<FAMILY>_TWIN_FILES(X): X(file) per twin in the
-#                       order of its first row, with DS_<FAMILY>_KINDS_<file>, the bit mask of the
-#                       kinds it draws (textures: the two targets share a twin).
+#                       DS_<FAMILY>_TWIN_FILES(X): X(file) per twin in the order of its first
+#                       row, with DS_<FAMILY>_KINDS_<file>, the bit mask of the kinds it draws
+#                       (textures: the two targets share a twin).
 # So a new kind needs no line in either registry. A missing home, or a missing twin where every
 # kind must have one (TWINS_REQUIRED), stops the configuration.
 # Needs DS_KINDS_TEXT (the text of kinds.h) and DS_GENERATED.

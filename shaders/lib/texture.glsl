@@ -22,7 +22,7 @@
 // of the shading (lib/trace.glsl), the twin of textures::at() in host/textures/registry.h.
 real ds_object_texture(int object, hreal2 uv) {
   const int kind = DS_OBJECT(object, extra).y;
-#define DS_TEXTURE_CASE(twin)                                                        \
+#define DS_TEXTURE_CASE(twin)                                                              \
   if (DS_TEXTURE_COMPILED_##twin && ((1u << uint(kind)) & DS_TEXTURE_KINDS_##twin) != 0u) \
     return ds_##twin##_value(ds_##twin##_data(object), uv);
   DS_TEXTURE_TWIN_FILES(DS_TEXTURE_CASE)

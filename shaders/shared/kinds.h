@@ -20,8 +20,8 @@
 // variant from these rows, in this order; cmake/KindRegistry.cmake reads them (the only
 // "X(DS_<FAMILY>_" text here) to generate the includes of the homes and twins and each GLSL
 // registry's lists of twins (DS_<FAMILY>_TWINS; DS_<FAMILY>_TWIN_FILES with the kinds each
-// draws), and the C++ enums below take their enumerators from them. A new kind is its number above, its row here, its home, its twin and its test
-// (docs/design.md §7).
+// draws), and the C++ enums below take their enumerators from them. A new kind is its number
+// above, its row here, its home, its twin and its test (docs/design.md §7).
 // Analytic shapes (every kind but NURBS; each has a twin: Gpu<Type>, ds_<file>_data,
 // ds_<file>_search, ds_<file>_attributes).
 #define DS_ANALYTIC_SHAPES(X)                \

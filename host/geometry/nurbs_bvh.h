@@ -34,6 +34,13 @@
 // kNurbsMaxLeafSubPatches sub-patches, nodes in depth-first order (the left child follows its
 // parent). bvhDepth is the largest number of edges from the root to a node, so a traversal that
 // pushes one deferred child per level needs a stack of bvhDepth entries.
+// One sub-patch per leaf: the GPU tests a node's box in a cheap loop of its own, but every
+// sub-patch it enters costs a pass of its whole search loop (load, box examination, a Newton
+// step: shaders/lib/nurbs.glsl), on lavapipe whatever its lanes need. Leaves of up to 4 made a
+// ray examine the 3 neighbours of the sub-patch it hits; leaves of 1 let their boxes reject them:
+// NURBS plate 0.74–0.82×, dogbone 0.88–0.91× the render time of leaves of 4 (bench/RESULTS.md,
+// every precision), the CPU reference unchanged, outputs byte-identical. Cost: twice the nodes
+// (2N − 1 for N sub-patches).
 //
 // Cost (measured on this 2-core machine, Release): a smooth bicubic specimen needs about one
 // sub-patch per Bézier patch and ~7 µs per patch: 16 × 16 spans 2 ms, 64 × 64 spans 29 ms,
@@ -50,9 +57,10 @@ namespace dicsynth {
 inline constexpr double kNurbsMaxNormalHalfAngle = 25.0 * kPi / 180.0;
 inline constexpr double kNurbsMaxSpeedRatio = 2.0;
 inline constexpr int kNurbsMaxSplitsPerDirection = 10;
-inline constexpr int kNurbsMaxLeafSubPatches = 4;
-// No surface may need more sub-patches than this (32 MiB of sub-patch records plus their share of
-// the BVH); a larger one is refused with an InputError instead of exhausting time or memory.
+inline constexpr int kNurbsMaxLeafSubPatches = 1;
+// No surface may need more sub-patches than this (on the GPU 32 MiB of sub-patch records, 96 MiB
+// of BVH nodes, and their control points); a larger one is refused with an InputError instead of
+// exhausting time or memory.
 inline constexpr std::size_t kMaxNurbsSubPatches = std::size_t{1} << 20;
 
 struct NurbsSubPatch {

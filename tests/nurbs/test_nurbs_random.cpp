@@ -13,8 +13,8 @@
 // and prints the largest such offset it needed.
 // The CPU reference itself is checked against an independent root finder in
 // tests/nurbs/test_nurbs_oracle.cpp, so that a bug shared by both paths cannot hide.
-// Size: 14 scenes of 320 × 240 rays, 1 075 200 rays per precision, 57 s alone on 2 cores with
-// lavapipe (Mesa 22.3, warm shader cache, 2026-11-27; 87 s beside another test under ctest -j2),
+// Size: 14 scenes of 320 × 240 rays, 1 075 200 rays per precision, 54 s alone on 2 cores with
+// lavapipe (Mesa 22.3, warm shader cache, 2026-11-27; 79 s beside another test under ctest -j2),
 // the three pipelines compiled once (one renderer for all scenes); only the pixel-centre
 // ground-truth ray is traced (RenderOptions::radiance false).
 // DICSYNTH_NURBS_RANDOM_SCENES=N sets the number of scenes (the long run: 140, 1.08e7 rays per

@@ -156,9 +156,10 @@ const int DS_NURBS_REFINE_STEPS = 6;
 // in float. Each step multiplies the error by ~ε_float · cond(J); away from silhouettes cond(J) is
 // bounded by the host's sub-patch criteria and two steps reach the df64 limit from a float root.
 // Near a silhouette (a grazing ray, two roots close together) cond(J) reaches 10^3–10^4 and each
-// step gains only ~3–4 digits: the winner's attributes take DS_NURBS_REFINE_STEPS (two steps left
-// 93 nm of error on a ray 1e-3 rad off a fold, tests/nurbs/test_nurbs_random.cpp); the decisions
-// inside the search (the side of a border, a grazing root's residual after four) take five.
+// step gains only ~3–4 digits: the winner takes DS_NURBS_REFINE_STEPS (two steps left 93 nm of
+// error on a ray 1e-3 rad off a fold, tests/nurbs/test_nurbs_random.cpp), once, at the end of the
+// search: that refinement decides the side of a border and a grazing root's residual (after five
+// updates) and gives the attributes.
 // The two planes must contain the df64 ray itself: n1 = d × e, n2 = d × n1 in df64 (not
 // normalized: F's scale does not matter), their float roundings for the Jacobian.
 // distance: how far from the ray the surface point at the last step's start lies (m; after
@@ -500,6 +501,23 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   int newtonSteps = 0;
   int split = 0;
   bool lowerFirst = true, last = false;
+#if defined(DS_DF64)
+  // df64 refines its winner once, after the search loop: DS_NURBS_REFINE_STEPS df64 steps whose
+  // result (hit.refined) both decides an edge or grazing root (below) and gives the winner's
+  // attributes (ds_nurbs_attributes). Deciding such roots inside the loop with a refinement of
+  // their own cost the dogbone ~27 % of its df64 render on lavapipe, which runs that df64
+  // arithmetic for every batch of lanes whether a lane needs it or not (bench/RESULTS.md); the
+  // attributes then refined the winner a second time. Such a root is kept like any other (it
+  // lowers sMax and prunes what lies behind it); when the search ends with one as the winner and
+  // the decision rejects it, the search runs again beyond it, from the caller's limits: the winner
+  // is the nearest root found, so no root before it was missed, and the roots behind it that its
+  // pruning skipped are searched again. The result is the one deciding each root where it is
+  // found would give.
+  const real sMaxCaller = sMax;
+  const ShapeHit hitCaller = hit;
+  bool undecided = false, undecidedTangent = false;  // whether the winner awaits that decision
+  while (true) {
+#endif
   while (true) {
     // The tree, in a loop of its own with a small body: its passes are cheap, where a pass of the
     // outer loop costs the whole box and Newton code on lavapipe. It runs until this lane reaches
@@ -666,16 +684,11 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
         // Newton converged where the ray meets the surface within DS_DF64_GRAZING_SINE of a
         // silhouette) is decided by the df64 refinement too: float cannot tell a ray grazing the
         // surface from one missing it by less than its rounding (a ray 1.5e-8 m beside a fold was
-        // accepted so, tests/nurbs/test_nurbs_random.cpp's long run); four df64 steps bring a true
-        // root within DS_DF64_TANGENT_RESIDUAL of the size, a miss stays as far as it misses.
+        // accepted so, tests/nurbs/test_nurbs_random.cpp's long run); five df64 updates (the winner's
+        // refinement after the loop) bring a true root within DS_DF64_TANGENT_RESIDUAL of the size, a
+        // miss stays as far as it misses.
+        // Such a root is kept provisionally and decided after the search loop (below).
         const bool tangent = !converged || sine < DS_DF64_GRAZING_SINE;
-        if (keep && s > sMin && s < sMax && (any(nearEdge) || tangent)) {
-          real4 objectPoints[DS_NURBS_MAX_POINTS];
-          ds_patch_load(info.x, objectPoints);
-          real distance;
-          const hreal2 refined = ds_nurbs_refine(info.x, objectPoints, oh, dh, ab, 5, distance);
-          keep = ds_nurbs_inside_edges(refined, edges) && (!tangent || distance <= DS_DF64_TANGENT_RESIDUAL * scale);
-        }
 #endif
         if (keep && s > sMin && s < sMax) {
           sMax = s;
@@ -683,6 +696,10 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
           hit.part = k;
           hit.param = ab;
           found = true;
+#if defined(DS_DF64)
+          undecided = any(nearEdge) || tangent;
+          undecidedTangent = tangent;
+#endif
         }
       }
     }
@@ -720,6 +737,29 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
       }
     }
   }
+#if defined(DS_DF64)
+  if (!found) break;
+  {
+    const int patchIndex = nurbsSubPatches[hit.part].info.x;
+    real4 objectPoints[DS_NURBS_MAX_POINTS];
+    ds_patch_load(patchIndex, objectPoints);
+    real distance;
+    hit.refined = ds_nurbs_refine(patchIndex, objectPoints, oh, dh, hit.param, DS_NURBS_REFINE_STEPS, distance);
+    if (!undecided || (ds_nurbs_inside_edges(hit.refined, ds_surface_edges(patchIndex)) &&
+                       (!undecidedTangent || distance <= DS_DF64_TANGENT_RESIDUAL * scale)))
+      break;
+  }
+  // Rejected: search again beyond it (s strictly greater), with the caller's limit and hit.
+  sMin = hit.s;
+  sMax = sMaxCaller;
+  hit = hitCaller;
+  found = false;
+  undecided = false;
+  top = 0;
+  stack[top++] = rootNode;
+  mode = DS_NURBS_MODE_NODE;
+  }  // the df64 search again beyond a rejected winner
+#endif
   return found;
 }
 
@@ -734,8 +774,7 @@ void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hr
   // Cartesian derivatives ∝ w Sa.xyz − Sa.w S.xyz (quotient rule; the common 1/w² drops out).
   normal = cross(S.w * Sa.xyz - Sa.w * S.xyz, S.w * Sb.xyz - Sb.w * S.xyz);
 #if defined(DS_DF64)
-  real distance;
-  const hreal2 ab = ds_nurbs_refine(patchIndex, cp, o, d, found.param, DS_NURBS_REFINE_STEPS, distance);
+  const hreal2 ab = found.refined;  // ds_search_nurbs refined it
   const hreal4 Sh = ds_patch_eval_h(patchIndex, ab);
   point = h_div(h_xyz(Sh), h_w(Sh));
 #else

@@ -15,6 +15,9 @@ struct ShapeHit {
   real s;
   int part;     // which surface of the shape (Box: face; Cylinder: side or cap); Nurbs: sub-patch (-1: none)
   real2 param;  // Triangle: barycentric (b1, b2); Nurbs: the patch's local (a, b)
+#if defined(DS_DF64)
+  hreal2 refined;  // Nurbs: param refined in df64 by ds_search_nurbs
+#endif
 };
 
 #include "lib/nurbs.glsl"

@@ -163,9 +163,8 @@ const int DS_NURBS_REFINE_STEPS = 6;
 // The two planes must contain the df64 ray itself: n1 = d × e, n2 = d × n1 in df64 (not
 // normalized: F's scale does not matter), their float roundings for the Jacobian.
 // distance: how far from the ray the surface point at the last step's start lies (m; after
-// steps − 1 updates), the df64 residual that decides a grazing root (ds_search_nurbs).
-hreal2 ds_nurbs_refine(int patchIndex, real4 cp[DS_NURBS_MAX_POINTS], hreal3 o, hreal3 d, real2 start, const int steps,
-                       out real distance) {
+// DS_NURBS_REFINE_STEPS − 1 updates), the df64 residual that decides a grazing root (ds_search_nurbs).
+hreal2 ds_nurbs_refine(int patchIndex, real4 cp[DS_NURBS_MAX_POINTS], hreal3 o, hreal3 d, real2 start, out real distance) {
   const real3 ad = abs(h_real(d));
   const real3 e = ad.x <= ad.y && ad.x <= ad.z ? real3(1.0, 0.0, 0.0) : ad.y <= ad.z ? real3(0.0, 1.0, 0.0) : real3(0.0, 0.0, 1.0);
   const hreal3 n1 = h_cross(d, h(e)), n2 = h_cross(d, n1);
@@ -174,7 +173,7 @@ hreal2 ds_nurbs_refine(int patchIndex, real4 cp[DS_NURBS_MAX_POINTS], hreal3 o, 
   const real g1 = h_real(c1), g2 = h_real(c2);
   hreal2 ab = h(start);
   distance = 0.0;
-  [[unroll]] for (int step = 0; step < steps; ++step) {
+  [[unroll]] for (int step = 0; step < DS_NURBS_REFINE_STEPS; ++step) {
     const hreal4 Sh = ds_patch_eval_h(patchIndex, ab);
     const real2 F = real2(h_real(h_sub(h_dot(n1, h_xyz(Sh)), h_mul(c1, h_w(Sh)))),
                           h_real(h_sub(h_dot(n2, h_xyz(Sh)), h_mul(c2, h_w(Sh)))));
@@ -449,9 +448,10 @@ const int DS_NURBS_MODE_NODE = 0, DS_NURBS_MODE_SUBPATCH = 1, DS_NURBS_MODE_BOX 
 
 // Nearest root with s in (sMin, sMax). With an origin (a shadow ray leaving this surface), a root
 // in the origin's patch within 1e-5 (float; 1e-10 double) of its local parameters is the origin.
-// oh, dh: the same ray in hreal (df64 decides roots near a patch border with it).
+// oh, dh: the same ray in hreal (df64 decides roots near a patch border with it). attributes:
+// whether the caller will ask for the winner's attributes (df64 then leaves hit.refined for them).
 bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sMin, real sMax, bool originOnSurface,
-                     ShapeHit origin, inout ShapeHit hit) {
+                     ShapeHit origin, bool attributes, inout ShapeHit hit) {
   const RayPlanes planes = ds_ray_planes(o, d);
   const real dLength = length(d);
   const real3 dn = d / dLength;
@@ -738,13 +738,14 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
     }
   }
 #if defined(DS_DF64)
-  if (!found) break;
+  // A winner already decided needs the refinement only for its attributes (a shadow ray's does not).
+  if (!found || !(undecided || attributes)) break;
   {
     const int patchIndex = nurbsSubPatches[hit.part].info.x;
     real4 objectPoints[DS_NURBS_MAX_POINTS];
     ds_patch_load(patchIndex, objectPoints);
     real distance;
-    hit.refined = ds_nurbs_refine(patchIndex, objectPoints, oh, dh, hit.param, DS_NURBS_REFINE_STEPS, distance);
+    hit.refined = ds_nurbs_refine(patchIndex, objectPoints, oh, dh, hit.param, distance);
     if (!undecided || (ds_nurbs_inside_edges(hit.refined, ds_surface_edges(patchIndex)) &&
                        (!undecidedTangent || distance <= DS_DF64_TANGENT_RESIDUAL * scale)))
       break;

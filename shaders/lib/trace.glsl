@@ -198,7 +198,7 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, bool ties, out SurfaceHit hit) {
       if (!ds_object_ray(i, o, d, oo, od, w)) continue;
       ShapeHit found;
       found.part = -1;
-      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_search_limit(nearest, w, ties), false, found, found))
+      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_search_limit(nearest, w, ties), false, found, true, found))
         ds_keep_nearer(i, found, oo, od, w, ties, nearest);
     }
   }
@@ -247,7 +247,7 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
       ShapeHit found;
       found.part = -1;
       if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(1.0, h_real(w)), i == hit.object,
-                          hit.shape, found))
+                          hit.shape, false, found))
         return true;
     }
   }

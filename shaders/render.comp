@@ -146,13 +146,12 @@ void main() {
   hreal sum = h(real(0.0));
   // Sample s = cellY · strataX + cellX, as in host/camera/sampling.h, without integer division.
   int s = 0;
+  // Every random number of the pixel starts from its hash (shared/rng.h), drawn once here.
+  const uint pixelBits = ds_pixel_bits(params.random.x, params.random.y, uint(cameraIndex), uint(pixel.x), uint(pixel.y));
   for (int cellY = 0; cellY < strata.y; ++cellY) {
     for (int cellX = 0; cellX < strata.x; ++cellX, ++s) {
-      const hreal2 offset = ds_sample_offset(strata, ivec2(cellX, cellY), side, params.random.x, params.random.y,
-                                             uint(cameraIndex), uint(pixel.x), uint(pixel.y), uint(s));
-      const real2 lens = thinLens ? ds_lens_sample(params.random.x, params.random.y, uint(cameraIndex),
-                                                   uint(pixel.x), uint(pixel.y), uint(s))
-                                  : real2(0.0);
+      const hreal2 offset = ds_sample_offset(strata, ivec2(cellX, cellY), side, pixelBits, uint(s));
+      const real2 lens = thinLens ? ds_lens_sample(pixelBits, uint(s)) : real2(0.0);
       if (ds_camera_ray(cam, h_add(centre, offset), distorted, lens, true, start, origin, d) &&
           ds_trace_nearest(origin, d, false, hit))
         sum = h_add(sum, h(ds_shade(hit)));

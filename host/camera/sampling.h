@@ -42,7 +42,7 @@ glm::vec<2, Real> sampleOffset(Strata strata, Real side, uint seed, uint frame, 
 // and double: the coordinates are odd integers / 32768. Not stratified (independent per sample).
 template <class Real>
 glm::vec<2, Real> lensSample(uint seed, uint frame, uint camera, uint px, uint py, uint s) {
-  const uint packed = ds_lens_lattice(seed, frame, camera, px, py, s);
+  const uint packed = ds_lens_lattice(ds_pixel_bits(seed, frame, camera, px, py), s);
   const int ix = int(2u * (packed >> 16u)) - 32767, iy = int(2u * (packed & 0xffffu)) - 32767;
   return {Real(ix) * Real(0x1p-15), Real(iy) * Real(0x1p-15)};
 }

@@ -202,18 +202,18 @@ bool ds_camera_ray(GpuCamera cam, hreal2 pixel, bool distorted, real2 lens, bool
 
 // Camera.ThinLens: the unit-disk lens point of sample s (host/camera/sampling.h lensSample; the
 // lattice of ds_lens_lattice in shared/rng.h: exact in every variant).
-real2 ds_lens_sample(uint seed, uint frame, uint camera, uint px, uint py, uint s) {
-  const uint packed = ds_lens_lattice(seed, frame, camera, px, py, s);
+real2 ds_lens_sample(uint pixelBits, uint s) {
+  const uint packed = ds_lens_lattice(pixelBits, s);
   const int ix = int(2u * (packed >> 16u)) - 32767, iy = int(2u * (packed & 0xffffu)) - 32767;
   return real2(real(ix), real(iy)) * real(1.0 / 32768.0);
 }
 
 // Offset (px) of sample s from the pixel centre: stratified jitter over the sensitive square.
-// In hreal so that every variant places the sample where the CPU reference does.
-hreal2 ds_sample_offset(ivec2 strata, ivec2 cell, hreal side, uint seed, uint frame, uint camera, uint px,
-                        uint py, uint s) {
-  const real jx = ds_unit(ds_sample_bits(seed, frame, camera, px, py, s, DS_DIM_PIXEL_X));
-  const real jy = ds_unit(ds_sample_bits(seed, frame, camera, px, py, s, DS_DIM_PIXEL_Y));
+// In hreal so that every variant places the sample where the CPU reference does. pixelBits:
+// ds_pixel_bits of the pixel (shared/rng.h), drawn once per pixel by the caller.
+hreal2 ds_sample_offset(ivec2 strata, ivec2 cell, hreal side, uint pixelBits, uint s) {
+  const real jx = ds_unit(ds_pixel_sample_bits(pixelBits, s, DS_DIM_PIXEL_X));
+  const real jy = ds_unit(ds_pixel_sample_bits(pixelBits, s, DS_DIM_PIXEL_Y));
   const hreal halfOne = h(real(0.5));
   return h2(h_mul(h_sub(h_div(h_add(h(real(cell.x)), h(jx)), h(real(strata.x))), halfOne), side),
             h_mul(h_sub(h_div(h_add(h(real(cell.y)), h(jy)), h(real(strata.y))), halfOne), side));

@@ -47,8 +47,15 @@ DS_FN uint ds_pixel_bits(uint seed, uint frame, uint camera, uint px, uint py) {
   return ds_hash_combine(h, py);
 }
 
+// The same number from the pixel's bits: a caller that draws many samples of one pixel hashes the
+// pixel once (render.comp: a compiler does not hoist the hashes out of the sample loop itself, and
+// they were ~9 % of Figure 1's render on lavapipe: bench/RESULTS.md, "Speed as a user times it").
+DS_FN uint ds_pixel_sample_bits(uint pixelBits, uint sampleIndex, uint dim) {
+  return ds_hash_combine(ds_hash_combine(pixelBits, sampleIndex), dim);
+}
+
 DS_FN uint ds_sample_bits(uint seed, uint frame, uint camera, uint px, uint py, uint sampleIndex, uint dim) {
-  return ds_hash_combine(ds_hash_combine(ds_pixel_bits(seed, frame, camera, px, py), sampleIndex), dim);
+  return ds_pixel_sample_bits(ds_pixel_bits(seed, frame, camera, px, py), sampleIndex, dim);
 }
 
 // A point uniformly distributed over the unit disk, for the lens of Camera.ThinLens, drawn by
@@ -59,10 +66,11 @@ DS_FN uint ds_sample_bits(uint seed, uint frame, uint camera, uint px, uint py, 
 // sums stay below 2^31, so the test is exact everywhere). Rejected candidates draw again from
 // ds_hash_combine(bits, try). The disk point is (ix, iy) / 32768, exact in float and double.
 // Acceptance is π/4 per try; after DS_LENS_MAX_TRIES rejections ((1 − π/4)^32 ≈ 4e-22) the lattice
-// point next to the centre, (1, 1), is used. Returns (ux << 16) | uy.
+// point next to the centre, (1, 1), is used. Returns (ux << 16) | uy. pixelBits: ds_pixel_bits of the
+// sample's pixel.
 #define DS_LENS_MAX_TRIES 32u
-DS_FN uint ds_lens_lattice(uint seed, uint frame, uint camera, uint px, uint py, uint sampleIndex) {
-  uint bits = ds_sample_bits(seed, frame, camera, px, py, sampleIndex, DS_DIM_LENS);
+DS_FN uint ds_lens_lattice(uint pixelBits, uint sampleIndex) {
+  uint bits = ds_pixel_sample_bits(pixelBits, sampleIndex, DS_DIM_LENS);
   for (uint k = 0u; k < DS_LENS_MAX_TRIES; ++k) {
     const uint ux = bits >> 17u, uy = (bits >> 1u) & 0x7fffu;
     const uint ax = 2u * ux >= 32767u ? 2u * ux - 32767u : 32767u - 2u * ux;  // |ix|

@@ -491,9 +491,9 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
     throw InputError("tile size must be 0 (automatic) or a positive multiple of 8");
   // The pipeline is created (on lavapipe: SPIR-V to NIR to LLVM, ~0.09 s for Figure 1 even when
   // Mesa's shader cache has it) on a second thread while this one packs and uploads the scene
-  // (~0.05 s: Figure 1's 8 M texels), which the first dispatch needs as well. Whole process,
-  // Figure 1 at 64 x 48 (bench/RESULTS.md, "Speed as a user times it"). The "pipeline" phase then
-  // ends when both are done.
+  // (~0.05 s: Figure 1's 8 M texels), which the first dispatch needs as well: the fixed overhead
+  // of a process (Figure 1 at 64 × 48, 1 spp) fell from 0.25 to 0.20 s (bench/RESULTS.md, "Where
+  // lavapipe's render time goes"). The "pipeline" phase then ends when both are done.
   const SceneResidency where = residency(options.precision, scene, rendererOptions);
   std::future<const ComputePipeline*> pipe = std::async(std::launch::async, [&] {
     return prepare(options.precision, scene, rendererOptions).second;

@@ -115,9 +115,22 @@ void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, cons
 }
 
 // One prepared texture per (file, interpolation): the coefficients depend on the kernel.
+// The key of a file texture in prepareScene's table: one entry per path and kernel.
+std::string textureKey(const textures::File& t) { return std::to_string(int(t.interpolation)) + ":" + t.path; }
+
+// PrepareOptions::textureData false: the table's entry names the texture, without reading it.
+int nameTexture(const textures::File& t, std::vector<PreparedTexture>& textures, std::map<std::string, int>& byPath) {
+  if (auto it = byPath.find(textureKey(t)); it != byPath.end()) return it->second;
+  PreparedTexture named;
+  named.path = t.path;
+  named.interpolation = t.interpolation;
+  textures.push_back(std::move(named));
+  return byPath[textureKey(t)] = int(textures.size()) - 1;
+}
+
 int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<PreparedTexture>& textures,
                 std::map<std::string, int>& byPath, TextureCache* cache) {
-  const std::string key = std::to_string(int(t.interpolation)) + ":" + t.path;
+  const std::string key = textureKey(t);
   if (auto it = byPath.find(key); it != byPath.end()) return it->second;
   if (cache)
     if (auto cached = cache->find(t.path, t.interpolation)) {
@@ -231,7 +244,9 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     o.albedo = luminance(so.shader.color);
     anyLit |= reflectance::kindInfo(o.shader).lit;
     o.texture = so.texture.model;
-    if (auto* file = std::get_if<textures::File>(&o.texture)) {
+    if (auto* file = std::get_if<textures::File>(&o.texture); file && !options.textureData) {
+      file->index = nameTexture(*file, ps.textures, texturesByPath);
+    } else if (file) {
       // The image, decoded and prefiltered once per path and kernel, shared with the texture table.
       file->index = loadTexture(*file, so.texture.where, ps.textures, texturesByPath, options.textureCache);
       const PreparedTexture& image = ps.textures[std::size_t(file->index)];

@@ -117,6 +117,10 @@ struct PrepareOptions {
   int downscale = 1;
   // Optional (geometry/texture_cache.h): file textures prepared by earlier calls are reused.
   TextureCache* textureCache = nullptr;
+  // false: file textures are named, not read (PreparedTexture with its path and interpolation, no
+  // size, no coefficients): the scene's features and counts, which a GPU pipeline's key needs,
+  // before the textures are read (job/render_job.cpp, renderFrame). Such a scene is never rendered.
+  bool textureData = true;
 };
 
 // Throws InputError (with the scene's file:line) for what only shows up now: unreadable textures,

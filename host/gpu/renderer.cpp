@@ -481,6 +481,11 @@ std::pair<SceneResidency, const ComputePipeline*> Renderer::prepare(Precision pr
   return {where, &pipeline(precision, scene.features, rendererOptions.specialize, df64Fma, where)};
 }
 
+void Renderer::warmUp(Precision precision, const PreparedScene& scene, const RendererOptions& rendererOptions) {
+  if (precision == Precision::Fp64 && !context_.info().shaderFloat64) return;
+  (void)prepare(precision, scene, rendererOptions);
+}
+
 RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& options,
                               const RendererOptions& rendererOptions) {
   if (options.precision == Precision::Fp64 && !context_.info().shaderFloat64)

@@ -70,6 +70,13 @@ class Renderer {
                                          std::span<const dvec3> points_m, std::span<const int> objects,
                                          double relativeTolerance, const RendererOptions& rendererOptions = {});
 
+  // Creates the pipeline that render() of `scene` in `precision` will find, ahead of the render,
+  // possibly on another thread; `scene` may be prepared without texture data
+  // (PrepareOptions::textureData): the key counts its texels only to choose the texel view, and a
+  // scene whose texels turn out too many for it gets its own pipeline at render(). Does nothing for
+  // a precision the device lacks (render() refuses it).
+  void warmUp(Precision precision, const PreparedScene& scene, const RendererOptions& rendererOptions = {});
+
   // Creates (or finds) the pipeline render() uses for this scene; benchmarks call it before timing
   // a render so that the pipeline's creation is not counted.
   // df64Fma: TwoProd by fma in df64 (only where the self-test proved fma exact).

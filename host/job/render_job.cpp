@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -127,6 +128,25 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   const RenderArgs& args = session.args();
   RenderedFrame out;
   out.frame = frame;
+  // A GPU render's pipeline depends on the scene's features and sizes, not on its textures' data:
+  // it is created on a second thread, from the scene prepared without them, while this thread reads
+  // the textures (Figure 1 on lavapipe: ~0.09 s of pipeline beside ~0.07 s of texture; bench/
+  // RESULTS.md, "Where lavapipe's render time goes"). Only when the precision is known: resolving
+  // `auto` may calibrate, which must come after the frame's own errors. The render then finds the
+  // pipeline made (or waits for it). An error here is left to the frame's own preparation. The
+  // session's first frame only: the others' pipelines are made by then.
+  gpu::Renderer* renderer = session.renderer();
+  std::future<void> warm;
+  if (const std::optional<Precision> known = session.warmUpPrecision(); renderer && known)
+    warm = std::async(std::launch::async, [&sceneOfFrame, renderer, precision = *known, downscale = args.downscale] {
+      try {
+        PrepareOptions named;
+        named.downscale = downscale;
+        named.textureData = false;
+        renderer->warmUp(precision, prepareScene(sceneOfFrame, named));
+      } catch (const std::exception&) {
+      }
+    });
   out.scene = prepareScene(sceneOfFrame, {args.downscale, &session.textures()});
   phaseDone("prepare");
   RenderOptions options = renderOptions(args, frame);
@@ -138,7 +158,6 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   phaseDone("precision");
   // One frame: its tiles' progress; several: the frames' bar (runRenderJob) instead.
   if (!job.progressLabel.empty() && job.frames.size() == 1) options.progress = progressPrinter(job.progressLabel);
-  gpu::Renderer* renderer = session.renderer();
   out.result = renderer ? renderer->render(out.scene, options) : cpu::render(out.scene, options);
   phaseDone("render");
   if (session.context()) failOnValidationMessages(*session.context());  // before any file of this frame is written
@@ -301,6 +320,11 @@ VisibilityTracer RenderSession::visibilityTracer() {
     return renderer->reachesFirst(scene, p, camera, points, objects, tolerance);
   };
   return *visibility_;
+}
+
+std::optional<Precision> RenderSession::warmUpPrecision() {
+  if (!useGpu() || std::exchange(warmedUp_, true)) return std::nullopt;
+  return precision_ ? precision_ : parsePrecision(args_.precision);
 }
 
 Precision RenderSession::precision() {

@@ -35,6 +35,10 @@ class RenderSession {
   void startDevice();  // no-op for the CPU backend or when started
   // The precision of every job: resolved once, on the first call (after the first prepare).
   Precision precision();
+  // The precision in which renderFrame creates the pipeline ahead of the render: once per session
+  // (later frames find their pipeline made), and only when known without resolving `auto` (which
+  // may calibrate): named on the command line, or resolved already. None for the CPU backend.
+  std::optional<Precision> warmUpPrecision();
   // Who traces the visibility of flow.mask and disparity.mask (render/visibility.h): the GPU that
   // renders, in fp64 whatever the render's precision (one ray per pixel: fp64's speed matters little,
   // and its masks equal the CPU reference's, tests/gpu/test_visibility.cpp), in df64 on a device without
@@ -50,6 +54,7 @@ class RenderSession {
   std::unique_ptr<gpu::Context> context_;
   std::unique_ptr<gpu::Renderer> renderer_;
   std::optional<Precision> precision_;
+  bool warmedUp_ = false;  // warmUpPrecision() answered once
   std::optional<VisibilityTracer> visibility_;  // visibilityTracer(), once decided
   TextureCache textures_{TextureDiskCache::fromEnvironment()};  // across points, and across processes on disk
 };

@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -173,5 +174,33 @@ TEST_CASE("gpu-residency: texels follow the textures' coefficient arrays, which 
   // Same arrays, another precision: texels packed for that precision.
   options.precision = Precision::Fp64;
   test::checkIdenticalResults(a, gpu::Renderer(test::gpuContext()).render(a, options), renderer.render(a, options));
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("gpu-residency: a scene prepared without texture data keys the pipeline its render uses") {
+  // renderFrame creates the pipeline from the scene prepared with PrepareOptions::textureData false
+  // while the textures are read (Renderer::warmUp): that scene must give the render's pipeline key,
+  // the features and the residency, in every example scene and precision, without reading a texel.
+  gpu::Renderer renderer(test::gpuContext());
+  int scenes = 0, textured = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(DS_SOURCE_DIR) + "/scenes")) {
+    if (entry.path().extension() != ".lua") continue;
+    INFO(entry.path().filename().string());
+    const Scene loaded = loadScene(entry.path().string(), {});
+    const PreparedScene full = prepareScene(loaded, {kDownscale});
+    PrepareOptions namedOnly;
+    namedOnly.downscale = kDownscale;
+    namedOnly.textureData = false;
+    const PreparedScene named = prepareScene(loaded, namedOnly);
+    ++scenes;
+    textured += full.textures.empty() ? 0 : 1;
+    CHECK(named.features == full.features);
+    REQUIRE(named.textures.size() == full.textures.size());
+    for (const PreparedTexture& t : named.textures) CHECK(t.values().empty());
+    for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32})
+      CHECK(renderer.residency(p, named, {}) == renderer.residency(p, full, {}));
+  }
+  CHECK(scenes >= 18);
+  CHECK(textured >= 3);  // the test means something: scenes with file textures are among them
   test::expectNoValidationMessages();
 }

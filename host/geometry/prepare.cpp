@@ -114,7 +114,6 @@ void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, cons
                                    " to infinity (it lies on the homography's singular plane)");
 }
 
-// One prepared texture per (file, interpolation): the coefficients depend on the kernel.
 // The key of a file texture in prepareScene's table: one entry per path and kernel.
 std::string textureKey(const textures::File& t) { return std::to_string(int(t.interpolation)) + ":" + t.path; }
 
@@ -128,6 +127,7 @@ int nameTexture(const textures::File& t, std::vector<PreparedTexture>& textures,
   return byPath[textureKey(t)] = int(textures.size()) - 1;
 }
 
+// One prepared texture per (file, interpolation): the coefficients depend on the kernel.
 int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<PreparedTexture>& textures,
                 std::map<std::string, int>& byPath, TextureCache* cache) {
   const std::string key = textureKey(t);

@@ -134,7 +134,8 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   // RESULTS.md, "Where lavapipe's render time goes"). Only when the precision is known: resolving
   // `auto` may calibrate, which must come after the frame's own errors. The render then finds the
   // pipeline made (or waits for it). An error here is left to the frame's own preparation. The
-  // session's first frame only: the others' pipelines are made by then.
+  // session's first frame only: the others' pipelines are made by then. The second preparation
+  // repeats the cheap part of the scene's, and a NURBS surface's tree (built twice, on two threads).
   gpu::Renderer* renderer = session.renderer();
   std::future<void> warm;
   if (const std::optional<Precision> known = session.warmUpPrecision(); renderer && known)

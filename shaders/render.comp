@@ -148,7 +148,7 @@ void main() {
   const uint pixelBits = ds_pixel_bits(params.random.x, params.random.y, uint(cameraIndex), uint(pixel.x), uint(pixel.y));
   // Sample s = cellY · strataX + cellX, as in host/camera/sampling.h. One loop over s with the
   // cell counted along, not a loop over rows around a loop over columns: the nested pair cost
-  // Figure 1 16–19 % of its render in every precision on Mesa 22.3's lavapipe, 2 % on Mesa 25's
+  // Figure 1 16–19 % of its render in every precision on Mesa 22.3's lavapipe, 1 % on Mesa 25's
   // (llvmpipe pays for each loop's entry and masks; bench/RESULTS.md, "Where lavapipe's render
   // time goes"). No integer division either.
   int cellX = 0, cellY = 0;

@@ -252,12 +252,13 @@ GeometrySlots geometrySlots() {
   return g;
 }
 
-// `pipelineReady`: the pipeline, being created on another thread (Renderer::render), waited for
-// only before the first dispatch, so that its creation overlaps the packing and upload below.
+// `prepared`: Renderer::prepare's residency and pipeline, being created on another thread
+// (Renderer::render), waited for only before the first dispatch, so that the pipeline's creation
+// overlaps the packing and upload below.
 template <class Layout>
-void renderAll(Context& context, std::future<const ComputePipeline*>& pipelineReady, const PreparedScene& scene,
-               const RenderOptions& options, int requestedTile, const SceneResidency& residency,
-               Renderer::Caches& caches, RenderResult& result) {
+void renderAll(Context& context, std::future<std::pair<SceneResidency, const ComputePipeline*>>& prepared,
+               const PreparedScene& scene, const RenderOptions& options, int requestedTile, Renderer::Caches& caches,
+               RenderResult& result) {
   const int tileSize = tileEdge(context, requestedTile, sizeof(typename Layout::GpuPixel), scene);
   // The result images (~84 bytes per pixel, NaN-filled: 160 MB for 1600 × 1200) are allocated on a
   // second thread while this one packs and uploads the scene: on a CPU device the render's own
@@ -287,7 +288,8 @@ void renderAll(Context& context, std::future<const ComputePipeline*>& pipelineRe
   images.get();  // rethrows an allocation failure
   // What is left of the pipeline's creation is not render time (RenderResult::renderSeconds).
   const auto waitStart = std::chrono::steady_clock::now();
-  const ComputePipeline& pipeline = *pipelineReady.get();  // rethrows the creation's error
+  const auto [residency, pipe] = prepared.get();  // rethrows the creation's error
+  const ComputePipeline& pipeline = *pipe;
   result.renderSeconds = -std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart).count();
   phaseDone("pipeline");
   for (std::size_t ci = 0; ci < scene.cameras.size(); ++ci) {
@@ -499,17 +501,15 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   // (~0.05 s: Figure 1's 8 M texels), which the first dispatch needs as well: the fixed overhead
   // of a process (Figure 1 at 64 × 48, 1 spp) fell from 0.25 to 0.20 s (bench/RESULTS.md, "Where
   // lavapipe's render time goes"). The "pipeline" phase then ends when both are done.
-  const SceneResidency where = residency(options.precision, scene, rendererOptions);
-  std::future<const ComputePipeline*> pipe = std::async(std::launch::async, [&] {
-    return prepare(options.precision, scene, rendererOptions).second;
-  });
+  std::future<std::pair<SceneResidency, const ComputePipeline*>> prepared =
+      std::async(std::launch::async, [&] { return prepare(options.precision, scene, rendererOptions); });
   RenderResult result;
   result.backend = "gpu";
   result.precision = toString(options.precision);
   result.device = context_.info().name;
   const auto start = std::chrono::steady_clock::now();
   withLayout(options.precision, [&]<class Layout>() {
-    renderAll<Layout>(context_, pipe, scene, options, rendererOptions.tileSize, where, caches_, result);
+    renderAll<Layout>(context_, prepared, scene, options, rendererOptions.tileSize, caches_, result);
   });
   result.renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -16,6 +16,7 @@ packages=(
   vulkan-validationlayers            # the test suite runs with validation on
   libopenimageio-dev libopenexr-dev libtiff-dev  # image and ground-truth files
   zlib1g-dev                         # CRC-32 of sweep points' files (host/sweep/point_record.cpp)
+  libdeflate-dev                     # the deflate of zip EXRs (host/io/zip_deflate.cpp)
   libssl-dev                         # SHA-256 of texture files (host/geometry/texture_disk_cache.h)
   libjsoncpp-dev                     # JSON files read back: point records, caches (host/core/json.h)
   libglm-dev libcli11-dev liblua5.4-dev doctest-dev

@@ -7,13 +7,15 @@
 #include "core/error.h"
 #include "core/phase_timer.h"
 #include "core/version.h"
+#include "io/zip_deflate.h"
 
 int main(int argc, char** argv) {
   using namespace dicsynth;
   phaseDone(nullptr);  // DICSYNTH_TIMINGS=1: phases are timed from here
   CLI::App app{"dicsynth: ray-traced synthetic images and ground truth for stereo DIC", "dicsynth"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("dicsynth ") + kVersion);
+  // With the deflate that compresses zip EXRs (io/zip_deflate.h): it decides their writing time.
+  app.set_version_flag("--version", [] { return std::string("dicsynth ") + kVersion + " (EXR zip: " + zipDeflateEngine() + ")"; });
   cli::RunFn run;
   cli::addRenderCommand(app, run);
   cli::addCompareCommand(app, run);

@@ -242,8 +242,9 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
   const int width = image.width_px;
   Imf::Header header(width, image.height_px);
   header.compression() = exrCompression(info.exrCompression);
-  // zlib level 1 for zip and zips: on Figure 1 the write is faster than at OpenEXR's default
-  // level 4 for a slightly larger file (bench/RESULTS.md, "Speed as a user times it").
+  // Deflate level 1 for zip and zips: on Figure 1 the write is faster than at OpenEXR's default
+  // level 4 for a slightly larger file (bench/RESULTS.md, "Speed as a user times it"). OpenEXR
+  // hands each block to compress2, which in dicsynth's binaries is libdeflate's (io/zip_deflate.cpp).
   header.zipCompressionLevel() = 1;
   for (const ExrChannel& c : channels)  // objectId, defects: exact 32-bit integers; the others float32
     header.channels().insert(c.name, Imf::Channel(c.uintValue ? Imf::UINT : Imf::FLOAT));

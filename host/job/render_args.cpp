@@ -78,6 +78,17 @@ Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::R
   return chosen;
 }
 
+std::optional<Precision> knownPrecision(const RenderArgs& args, gpu::Context& context) {
+  if (const auto named = parsePrecision(args.precision)) return named;
+  const std::optional<PrecisionCalibration> cached = cachedCalibration(context);
+  if (!cached) return std::nullopt;
+  try {
+    return choosePrecision(*cached, args.maxErrorPx);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
 void failOnValidationMessages(const gpu::Context& context) {
   const auto messages = context.validationMessages();
   if (messages.empty()) return;

@@ -4,6 +4,7 @@
 // command line's spelling of them is cli/options.h.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -42,6 +43,11 @@ RenderOptions renderOptions(const RenderArgs& args, int frame);
 // The GPU precision: the user's choice, or for "auto" the fastest whose calibrated error on this
 // device is ≤ maxErrorPx (calibrating once per device; the choice is reported on stderr).
 Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::Renderer& renderer);
+
+// What resolvePrecision will answer, when that is known without calibrating or failing: the named
+// precision, or for "auto" the choice from this device's cached calibration (none when there is no
+// valid cache or no precision meets the bound: resolvePrecision then calibrates or says why).
+std::optional<Precision> knownPrecision(const RenderArgs& args, gpu::Context& context);
 
 // With validation layers on (DICSYNTH_VALIDATION=1), prints every message they reported to stderr
 // and throws Error: a run that the layers flagged must not look successful.

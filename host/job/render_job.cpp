@@ -131,8 +131,8 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   // A GPU render's pipeline depends on the scene's features and sizes, not on its textures' data:
   // it is created on a second thread, from the scene prepared without them, while this thread reads
   // the textures (Figure 1 on lavapipe: ~0.09 s of pipeline beside ~0.07 s of texture; bench/
-  // RESULTS.md, "Where lavapipe's render time goes"). Only when the precision is known: resolving
-  // `auto` may calibrate, which must come after the frame's own errors. The render then finds the
+  // RESULTS.md, "Where lavapipe's render time goes"). Only when the precision is known: named, or
+  // `auto` with a cached calibration (calibrating must come after the frame's own errors). The render then finds the
   // pipeline made (or waits for it). An error here is left to the frame's own preparation. The
   // session's first frame only: the others' pipelines are made by then. The second preparation
   // repeats the cheap part of the scene's, and a NURBS surface's tree (built twice, on two threads).
@@ -325,7 +325,7 @@ VisibilityTracer RenderSession::visibilityTracer() {
 
 std::optional<Precision> RenderSession::warmUpPrecision() {
   if (!useGpu() || std::exchange(warmedUp_, true)) return std::nullopt;
-  return precision_ ? precision_ : parsePrecision(args_.precision);
+  return precision_ ? precision_ : knownPrecision(args_, *context_);
 }
 
 Precision RenderSession::precision() {

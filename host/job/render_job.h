@@ -36,8 +36,9 @@ class RenderSession {
   // The precision of every job: resolved once, on the first call (after the first prepare).
   Precision precision();
   // The precision in which renderFrame creates the pipeline ahead of the render: once per session
-  // (later frames find their pipeline made), and only when known without resolving `auto` (which
-  // may calibrate): named on the command line, or resolved already. None for the CPU backend.
+  // (later frames find their pipeline made), and only when known without calibrating: named on the
+  // command line, resolved already, or `auto` answered by the device's cached calibration
+  // (knownPrecision). None for the CPU backend.
   std::optional<Precision> warmUpPrecision();
   // Who traces the visibility of flow.mask and disparity.mask (render/visibility.h): the GPU that
   // renders, in fp64 whatever the render's precision (one ray per pixel: fp64's speed matters little,

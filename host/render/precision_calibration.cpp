@@ -174,14 +174,18 @@ std::string calibrationExcess(const PreparedScene& scene, const RenderResult& re
   return "";
 }
 
-PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& renderer) {
-  const std::string path = gpu::deviceCachePath(context, "precision-calibration"), key = cacheKey();
+std::optional<PrecisionCalibration> cachedCalibration(gpu::Context& context) {
+  const std::string path = gpu::deviceCachePath(context, "precision-calibration");
   PrecisionCalibration cached;
-  if (!path.empty() && readCache(path, key, cached)) {
-    cached.fromCache = true;
-    cached.cachePath = path;
-    return cached;
-  }
+  if (path.empty() || !readCache(path, cacheKey(), cached)) return std::nullopt;
+  cached.fromCache = true;
+  cached.cachePath = path;
+  return cached;
+}
+
+PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& renderer) {
+  if (std::optional<PrecisionCalibration> cached = cachedCalibration(context)) return *cached;
+  const std::string path = gpu::deviceCachePath(context, "precision-calibration"), key = cacheKey();
   PrecisionCalibration c = measure(context, renderer);
   c.cachePath = path;
   if (!path.empty()) {

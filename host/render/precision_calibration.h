@@ -7,6 +7,7 @@
 // only within its own `compare` tolerances there (calibrationExcess), and caches the result per
 // device, driver and renderer build in the cache folder. The error measured there stands for
 // what the precision achieves on this device; a scene's own error is what `compare`/`bench` report.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,10 @@ std::string calibrationExcess(const PreparedScene& scene, const RenderResult& re
 // The device's calibration: read from the cache when valid for this device, driver and renderer
 // build, else measured (a few seconds) and cached.
 PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& renderer);
+
+// The cached calibration alone, never measured: none without a cache folder, or when the file is
+// absent, damaged or for another device, driver or build.
+std::optional<PrecisionCalibration> cachedCalibration(gpu::Context& context);
 
 // The fastest available precision whose calibration error is ≤ maxErrorPx. Throws InputError,
 // listing the measurements, when none is.

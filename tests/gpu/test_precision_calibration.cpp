@@ -8,6 +8,7 @@
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
+#include "job/render_args.h"
 #include "render/precision_calibration.h"
 #include "run_cli.h"
 #include "scene/scene.h"
@@ -55,6 +56,14 @@ TEST_CASE("calibration: measured on the device, cached, and read back") {
   options.cacheDir = cache.path().string();
   gpu::Context context(options);
   gpu::Renderer renderer(context);
+  // Before any calibration the `auto` precision is not known without one (no pipeline warm-up);
+  // a named one always is.
+  RenderArgs args;
+  args.precision = "auto";
+  CHECK_FALSE(cachedCalibration(context).has_value());
+  CHECK_FALSE(knownPrecision(args, context).has_value());
+  args.precision = "df64";
+  CHECK((knownPrecision(args, context) == Precision::Df64));  // (( )): no doctest decomposition of an enum
   const PrecisionCalibration first = calibratePrecisions(context, renderer);
   const std::string measured = describeCalibration(first);
   MESSAGE("calibration: " << measured << " in " << first.seconds << " s");
@@ -74,8 +83,18 @@ TEST_CASE("calibration: measured on the device, cached, and read back") {
     CHECK(second.modes[k].mraysPerSecond == first.modes[k].mraysPerSecond);  // 17 digits: exact
     CHECK(second.modes[k].maxErrorPx == first.modes[k].maxErrorPx);
   }
+  // Now `auto` is known from the cache, as resolvePrecision will choose; not when no precision
+  // meets the bound (resolvePrecision then says why).
+  const std::optional<PrecisionCalibration> cached = cachedCalibration(context);
+  REQUIRE(cached.has_value());
+  CHECK(describeCalibration(*cached) == measured);
+  args.precision = "auto";
+  CHECK((knownPrecision(args, context) == choosePrecision(first, args.maxErrorPx)));
+  args.maxErrorPx = 1e-300;
+  CHECK_FALSE(knownPrecision(args, context).has_value());
   // A damaged file is ignored (and rewritten by a new measurement).
   test::writeBytes(first.cachePath, "{\"dicsynth_precision_calibration\": 2, \"key\": \"nonsense\"");
+  CHECK_FALSE(cachedCalibration(context).has_value());
   CHECK_FALSE(calibratePrecisions(context, renderer).fromCache);
   CHECK(context.validationMessages().empty());
 }

@@ -15,8 +15,8 @@ packages=(
   mesa-vulkan-drivers                # lavapipe: Vulkan on the CPU when there is no GPU
   vulkan-validationlayers            # the test suite runs with validation on
   libopenimageio-dev libopenexr-dev libtiff-dev  # image and ground-truth files
-  zlib1g-dev                         # CRC-32 of sweep points' files (host/sweep/point_record.cpp)
-  libdeflate-dev                     # the deflate of zip EXRs (host/io/zip_deflate.cpp)
+  zlib1g-dev                         # zlib: behind libdeflate (host/io/zip_deflate.cpp)
+  libdeflate-dev                     # deflate of zip EXRs, CRC-32 of sweep files, Adler-32 of cached textures
   libssl-dev                         # SHA-256 of texture files (host/geometry/texture_disk_cache.h)
   libjsoncpp-dev                     # JSON files read back: point records, caches (host/core/json.h)
   libglm-dev libcli11-dev liblua5.4-dev doctest-dev

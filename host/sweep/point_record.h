@@ -21,7 +21,7 @@ namespace dicsynth::sweep {
 struct PointFile {
   std::string name;          // relative to the point's folder
   std::uintmax_t bytes = 0;
-  std::uint32_t crc32 = 0;   // zlib's CRC-32 of the whole file
+  std::uint32_t crc32 = 0;   // CRC-32 of the whole file (ISO-HDLC: zlib's, Python's zlib.crc32)
 };
 
 struct PointRecord {
@@ -60,7 +60,7 @@ inline constexpr const char* kPointRecordName = "point.json";
 // The record's "dicsynth_point" member: 2 since records list their assets.
 inline constexpr int kPointRecordVersion = 2;
 
-// zlib's CRC-32 of a byte string.
+// CRC-32 (ISO-HDLC: zlib's, Python's zlib.crc32) of a byte string.
 std::uint32_t crc32Of(std::string_view bytes);
 
 // Lists the regular files of `folder` (except the record and hidden temporaries) with size and CRC.

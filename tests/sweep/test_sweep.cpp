@@ -2,6 +2,7 @@
 // command line, the index order, the random draws, bad declarations (file:line), and the point
 // records that decide whether a point is complete.
 #include <doctest/doctest.h>
+#include <zlib.h>
 
 #include <chrono>
 
@@ -236,6 +237,17 @@ TEST_CASE("sweep: a point record is complete only with every file intact") {
   // zlib's CRC-32 of "truth bytes", checked against Python's zlib.crc32(b"truth bytes").
   CHECK(r.files[0].crc32 == 0x8da06fafu);
   CHECK(sweep::crc32Of("123456789") == 0xcbf43926u);  // the CRC-32 check value (ISO-HDLC)
+  {
+    // Longer than the 1 MiB read buffer, of every byte value: zlib's crc32 (the other library)
+    // agrees with the file's and the string's checksum.
+    std::string big(3 * (1 << 20) + 17, '\0');
+    std::uint32_t x = 12345;
+    for (char& c : big) c = char((x = x * 1664525u + 1013904223u) >> 24);
+    dir.write("big.bin", big);
+    const std::uint32_t zlib = std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(big.data()), uInt(big.size())));
+    CHECK(sweep::crc32Of(big) == zlib);
+    CHECK(assets.of(dir.file("big.bin")).crc32 == zlib);
+  }
   sweep::writePointRecord(folder, r);
   const auto back = sweep::readPointRecord(folder);
   REQUIRE(back);

@@ -3,12 +3,14 @@
 // truncated or foreign file is never used; the folder stays under its limit; failures to write
 // are warnings, never errors.
 #include <doctest/doctest.h>
+#include <zlib.h>
 
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -96,6 +98,18 @@ TEST_CASE("texture-disk-cache: a texture read back from disk equals its preparat
   const std::vector<fs::path> files = cacheFiles(first.disk());
   REQUIRE(files.size() == 1);
   CHECK(fs::file_size(files[0]) == kHeaderBytes + reference.size() * sizeof(double));
+  {
+    // The header's checksum is the Adler-32 of the coefficients' bytes, as zlib computes it in
+    // one pass (the writer's is libdeflate's, in pieces combined).
+    std::ifstream in(files[0], std::ios::binary);
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    REQUIRE(bytes.size() > kHeaderBytes);
+    std::uint32_t stored = 0;
+    std::memcpy(&stored, bytes.data() + kAdlerOffset, 4);
+    const uLong zlib = adler32_z(adler32_z(0, nullptr, 0), reinterpret_cast<const Bytef*>(bytes.data() + kHeaderBytes),
+                                 bytes.size() - kHeaderBytes);
+    CHECK(stored == std::uint32_t(zlib));
+  }
   // Another process (a new cache object): the coefficients come from the file, bit for bit.
   TextureCache second(TextureDiskCache(dir.path().string() + "/cache", kLimit));
   CHECK(prepared(scene, &second) == reference);

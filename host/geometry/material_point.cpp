@@ -38,4 +38,9 @@ std::optional<dvec3> worldPointOfMaterial(const PreparedObject& o, dvec2 materia
   return dvec3(h) / h.w;
 }
 
+bool hasMaterialPoint(const PreparedObject& o, dvec2 material) {
+  if (o.geometry.nurbs) return true;  // worldPointOfMaterial's NURBS branch never returns empty
+  return std::visit([&](const auto& shape) { return shape.pointOfUV(material).has_value(); }, o.geometry.analytic);
+}
+
 }  // namespace dicsynth

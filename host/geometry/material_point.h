@@ -31,4 +31,8 @@ dvec2 materialCoordinates(const PreparedObject& o, dvec2 uv, dvec3 world_m);
 // are clamped on a NURBS, whose evaluation stops at its knot domain.
 std::optional<dvec3> worldPointOfMaterial(const PreparedObject& o, dvec2 material);
 
+// worldPointOfMaterial(o, material).has_value(), without transforming the point (nor evaluating a
+// NURBS surface, which always has one): what a reference frame derived for itself alone needs.
+bool hasMaterialPoint(const PreparedObject& o, dvec2 material);
+
 }  // namespace dicsynth

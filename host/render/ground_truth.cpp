@@ -114,6 +114,9 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
     : frame_(frame), scene_(std::move(scene)) {
   DS_CHECK(result.cameras.size() == scene_.cameras.size(), "reference render and scene disagree");
   if (!motion) return;
+  bool deformed = false;
+  for (const PreparedObject& o : scene_.objects) deformed = deformed || o.deformation != nullptr;
+  const bool points = otherFrames || deformed;  // who reads material and position_m (ground_truth.h)
   for (std::size_t c = 0; c < result.cameras.size(); ++c) {
     const CameraImage& image = result.cameras[c];
     DS_CHECK(image.hasGeometry(), "motion truth of a render without geometry (RenderOptions::geometry)");
@@ -123,6 +126,16 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
     v.height_px = image.height_px;
     const std::size_t n = image.pixelCount();
     v.object.assign(n, -1);
+    if (!points) {
+      forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
+        if (image.objectId[i] == 0) return;
+        const int o = int(image.objectId[i]) - 1;
+        const PreparedObject& obj = scene_.objects[std::size_t(o)];
+        if (hasMaterialPoint(obj, materialCoordinates(obj, image.uv[i], image.position_m[i]))) v.object[i] = o;
+      });
+      views_.push_back(std::move(v));
+      continue;
+    }
     v.material.assign(n, kNaN2);
     v.position_m.assign(n, dvec3(kNaN));
     if (otherFrames) v.pixel_px.assign(n, kNaN2);
@@ -154,6 +167,7 @@ const ReferenceFrame::View* ReferenceFrame::view(const std::string& camera) cons
 std::vector<dvec3> fieldErrors(const ReferenceFrame::View& view, const std::vector<int>& objectNow,
                                const PreparedScene& scene) {
   const std::size_t n = view.object.size();
+  DS_CHECK(view.material.size() == n, "fieldError of a reference frame built without its material points");
   std::vector<dvec3> error(n, dvec3(kNaN));
   std::vector<std::vector<std::size_t>> pixels(scene.objects.size());
   for (std::size_t i = 0; i < n; ++i) {

@@ -62,7 +62,9 @@ class ReferenceFrame {
   // `otherFrames` false: only the reference frame itself will be derived (a single-frame render, every
   // sweep point), so the projections x_ref(m), which only other frames' flow uses, are not computed
   // (a distortion inversion per pixel in projectToImage's fold test; its share of a sweep point's
-  // CPU is in bench/RESULTS.md, "Sweeps").
+  // CPU is in bench/RESULTS.md, "Sweeps"). Nor, unless an object is deformed (fieldError reads
+  // them), the material coordinates and points: the reference frame's own disp and flow are zero
+  // wherever a material point exists, which is all `object` has to say (Figure 1: 0.09 s).
   // `motion` false: no layer derived from it is asked for (--layers without disp and flow): it only
   // keeps the scene, and deriveTruth finds no view.
   ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result, bool otherFrames = true,
@@ -72,9 +74,9 @@ class ReferenceFrame {
   struct View {
     std::string camera;
     int width_px = 0, height_px = 0;
-    std::vector<int> object;       // index into scene().objects, −1 for background
-    std::vector<dvec2> material;   // material coordinates (geometry/material_point.h)
-    std::vector<dvec3> position_m; // P_ref(m), recomputed in double from the material coordinates
+    std::vector<int> object;       // index into scene().objects, −1 for background (or no material point)
+    std::vector<dvec2> material;   // material coordinates (geometry/material_point.h) (empty: see the constructor)
+    std::vector<dvec3> position_m; // P_ref(m), recomputed in double from the material coordinates (empty: likewise)
     std::vector<dvec2> pixel_px;   // x_ref(m): its projection into the reference camera (empty: !otherFrames)
   };
   const View* view(const std::string& camera) const;

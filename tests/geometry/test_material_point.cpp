@@ -3,7 +3,10 @@
 // follow a material point from frame to frame and camera to camera.
 #include <doctest/doctest.h>
 
+#include <iterator>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "cpu/trace.h"
 #include "geometry/material_point.h"
@@ -69,6 +72,36 @@ TEST_CASE("material point: a triangle whose vertex uv are collinear has no inver
       " uv = {{0, 0}, {0.5, 0.5}, {1, 1}} } }\n");
   const PreparedScene scene = prepareScene(loadScene(path, {}));
   CHECK_FALSE(worldPointOfMaterial(scene.objects[0], dvec2{0.25, 0.25}).has_value());
+}
+
+TEST_CASE("material point: hasMaterialPoint answers as worldPointOfMaterial, every shape, random coordinates") {
+  // Randomized against the function it abbreviates: coordinates in and around [0, 1]², on every
+  // shape kind, a capped cylinder (whose caps' atlas cells have corners outside the disks: no
+  // point) and a triangle whose vertex uv are collinear (no inverse anywhere).
+  test::TempFolder dir;
+  std::vector<std::string> shapes(std::begin(kShapes), std::end(kShapes));
+  shapes.push_back("Shape.Cylinder { radius = 0.02; height = 0.05; capped = true; location = {0, 0, 0.5} }");
+  shapes.push_back("Shape.Cylinder { radius = 0.02; height = 0.05; capped = false; location = {0, 0, 0.5} }");
+  shapes.push_back("Shape.Triangle { vertices = {{0,0,1},{1,0,1},{0,1,1}}; uv = {{0, 0}, {0.5, 0.5}, {1, 1}} }");
+  std::mt19937_64 rng(20261127);
+  std::uniform_real_distribution<double> coordinate(-0.2, 1.2);
+  int disagree = 0, withPoint = 0, without = 0;
+  for (const std::string& shape : shapes) {
+    CAPTURE(shape);
+    const std::string path = dir.write(
+        "scene.lua", "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+                     "obj = Object.Simple { shape = " + shape + "; transform = " + kTransforms[1] + " }\n");
+    const PreparedScene scene = prepareScene(loadScene(path, {}));
+    for (int k = 0; k < 4000; ++k) {
+      const dvec2 m{coordinate(rng), coordinate(rng)};
+      const bool exists = worldPointOfMaterial(scene.objects[0], m).has_value();
+      disagree += hasMaterialPoint(scene.objects[0], m) != exists ? 1 : 0;
+      (exists ? withPoint : without) += 1;
+    }
+  }
+  CHECK(disagree == 0);
+  CHECK(withPoint > 30000);
+  CHECK(without > 3000);  // the capped cylinder's corners and the collinear triangle
 }
 
 }  // namespace dicsynth

@@ -3,6 +3,8 @@
 // predicted pixel and finding the same material point there).
 #include <doctest/doctest.h>
 
+#include <set>
+
 #include <cmath>
 #include <cstring>
 
@@ -134,13 +136,26 @@ TEST_CASE("ground truth: a rotating sphere under distortion, the ray through x +
 
 TEST_CASE("ground truth: a reference frame built for itself alone derives the same layers") {
   // A single-frame render (every sweep point) builds its ReferenceFrame without the projections
-  // that only other frames' flow uses; the reference frame's own layers must not change by a bit.
+  // that only other frames' flow uses, nor the material points (only whether each pixel has one);
+  // the reference frame's own layers must not change by a bit. Shapes whose (u, v) may name no
+  // material point (a capped cylinder's cap cells, seen from below at an angle) beside ones that
+  // always do (sphere, NURBS plate).
   test::TempFolder dir;
   const std::string path = dir.write("s.lua", camera("; distortion = Distortion.Brown { radial = {-0.2, 0.1, 0}; tangential = {1e-3, -2e-3} }") +
-      "obj = Object.Simple { shape = Shape.Sphere { radius = 0.04; location = {0.005, 0, 0.3} } }\n");
+      "obj = Object.Simple { shape = Shape.Sphere { radius = 0.012; location = {-0.012, 0.006, 0.3} } }\n"
+      "pipe = Object.Simple { shape = Shape.Cylinder { radius = 0.01; height = 0.02; capped = true; location = {0.014, 0.006, 0.3} };\n"
+      "  transform = rotate_x(degrees(50)) }\n"
+      "plate = Object.Simple { shape = Nurbs.plate { size = {0.05, 0.012}; curvature = 5; spans = {4, 2}; location = {0, -0.015, 0.3} } }\n");
   Frame f0 = renderFrame(path, 0);
-  const DerivedTruth full = deriveTruth(ReferenceFrame(0, f0.scene, f0.result, true), 0, f0.scene, f0.result, 0);
-  const DerivedTruth alone = deriveTruth(ReferenceFrame(0, f0.scene, f0.result, false), 0, f0.scene, f0.result, 0);
+  const ReferenceFrame fullFrame(0, f0.scene, f0.result, true), aloneFrame(0, f0.scene, f0.result, false);
+  REQUIRE(fullFrame.view("cam") != nullptr);
+  REQUIRE(aloneFrame.view("cam") != nullptr);
+  CHECK(fullFrame.view("cam")->object == aloneFrame.view("cam")->object);  // hasMaterialPoint's answer
+  CHECK(aloneFrame.view("cam")->material.empty());
+  std::set<int> objectsSeen(fullFrame.view("cam")->object.begin(), fullFrame.view("cam")->object.end());
+  CHECK(objectsSeen == std::set<int>{-1, 0, 1, 2});
+  const DerivedTruth full = deriveTruth(fullFrame, 0, f0.scene, f0.result, 0);
+  const DerivedTruth alone = deriveTruth(aloneFrame, 0, f0.scene, f0.result, 0);
   REQUIRE(full.displacement_m.size() == 160 * 120);
   auto sameBits = [](const auto& a, const auto& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;

@@ -10,7 +10,8 @@
 //
 // How: a function the executable defines comes before a shared library's of the same name (ELF
 // symbol interposition: the executable heads the global lookup scope, and the linker exports this
-// definition because libOpenEXR refers to it). So OpenEXR's calls, and any other library's
+// definition because libOpenEXR refers to it; CMakeLists.txt names compress2 undefined for every
+// program linking dicsynth_lib, so this file is always linked). So OpenEXR's calls, and any other library's
 // compress2 in the process (VTK's XML writers), land here. Where the definition does not come first
 // (the Python module, loaded into a python that links libz, writes no EXR anyway), zlib's stays:
 // the same values, slower. zipDeflateEngine() says which one a process has.

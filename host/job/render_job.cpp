@@ -324,7 +324,7 @@ VisibilityTracer RenderSession::visibilityTracer() {
 }
 
 std::optional<Precision> RenderSession::warmUpPrecision() {
-  if (!useGpu() || std::exchange(warmedUp_, true)) return std::nullopt;
+  if (!useGpu() || !context_ || std::exchange(warmedUp_, true)) return std::nullopt;
   return precision_ ? precision_ : knownPrecision(args_, *context_);
 }
 

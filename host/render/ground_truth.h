@@ -64,7 +64,8 @@ class ReferenceFrame {
   // (a distortion inversion per pixel in projectToImage's fold test; its share of a sweep point's
   // CPU is in bench/RESULTS.md, "Sweeps"). Nor, unless an object is deformed (fieldError reads
   // them), the material coordinates and points: the reference frame's own disp and flow are zero
-  // wherever a material point exists, which is all `object` has to say (Figure 1: 0.09 s).
+  // wherever a material point exists, which is all `object` has to say (Figure 1's truth phase:
+  // 0.17 → 0.14 s; bench/RESULTS.md, "a lighter reference frame").
   // `motion` false: no layer derived from it is asked for (--layers without disp and flow): it only
   // keeps the scene, and deriveTruth finds no view.
   ReferenceFrame(int frame, PreparedScene scene, const RenderResult& result, bool otherFrames = true,

@@ -4,6 +4,8 @@
 # round runs every variant once, so drifts of a shared machine hit all alike), ratios in one run:
 #   gpu       dicsynth render figure1.lua --precision fp32              (default layers: all)
 #   gpu-img   the same with --layers image                              (the sensor image alone)
+#   gpu-auto  dicsynth render figure1.lua (no --precision)              (the default precision,
+#             auto: it may choose a slower precision than fp32 to meet --max-error-px)
 #   cpu       dicsynth render figure1.lua --backend cpu                 (the double-precision reference)
 #   cpu-img   the same with --layers image
 #   povray    POV-Ray 3.7 on bench/figure1.pov, same size, samples and cores (skipped when `povray`
@@ -35,12 +37,17 @@ else
 fi
 
 GPU="$BIN render $SCENES/figure1.lua --precision fp32 --spp $SPP"
+AUTO="$BIN render $SCENES/figure1.lua --spp $SPP"  # no --precision: auto
 CPU="$BIN render $SCENES/figure1.lua --backend cpu --spp $SPP"
-# Warm-up: driver shader cache, page cache of the texture (not timed).
+# Warm-up: driver shader cache, page cache of the texture, the precision calibration of `auto`
+# (measured once per device and build, then cached) and its choice (not timed).
 $GPU -o "$OUT/warm" --layers image >/dev/null 2>&1
+chosen=$($AUTO -o "$OUT/warm-auto" --layers image --downscale 25 2>&1 >/dev/null |
+         sed -n 's/^precision auto: \([a-z0-9]*\).*/\1/p' | head -n 1)
 for r in $(seq "$RUNS"); do
   timed $GPU -o "$OUT/g" >> "$OUT/gpu"
   timed $GPU -o "$OUT/gi" --layers image >> "$OUT/gpu-img"
+  timed $AUTO -o "$OUT/ga" >> "$OUT/gpu-auto"
   timed $CPU -o "$OUT/c" >> "$OUT/cpu"
   timed $CPU -o "$OUT/ci" --layers image >> "$OUT/cpu-img"
   if [ -n "$POV" ]; then
@@ -52,13 +59,15 @@ for r in $(seq "$RUNS"); do
   timed $BIN render "$SCENES/figure1.lua" -o "$OUT/t" --precision fp32 --spp 1 --downscale 25 >> "$OUT/tiny"
 done
 
-g=$(median < "$OUT/gpu"); gi=$(median < "$OUT/gpu-img"); c=$(median < "$OUT/cpu"); ci=$(median < "$OUT/cpu-img")
+g=$(median < "$OUT/gpu"); gi=$(median < "$OUT/gpu-img"); ga=$(median < "$OUT/gpu-auto")
+c=$(median < "$OUT/cpu"); ci=$(median < "$OUT/cpu-img")
 tiny=$(median < "$OUT/tiny")
 echo "Figure 1, 1600x1200, $SPP spp, $CORES cores, median of $RUNS interleaved runs (s):"
 echo "| variant | wall s | CPU reference / this |"
 echo "|---|---|---|"
 printf "| gpu fp32, all layers | %s | %s |\n" "$g" "$(ratio "$c" "$g")"
 printf "| gpu fp32, --layers image | %s | %s (vs cpu --layers image: %s) |\n" "$gi" "$(ratio "$c" "$gi")" "$(ratio "$ci" "$gi")"
+printf "| gpu, default precision (auto: %s), all layers | %s | %s |\n" "${chosen:-?}" "$ga" "$(ratio "$c" "$ga")"
 printf "| cpu reference, all layers | %s | 1 |\n" "$c"
 printf "| cpu reference, --layers image | %s | |\n" "$ci"
 if [ -n "$POV" ]; then

@@ -1,7 +1,7 @@
 // What a process pays before its work: the dicsynth binary does not link OpenImageIO (its ~250
 // libraries cost 0.18 s of dynamic linking per process), reads other image formats through the
-// module it loads on demand, says clearly when that module is missing, and reports its phases with
-// DICSYNTH_TIMINGS=1.
+// module it loads on demand, says clearly when that module is missing, reports its phases with
+// DICSYNTH_TIMINGS=1, and deflates zip EXRs by libdeflate.
 #include <doctest/doctest.h>
 #include <OpenImageIO/imageio.h>
 
@@ -54,6 +54,21 @@ TEST_CASE("startup: the dicsynth binary links neither OpenImageIO nor OpenCV") {
   CHECK(needed.find("libvulkan") != std::string::npos);  // the listing works
   CHECK(needed.find("OpenImageIO") == std::string::npos);
   CHECK(needed.find("opencv") == std::string::npos);
+}
+
+TEST_CASE("startup: the dicsynth binary deflates zip EXRs by libdeflate, and says so") {
+  // The binary defines and exports zlib's compress2 (host/io/zip_deflate.cpp), so OpenEXR's calls
+  // resolve to it; --version names the engine the process resolved.
+  std::string exported;
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(("nm -D --defined-only " + std::string(DS_BINARY)).c_str(), "r"), pclose);
+  REQUIRE(pipe);
+  char line[512];
+  while (std::fgets(line, sizeof line, pipe.get()))
+    if (std::string(line).find(" compress2") != std::string::npos) exported += line;
+  CHECK(exported.find(" T compress2") != std::string::npos);
+  const dicsynth::test::CliResult r = runCli("--version");
+  CHECK(r.exitCode == 0);
+  CHECK(r.out.find("(EXR zip: libdeflate ") != std::string::npos);
 }
 
 TEST_CASE("startup: a PNG texture is read through the module, and without the module the error names it") {

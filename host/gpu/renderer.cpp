@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cameras/rays.h"
+#include "core/parallel.h"
 #include "core/phase_timer.h"
 #include "gpu/buffer.h"
 #include "gpu/df64.h"
@@ -307,29 +308,44 @@ void renderAll(Context& context, std::future<std::pair<SceneResidency, const Com
         params.random = {options.seed, std::uint32_t(options.frame), 0, 0};
         dispatchAndWait(context, pipeline, bindings, &params, std::uint32_t((tw + DS_LOCAL_SIZE_X - 1) / DS_LOCAL_SIZE_X),
                         std::uint32_t((th + DS_LOCAL_SIZE_Y - 1) / DS_LOCAL_SIZE_Y));
-        pixels.download(tile, std::size_t(tw) * std::size_t(th) * sizeof(tile[0]));
-        for (int ty = 0; ty < th; ++ty) {
-          for (int tx = 0; tx < tw; ++tx) {
-            const auto& p = tile[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)];
-            const std::size_t i = std::size_t(y0 + ty) * std::size_t(cam.width_px) + std::size_t(x0 + tx);
-            if (component(p.normal, 3) != 0) {
-              if (cutShort++ == 0)
-                firstCutShort = "camera '" + cam.name + "' pixel (" + std::to_string(x0 + tx) + ", " +
-                                std::to_string(y0 + ty) + ")";
+        // The tile's download and conversion, in bands of rows on all cores: serial, they took
+        // ~0.04 s of Figure 1's render on lavapipe (2 cores, the device idle meanwhile; bench/
+        // RESULTS.md "Tile readback on all cores") and are the frame's host work on a GPU.
+        // At least 64 rows per band: a band costs a thread's start. Each pixel is written by one
+        // band; the first cut-short pixel is the first of the first band that has one.
+        const std::size_t bands = std::min<std::size_t>(hardwareThreads(), std::size_t((th + 63) / 64));
+        std::vector<std::size_t> cutInBand(bands, 0), firstInBand(bands, 0);
+        parallelFor(bands, [&](std::size_t b) {
+          const int yBegin = int(b * std::size_t(th) / bands), yEnd = int((b + 1) * std::size_t(th) / bands);
+          const std::size_t first = std::size_t(yBegin) * std::size_t(tw);
+          pixels.download(tile + first, std::size_t(yEnd - yBegin) * std::size_t(tw) * sizeof(tile[0]), first * sizeof(tile[0]));
+          for (int ty = yBegin; ty < yEnd; ++ty) {
+            for (int tx = 0; tx < tw; ++tx) {
+              const std::size_t t = std::size_t(ty) * std::size_t(tw) + std::size_t(tx);
+              const auto& p = tile[t];
+              const std::size_t i = std::size_t(y0 + ty) * std::size_t(cam.width_px) + std::size_t(x0 + tx);
+              if (component(p.normal, 3) != 0 && cutInBand[b]++ == 0) firstInBand[b] = t;
+              image.radiance[i] = component(p.uvRadianceId, 2);                              // GpuSlot::Radiance
+              const auto id = std::uint32_t(std::lround(component(p.uvRadianceId, 3)));  // GpuSlot::ObjectId
+              if (id == 0) continue;  // background keeps NaN ground truth (CameraImage::resize)
+              image.objectId[i] = id;
+              if (!geometry) continue;  // not asked for: not converted
+              if (slots.depth) image.depth_m[i] = component(p.positionDepth, 3);
+              if (slots.uv) image.uv[i] = {component(p.uvRadianceId, 0), component(p.uvRadianceId, 1)};
+              // Camera-relative on the GPU (PackedFrame): the centre goes back in, in double.
+              if (slots.position)
+                image.position_m[i] = frame.origin_m + dvec3(component(p.positionDepth, 0), component(p.positionDepth, 1),
+                                                             component(p.positionDepth, 2));
+              if (slots.normal) image.normal[i] = {component(p.normal, 0), component(p.normal, 1), component(p.normal, 2)};
             }
-            image.radiance[i] = component(p.uvRadianceId, 2);                              // GpuSlot::Radiance
-            const auto id = std::uint32_t(std::lround(component(p.uvRadianceId, 3)));  // GpuSlot::ObjectId
-            if (id == 0) continue;  // background keeps NaN ground truth (CameraImage::resize)
-            image.objectId[i] = id;
-            if (!geometry) continue;  // not asked for: not converted
-            if (slots.depth) image.depth_m[i] = component(p.positionDepth, 3);
-            if (slots.uv) image.uv[i] = {component(p.uvRadianceId, 0), component(p.uvRadianceId, 1)};
-            // Camera-relative on the GPU (PackedFrame): the centre goes back in, in double.
-            if (slots.position)
-              image.position_m[i] = frame.origin_m + dvec3(component(p.positionDepth, 0), component(p.positionDepth, 1),
-                                                           component(p.positionDepth, 2));
-            if (slots.normal) image.normal[i] = {component(p.normal, 0), component(p.normal, 1), component(p.normal, 2)};
           }
+        });
+        for (std::size_t b = 0; b < bands; ++b) {
+          if (cutInBand[b] == 0) continue;
+          if (cutShort == 0)
+            firstCutShort = "camera '" + cam.name + "' pixel (" + std::to_string(x0 + int(firstInBand[b] % std::size_t(tw))) +
+                            ", " + std::to_string(y0 + int(firstInBand[b] / std::size_t(tw))) + ")";
+          cutShort += cutInBand[b];
         }
         donePixels += double(tw) * th;
         if (options.progress) options.progress(donePixels / totalPixels);

@@ -75,6 +75,14 @@ std::vector<dvec2> distortionField(const PreparedCamera& pc) {
   return field;
 }
 
+// Whether an object's surface is a Nurbs.deform fit: only then has fieldError values, and only
+// then does it read the reference frame's material points.
+bool anyDeformed(const PreparedScene& scene) {
+  for (const PreparedObject& o : scene.objects)
+    if (o.deformation) return true;
+  return false;
+}
+
 // x(m) of the header comment: NaN where the camera has no image position for the point.
 dvec2 seenAt(const ImagePoint& p) { return p.inFront && !p.folded ? p.pixel_px : kNaN2; }
 
@@ -114,9 +122,7 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
     : frame_(frame), scene_(std::move(scene)) {
   DS_CHECK(result.cameras.size() == scene_.cameras.size(), "reference render and scene disagree");
   if (!motion) return;
-  bool deformed = false;
-  for (const PreparedObject& o : scene_.objects) deformed = deformed || o.deformation != nullptr;
-  const bool points = otherFrames || deformed;  // who reads material and position_m (ground_truth.h)
+  const bool points = otherFrames || anyDeformed(scene_);  // who reads material and position_m (ground_truth.h)
   for (std::size_t c = 0; c < result.cameras.size(); ++c) {
     const CameraImage& image = result.cameras[c];
     DS_CHECK(image.hasGeometry(), "motion truth of a render without geometry (RenderOptions::geometry)");
@@ -126,18 +132,10 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
     v.height_px = image.height_px;
     const std::size_t n = image.pixelCount();
     v.object.assign(n, -1);
-    if (!points) {
-      forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
-        if (image.objectId[i] == 0) return;
-        const int o = int(image.objectId[i]) - 1;
-        const PreparedObject& obj = scene_.objects[std::size_t(o)];
-        if (hasMaterialPoint(obj, materialCoordinates(obj, image.uv[i], image.position_m[i]))) v.object[i] = o;
-      });
-      views_.push_back(std::move(v));
-      continue;
+    if (points) {
+      v.material.assign(n, kNaN2);
+      v.position_m.assign(n, dvec3(kNaN));
     }
-    v.material.assign(n, kNaN2);
-    v.position_m.assign(n, dvec3(kNaN));
     if (otherFrames) v.pixel_px.assign(n, kNaN2);
     const PreparedCamera& camera = scene_.cameras[c];
     forEachPixel(image.width_px, image.height_px, [&](std::size_t i, int, int) {
@@ -145,6 +143,10 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
       const int o = int(image.objectId[i]) - 1;
       const PreparedObject& obj = scene_.objects[std::size_t(o)];
       const dvec2 m = materialCoordinates(obj, image.uv[i], image.position_m[i]);
+      if (!points) {
+        if (hasMaterialPoint(obj, m)) v.object[i] = o;
+        return;
+      }
       const auto p = worldPointOfMaterial(obj, m);
       if (!p) return;
       v.object[i] = o;
@@ -245,11 +247,7 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       seen.object[i] = o;
     });
     if (flow && !isReference) fillVisibilityMask(visibility, scene, cameraIndex, seen, truth.flowMask);
-    if (layers.has(Layer::FieldError)) {
-      bool deformed = false;
-      for (const PreparedObject& o : scene.objects) deformed = deformed || o.deformation != nullptr;
-      if (deformed) truth.fieldError_m = fieldErrors(*view, objectNow, scene);
-    }
+    if (layers.has(Layer::FieldError) && anyDeformed(scene)) truth.fieldError_m = fieldErrors(*view, objectNow, scene);
   }
 
   // Disparity: this pixel's material point seen by the rig's other camera.

@@ -146,7 +146,7 @@ std::vector<ExrChannel> exrChannels(const CameraImage& image, const DerivedTruth
       addVec2(Layer::Disparity, truth->disparity_px);
       addValues(Layer::Disparity, 2, truth->disparityMask);
     }
-    if (layers.has(Layer::Distortion)) addVec2(Layer::Distortion, truth->distortion_px);
+    if (layers.has(Layer::Distortion)) addVec2(Layer::Distortion, truth->distortion());
     if (layers.has(Layer::FieldError)) addVec3(Layer::FieldError, truth->fieldError_m);
   }
   if (sensor) {
@@ -331,7 +331,7 @@ OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, 
     DS_CHECK(size == 0 || size == n, "camera " + camera.name + ": a geometry layer has the wrong pixel count");
   if (truth) {
     for (std::size_t size : {truth->displacement_m.size(), truth->flow_px.size(), truth->flowMask.size(),
-                             truth->disparity_px.size(), truth->disparityMask.size(), truth->distortion_px.size(),
+                             truth->disparity_px.size(), truth->disparityMask.size(), truth->distortion().size(),
                              truth->fieldError_m.size()})
       DS_CHECK(size == 0 || size == n, "camera " + camera.name + ": a derived layer has the wrong pixel count");
   }

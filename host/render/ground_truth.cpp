@@ -54,21 +54,22 @@ std::vector<dvec2> computeDistortionField(const PreparedCamera& pc) {
 // the points of a sweep rarely change, while computing it (a Newton inversion per pixel, in double)
 // was a visible share of a sweep point's CPU time (bench/RESULTS.md, "Sweeps"). So the last two
 // fields computed are kept, keyed by exactly those numbers (compared exactly), so that a sweep
-// computes each camera's once; two entries: the two cameras of a stereo rig.
-std::vector<dvec2> distortionField(const PreparedCamera& pc) {
+// computes each camera's once; two entries: the two cameras of a stereo rig. Shared, not copied:
+// a copy was 31 MB for 1600 × 1200, ~0.014 s of Figure 1's truth phase (bench/RESULTS.md).
+std::shared_ptr<const std::vector<dvec2>> distortionField(const PreparedCamera& pc) {
   const auto& m = pc.model;
   const auto& k = m.brown;
   using Key = std::array<double, 19>;
   const Key key = {double(pc.camera.width_px), double(pc.camera.height_px), m.fx, m.fy, m.cx, m.cy,
                    m.distorted ? 1.0 : 0.0, k.k1, k.k2, k.k3, k.p1, k.p2, k.k4, k.k5, k.k6, k.s1, k.s2, k.s3, k.s4};
   static std::mutex mutex;
-  static std::deque<std::pair<Key, std::vector<dvec2>>> kept;  // newest first
+  static std::deque<std::pair<Key, std::shared_ptr<const std::vector<dvec2>>>> kept;  // newest first
   {
     std::lock_guard lock(mutex);
     for (const auto& [kk, field] : kept)
       if (kk == key) return field;
   }
-  std::vector<dvec2> field = computeDistortionField(pc);
+  auto field = std::make_shared<const std::vector<dvec2>>(computeDistortionField(pc));
   std::lock_guard lock(mutex);
   kept.emplace_front(key, field);
   if (kept.size() > 2) kept.pop_back();
@@ -216,9 +217,18 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
   if ((flow || layers.has(Layer::Disp) || layers.has(Layer::FieldError)) && view && view->width_px == image.width_px &&
       view->height_px == image.height_px) {
     const std::size_t n = image.pixelCount();
-    truth.displacement_m.assign(n, dvec3(kNaN));
-    truth.flow_px.assign(n, kNaN2);
-    truth.flowMask.assign(n, 0.0f);
+    // The three arrays filled side by side: ~44 bytes per pixel first touched here, 0.028 s on one
+    // thread for 1600 × 1200 (bench/RESULTS.md, "Truth without copies"). Small images in line.
+    const auto fill = [&](std::size_t k) {
+      if (k == 0) truth.displacement_m.assign(n, dvec3(kNaN));
+      else if (k == 1) truth.flow_px.assign(n, kNaN2);
+      else truth.flowMask.assign(n, 0.0f);
+    };
+    if (n < (std::size_t(1) << 16)) {
+      for (std::size_t k = 0; k < 3; ++k) fill(k);
+    } else {
+      parallelFor(3, fill);
+    }
     // Objects are matched by name: a frame may add or drop objects, which renumbers them.
     std::vector<int> objectNow(reference.scene().objects.size());
     for (std::size_t o = 0; o < objectNow.size(); ++o)

@@ -18,6 +18,7 @@
 // and the ray from the camera centre towards it first meets its own object within 1e-6 of the
 // distance (0.5 µm at 0.5 m: far closer than any occluder a scene can mean, far looser than the
 // 1e-12 relative accuracy of the traced hit).
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,8 +52,13 @@ struct DerivedTruth {
   std::vector<float> disparityMask;   // disparity.mask: 1 where the other camera sees the point
   std::size_t disparityVisibleCount = 0;
   // distortion.X/Y: distorted minus undistorted image position of every pixel centre (px);
-  // zero for a camera without distortion.
-  std::vector<dvec2> distortion_px;
+  // zero for a camera without distortion. Shared with the fields kept for the next frames and sweep
+  // points (distortionField in ground_truth.cpp), not copied; null when the layer is not asked for.
+  std::shared_ptr<const std::vector<dvec2>> distortion_px;
+  const std::vector<dvec2>& distortion() const {  // *distortion_px, or empty
+    static const std::vector<dvec2> none;
+    return distortion_px ? *distortion_px : none;
+  }
 };
 
 // What the motion truth keeps of the reference frame: its scene and, per camera, the material

@@ -163,7 +163,7 @@ TEST_CASE("ground truth: a reference frame built for itself alone derives the sa
   CHECK(sameBits(full.displacement_m, alone.displacement_m));
   CHECK(sameBits(full.flow_px, alone.flow_px));
   CHECK(sameBits(full.flowMask, alone.flowMask));
-  CHECK(sameBits(full.distortion_px, alone.distortion_px));
+  CHECK(sameBits(full.distortion(), alone.distortion()));
   std::size_t seen = 0;
   for (float m : alone.flowMask) seen += m > 0 ? 1 : 0;
   CHECK(seen > 1000);  // the sphere covers part of the image: the layers are not all NaN
@@ -304,16 +304,18 @@ TEST_CASE("ground truth: the distortion layer maps each pixel centre to its undi
   Frame f = renderFrame(path, 0);
   const ReferenceFrame reference(0, f.scene, f.result);
   const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, 0);
+  // The same camera again: the kept field itself, shared, not a copy.
+  CHECK(deriveTruth(reference, 0, f.scene, f.result, 0).distortion_px == t.distortion_px);
   const auto& m = f.scene.cameras[0].model;
   double largest = 0;
-  for (std::size_t i = 0; i < t.distortion_px.size(); ++i) {
+  for (std::size_t i = 0; i < t.distortion().size(); ++i) {
     const dvec2 pixel{double(i % 160), double(i / 160)};
-    const dvec2 undistorted = pixel - t.distortion_px[i];
+    const dvec2 undistorted = pixel - t.distortion()[i];
     // Forward model (closed form) from the undistorted position must land on the pixel centre.
     const dvec2 ideal{(undistorted.x - m.cx) / m.fx, (undistorted.y - m.cy) / m.fy};
     const dvec2 back = distort(m.brown, ideal);
     CHECK(glm::length(dvec2{m.fx * back.x + m.cx, m.fy * back.y + m.cy} - pixel) < 1e-9);
-    largest = std::max(largest, glm::length(t.distortion_px[i]));
+    largest = std::max(largest, glm::length(t.distortion()[i]));
   }
   // The test means something: at the corners (r = 0.125 in normalized units) k1 alone moves the
   // position by 0.3 · 0.125³ · 800 ≈ 0.47 px.
@@ -323,7 +325,7 @@ TEST_CASE("ground truth: the distortion layer maps each pixel centre to its undi
       "obj = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {0, 0, 0.4} } }\n");
   Frame g = renderFrame(plain, 0);
   const DerivedTruth tp = deriveTruth(ReferenceFrame(0, g.scene, g.result), 0, g.scene, g.result, 0);
-  for (const dvec2& v : tp.distortion_px) CHECK(v == dvec2(0));
+  for (const dvec2& v : tp.distortion()) CHECK(v == dvec2(0));
   // The fields are kept across calls (a sweep's points share them), keyed by the camera's numbers:
   // a camera differing only in one coefficient gets its own field, and the first one comes back intact.
   const std::string other = dir.write("o.lua", camera("; distortion = Distortion.Brown { radial = {-0.3, 0.2, -0.05}; tangential = {2e-3, 1.5e-3} }") +
@@ -331,15 +333,15 @@ TEST_CASE("ground truth: the distortion layer maps each pixel centre to its undi
   Frame h = renderFrame(other, 0);
   const DerivedTruth to = deriveTruth(ReferenceFrame(0, h.scene, h.result), 0, h.scene, h.result, 0);
   const auto& mo = h.scene.cameras[0].model;
-  REQUIRE(to.distortion_px.size() == t.distortion_px.size());
-  CHECK(to.distortion_px != t.distortion_px);
-  for (std::size_t i = 0; i < to.distortion_px.size(); i += 97) {
+  REQUIRE(to.distortion().size() == t.distortion().size());
+  CHECK(to.distortion() != t.distortion());
+  for (std::size_t i = 0; i < to.distortion().size(); i += 97) {
     const dvec2 pixel{double(i % 160), double(i / 160)};
-    const dvec2 undistorted = pixel - to.distortion_px[i];
+    const dvec2 undistorted = pixel - to.distortion()[i];
     const dvec2 back = distort(mo.brown, dvec2{(undistorted.x - mo.cx) / mo.fx, (undistorted.y - mo.cy) / mo.fy});
     CHECK(glm::length(dvec2{mo.fx * back.x + mo.cx, mo.fy * back.y + mo.cy} - pixel) < 1e-9);
   }
-  CHECK(deriveTruth(reference, 0, f.scene, f.result, 0).distortion_px == t.distortion_px);
+  CHECK(deriveTruth(reference, 0, f.scene, f.result, 0).distortion() == t.distortion());
 }
 
 }  // namespace dicsynth

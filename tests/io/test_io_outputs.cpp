@@ -2,7 +2,10 @@
 #include <OpenImageIO/imageio.h>
 #include <doctest/doctest.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -271,6 +274,74 @@ TEST_CASE("io: when the EXR cannot be committed the TIFF is removed again") {
                                           std::vector<std::uint16_t>(image.pixelCount(), 0), testInfo()),
                        containsText(folder.file("c.exr")), Error);
   CHECK(folder.entries() == std::vector<std::string>{"c.exr"});  // no TIFF, no temporary file
+}
+
+namespace {
+
+// Writes past `bytes` fail while it is set (RLIMIT_FSIZE: EFBIG, its SIGXFSZ ignored): a disk that
+// fills up in the middle of a file, for the one thread or the other.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    REQUIRE(::getrlimit(RLIMIT_FSIZE, &saved_) == 0);
+    previous_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limit = saved_;
+    limit.rlim_cur = bytes;
+    REQUIRE(::setrlimit(RLIMIT_FSIZE, &limit) == 0);
+  }
+  ~FileSizeLimit() {
+    ::setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, previous_);
+  }
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+ private:
+  rlimit saved_{};
+  void (*previous_)(int) = SIG_DFL;
+};
+
+}  // namespace
+
+TEST_CASE("io: a write failing in either file, written side by side, leaves neither") {
+  // The TIFF is written on its own thread beside the EXR (writeCameraOutputs). Whichever fails, the
+  // call throws naming that file, after the other has finished, and the folder keeps no file and no
+  // temporary. Each case: the sizes measured once without a limit, then a limit between them.
+  Camera camera = testCamera();
+  camera.width_px = 160;
+  camera.height_px = 120;
+  camera.principalPoint_px = {80.2, 59.7};
+  const CameraImage image = testImage(camera);
+  const std::size_t n = image.pixelCount();
+  std::vector<std::uint16_t> flat(n, 0), noisy(n);
+  std::uint32_t state = 12345;  // a linear congruential sequence: incompressible enough for deflate
+  for (std::uint16_t& v : noisy) v = std::uint16_t(((state = state * 1664525u + 1013904223u) >> 16) % 1024);
+  struct Case {
+    const char* what;
+    const std::vector<std::uint16_t>* digital;
+    const char* layers;
+    const char* failing;  // the larger file, which the limit cuts
+  };
+  const Case cases[] = {{"the EXR fails, the TIFF completes", &flat, "all", ".exr"},
+                        {"the TIFF fails, the EXR completes", &noisy, "image,mask", ".tif"}};
+  for (const Case& c : cases) {
+    CAPTURE(c.what);
+    OutputInfo info = testInfo();
+    info.layers = LayerSet::parse(c.layers);
+    TempFolder measured;
+    const OutputFiles files = writeCameraOutputs(measured.path().string(), "c", camera, image, *c.digital, info);
+    const auto tif = std::filesystem::file_size(files.image), exr = std::filesystem::file_size(files.groundTruth);
+    const bool exrLarger = std::string(c.failing) == ".exr";
+    REQUIRE((exrLarger ? exr > 2 * tif : tif > 2 * exr));  // the limit below falls clearly between
+    TempFolder folder;
+    const std::string failing = folder.file(std::string("c") + c.failing);
+    {
+      const FileSizeLimit limit((tif + exr) / 2);
+      CHECK_THROWS_WITH_AS(writeCameraOutputs(folder.path().string(), "c", camera, image, *c.digital, info),
+                           containsText(failing), Error);
+    }
+    CHECK(folder.entries().empty());
+  }
 }
 
 TEST_CASE("io: cameraFromWorld rejects a non-rigid pose") {

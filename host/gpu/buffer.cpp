@@ -173,12 +173,16 @@ VkBufferView Buffer::texelView(VkFormat format, std::size_t texelBytes) {
 }
 
 void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
-  DS_CHECK(impl_, "upload to a moved-from Buffer");
+  write(bytes, offset, [&](void* destination) { std::memcpy(destination, data, bytes); });
+}
+
+void Buffer::write(std::size_t bytes, std::size_t offset, const std::function<void(void*)>& fill) {
+  DS_CHECK(impl_, "write to a moved-from Buffer");
   Impl& m = *impl_;
-  m.checkRange("upload", offset, bytes);
+  m.checkRange("write", offset, bytes);
   if (bytes == 0) return;
   if (m.mapped) {
-    std::memcpy(static_cast<char*>(m.mapped) + offset, data, bytes);
+    fill(static_cast<char*>(m.mapped) + offset);
     if (!m.coherent) {
       VkMappedMemoryRange range = m.atomRange(offset, bytes);
       DS_VK(vkFlushMappedMemoryRanges(m.context->device(), 1, &range));
@@ -186,7 +190,7 @@ void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
     return;
   }
   Buffer staging(*m.context, bytes, BufferUse::Readback);  // host-visible
-  staging.upload(data, bytes);
+  staging.write(bytes, 0, fill);
   m.copyOnDevice(staging.handle(), 0, handle(), offset, bytes, "buffer upload");
 }
 

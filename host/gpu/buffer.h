@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 namespace dicsynth::gpu {
@@ -38,6 +39,9 @@ class Buffer {
   // Copy host bytes into [offset, offset+bytes) / out of it. Blocking; uses a staging buffer when the
   // memory is not host-visible. Throws Error on out-of-range access.
   void upload(const void* data, std::size_t bytes, std::size_t offset = 0);
+  // upload() without a source array: `fill` writes the bytes of [offset, offset+bytes) in place,
+  // into the mapped memory or a staging buffer's (a large array converted once, not twice).
+  void write(std::size_t bytes, std::size_t offset, const std::function<void(void* destination)>& fill);
   void download(void* data, std::size_t bytes, std::size_t offset = 0) const;
 
  private:

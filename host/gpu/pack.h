@@ -84,7 +84,11 @@ PackedScene<Layout> packScene(const PreparedScene& scene);
 
 // All textures' B-spline coefficients, concatenated in scene.textures order and rounded to the
 // variant's real (at PackedScene::textures' offsets). Apart from packScene: the renderer packs them
-// only when the textures change (Renderer::CachedTexels).
+// only when the textures change (Renderer::CachedTexels), straight into the buffer's memory
+// (texelCount reals at `out`, converted on all cores), or as an array.
+std::size_t texelCount(const PreparedScene& scene);
+template <class Layout>
+void packTexels(const PreparedScene& scene, typename Layout::real* out);
 template <class Layout>
 std::vector<typename Layout::real> packTexels(const PreparedScene& scene);
 

@@ -91,7 +91,10 @@ Buffer& cachedTexels(Context& context, Renderer::CachedTexels& cache, const Prep
   if (cache.buffer && cache.layout == layout && cache.sources == sources) return *cache.buffer;
   cache.buffer.reset();  // free the old buffer (and arrays) before packing their successors
   cache.sources.clear();
-  cache.buffer = std::make_unique<Buffer>(inputBuffer(context, packTexels<Layout>(scene)));
+  using Real = typename Layout::real;
+  const std::size_t bytes = texelCount(scene) * sizeof(Real);
+  cache.buffer = std::make_unique<Buffer>(context, bytes, BufferUse::Input);
+  cache.buffer->write(bytes, 0, [&](void* to) { packTexels<Layout>(scene, static_cast<Real*>(to)); });
   cache.sources = std::move(sources);
   cache.layout = layout;
   return *cache.buffer;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -290,6 +291,13 @@ TEST_CASE("gpu: buffer sizes and ranges are checked") {
   buffer.upload(hello, 5, 5);
   buffer.download(bytes, 5, 5);
   CHECK(std::string(bytes, 5) == "hello");
+  // write(): the bytes filled in place, at the offset, within the same range checks.
+  CHECK_THROWS_AS(buffer.write(6, 5, [](void*) {}), Error);
+  buffer.write(3, 1, [](void* to) { std::memcpy(to, "abc", 3); });
+  buffer.download(bytes, 3, 1);
+  CHECK(std::string(bytes, 3) == "abc");
+  buffer.download(bytes, 5, 5);
+  CHECK(std::string(bytes, 5) == "hello");  // the bytes after it untouched
 
   // Moving keeps the handle; an empty buffer still exists and can be bound.
   VkBuffer handle = buffer.handle();
@@ -321,6 +329,13 @@ TEST_CASE("gpu: Input buffers work through staging copies when they are not mapp
   std::vector<int32_t> back(30, 0);
   buffer.download(back.data(), 30 * sizeof(int32_t), 55 * sizeof(int32_t));
   CHECK(back == std::vector<int32_t>(values.begin() + 55, values.begin() + 85));
+  // write() through the staging buffer: 10 values filled in place at value 20.
+  buffer.write(10 * sizeof(int32_t), 20 * sizeof(int32_t), [](void* to) {
+    for (int i = 0; i < 10; ++i) static_cast<int32_t*>(to)[i] = 1000 + i;
+  });
+  std::vector<int32_t> all(100, 0);
+  buffer.download(all.data(), 100 * sizeof(int32_t));
+  for (int i = 0; i < 100; ++i) CHECK(all[std::size_t(i)] == (i >= 20 && i < 30 ? 1000 + i - 20 : values[std::size_t(i)]));
   // A shader reads what the staging copy wrote.
   std::vector<float> input = {1.5f, -2.0f, 1e30f};
   CHECK(runBufferOps<float>(ctx, spirv::buffer_ops_fp32, input, {3, 2.0f}) ==

@@ -133,10 +133,10 @@ void writeGrayTiffFile(const std::string& tempPath, const std::string& finalPath
   TIFF* t = tif.get();
   const bool eightBit = bits <= 8;
   const std::uint32_t rowsPerStrip = 32;  // 32 rows per zip strip: ~100 KB of a 1600-px 16-bit image
-  // Deflate level 1 (libtiff's default is 6): Figure 1's 10-bit image is written in 0.035 s instead
-  // of 0.080 s, 4.7 % larger (1.379 against 1.316 MB; level 3: 0.042 s, +3.4 %; 12: 0.255 s,
-  // -0.2 %), on one core while nothing else runs (bench/RESULTS.md, "Speed as a user times it").
-  // The pixels are the same at every level.
+  // Deflate level 1 (libtiff's default is 6), by libdeflate (whole strips, below): Figure 1's 10-bit
+  // image is written in 0.021 s, 1.304 MB; level 2: 0.025 s, 1.336 MB; 6: 0.038 s, 1.328 MB; 9:
+  // 0.133 s, 1.300 MB; 12: 0.32 s, 1.267 MB (bench/RESULTS.md, "Truth without copies"). The pixels
+  // are the same at every level.
   const int kZipLevel = 1;
   const std::string software = std::string("dicsynth ") + kVersion;
   // No DateTime tag: the same pixels give the same file.
@@ -154,20 +154,21 @@ void writeGrayTiffFile(const std::string& tempPath, const std::string& finalPath
                   TIFFSetField(t, TIFFTAG_IMAGEDESCRIPTION, description.c_str()) == 1 &&
                   TIFFSetField(t, TIFFTAG_SOFTWARE, software.c_str()) == 1;
   if (!ok) throw Error(finalPath + ": cannot set TIFF fields: " + lastError());
-  const std::size_t w = std::size_t(width);
-  std::vector<std::uint8_t> narrow(eightBit ? w : 0);
-  std::vector<std::uint16_t> wide(eightBit ? 0 : w);
-  for (int y = 0; y < height; ++y) {
-    const std::uint16_t* src = values.data() + std::size_t(y) * w;
-    void* row = nullptr;
+  // Whole strips (TIFFWriteEncodedStrip), not scanlines: libtiff deflates a strip given at once with
+  // libdeflate, and row by row with zlib's stream, ~3x slower (bench/RESULTS.md, "Truth without
+  // copies"). The pixels are the same either way.
+  const std::size_t w = std::size_t(width), bytesPerSample = eightBit ? 1 : 2;
+  std::vector<std::uint8_t> strip(w * rowsPerStrip * bytesPerSample);
+  for (int y0 = 0, index = 0; y0 < height; y0 += int(rowsPerStrip), ++index) {
+    const int rows = std::min(height - y0, int(rowsPerStrip));
+    const std::uint16_t* src = values.data() + std::size_t(y0) * w;
+    const std::size_t count = std::size_t(rows) * w;
     if (eightBit) {
-      for (std::size_t x = 0; x < w; ++x) narrow[x] = std::uint8_t(src[x]);  // < 2^bits ≤ 256: exact
-      row = narrow.data();
+      for (std::size_t i = 0; i < count; ++i) strip[i] = std::uint8_t(src[i]);  // < 2^bits ≤ 256: exact
     } else {
-      std::copy(src, src + w, wide.begin());  // libtiff may encode the row in place (predictor)
-      row = wide.data();
+      std::memcpy(strip.data(), src, count * 2);  // libtiff encodes the strip in place (predictor)
     }
-    if (TIFFWriteScanline(t, row, std::uint32_t(y), 0) != 1)
+    if (TIFFWriteEncodedStrip(t, std::uint32_t(index), strip.data(), tmsize_t(count * bytesPerSample)) < 0)
       throw Error(finalPath + ": cannot write TIFF pixels: " + lastError());
   }
   if (TIFFFlush(t) != 1) throw Error(finalPath + ": cannot finish TIFF: " + lastError());

@@ -201,6 +201,22 @@ TEST_CASE("io: TIFF 16-bit round trip is exact and 10-bit values are stored unsc
   }
 }
 
+TEST_CASE("io: TIFF of several strips, the last one partial, round trips exactly") {
+  // writeGrayTiff hands libtiff whole strips of 32 rows: 103 rows are three full strips and 7 rows.
+  TempFolder folder;
+  const int width = 45, height = 3 * 32 + 7;
+  for (int bits : {8, 16}) {
+    CAPTURE(bits);
+    const std::string path = folder.file("strips_" + std::to_string(bits) + ".tif");
+    const auto values = pattern(width, height, (1u << bits) - 1u);
+    writeGrayTiff(path, width, height, values, bits, "strips");
+    const RawImage raw = readRaw(path);
+    CHECK(raw.spec.height == height);
+    CHECK(raw.spec.get_string_attribute("compression") == "zip");
+    CHECK(raw.values == values);
+  }
+}
+
 TEST_CASE("io: writeGrayTiff is reproducible byte for byte and replaces an existing file") {
   TempFolder folder;
   const auto values = pattern(64, 16, 65535);

@@ -155,8 +155,8 @@ void writeGrayTiffFile(const std::string& tempPath, const std::string& finalPath
                   TIFFSetField(t, TIFFTAG_SOFTWARE, software.c_str()) == 1;
   if (!ok) throw Error(finalPath + ": cannot set TIFF fields: " + lastError());
   // Whole strips (TIFFWriteEncodedStrip), not scanlines: libtiff deflates a strip given at once with
-  // libdeflate, and row by row with zlib's stream, ~3x slower (bench/RESULTS.md, "Truth without
-  // copies"). The pixels are the same either way.
+  // libdeflate, and row by row with zlib's stream (Figure 1: 0.021 against 0.036 s, 6 % smaller;
+  // bench/RESULTS.md, "Truth without copies"). The pixels are the same either way.
   const std::size_t w = std::size_t(width), bytesPerSample = eightBit ? 1 : 2;
   std::vector<std::uint8_t> strip(w * rowsPerStrip * bytesPerSample);
   for (int y0 = 0, index = 0; y0 < height; y0 += int(rowsPerStrip), ++index) {

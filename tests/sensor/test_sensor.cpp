@@ -62,6 +62,24 @@ TEST_CASE("sensor: halves round up, exactly") {
   CHECK(digitize(3.0 / 131072.0, sixteen) == 1);
 }
 
+TEST_CASE("sensor: an image is digitized pixel by pixel, in blocks on all cores") {
+  // digitize(vector) runs blocks of 2^16 pixels in parallel: 3 blocks and a partial one, with NaN,
+  // infinities and values beyond full scale among them, equal the scalar function at every pixel.
+  const Camera camera = cameraWithBits(10, 1.3);
+  std::vector<double> radiance(3 * 65536 + 4321);
+  for (std::size_t i = 0; i < radiance.size(); ++i) radiance[i] = double((i * 2654435761u) % 100003u) / 70000.0 - 0.1;
+  radiance[0] = std::numeric_limits<double>::quiet_NaN();
+  radiance[65536] = std::numeric_limits<double>::infinity();
+  radiance.back() = -std::numeric_limits<double>::infinity();
+  const std::vector<std::uint16_t> digital = digitize(radiance, camera);
+  REQUIRE(digital.size() == radiance.size());
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < radiance.size(); ++i) differing += digital[i] != digitize(radiance[i], camera) ? 1 : 0;
+  CHECK(differing == 0);
+  CHECK(digital[65536] == 1023);
+  CHECK(digitize(std::vector<double>{}, camera).empty());
+}
+
 TEST_CASE("sensor: clipping at 0 and full scale") {
   const Camera camera = cameraWithBits(12);
   const double inf = std::numeric_limits<double>::infinity();

@@ -35,4 +35,9 @@ void parallelFor(std::size_t n, const std::function<void(std::size_t)>& body) {
   if (error) std::rethrow_exception(error);
 }
 
+void parallelForBlocks(std::size_t n, std::size_t block, const std::function<void(std::size_t, std::size_t)>& body) {
+  if (block == 0) block = 1;
+  parallelFor((n + block - 1) / block, [&](std::size_t b) { body(b * block, std::min(n, (b + 1) * block)); });
+}
+
 }  // namespace dicsynth

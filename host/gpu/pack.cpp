@@ -219,13 +219,11 @@ std::size_t texelCount(const PreparedScene& scene) {
 
 template <class Layout>
 void packTexels(const PreparedScene& scene, typename Layout::real* out) {
-  // Chunks of 2^20 coefficients on all cores: Figure 1's texture alone is 8.4 M, 0.035-0.07 s on
+  // Blocks of 2^20 coefficients on all cores: Figure 1's texture alone is 8.4 M, 0.035-0.07 s on
   // one thread beside the pipeline's compilation (bench/RESULTS.md, "Truth without copies").
-  constexpr std::size_t kChunk = std::size_t(1) << 20;
   for (const auto& t : scene.textures) {
     const std::vector<double>& values = t.values();
-    parallelFor((values.size() + kChunk - 1) / kChunk, [&](std::size_t k) {
-      const std::size_t begin = k * kChunk, end = std::min(values.size(), begin + kChunk);
+    parallelForBlocks(values.size(), std::size_t(1) << 20, [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) out[i] = typename Layout::real(values[i]);
     });
     out += values.size();

@@ -82,10 +82,8 @@ std::vector<std::uint16_t> digitize(const std::vector<double>& radiance, const C
   std::vector<std::uint16_t> digital(radiance.size());
   // Blocks of 2^16 pixels on all cores: one thread took 0.016 s for 1600 × 1200, the whole sensor
   // phase of a camera without a sensor model (bench/RESULTS.md, "Truth without copies").
-  constexpr std::size_t kBlock = std::size_t(1) << 16;
-  parallelFor((radiance.size() + kBlock - 1) / kBlock, [&](std::size_t b) {
-    const std::size_t end = std::min(radiance.size(), (b + 1) * kBlock);
-    for (std::size_t i = b * kBlock; i < end; ++i) digital[i] = digitize(radiance[i], camera);
+  parallelForBlocks(radiance.size(), std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) digital[i] = digitize(radiance[i], camera);
   });
   return digital;
 }

@@ -1,5 +1,6 @@
 #include "render/ground_truth.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <deque>
@@ -44,23 +45,19 @@ std::vector<dvec2> computeDistortionField(const PreparedCamera& pc) {
   // Each pixel centre is a distorted position; its undistorted position is K·undistort(K⁻¹x).
   // prepareScene checked that the inverse round-trips to < 1e-9 px over the whole image.
   // Rows on all cores; along a row eight pixels at a time in lockstep (undistortLockstep: the same
-  // results as undistort() one by one, ~1.5x faster), the row's last few one by one.
+  // results as undistort() one by one, ~1.5x faster). A row's last block repeats its last pixel in
+  // the lanes past the end (inverted, not written).
   constexpr int kLanes = 8;
   const int w = c.width_px;
   parallelFor(std::size_t(c.height_px), [&](std::size_t yIndex) {
     const int y = int(yIndex);
     dvec2* row = field.data() + yIndex * std::size_t(w);
     dvec2 target[kLanes], ideal[kLanes];
-    int x0 = 0;
-    for (; x0 + kLanes <= w; x0 += kLanes) {
-      for (int l = 0; l < kLanes; ++l) target[l] = dvec2{(x0 + l - m.cx) / m.fx, (y - m.cy) / m.fy};
+    for (int x0 = 0; x0 < w; x0 += kLanes) {
+      for (int l = 0; l < kLanes; ++l) target[l] = dvec2{(std::min(x0 + l, w - 1) - m.cx) / m.fx, (y - m.cy) / m.fy};
       undistortLockstep<kLanes>(m.brown, target, ideal);
-      for (int l = 0; l < kLanes; ++l)
+      for (int l = 0; l < kLanes && x0 + l < w; ++l)
         row[x0 + l] = dvec2{x0 + l, y} - dvec2{m.fx * ideal[l].x + m.cx, m.fy * ideal[l].y + m.cy};
-    }
-    for (int x = x0; x < w; ++x) {
-      const dvec2 one = undistort(m.brown, dvec2{(x - m.cx) / m.fx, (y - m.cy) / m.fy});
-      row[x] = dvec2{x, y} - dvec2{m.fx * one.x + m.cx, m.fy * one.y + m.cy};
     }
   });
   return field;

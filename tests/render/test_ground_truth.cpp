@@ -344,4 +344,27 @@ TEST_CASE("ground truth: the distortion layer maps each pixel centre to its undi
   CHECK(deriveTruth(reference, 0, f.scene, f.result, 0).distortion() == t.distortion());
 }
 
+TEST_CASE("ground truth: the distortion field equals undistort() pixel by pixel, rows of any width") {
+  // The field is inverted eight pixels of a row at a time (undistortLockstep); 163 pixels per row
+  // leave a partial last block. Each pixel's value must be the one undistort() gives it alone.
+  test::TempFolder dir;
+  const std::string path = dir.write("w.lua",
+      "cam = Camera.Pinhole { resolution = {163, 9}; focalLength = 0.016; pixelSize = {2e-5, 2e-5}; "
+      "distortion = Distortion.Brown { radial = {-0.3, 0.2, -0.05}; tangential = {2e-3, 1e-3} } }\n"
+      "obj = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.075}; location = {0, 0, 0.4} } }\n");
+  Frame f = renderFrame(path, 0);
+  const DerivedTruth t = deriveTruth(ReferenceFrame(0, f.scene, f.result), 0, f.scene, f.result, 0);
+  const auto& m = f.scene.cameras[0].model;
+  REQUIRE(t.distortion().size() == std::size_t(163 * 9));
+  std::size_t differing = 0;
+  for (int y = 0; y < 9; ++y)
+    for (int x = 0; x < 163; ++x) {
+      const dvec2 ideal = undistort(m.brown, dvec2{(x - m.cx) / m.fx, (y - m.cy) / m.fy});
+      const dvec2 expected = dvec2{x, y} - dvec2{m.fx * ideal.x + m.cx, m.fy * ideal.y + m.cy};
+      const dvec2 got = t.distortion()[std::size_t(y) * 163 + std::size_t(x)];
+      differing += std::memcmp(&expected, &got, sizeof got) != 0 ? 1 : 0;
+    }
+  CHECK(differing == 0);
+}
+
 }  // namespace dicsynth

@@ -502,14 +502,18 @@ std::pair<SceneResidency, const ComputePipeline*> Renderer::prepare(Precision pr
   return {where, &pipeline(precision, scene.features, rendererOptions.specialize, df64Fma, where)};
 }
 
+bool Renderer::lacks(Precision precision) const {
+  return precision == Precision::Fp64 && !context_.info().shaderFloat64;
+}
+
 void Renderer::warmUp(Precision precision, const PreparedScene& scene, const RendererOptions& rendererOptions) {
-  if (precision == Precision::Fp64 && !context_.info().shaderFloat64) return;
+  if (lacks(precision)) return;
   (void)prepare(precision, scene, rendererOptions);
 }
 
 RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& options,
                               const RendererOptions& rendererOptions) {
-  if (options.precision == Precision::Fp64 && !context_.info().shaderFloat64)
+  if (lacks(options.precision))
     throw InputError("--precision fp64: device '" + context_.info().name +
                      "' has no shaderFloat64; use --precision df64, fp32 or another --device");
   if (options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
@@ -538,7 +542,7 @@ std::vector<std::uint8_t> Renderer::reachesFirst(const PreparedScene& scene, Pre
                                                  std::span<const dvec3> points_m, std::span<const int> objects,
                                                  double relativeTolerance, const RendererOptions& rendererOptions) {
   DS_CHECK(points_m.size() == objects.size() && camera < scene.cameras.size(), "reachesFirst: bad arguments");
-  if (precision == Precision::Fp64 && !context_.info().shaderFloat64)
+  if (lacks(precision))
     throw InputError("visibility in fp64: device '" + context_.info().name + "' has no shaderFloat64");
   if (points_m.empty()) return {};
   const auto [where, pipe] = prepare(precision, scene, rendererOptions);

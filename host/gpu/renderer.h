@@ -90,6 +90,9 @@ class Renderer {
                            const RendererOptions& rendererOptions) const;
 
  private:
+  // Whether the device cannot run `precision` (fp64 without shaderFloat64): render() and
+  // reachesFirst() refuse it, warmUp() skips it.
+  bool lacks(Precision precision) const;
   // What a render and a query of `scene` in `precision` both need (the caller has checked fp64
   // against the device): df64 must pass the device's self-test, which also says whether products
   // use fma; then where the data lives and the pipeline.

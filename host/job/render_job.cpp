@@ -132,10 +132,11 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   // it is created on a second thread, from the scene prepared without them, while this thread reads
   // the textures (Figure 1 on lavapipe: ~0.09 s of pipeline beside ~0.07 s of texture; bench/
   // RESULTS.md, "Where lavapipe's render time goes"). Only when the precision is known: named, or
-  // `auto` with a cached calibration (calibrating must come after the frame's own errors). The render then finds the
-  // pipeline made (or waits for it). An error here is left to the frame's own preparation. The
-  // session's first frame only: the others' pipelines are made by then. The second preparation
-  // repeats the cheap part of the scene's, and a NURBS surface's tree (built twice, on two threads).
+  // `auto` with a cached calibration (calibrating must come after the frame's own errors). The
+  // render then finds the pipeline made (or waits for it). An error here is left to the frame's
+  // own preparation. The session's first frame only: the others' pipelines are made by then. The
+  // second preparation repeats the cheap part of the scene's, and a NURBS surface's tree (built
+  // twice, on two threads).
   gpu::Renderer* renderer = session.renderer();
   std::future<void> warm;
   if (const std::optional<Precision> known = session.warmUpPrecision(); renderer && known)

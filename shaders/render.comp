@@ -19,10 +19,13 @@ layout(local_size_x = DS_LOCAL_SIZE_X, local_size_y = DS_LOCAL_SIZE_Y) in;
 // DS_UNIFORM_BLOCK_BYTES read instead when the scene fits (UNIFORM_SCENE). Why both: every index
 // into them is dynamically uniform (the camera from the push constants, objects and lights from
 // loops that unroll to constants when OBJECT_COUNT / LIGHT_COUNT are exact), and a driver may fetch
-// such data once per SIMD batch only from a uniform block. Mesa 22.3's lavapipe does (a uniform
-// block read at a constant offset is one scalar load), while it reads a storage buffer inside any
-// loop or branch lane by lane (bench/RESULTS.md, "Render speed after issue 6"); on GPUs uniform
-// blocks go through the constant cache. Storage buffers remain for scenes too large for the blocks.
+// such data once per SIMD batch only from a uniform block; on GPUs uniform blocks go through the
+// constant cache. Mesa 22.3's lavapipe does so only outside loops and branches: under an execution
+// mask its JIT code loads a uniform-block value lane by lane, eight scalar loads per 8-wide batch
+// even at a constant offset (but without branches), while a storage-buffer read is a loop over the
+// lanes with a bounds branch per lane, slower still (bench/RESULTS.md, "Render speed after issue 6",
+// "Per-invocation copies of the scene"). Hence LOCAL_SCENE below. Storage buffers remain for scenes
+// too large for the blocks.
 layout(std430, set = 0, binding = DS_BINDING_CAMERAS) readonly buffer Cameras { GpuCamera cameras[]; };
 layout(std430, set = 0, binding = DS_BINDING_OBJECTS) readonly buffer Objects { GpuObject objects[]; };
 layout(std430, set = 0, binding = DS_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
@@ -35,7 +38,23 @@ layout(std140, set = 0, binding = DS_BINDING_OBJECTS_UNIFORM) uniform ObjectsUni
 layout(std140, set = 0, binding = DS_BINDING_LIGHTS_UNIFORM) uniform LightsUniform {
   GpuLight uniformLights[DS_UNIFORM_BLOCK_BYTES / DS_GPU_LIGHT_BYTES(DS_H4_BYTES, DS_R4_BYTES)];
 };
-#define DS_OBJECT(i, member) (UNIFORM_SCENE ? uniformObjects[i].member : objects[i].member)
+// LOCAL_SCENE (CPU devices, with uniform blocks, exact counts and no NURBS: gpu/renderer.cpp
+// residencyOf): main() copies the objects, the lights and the objects' file-texture sizes once per
+// invocation into private arrays, and DS_OBJECT, DS_LIGHT and DS_TEXTURE_INFO read the copies.
+// Why: every sample re-read its objects' transform, shape and texture fields from the uniform block,
+// lane by lane on Mesa 22.3 (above: the samples are a loop), and its texture's size from the
+// storage buffer, lane by lane with a branch per lane; copies read at the constant indices of the unrolled
+// loops (lib/trace.glsl, lib/shading.glsl) are registers, and the members no code reads are dropped
+// with their loads. Figure 1's render (fp32, 16 spp): 0.84 -> 0.66 s on Mesa 22.3, 0.62 -> 0.45 s
+// on Mesa 25 (bench/RESULTS.md, "Per-invocation copies of the scene"). GPUs keep the uniform
+// blocks, which their constant caches serve: copies would only hold registers (not measured).
+GpuObject ds_localObjects[DS_MAX_UNROLLED_OBJECTS];
+GpuLight ds_localLights[DS_MAX_UNROLLED_LIGHTS];
+ivec4 ds_localTextureInfo[DS_MAX_UNROLLED_OBJECTS];  // textures[kinds.z].info of Texture.File objects
+#define DS_LOCAL_OBJECTS (LOCAL_SCENE && OBJECT_COUNT > 0)
+#define DS_LOCAL_LIGHTS (LOCAL_SCENE && LIGHT_COUNT >= 0)
+#define DS_OBJECT(i, member) \
+  (DS_LOCAL_OBJECTS ? ds_localObjects[i].member : UNIFORM_SCENE ? uniformObjects[i].member : objects[i].member)
 // hreal4 members: in df64 a struct {hi, lo}, and a ternary between the two blocks' copies would mix
 // two SPIR-V struct types (each block lays out its own): the pair is rebuilt from its vec4 halves.
 #if defined(DS_DF64)
@@ -48,8 +67,11 @@ layout(std140, set = 0, binding = DS_BINDING_LIGHTS_UNIFORM) uniform LightsUnifo
 #else
 #define DS_QUERY_H(i, member) queries[i].member
 #endif
-#define DS_LIGHT(i, member) (UNIFORM_SCENE ? uniformLights[i].member : lights[i].member)
+#define DS_LIGHT(i, member) \
+  (DS_LOCAL_LIGHTS ? ds_localLights[i].member : UNIFORM_SCENE ? uniformLights[i].member : lights[i].member)
 layout(std430, set = 0, binding = DS_BINDING_TEXTURES) readonly buffer Textures { GpuTexture textures[]; };
+// The size and texel offset of object i's Texture.File (textures/file.glsl).
+#define DS_TEXTURE_INFO(i) (DS_LOCAL_OBJECTS ? ds_localTextureInfo[i] : textures[DS_OBJECT(i, kinds).z].info)
 // Texture coefficients: a storage buffer, or (TEXEL_VIEW, fp32 and df64) the same bytes as a uniform
 // texel buffer, whose fetches a SIMD device gathers for all lanes at once: on Mesa 22.3's lavapipe
 // a storage-buffer read at a per-lane index is a loop over the lanes. In fp64 the storage buffer is
@@ -83,6 +105,27 @@ layout(push_constant) uniform Push { GpuTileParams params; };
 // that every loop runs its body once, so a loop that must run twice (its bound is not a
 // constant: params.random.z is 0) counts once. 1 tells the host (gpu/renderer.cpp), which refuses
 // the result. Other drivers have no such limit: the sentinel then never fires.
+// LOCAL_SCENE's copies (above), filled once per invocation before any ray. The loops unroll: every
+// index is a constant, so the copies become registers.
+void ds_copy_scene() {
+  if (DS_LOCAL_OBJECTS) {
+    [[unroll]] for (int i = 0; i < OBJECT_COUNT; ++i) {
+#define DS_COPY_OBJECT_MEMBER(member) ds_localObjects[i].member = uniformObjects[i].member;
+      DS_GPU_OBJECT_MEMBERS(DS_COPY_OBJECT_MEMBER)
+#undef DS_COPY_OBJECT_MEMBER
+      const int texture = ds_localObjects[i].kinds.z;  // -1: no Texture.File
+      ds_localTextureInfo[i] = HAS_FILE_TEXTURES && texture >= 0 ? textures[texture].info : ivec4(0);
+    }
+  }
+  if (DS_LOCAL_LIGHTS) {
+    [[unroll]] for (int l = 0; l < LIGHT_COUNT; ++l) {
+#define DS_COPY_LIGHT_MEMBER(member) ds_localLights[l].member = uniformLights[l].member;
+      DS_GPU_LIGHT_MEMBERS(DS_COPY_LIGHT_MEMBER)
+#undef DS_COPY_LIGHT_MEMBER
+    }
+  }
+}
+
 real ds_loop_limit_sentinel() {
   int probe = 0;
   for (int i = 0; i < 2 + int(params.random.z); ++i) ++probe;
@@ -92,6 +135,7 @@ real ds_loop_limit_sentinel() {
 void main() {
   const ivec2 local = ivec2(gl_GlobalInvocationID.xy);
   if (local.x >= params.tile.z || local.y >= params.tile.w) return;
+  ds_copy_scene();
   const int slot = local.y * params.tile.z + local.x;
   // Query mode: query counts.y + slot instead of the pixel (one call site of the trace for both:
   // each call site inlines the whole search, and compiling it costs seconds on lavapipe).
@@ -135,7 +179,7 @@ void main() {
     outPixel.positionDepth = h4_31(hit.position, hit.t);
     outPixel.normal = real4(hit.normal, 0.0);
     uv = hit.uv;
-    objectId = real(DS_OBJECT(hit.object, kinds).w);
+    objectId = real(ds_object_id(hit.object));
   }
 
   // Radiance: mean over stratified samples of the pixel's sensitive square.

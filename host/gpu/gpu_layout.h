@@ -71,4 +71,19 @@ DS_CHECK_LAYOUT(fp64, 32, 32, 9 * 32 + 32, 12 * 32 + 2 * 32 + 128, 3 * 32)
 DS_CHECK_LAYOUT(df64, 16, 32, 9 * 32 + 32, 12 * 32 + 2 * 16 + 128, 2 * 32 + 16)
 #undef DS_CHECK_LAYOUT
 
+// render.comp's per-invocation copies (LOCAL_SCENE) copy the members that DS_GPU_OBJECT_MEMBERS
+// and DS_GPU_LIGHT_MEMBERS name (shared/gpu_types.h). The structs have no padding between members
+// (above), so the listed members' bytes add up to the struct's exactly when the list names them all.
+#define DS_OBJECT_MEMBER_BYTES(member) +sizeof(GpuObject::member)
+#define DS_LIGHT_MEMBER_BYTES(member) +sizeof(GpuLight::member)
+#define DS_CHECK_MEMBER_LISTS                                                                     \
+  static_assert(0 DS_GPU_OBJECT_MEMBERS(DS_OBJECT_MEMBER_BYTES) == sizeof(GpuObject));              \
+  static_assert(0 DS_GPU_LIGHT_MEMBERS(DS_LIGHT_MEMBER_BYTES) + sizeof(GpuLight::pad) == sizeof(GpuLight));
+namespace fp32 { DS_CHECK_MEMBER_LISTS }
+namespace fp64 { DS_CHECK_MEMBER_LISTS }
+namespace df64 { DS_CHECK_MEMBER_LISTS }
+#undef DS_CHECK_MEMBER_LISTS
+#undef DS_LIGHT_MEMBER_BYTES
+#undef DS_OBJECT_MEMBER_BYTES
+
 }  // namespace dicsynth::gpu

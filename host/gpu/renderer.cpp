@@ -118,9 +118,11 @@ BoundBuffer uniform(Buffer& buffer) {
   return {&buffer, std::min<VkDeviceSize>(buffer.size() ? buffer.size() : 16, DS_UNIFORM_BLOCK_BYTES)};
 }
 
+// cpuDevice: the device is a CPU (lavapipe), whose uniform-block reads render.comp's per-invocation
+// copies save (LOCAL_SCENE there; bench/RESULTS.md, "Per-invocation copies of the scene").
 template <class Layout>
 SceneResidency residencyOf(const PreparedScene& scene, std::uint32_t maxTexelBufferElements, bool texelViewPossible,
-                           const RendererOptions& rendererOptions) {
+                           bool cpuDevice, const RendererOptions& rendererOptions) {
   SceneResidency r;
   if (!rendererOptions.uniformScene) return r;
   r.uniformScene = scene.cameras.size() <= uniformCapacity<typename Layout::GpuCamera>() &&
@@ -132,6 +134,10 @@ SceneResidency residencyOf(const PreparedScene& scene, std::uint32_t maxTexelBuf
   if (r.uniformScene && scene.objects.size() >= 1 && scene.objects.size() <= DS_MAX_UNROLLED_OBJECTS)
     r.objectCount = int(scene.objects.size());
   if (r.uniformScene && scene.lights.size() <= DS_MAX_UNROLLED_LIGHTS) r.lightCount = int(scene.lights.size());
+  // Not with NURBS: their loop indexes the objects by a variable (lib/trace.glsl), so the copies would
+  // be memory that every invocation fills in full (the NURBS plate rendered 4-9 % slower).
+  const bool nurbs = (scene.features.shapeKinds & (1u << DS_SHAPE_NURBS)) != 0;
+  r.localScene = rendererOptions.localScene && cpuDevice && !nurbs && (r.objectCount > 0 || r.lightCount >= 0);
   return r;
 }
 
@@ -440,10 +446,11 @@ Renderer::~Renderer() = default;
 SceneResidency Renderer::residency(Precision precision, const PreparedScene& scene,
                                    const RendererOptions& rendererOptions) const {
   const std::uint32_t maxTexels = context_.properties().limits.maxTexelBufferElements;
+  const bool cpuDevice = context_.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   return withLayout(precision, [&]<class Layout>() {
     // The texel view holds float texels: variants whose `real` is float read them.
     constexpr bool floatReal = std::is_same_v<typename Layout::real, float>;
-    return residencyOf<Layout>(scene, maxTexels, floatReal, rendererOptions);
+    return residencyOf<Layout>(scene, maxTexels, floatReal, cpuDevice, rendererOptions);
   });
 }
 
@@ -462,6 +469,7 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
   if (!specialize) {
     r.objectCount = 0;
     r.lightCount = -1;
+    r.localScene = false;  // nothing of exact count to copy
   }
   std::lock_guard lock(pipelinesMutex_);  // render() and reachesFirst() may run on two threads
   auto& slot = pipelines_[{precision, used, df64Fma, r}];
@@ -481,7 +489,8 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
                                             {DS_SPEC_UNIFORM_SCENE, r.uniformScene ? 1u : 0u},
                                             {DS_SPEC_TEXEL_VIEW, r.texelView ? 1u : 0u},
                                             {DS_SPEC_OBJECT_COUNT, std::uint32_t(r.objectCount)},
-                                            {DS_SPEC_LIGHT_COUNT, std::uint32_t(r.lightCount)}};
+                                            {DS_SPEC_LIGHT_COUNT, std::uint32_t(r.lightCount)},
+                                            {DS_SPEC_LOCAL_SCENE, r.localScene ? 1u : 0u}};
     const std::span<const std::uint32_t> spirv = renderSpirv(precision, (used.shapeKinds & (1u << DS_SHAPE_NURBS)) != 0);
     const std::uint32_t pushBytes = sizeof(fp32::GpuTileParams);  // the same in every variant
     std::vector<BindingKind> bindings(DS_BINDING_COUNT, BindingKind::Storage);

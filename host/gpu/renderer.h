@@ -38,16 +38,20 @@ struct RendererOptions {
   // from the push constants — the layout a scene too large for the uniform blocks gets (render.comp).
   // The images are identical; tests compare the two layouts.
   bool uniformScene = true;
+  // false: read objects and lights from the uniform blocks at every use even on a CPU device, instead
+  // of from render.comp's per-invocation copies (LOCAL_SCENE). The images are identical; tests compare.
+  bool localScene = true;
 };
 
 // Where render.comp reads the scene from, and the exact object and light counts it is specialized
 // to (shaders/shared/bindings.h: DS_SPEC_UNIFORM_SCENE, DS_SPEC_TEXEL_VIEW, DS_SPEC_OBJECT_COUNT,
-// DS_SPEC_LIGHT_COUNT). Part of the pipeline's key.
+// DS_SPEC_LIGHT_COUNT, DS_SPEC_LOCAL_SCENE). Part of the pipeline's key.
 struct SceneResidency {
   bool uniformScene = false;  // cameras, objects, lights fit the uniform blocks and are read there
   bool texelView = false;     // texels read through the uniform texel buffer (fp32, df64)
   int objectCount = 0;        // 1..DS_MAX_UNROLLED_OBJECTS: exact; 0: any
   int lightCount = -1;        // 0..DS_MAX_UNROLLED_LIGHTS: exact; -1: any
+  bool localScene = false;    // CPU device: the exact counts' objects and lights copied per invocation
   auto operator<=>(const SceneResidency&) const = default;
 };
 

@@ -41,4 +41,7 @@ layout(constant_id = DS_SPEC_UNIFORM_SCENE) const bool UNIFORM_SCENE = false;
 layout(constant_id = DS_SPEC_TEXEL_VIEW) const bool TEXEL_VIEW = false;
 layout(constant_id = DS_SPEC_OBJECT_COUNT) const int OBJECT_COUNT = 0;
 layout(constant_id = DS_SPEC_LIGHT_COUNT) const int LIGHT_COUNT = -1;
+// CPU devices: the objects (and lights) of an exact count are read from per-invocation copies
+// (render.comp, LOCAL_SCENE).
+layout(constant_id = DS_SPEC_LOCAL_SCENE) const bool LOCAL_SCENE = false;
 #endif

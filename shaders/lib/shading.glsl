@@ -59,27 +59,30 @@ real ds_shade_surface(int shader, real4 material, SurfaceHit hit, real reflectan
   if (HAS_LIGHTS) {
     const real3 p = h_real(hit.position);
     const real3 toViewer = -normalize(hit.rayDirection);
-    // LIGHT_COUNT >= 0: the exact count, the loop unrolls to constant light indices (render.comp).
+    // LIGHT_COUNT >= 0: the exact count, the loop unrolls to constant light indices (render.comp);
+    // no `continue` in it, for Mesa 22.3's NIR unrolls only loops whose one exit is their count.
     const int lightCount = LIGHT_COUNT >= 0 ? LIGHT_COUNT : params.counts.w;
     [[unroll]] for (int l = 0; l < lightCount; ++l) {
       const int kind = DS_LIGHT(l, info).x;
       if (DS_HAS_LIGHT(DS_LIGHT_AMBIENT) && kind == DS_LIGHT_AMBIENT) {
         ambient += DS_LIGHT(l, positionIntensity).w;
-        continue;
+      } else {
+        const real4 light = DS_LIGHT(l, positionIntensity);
+        const real3 toLight = light.xyz - p;
+        const real r2 = dot(toLight, toLight);
+        const real r = sqrt(r2);
+        const real cosTheta = dot(hit.normal, toLight) / r;
+        if (cosTheta > real(0.0)) {
+          real s = real(1.0);
+          if (DS_HAS_LIGHT(DS_LIGHT_SPOT) && kind == DS_LIGHT_SPOT) s = ds_spot_factor(l, p);
+          if (s > real(0.0) && !ds_occluded(hit, light.xyz)) {
+            const real e = light.w * s * cosTheta / r2;
+            diffuse += e;
+            if (HAS_SPECULAR && shader != DS_SHADER_LAMBERT)
+              specular += ds_specular_brdf(shader, material, hit.normal, toLight / r, toViewer) * e;
+          }
+        }
       }
-      const real4 light = DS_LIGHT(l, positionIntensity);
-      const real3 toLight = light.xyz - p;
-      const real r2 = dot(toLight, toLight);
-      const real r = sqrt(r2);
-      const real cosTheta = dot(hit.normal, toLight) / r;
-      if (!(cosTheta > real(0.0))) continue;
-      real s = real(1.0);
-      if (DS_HAS_LIGHT(DS_LIGHT_SPOT) && kind == DS_LIGHT_SPOT) s = ds_spot_factor(l, p);
-      if (!(s > real(0.0)) || ds_occluded(hit, light.xyz)) continue;
-      const real e = light.w * s * cosTheta / r2;
-      diffuse += e;
-      if (HAS_SPECULAR && shader != DS_SHADER_LAMBERT)
-        specular += ds_specular_brdf(shader, material, hit.normal, toLight / r, toViewer) * e;
     }
   }
   return reflectance * diffuse / DS_PI + specular + reflectance * ambient;

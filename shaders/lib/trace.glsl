@@ -54,7 +54,8 @@ real3 ds_world_normal(int index, real3 n, real3 x) {
 // The number of objects the loops run over: OBJECT_COUNT when the pipeline is specialized to the
 // exact count (the [[unroll]] loops then unroll and every object index is a constant), else the
 // push constants' count. A constant index matters on SIMD devices that fetch uniform data once per
-// batch only at constant offsets (render.comp).
+// batch only at constant offsets, and keeps render.comp's per-invocation copies (LOCAL_SCENE) in
+// registers.
 int ds_object_count() { return OBJECT_COUNT > 0 ? OBJECT_COUNT : params.counts.z; }
 
 // The winner's attributes in hreal: parameter, position, normal, (u, v).
@@ -77,6 +78,17 @@ void ds_hit_attributes(int object, hreal3 o, hreal3 d, hreal3 oo, hreal3 od, hre
 }
 
 bool ds_is_nurbs(int object) { return DS_HAS_NURBS && DS_OBJECT(object, kinds).x == DS_SHAPE_NURBS; }
+
+// The id of `object` (GpuObject.kinds.w: objectId). With an exact count read at a constant index,
+// as everywhere an object index is not a loop's: render.comp's per-invocation copies of the objects
+// (LOCAL_SCENE) stay registers only while no index into them varies.
+int ds_object_id(int object) {
+  if (OBJECT_COUNT == 0) return DS_OBJECT(object, kinds).w;
+  int id = 0;
+  [[unroll]] for (int i = 0; i < OBJECT_COUNT; ++i)
+    if (i == object) id = DS_OBJECT(i, kinds).w;
+  return id;
+}
 
 // One object's hit along a ray of ds_trace_nearest: world t (float), what the search found, and the
 // ray in the object's frame (for its attributes). object −1: none.
@@ -180,14 +192,15 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, bool ties, out SurfaceHit hit) {
   nearest.second.t = DS_FAR_AWAY;
   nearest.second.object = -1;
 #endif
+  // No `continue` in the loops that unroll: Mesa 22.3's NIR unrolls only loops whose one exit is
+  // their count, and render.comp's per-invocation copies (LOCAL_SCENE) need constant indices.
   [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
-    if (ds_is_nurbs(i)) continue;
     hreal3 oo, od;
     hreal w;
-    if (!ds_object_ray(i, o, d, oo, od, w)) continue;
     ShapeHit found;
     found.part = -1;
-    if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_search_limit(nearest, w, ties), false, found))
+    if (!ds_is_nurbs(i) && ds_object_ray(i, o, d, oo, od, w) &&
+        ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_search_limit(nearest, w, ties), false, found))
       ds_keep_nearer(i, found, oo, od, w, ties, nearest);
   }
   if (DS_HAS_NURBS) {
@@ -228,16 +241,19 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, bool ties, out SurfaceHit hit) {
 bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
   const real3 p = h_real(hit.position);
   const hreal3 ph = h(p), dh = h(lightPosition - p);
+  // The analytic objects without `continue` or `return` in the loop (ds_trace_nearest): once one
+  // blocks, the others are not searched.
+  bool blocked = false;
   [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
-    if (ds_is_nurbs(i)) continue;
     hreal3 oo, od;
     hreal w;
-    if (!ds_object_ray(i, ph, dh, oo, od, w)) continue;
     ShapeHit found;
     found.part = -1;
-    if (ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_object_param(1.0, h_real(w)), i == hit.object, found))
-      return true;
+    if (!blocked && !ds_is_nurbs(i) && ds_object_ray(i, ph, dh, oo, od, w) &&
+        ds_search_analytic(i, h_real(oo), h_real(od), 0.0, ds_object_param(1.0, h_real(w)), i == hit.object, found))
+      blocked = true;
   }
+  if (blocked) return true;
   if (DS_HAS_NURBS) {
     [[dont_unroll]] for (int i = 0; i < ds_object_count(); ++i) {
       if (!ds_is_nurbs(i)) continue;

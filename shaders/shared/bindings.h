@@ -57,6 +57,7 @@
 #define DS_SPEC_UNIFORM_SCENE 13  // bool: cameras, objects and lights are read from the uniform blocks
 #define DS_SPEC_OBJECT_COUNT 14   // 1..DS_MAX_UNROLLED_OBJECTS: exactly that many objects; 0: any number
 #define DS_SPEC_LIGHT_COUNT 15    // 0..DS_MAX_UNROLLED_LIGHTS: exactly that many lights; -1: any number
+#define DS_SPEC_LOCAL_SCENE 17    // bool: the objects and lights of exact counts are copied per invocation
 
 // Arithmetic switches of shaders/lib/df64.glsl (any shader that includes it).
 #define DS_SPEC_DF64_FMA 16  // bool: TwoProd by fma(a, b, -p); only where the self-test proved fma exact

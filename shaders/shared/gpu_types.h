@@ -48,6 +48,11 @@ struct GpuObject {
   hreal4 speckle0;           // cells per u, cells per v, dark, light
   uvec4 speckleCdf[4];       // Poisson inversion thresholds cdf[0..15]
 };
+// Every member of GpuObject, for render.comp's per-invocation copy (LOCAL_SCENE). A member added
+// above goes here too: host/gpu/gpu_layout.h checks that the members listed fill the struct.
+#define DS_GPU_OBJECT_MEMBERS(X) \
+  X(objectFromWorld) X(shape) X(shading) X(material) X(kinds) X(extra) X(target0) X(target1) X(targetInfo) \
+  X(speckleInfo) X(speckle0) X(speckleCdf)
 
 struct GpuLight {
   real4 positionIntensity;  // xyz (m), intensity (Point, Spot: W/sr-like; Ambient: radiance)
@@ -56,6 +61,9 @@ struct GpuLight {
   ivec4 info;               // kind (DS_LIGHT_*), 0, 0, 0
   ivec4 pad;                // size a multiple of 32 bytes in fp64 (ivec4 members come in pairs)
 };
+// Every member of GpuLight read by the shaders (all but pad), for render.comp's per-invocation copy
+// (LOCAL_SCENE); host/gpu/gpu_layout.h checks that with pad they fill the struct.
+#define DS_GPU_LIGHT_MEMBERS(X) X(positionIntensity) X(direction) X(cone) X(info)
 
 struct GpuTexture {
   ivec4 info;  // width, height, offset of the first coefficient in the texel buffer,

@@ -4,17 +4,18 @@
 // coordinate x = u W − 1/2 is formed in hreal and split into its integer part and a fraction in
 // [0, 1): the fraction, rounded to `real`, is then exact to ~1e-7 texel in every variant (in df64
 // the texture position error does not grow with W). Weights and sum in `real`. Included by
-// lib/texture.glsl; expects `textures[]` (GpuTexture) and DS_TEXEL(i) (coefficient i, a real).
+// lib/texture.glsl; expects DS_TEXTURE_INFO(object) (its GpuTexture.info) and DS_TEXEL(i) (coefficient i,
+// a real).
 #ifndef DS_TEXTURES_FILE_GLSL
 #define DS_TEXTURES_FILE_GLSL
 // Compiled in where the scene has a file texture (lib/features.glsl).
 #define DS_TEXTURE_COMPILED_file HAS_FILE_TEXTURES
 
 struct GpuFile {
-  int index;  // the image in textures[] (GpuObject.kinds.z)
+  ivec4 info;  // GpuTexture.info of the image (textures[GpuObject.kinds.z])
 };
 
-GpuFile ds_file_data(int object) { return GpuFile(DS_OBJECT(object, kinds).z); }
+GpuFile ds_file_data(int object) { return GpuFile(DS_TEXTURE_INFO(object)); }
 
 // Half-sample symmetric index into [0, n) for k in [-n, 2n − 1] (lookups need k in [-3, n + 2]; for
 // n ≤ 2, where -3 < -n, the reflections still give mirrorIndex(): checked for n = 1, 2),
@@ -55,8 +56,7 @@ void ds_texel_coordinate(hreal u, int n, out int index, out real fraction) {
   fraction = h_real(h_sub(x, whole));
 }
 
-real ds_texture_lookup(int texture, hreal2 uv) {
-  const ivec4 info = textures[texture].info;
+real ds_texture_lookup(ivec4 info, hreal2 uv) {
   const int width = info.x, height = info.y, offset = info.z;
   int ix, iy;
   real fx, fy;
@@ -92,6 +92,6 @@ real ds_texture_lookup(int texture, hreal2 uv) {
   return sum;
 }
 
-real ds_file_value(GpuFile g, hreal2 uv) { return ds_texture_lookup(g.index, uv); }
+real ds_file_value(GpuFile g, hreal2 uv) { return ds_texture_lookup(g.info, uv); }
 
 #endif

@@ -1,8 +1,8 @@
 // Where render.comp reads the scene from (gpu/renderer.h, SceneResidency): cameras, objects and
-// lights from uniform blocks or storage buffers, texels through a texel buffer or a storage buffer,
-// loops over exact (unrolled) or dynamic object and light counts. Speed only: every layout must give
-// the same image, and a scene beyond the uniform blocks and the unrolled counts must still match the
-// CPU reference.
+// lights from uniform blocks or storage buffers, or from per-invocation copies on a CPU device
+// (LOCAL_SCENE), texels through a texel buffer or a storage buffer, loops over exact (unrolled) or
+// dynamic object and light counts. Speed only: every layout must give the same image, and a scene
+// beyond the uniform blocks and the unrolled counts must still match the CPU reference.
 #include <doctest/doctest.h>
 
 #include <cstdint>
@@ -35,6 +35,14 @@ gpu::RendererOptions storageOnly() {
   o.uniformScene = false;
   return o;
 }
+
+gpu::RendererOptions withoutLocalCopies() {
+  gpu::RendererOptions o;
+  o.localScene = false;
+  return o;
+}
+
+bool cpuDevice() { return test::gpuContext().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
 
 // `spheres` Lambert spheres on a grid in front of a 160 × 120 camera, lit by `lights` point lights,
 // on a textured Lambert floor that receives their shadows.
@@ -73,16 +81,48 @@ TEST_CASE("gpu-residency: uniform blocks, texel buffer and exact counts change n
       CHECK(fast.texelView == (p != Precision::Fp64));
       CHECK(fast.objectCount == int(scene.objects.size()));
       CHECK(fast.lightCount == int(scene.lights.size()));
+      CHECK(fast.localScene == cpuDevice());
+      CHECK_FALSE(renderer.residency(p, scene, withoutLocalCopies()).localScene);
       const gpu::SceneResidency slow = renderer.residency(p, scene, storageOnly());
       CHECK_FALSE(slow.uniformScene);
       CHECK_FALSE(slow.texelView);
       CHECK(slow.objectCount == 0);
       CHECK(slow.lightCount == -1);
+      CHECK_FALSE(slow.localScene);
 
       // The same arithmetic on the same values: only where they are loaded from differs.
-      test::checkIdenticalResults(scene, renderer.render(scene, options), renderer.render(scene, options, storageOnly()));
+      const RenderResult chosen = renderer.render(scene, options);
+      test::checkIdenticalResults(scene, chosen, renderer.render(scene, options, withoutLocalCopies()));
+      test::checkIdenticalResults(scene, chosen, renderer.render(scene, options, storageOnly()));
     }
   }
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("gpu-residency: the per-invocation copies hold every member the shaders read") {
+  // render.comp copies the members DS_GPU_OBJECT_MEMBERS and DS_GPU_LIGHT_MEMBERS name
+  // (shared/gpu_types.h); a member left out would be read uninitialized. Between them these scenes
+  // read every one: specular: materials, point, spot and ambient lights (three objects, four lights);
+  // circle_grid: the target members; analytic_speckle: the speckle members (figure1 and shadows
+  // above: file textures, shapes, transforms).
+  gpu::Renderer renderer(test::gpuContext());
+  RenderOptions options;
+  options.samplesPerPixel = kSpp;
+  for (const char* name : {"specular.lua", "circle_grid.lua", "analytic_speckle.lua"}) {
+    const PreparedScene scene =
+        prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/" + name, {}), {kDownscale});
+    for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
+      INFO(name << " " << std::string(toString(p)));
+      options.precision = p;
+      CHECK(renderer.residency(p, scene, {}).localScene == cpuDevice());
+      test::checkIdenticalResults(scene, renderer.render(scene, options),
+                                  renderer.render(scene, options, withoutLocalCopies()));
+    }
+  }
+  // Not with NURBS: their loop's variable object index would make the copies memory (renderer.cpp).
+  const PreparedScene nurbs =
+      prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/nurbs_plate.lua", {}), {kDownscale});
+  CHECK_FALSE(renderer.residency(Precision::Fp32, nurbs, {}).localScene);
   test::expectNoValidationMessages();
 }
 
@@ -110,6 +150,7 @@ TEST_CASE("gpu-residency: more objects and lights than the unrolled counts and t
     CHECK(where.uniformScene == (p == Precision::Fp32));
     CHECK(where.objectCount == 0);
     CHECK(where.lightCount == -1);
+    CHECK_FALSE(where.localScene);  // nothing of exact count to copy
     const RenderResult gpu = renderer.render(scene, options);
     const Tolerances tol = tolerancesFor(p);
     for (const CameraDifference& d : compareResults(scene, reference, gpu, tol)) {

@@ -15,6 +15,7 @@ layout(std430, binding = 2) readonly buffer Texels { real texels[]; };
 #define DS_OBJECT(i, member) objects[i].member
 #define DS_OBJECT_H(i, member) objects[i].member
 #define DS_TEXEL(i) texels[i]
+#define DS_TEXTURE_INFO(i) textures[objects[i].kinds.z].info
 layout(std430, binding = 3) readonly buffer UvIn { real uvIn[]; };        // (u, v) per item
 layout(std430, binding = 4) writeonly buffer ValuesOut { real valuesOut[]; };  // 3 per item
 layout(push_constant) uniform Push { uint count; } push;

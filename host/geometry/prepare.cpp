@@ -10,6 +10,7 @@
 #include "files/image_io.h"
 #include "geometry/homography.h"
 #include "geometry/prepared_scene.h"
+#include "geometry/targets.h"
 #include "geometry/texture_cache.h"
 #include "texture/bspline.h"
 
@@ -287,6 +288,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
   for (const PreparedObject& o : ps.objects) {
     ps.features.shapeKinds |= 1u << int(o.geometry.kind());
     ps.features.speckleTextures |= textures::kindOf(o.texture) == TextureKind::Speckle;
+    ps.features.targetTextures |= isTargetTexture(textures::kindOf(o.texture));
     ps.features.shaderKinds |= 1u << int(reflectance::kindOf(o.shader));
     if (o.nurbs)
       for (const BezierPatch& p : o.nurbs->patches)

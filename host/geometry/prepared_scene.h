@@ -78,6 +78,7 @@ struct SceneFeatures {
   int nurbsDegree = 0;           // highest degree of any NURBS patch (GPU raises all to it), 0: none
   bool speckleTextures = false;  // some object has a Texture.Speckle: analytic disk tests
   bool quinticTextures = false;  // some Texture.File uses quintic interpolation: 6×6 lookups
+  bool targetTextures = false;   // some object has a calibration target (Checkerboard, CircleGrid)
   // Bit k set: some camera has kind k (DS_CAMERA_*). The pinhole is the GPU's default branch, so
   // only the other bits switch code on.
   std::uint32_t cameraKinds = 0;
@@ -86,7 +87,7 @@ struct SceneFeatures {
   std::uint32_t lightKinds = 0;   // bit k set: some light has kind k (DS_LIGHT_*), 0 without lights
 
   static SceneFeatures all(int nurbsDegree) {
-    return {true, true, true, ~0u, nurbsDegree, true, true, ~0u, true, ~0u, ~0u};
+    return {true, true, true, ~0u, nurbsDegree, true, true, true, ~0u, true, ~0u, ~0u};
   }
   auto operator<=>(const SceneFeatures&) const = default;
 };

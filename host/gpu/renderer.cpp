@@ -481,6 +481,7 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
                                             {DS_SPEC_NURBS_DEGREE, std::uint32_t(std::max(used.nurbsDegree, 1))},
                                             {DS_SPEC_HAS_SPECKLE_TEXTURES, used.speckleTextures ? 1u : 0u},
                                             {DS_SPEC_HAS_QUINTIC_TEXTURES, used.quinticTextures ? 1u : 0u},
+                                            {DS_SPEC_HAS_TARGET_TEXTURES, used.targetTextures ? 1u : 0u},
                                             {DS_SPEC_CAMERA_KINDS, used.cameraKinds},
                                             {DS_SPEC_HAS_RATIONAL_DISTORTION, used.rationalDistortion ? 1u : 0u},
                                             {DS_SPEC_SHADER_KINDS, used.shaderKinds},

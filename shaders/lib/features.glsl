@@ -9,6 +9,7 @@ layout(constant_id = DS_SPEC_HAS_DISTORTION) const bool HAS_DISTORTION = true;
 layout(constant_id = DS_SPEC_HAS_FILE_TEXTURES) const bool HAS_FILE_TEXTURES = true;
 layout(constant_id = DS_SPEC_HAS_SPECKLE_TEXTURES) const bool HAS_SPECKLE_TEXTURES = true;
 layout(constant_id = DS_SPEC_HAS_QUINTIC_TEXTURES) const bool HAS_QUINTIC_TEXTURES = true;
+layout(constant_id = DS_SPEC_HAS_TARGET_TEXTURES) const bool HAS_TARGET_TEXTURES = true;
 // Shape kinds present: the intersection switch keeps only their cases. Matters on SIMD devices,
 // which otherwise run every case of a switch whose value they cannot prove uniform.
 layout(constant_id = DS_SPEC_SHAPE_KINDS) const uint SHAPE_KINDS = 0xffffffffu;

@@ -48,6 +48,7 @@
 #define DS_SPEC_NURBS_DEGREE 4  // the degree (both directions) every Bézier patch is raised to
 #define DS_SPEC_HAS_SPECKLE_TEXTURES 8  // some object has a Texture.Speckle (analytic disks)
 #define DS_SPEC_HAS_QUINTIC_TEXTURES 9  // some Texture.File interpolates with the quintic B-spline
+#define DS_SPEC_HAS_TARGET_TEXTURES 18  // some object has a calibration target (Checkerboard, CircleGrid)
 #define DS_SPEC_CAMERA_KINDS 5  // bit k set: some camera has camera kind k (DS_CAMERA_*)
 #define DS_SPEC_HAS_RATIONAL_DISTORTION 6  // bool: some camera has Distortion.Rational (k4..k6, s1..s4)
 #define DS_SPEC_SHADER_KINDS 11  // bit k set: some object has shader kind k (DS_SHADER_*)

@@ -4,8 +4,9 @@
 // (u, v) is known; only the dark/light value is `real`. Included by lib/texture.glsl.
 #ifndef DS_TEXTURES_TARGET_GLSL
 #define DS_TEXTURES_TARGET_GLSL
-// No specialization constant switches the targets out: always compiled in.
-#define DS_TEXTURE_COMPILED_target true
+// Compiled in where the scene has a calibration target (lib/features.glsl). A SIMD device runs the
+// twin of every kind compiled in on every sample whatever the object's kind (lib/texture.glsl).
+#define DS_TEXTURE_COMPILED_target HAS_TARGET_TEXTURES
 
 struct GpuTarget {
   hreal4 cells;       // origin_uv.xy, cell_uv.xy (GpuObject.target0)

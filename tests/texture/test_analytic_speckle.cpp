@@ -18,6 +18,7 @@
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
 #include "identical_results.h"
+#include "render/compare.h"
 #include "scene/scene.h"
 #include "scene_test_util.h"
 #include "spirv/texture_probe_df64.h"
@@ -258,7 +259,7 @@ TEST_CASE("texture-speckle: scenes/analytic_speckle.lua, GPU fp64 = CPU to 1e-12
   test::expectNoValidationMessages();
 }
 
-TEST_CASE("texture-speckle: specialization constants 8 and 9 change no pixel, and are off where unused") {
+TEST_CASE("texture-speckle: specialization constants 8, 9 and 18 change no pixel, and are off where unused") {
   gpu::Renderer renderer(test::gpuContext());
   RenderOptions options;
   options.samplesPerPixel = 2;
@@ -267,15 +268,29 @@ TEST_CASE("texture-speckle: specialization constants 8 and 9 change no pixel, an
         loadScene(std::string(DS_SOURCE_DIR) + "/scenes/analytic_speckle.lua", {{{"texture", texture}}}), {8});
     CHECK(scene.features.speckleTextures == (std::string(texture) == "speckle"));
     CHECK(scene.features.quinticTextures == (std::string(texture) == "quintic"));
+    CHECK_FALSE(scene.features.targetTextures);
     for (Precision p : {Precision::Fp64, Precision::Fp32}) {
       options.precision = p;
       // Identical arithmetic on the paths that run; only dead code differs.
       test::checkIdenticalResults(scene, renderer.render(scene, options, {true}), renderer.render(scene, options, {false}));
     }
   }
+  // A calibration target (the circle grid's dots): its twin compiled in (18), against the CPU
+  // reference. Not against the unspecialized pipeline: the two differ in the last bit of P and uv on
+  // this scene (also before constant 18 existed; the radiance is the same).
+  const PreparedScene target = prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/circle_grid.lua", {}), {8});
+  CHECK(target.features.targetTextures);
+  CHECK_FALSE(target.features.speckleTextures);
+  const RenderResult reference = cpu::render(target, options);
+  for (Precision p : {Precision::Fp64, Precision::Fp32}) {
+    options.precision = p;
+    for (const CameraDifference& d : compareResults(target, reference, renderer.render(target, options), tolerancesFor(p)))
+      CHECK(withinTolerance(d, tolerancesFor(p)));
+  }
   const PreparedScene plain = prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/rectangle.lua", {}), {8});
   CHECK_FALSE(plain.features.speckleTextures);
   CHECK_FALSE(plain.features.quinticTextures);
+  CHECK_FALSE(plain.features.targetTextures);
   test::expectNoValidationMessages();
 }
 

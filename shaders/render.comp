@@ -43,9 +43,9 @@ layout(std140, set = 0, binding = DS_BINDING_LIGHTS_UNIFORM) uniform LightsUnifo
 // invocation into private arrays, and DS_OBJECT, DS_LIGHT and DS_TEXTURE_INFO read the copies.
 // Why: every sample re-read its objects' transform, shape and texture fields from the uniform block,
 // lane by lane on Mesa 22.3 (above: the samples are a loop), and its texture's size from the
-// storage buffer, lane by lane with a branch per lane; copies read at the constant indices of the unrolled
-// loops (lib/trace.glsl, lib/shading.glsl) are registers, and the members no code reads are dropped
-// with their loads. Figure 1's render (fp32, 16 spp): 0.84 -> 0.66 s on Mesa 22.3, 0.62 -> 0.45 s
+// storage buffer, lane by lane with a branch per lane. Copies read at the constant indices of the
+// unrolled loops (lib/trace.glsl, lib/shading.glsl) are registers, and the members no code reads
+// are dropped with their loads. Figure 1's render (fp32, 16 spp): 0.84 -> 0.66 s on Mesa 22.3, 0.62 -> 0.45 s
 // on Mesa 25 (bench/RESULTS.md, "Per-invocation copies of the scene"). GPUs keep the uniform
 // blocks, which their constant caches serve: copies would only hold registers (not measured).
 GpuObject ds_localObjects[DS_MAX_UNROLLED_OBJECTS];
@@ -99,12 +99,6 @@ layout(push_constant) uniform Push { GpuTileParams params; };
 #include "lib/camera.glsl"
 #include "lib/trace.glsl"
 
-// Loop-limit sentinel. Mesa's llvmpipe (lavapipe) ends every loop of a shader invocation once
-// the loop iterations of its SIMD batch (8 or 16 lanes), all loops together, reach 65 535
-// (LP_MAX_TGSI_LOOP_ITERATIONS in gallivm), silently: a search cut short returns a wrong hit. After
-// that every loop runs its body once, so a loop that must run twice (its bound is not a
-// constant: params.random.z is 0) counts once. 1 tells the host (gpu/renderer.cpp), which refuses
-// the result. Other drivers have no such limit: the sentinel then never fires.
 // LOCAL_SCENE's copies (above), filled once per invocation before any ray. The loops unroll: every
 // index is a constant, so the copies become registers.
 void ds_copy_scene() {
@@ -126,6 +120,12 @@ void ds_copy_scene() {
   }
 }
 
+// Loop-limit sentinel. Mesa's llvmpipe (lavapipe) ends every loop of a shader invocation once
+// the loop iterations of its SIMD batch (8 or 16 lanes), all loops together, reach 65 535
+// (LP_MAX_TGSI_LOOP_ITERATIONS in gallivm), silently: a search cut short returns a wrong hit. After
+// that every loop runs its body once, so a loop that must run twice (its bound is not a
+// constant: params.random.z is 0) counts once. 1 tells the host (gpu/renderer.cpp), which refuses
+// the result. Other drivers have no such limit: the sentinel then never fires.
 real ds_loop_limit_sentinel() {
   int probe = 0;
   for (int i = 0; i < 2 + int(params.random.z); ++i) ++probe;

@@ -60,7 +60,7 @@ real ds_shade_surface(int shader, real4 material, SurfaceHit hit, real reflectan
     const real3 p = h_real(hit.position);
     const real3 toViewer = -normalize(hit.rayDirection);
     // LIGHT_COUNT >= 0: the exact count, the loop unrolls to constant light indices (render.comp);
-    // no `continue` in it, for Mesa 22.3's NIR unrolls only loops whose one exit is their count.
+    // no `continue` in it, with which Mesa 22.3's NIR left such loops rolled (lib/trace.glsl).
     const int lightCount = LIGHT_COUNT >= 0 ? LIGHT_COUNT : params.counts.w;
     [[unroll]] for (int l = 0; l < lightCount; ++l) {
       const int kind = DS_LIGHT(l, info).x;

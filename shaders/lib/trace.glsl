@@ -192,8 +192,9 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, bool ties, out SurfaceHit hit) {
   nearest.second.t = DS_FAR_AWAY;
   nearest.second.object = -1;
 #endif
-  // No `continue` in the loops that unroll: Mesa 22.3's NIR unrolls only loops whose one exit is
-  // their count, and render.comp's per-invocation copies (LOCAL_SCENE) need constant indices.
+  // No `continue` in the loops that unroll: with it, Mesa 22.3's NIR left the loop over two objects
+  // rolled (bench/RESULTS.md, "Per-invocation copies of the scene"), and render.comp's
+  // per-invocation copies (LOCAL_SCENE) need constant indices.
   [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
     hreal3 oo, od;
     hreal w;

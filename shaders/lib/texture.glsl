@@ -1,7 +1,8 @@
 // The texture value of an object at (u, v), dispatched to each kind's GLSL twin
 // (shaders/textures/<twin>.glsl ↔ host/textures/<kind>.h). Expects the including shader to declare
-// DS_TEXTURE_INFO(i) (GpuTexture.info of object i's file texture), DS_TEXEL(i) (coefficient i, a real), DS_OBJECT(i, member) and
-// DS_OBJECT_H(i, member) (member of GpuObject i), and to include lib/features.glsl.
+// DS_TEXTURE_INFO(i) (GpuTexture.info of object i's file texture), DS_TEXEL(i) (coefficient i, a
+// real), DS_OBJECT(i, member) and DS_OBJECT_H(i, member) (member of GpuObject i), and to include
+// lib/features.glsl.
 // ds_object_texture() is the one entry point the shading calls.
 #ifndef DS_TEXTURE_GLSL
 #define DS_TEXTURE_GLSL

@@ -243,9 +243,11 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
   const real3 p = h_real(hit.position);
   const hreal3 ph = h(p), dh = h(lightPosition - p);
   // The analytic objects without `continue` or `return` in the loop (ds_trace_nearest): once one
-  // blocks, the others are not searched.
+  // blocks, the others are not searched. With a dynamic count the loop also ends once every lane
+  // of a SIMD batch is blocked (as the `return` did); an exact count's condition stays the count's
+  // alone, so that the loop unrolls.
   bool blocked = false;
-  [[unroll]] for (int i = 0; i < ds_object_count(); ++i) {
+  [[unroll]] for (int i = 0; i < ds_object_count() && !(OBJECT_COUNT == 0 && blocked); ++i) {
     hreal3 oo, od;
     hreal w;
     ShapeHit found;

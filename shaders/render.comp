@@ -45,9 +45,10 @@ layout(std140, set = 0, binding = DS_BINDING_LIGHTS_UNIFORM) uniform LightsUnifo
 // lane by lane on Mesa 22.3 (above: the samples are a loop), and its texture's size from the
 // storage buffer, lane by lane with a branch per lane. Copies read at the constant indices of the
 // unrolled loops (lib/trace.glsl, lib/shading.glsl) are registers, and the members no code reads
-// are dropped with their loads. Figure 1's render (fp32, 16 spp): 0.84 -> 0.66 s on Mesa 22.3, 0.62 -> 0.45 s
-// on Mesa 25 (bench/RESULTS.md, "Per-invocation copies of the scene"). GPUs keep the uniform
-// blocks, which their constant caches serve: copies would only hold registers (not measured).
+// are dropped with their loads. Figure 1's render (fp32, 16 spp): 0.83 -> 0.67 s on Mesa 22.3,
+// 0.62 -> 0.45 s on Mesa 25 (bench/RESULTS.md, "Per-invocation copies of the scene"). GPUs keep
+// the uniform blocks, which their constant caches serve: copies would only hold registers (not
+// measured).
 GpuObject ds_localObjects[DS_MAX_UNROLLED_OBJECTS];
 GpuLight ds_localLights[DS_MAX_UNROLLED_LIGHTS];
 ivec4 ds_localTextureInfo[DS_MAX_UNROLLED_OBJECTS];  // textures[kinds.z].info of Texture.File objects

@@ -86,6 +86,8 @@ struct SceneFeatures {
   std::uint32_t shaderKinds = 0;  // bit k set: some object has shader kind k (DS_SHADER_*)
   std::uint32_t lightKinds = 0;   // bit k set: some light has kind k (DS_LIGHT_*), 0 without lights
 
+  bool hasShape(ShapeKind kind) const { return (shapeKinds & (1u << int(kind))) != 0; }
+
   static SceneFeatures all(int nurbsDegree) {
     return {true, true, true, ~0u, nurbsDegree, true, true, true, ~0u, true, ~0u, ~0u};
   }

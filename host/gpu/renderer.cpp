@@ -136,8 +136,8 @@ SceneResidency residencyOf(const PreparedScene& scene, std::uint32_t maxTexelBuf
   if (r.uniformScene && scene.lights.size() <= DS_MAX_UNROLLED_LIGHTS) r.lightCount = int(scene.lights.size());
   // Not with NURBS: their loop indexes the objects by a variable (lib/trace.glsl), so the copies would
   // be memory that every invocation fills in full (the NURBS plate rendered 4-9 % slower).
-  const bool nurbs = (scene.features.shapeKinds & (1u << DS_SHAPE_NURBS)) != 0;
-  r.localScene = rendererOptions.localScene && cpuDevice && !nurbs && (r.objectCount > 0 || r.lightCount >= 0);
+  r.localScene = rendererOptions.localScene && cpuDevice && !scene.features.hasShape(ShapeKind::Nurbs) &&
+                 (r.objectCount > 0 || r.lightCount >= 0);
   return r;
 }
 
@@ -492,7 +492,7 @@ const ComputePipeline& Renderer::pipeline(Precision precision, const SceneFeatur
                                             {DS_SPEC_OBJECT_COUNT, std::uint32_t(r.objectCount)},
                                             {DS_SPEC_LIGHT_COUNT, std::uint32_t(r.lightCount)},
                                             {DS_SPEC_LOCAL_SCENE, r.localScene ? 1u : 0u}};
-    const std::span<const std::uint32_t> spirv = renderSpirv(precision, (used.shapeKinds & (1u << DS_SHAPE_NURBS)) != 0);
+    const std::span<const std::uint32_t> spirv = renderSpirv(precision, used.hasShape(ShapeKind::Nurbs));
     const std::uint32_t pushBytes = sizeof(fp32::GpuTileParams);  // the same in every variant
     std::vector<BindingKind> bindings(DS_BINDING_COUNT, BindingKind::Storage);
     bindings[DS_BINDING_CAMERAS_UNIFORM] = BindingKind::Uniform;

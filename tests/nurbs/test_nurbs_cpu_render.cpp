@@ -44,7 +44,7 @@ TEST_CASE("nurbs: prepared scene holds the surface, hits follow the object trans
   CHECK(o.geometry.kind() == ShapeKind::Nurbs);
   CHECK(o.geometry.nurbs == o.nurbs.get());
   CHECK(o.nurbs->subPatches.size() >= 8);
-  CHECK((ps.features.shapeKinds & (1u << DS_SHAPE_NURBS)) != 0);
+  CHECK(ps.features.hasShape(ShapeKind::Nurbs));
 
   // Rays from the origin towards points of the transformed surface hit it there (or in front).
   int hits = 0;

@@ -2,11 +2,11 @@
 # Installs the Debian 12 packages dicsynth builds and tests with, when any is missing.
 # Runs apt-get through sudo unless already root. Quiet and quick when everything is there.
 #
-#   scripts/install-deps.sh                  # Debian 12's own packages (lavapipe from Mesa 22.3)
-#   scripts/install-deps.sh --backports-mesa # also lavapipe from bookworm-backports (Mesa 25):
-#                                            # about 1.6x faster fp32 rendering on a CPU
-#                                            # (bench/RESULTS.md); adds bookworm-backports to
-#                                            # the apt sources if it is not there.
+#   scripts/install-deps.sh               # Debian 12's packages, and dicsynth's own lavapipe
+#                                         # (Mesa 25 of bookworm-backports, in .deps/lavapipe/,
+#                                         # for dicsynth alone: scripts/install-lavapipe.sh)
+#   scripts/install-deps.sh --system-mesa # Debian 12's packages only: dicsynth then renders on
+#                                         # the CPU with the system's lavapipe (Mesa 22.3)
 set -euo pipefail
 
 packages=(
@@ -29,10 +29,10 @@ packages=(
                                                                       # our images, ECC registers them
 )
 
-backports=false
+own_lavapipe=true
 for arg in "$@"; do
   case "$arg" in
-    --backports-mesa) backports=true ;;
+    --system-mesa) own_lavapipe=false ;;
     *) echo "install-deps.sh: unknown option $arg" >&2; exit 2 ;;
   esac
 done
@@ -51,11 +51,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-if $backports; then
-  if ! grep -rqs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.d/; then
-    echo "deb http://deb.debian.org/debian bookworm-backports main" |
-      $sudo tee /etc/apt/sources.list.d/bookworm-backports.list >/dev/null
-  fi
-  $sudo apt-get update -qq
-  $sudo apt-get install -y -qq --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
+if $own_lavapipe; then
+  "$(dirname "$0")/install-lavapipe.sh"
 fi

@@ -24,6 +24,7 @@
 #include "cli/commands.h"
 #include "core/json.h"
 #include "core/error.h"
+#include "gpu/bundled_driver.h"
 #include "gpu/context.h"
 #include "gpu/df64.h"
 #include "gpu/renderer.h"
@@ -95,9 +96,13 @@ void printText(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
                   describeCalibration(*status.calibration).c_str());
   }
   if (selector.empty())
-    std::printf("* = automatic choice (discrete GPU > integrated > virtual > CPU); --device overrides\n");
+    std::printf("* = automatic choice (discrete GPU > integrated > virtual > CPU; of two drivers of one device, "
+                "the newer); --device overrides\n");
   else
     std::printf("* = selected by --device '%s'\n", selector.c_str());
+  if (const auto& bundled = gpu::addBundledDriver())
+    std::printf("dicsynth's own lavapipe is among them: %s (scripts/install-lavapipe.sh; DICSYNTH_LAVAPIPE=system "
+                "leaves it out)\n", bundled->c_str());
 }
 
 void printJson(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df64Status>& df64,

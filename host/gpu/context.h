@@ -17,6 +17,7 @@ struct DeviceInfo {
   std::string type;          // "discrete GPU" | "integrated GPU" | "virtual GPU" | "CPU" | "other"
   std::string driver;        // driverName + " " + driverInfo (VK_KHR_driver_properties, core in 1.2)
   uint32_t apiVersion = 0;   // VK_MAKE_API_VERSION encoded
+  uint32_t driverVersion = 0;  // VkPhysicalDeviceProperties::driverVersion (vendor-specific encoding)
   uint32_t vendorID = 0, deviceID = 0;
   bool shaderFloat64 = false;
   bool shaderInt64 = false;
@@ -27,7 +28,9 @@ struct DeviceInfo {
 
 struct ContextOptions {
   // "" = automatic choice. Otherwise a decimal index into listDevices(), or a case-insensitive
-  // substring of the device name ("llvmpipe", "NVIDIA"). No match → InputError.
+  // substring of the device name ("llvmpipe", "NVIDIA") or, when no name holds it, of the driver
+  // ("Mesa 22": the system's lavapipe beside dicsynth's own); of several matches, the one the
+  // automatic choice prefers. No match → InputError.
   std::string device;
   // Enable VK_LAYER_KHRONOS_validation and count its warning/error messages. Also switched on by
   // the environment variable DICSYNTH_VALIDATION=1 (the test suite sets it).

@@ -82,6 +82,7 @@ DeviceInfo queryDeviceInfo(VkPhysicalDevice device, uint32_t index) {
     info.driver = "unknown (no VK_KHR_driver_properties)";
   }
   info.apiVersion = base.apiVersion;
+  info.driverVersion = base.driverVersion;
   info.vendorID = base.vendorID;
   info.deviceID = base.deviceID;
   info.shaderFloat64 = features.shaderFloat64 == VK_TRUE;
@@ -96,7 +97,7 @@ std::string describeDevices(const std::vector<DeviceInfo>& devices) {
   std::string text;
   for (const auto& d : devices) {
     if (!text.empty()) text += ", ";
-    text += std::to_string(d.index) + ": " + d.name + " [" + d.type + "]";
+    text += std::to_string(d.index) + ": " + d.name + " [" + d.type + (d.driver.empty() ? "" : ", " + d.driver) + "]";
   }
   return text;
 }
@@ -115,30 +116,47 @@ uint32_t selectDevice(const std::vector<DeviceInfo>& devices, const std::string&
         "no Vulkan device found; for the CPU implementation (lavapipe) install mesa-vulkan-drivers, "
         "and check VK_ICD_FILENAMES/VK_DRIVER_FILES if they are set");
 
-  if (selector.empty()) {
-    // Highest preference wins; ties go to the lower index (enumeration order).
-    size_t best = 0;
-    for (size_t i = 1; i < devices.size(); ++i)
-      if (preference(devices[i]) > preference(devices[best])) best = i;
-    return static_cast<uint32_t>(best);
-  }
-
   auto noMatch = [&] {
     return InputError("--device '" + selector + "': no such Vulkan device; available: " +
                       describeDevices(devices));
   };
-  if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
+  if (!selector.empty() &&
+      std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
     // A decimal index; anything too long to be an index cannot match either.
     if (selector.size() > 9) throw noMatch();
     unsigned long index = std::stoul(selector);
     if (index >= devices.size()) throw noMatch();
     return static_cast<uint32_t>(index);
   }
-  // Case-insensitive substring of the name; the first match in enumeration order.
+  // The candidates: every device, or those whose name holds the selector (case-insensitive), or,
+  // when no name does, those whose driver does.
   const std::string wanted = lower(selector);
-  for (size_t i = 0; i < devices.size(); ++i)
-    if (lower(devices[i].name).find(wanted) != std::string::npos) return static_cast<uint32_t>(i);
-  throw noMatch();
+  auto matching = [&](std::string DeviceInfo::*field) {
+    std::vector<size_t> found;
+    for (size_t i = 0; i < devices.size(); ++i)
+      if (lower(devices[i].*field).find(wanted) != std::string::npos) found.push_back(i);
+    return found;
+  };
+  std::vector<size_t> candidates = matching(&DeviceInfo::name);
+  if (candidates.empty()) candidates = matching(&DeviceInfo::driver);
+  if (candidates.empty()) throw noMatch();
+  // Among them the highest preference wins; between two drivers of the same device (the system's
+  // lavapipe and dicsynth's own, gpu/bundled_driver.h) the newer driver: the higher driverVersion,
+  // then the higher Vulkan version (lavapipe reports driverVersion 1 in every release: Mesa 22.3
+  // and 25.0 tell apart by Vulkan 1.3.230 and 1.4.305 only). Versions are compared only within one
+  // vendor's device: each vendor encodes driverVersion its own way. Other ties go to the lower
+  // index (enumeration order).
+  auto newerDriver = [](const DeviceInfo& d, const DeviceInfo& b) {
+    const bool sameDevice = d.vendorID == b.vendorID && d.deviceID == b.deviceID && d.name == b.name;
+    return sameDevice && (d.driverVersion != b.driverVersion ? d.driverVersion > b.driverVersion
+                                                             : d.apiVersion > b.apiVersion);
+  };
+  size_t best = candidates.front();
+  for (size_t i : candidates) {
+    const DeviceInfo &d = devices[i], &b = devices[best];
+    if (preference(d) > preference(b) || (preference(d) == preference(b) && newerDriver(d, b))) best = i;
+  }
+  return static_cast<uint32_t>(best);
 }
 
 }  // namespace dicsynth::gpu

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "gpu/bundled_driver.h"
 #include "gpu/vk_check.h"
 
 namespace dicsynth::gpu {
@@ -94,6 +95,7 @@ bool validationRequestedByEnvironment() {
 }
 
 Instance::Instance(bool validation) : log_(std::make_unique<ValidationLog>()) {
+  addBundledDriver();  // before the loader's first look for drivers (its extension query below)
   std::vector<const char*> extensions;
   std::vector<const char*> layers;
   VkInstanceCreateFlags flags = 0;

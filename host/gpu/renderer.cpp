@@ -232,7 +232,8 @@ Error cutShortError(std::size_t count, const char* what, const std::string& firs
   return Error("the Vulkan driver cut the shader's loops short on " + std::to_string(count) + " " + what + " (first: " +
                first + "): Mesa 22's lavapipe ends all loops of a batch of pixels "
                "after 65535 iterations in total, so their results would be wrong. Render with "
-               "--backend cpu, on a GPU, or with Mesa 25's lavapipe (scripts/install-deps.sh --backports-mesa), "
+               "--backend cpu, on a GPU, or with Mesa 25's lavapipe (scripts/install-lavapipe.sh; `dicsynth devices` "
+               "says whether it is in use), "
                "which has no such limit; fewer samples per pixel or a NURBS surface with fewer folds "
                "also need fewer iterations");
 }

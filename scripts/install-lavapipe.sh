@@ -2,7 +2,7 @@
 # Installs dicsynth's own copy of lavapipe (Mesa's Vulkan driver for the CPU) from Debian 12's
 # bookworm-backports into .deps/lavapipe/, for dicsynth alone: the machine's apt sources and Vulkan
 # drivers are left as they are. Called by scripts/install-deps.sh unless --system-mesa is given;
-# quiet when the copy is there.
+# quiet when the copy is there (remove .deps/lavapipe/ to get backports' current one).
 #
 # Why: Debian 12's lavapipe (Mesa 22.3) renders ~1.5x slower than bookworm-backports' (Mesa 25),
 # and ends every loop of a batch of pixels after 65535 iterations (dicsynth then refuses the
@@ -21,7 +21,7 @@ cd "$(dirname "$0")/.."
 
 dest=.deps/lavapipe
 manifest="$dest/dicsynth_lvp_icd.json"
-[ -f "$manifest" ] && exit 0
+[ -f "$manifest" ] && [ -f "$dest/libvulkan_lvp.so" ] && exit 0
 
 warn() {
   echo "dicsynth: lavapipe of bookworm-backports not installed ($1); the system's lavapipe will be" \

@@ -540,7 +540,9 @@ RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& o
   RenderResult result;
   result.backend = "gpu";
   result.precision = toString(options.precision);
-  result.device = context_.info().name;
+  // The driver too: two drivers of one device (the system's lavapipe and dicsynth's own) give
+  // values that differ in the last bits, so a file says which made it.
+  result.device = context_.info().name + " [" + context_.info().driver + "]";
   const auto start = std::chrono::steady_clock::now();
   withLayout(options.precision, [&]<class Layout>() {
     renderAll<Layout>(context_, prepared, scene, options, rendererOptions.tileSize, caches_, result);

@@ -32,7 +32,7 @@ struct RenderResult {
   std::vector<CameraImage> cameras;  // same order as PreparedScene::cameras
   std::string backend;               // "cpu" | "gpu"
   std::string precision;             // "fp64" for the CPU; toString(Precision) on the GPU
-  std::string device;                // device name ("CPU reference (N threads)" for the CPU)
+  std::string device;                // "name [driver]" of the Vulkan device ("CPU reference (N threads)" for the CPU)
   double renderSeconds = 0;          // wall time of the render itself (no set-up, no I/O)
 };
 

@@ -1,6 +1,7 @@
 // dicsynth's own lavapipe (host/gpu/bundled_driver.h, scripts/install-lavapipe.sh): the rule that
 // adds it to the loader's drivers, the device choice between two drivers of one device, that an
-// installed copy is the one the renders use, and that a failed install leaves nothing behind.
+// installed copy is the one the renders use and is named in what they write, and that a failed
+// install leaves nothing behind.
 #include <doctest/doctest.h>
 #include <sys/wait.h>
 
@@ -13,7 +14,10 @@
 
 #include "core/error.h"
 #include "gpu/bundled_driver.h"
+#include "geometry/prepared_scene.h"
 #include "gpu/context.h"
+#include "gpu/renderer.h"
+#include "scene/scene.h"
 #include "gpu_test_context.h"
 #include "temp_folder.h"
 
@@ -114,4 +118,16 @@ TEST_CASE("bundled driver: an install that cannot run warns, succeeds and writes
   const std::string message((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
   CHECK(message.find("lavapipe of bookworm-backports not installed (no apt-get/dpkg-deb)") != std::string::npos);
   CHECK_FALSE(fs::exists(root.path() / ".deps"));
+}
+
+TEST_CASE("bundled driver: a render names its device's driver, which tells the two lavapipes apart") {
+  const PreparedScene scene =
+      prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/rectangle.lua", {}), {100});  // 8 × 6 px
+  gpu::Renderer renderer(test::gpuContext());
+  RenderOptions options;
+  options.precision = Precision::Fp32;
+  const RenderResult result = renderer.render(scene, options);
+  const DeviceInfo& info = test::gpuContext().info();
+  CHECK(result.device == info.name + " [" + info.driver + "]");
+  test::expectNoValidationMessages();
 }

@@ -52,8 +52,11 @@ layout(std140, set = 0, binding = DS_BINDING_LIGHTS_UNIFORM) uniform LightsUnifo
 GpuObject ds_localObjects[DS_MAX_UNROLLED_OBJECTS];
 GpuLight ds_localLights[DS_MAX_UNROLLED_LIGHTS];
 ivec4 ds_localTextureInfo[DS_MAX_UNROLLED_OBJECTS];  // textures[kinds.z].info of Texture.File objects
-#define DS_LOCAL_OBJECTS (LOCAL_SCENE && OBJECT_COUNT > 0)
-#define DS_LOCAL_LIGHTS (LOCAL_SCENE && LIGHT_COUNT >= 0)
+// The copies are made from the uniform blocks: UNIFORM_SCENE is part of the condition, so a
+// specialization that asked for copies of a scene in storage buffers gets none, not copies of
+// unbound blocks (the host never asks so: residencyOf sets counts only with uniform blocks).
+#define DS_LOCAL_OBJECTS (LOCAL_SCENE && UNIFORM_SCENE && OBJECT_COUNT > 0)
+#define DS_LOCAL_LIGHTS (LOCAL_SCENE && UNIFORM_SCENE && LIGHT_COUNT >= 0)
 #define DS_OBJECT(i, member) \
   (DS_LOCAL_OBJECTS ? ds_localObjects[i].member : UNIFORM_SCENE ? uniformObjects[i].member : objects[i].member)
 // hreal4 members: in df64 a struct {hi, lo}, and a ternary between the two blocks' copies would mix

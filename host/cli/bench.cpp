@@ -70,7 +70,7 @@ void addBenchCommand(CLI::App& root, RunFn& run) {
   sub->add_option("--error-stride", cmd->options.errorStride,
                   "Material-point error on every n-th pixel in x and y (2 reference rays each)")
       ->capture_default_str();
-  sub->add_option("--device", cmd->options.device, "Vulkan device: index or name substring");
+  sub->add_option("--device", cmd->options.device, "Vulkan device: index, or a substring of its name or else of its driver");
   sub->callback([cmd, &run] { run = [cmd] { return runBench(*cmd); }; });
 }
 

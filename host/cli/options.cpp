@@ -58,7 +58,7 @@ void addRenderArgs(CLI::App& app, RenderArgs& args) {
   app.add_option("--max-error-px", args.maxErrorPx, "--precision auto: largest acceptable geometric error (px)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  app.add_option("--device", args.device, "Vulkan device: index or name substring (see `dicsynth devices`)");
+  app.add_option("--device", args.device, "Vulkan device: index, or a substring of its name or else of its driver (see `dicsynth devices`)");
   app.add_option("--downscale", args.downscale,
                  "Divide every camera's resolution by this integer, keeping the field of view")
       ->capture_default_str();

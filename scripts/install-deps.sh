@@ -33,6 +33,10 @@ own_lavapipe=true
 for arg in "$@"; do
   case "$arg" in
     --system-mesa) own_lavapipe=false ;;
+    --backports-mesa)
+      echo "install-deps.sh: --backports-mesa is gone: Mesa 25's lavapipe is now installed for dicsynth" \
+           "by default, in .deps/lavapipe/, without changing the system's drivers" >&2
+      exit 2 ;;
     *) echo "install-deps.sh: unknown option $arg" >&2; exit 2 ;;
   esac
 done

@@ -35,7 +35,8 @@ multiarch=$(gcc -print-multiarch 2>/dev/null || true)
 [ -n "$multiarch" ] || warn "gcc -print-multiarch gave nothing"
 
 work=$(mktemp -d)
-trap 'rm -rf "$work" "$dest.partial"' EXIT
+partial=""
+trap 'rm -rf "$work" ${partial:+"$partial"}' EXIT
 mkdir -p "$work/lists/partial" "$work/cache/archives/partial" "$work/deb"
 echo "deb http://deb.debian.org/debian bookworm-backports main" > "$work/sources.list"
 apt_options=(
@@ -60,14 +61,20 @@ icd=$(ls "$work"/root/usr/share/vulkan/icd.d/lvp_icd*.json 2>/dev/null | head -n
 unresolved=$(ldd -r "$library" 2>&1 | grep -E "not found|undefined symbol" || true)
 [ -z "$unresolved" ] || warn "it needs libraries this machine lacks: $(echo "$unresolved" | head -n 2)"
 
-rm -rf "$dest.partial"
-mkdir -p "$dest.partial"
-cp "$library" "$work/root/usr/share/doc/mesa-vulkan-drivers/copyright" "$dest.partial/"
+# Assembled in a folder of its own beside the destination, then renamed into place: a concurrent
+# setup (CI jobs sharing a checkout) assembles its own, and whichever comes second keeps the
+# first one's.
+mkdir -p "$(dirname "$dest")"
+partial=$(mktemp -d "$dest.partial.XXXXXX")
+cp "$library" "$work/root/usr/share/doc/mesa-vulkan-drivers/copyright" "$partial/"
 # The manifest's library_path made relative: the loader reads a path with a slash relative to the
 # manifest's folder, so .deps/ can move with the checkout.
-sed -E 's#"library_path": *"[^"]*"#"library_path": "./libvulkan_lvp.so"#' "$icd" > "$dest.partial/$(basename "$manifest")"
-grep -q '"./libvulkan_lvp.so"' "$dest.partial/$(basename "$manifest")" || warn "unexpected manifest $(basename "$icd")"
-dpkg-deb -f "$deb" Version > "$dest.partial/VERSION"
-rm -rf "$dest"
-mv "$dest.partial" "$dest"
+sed -E 's#"library_path": *"[^"]*"#"library_path": "./libvulkan_lvp.so"#' "$icd" > "$partial/$(basename "$manifest")"
+grep -q '"./libvulkan_lvp.so"' "$partial/$(basename "$manifest")" || warn "unexpected manifest $(basename "$icd")"
+dpkg-deb -f "$deb" Version > "$partial/VERSION"
+chmod 755 "$partial"
+# A concurrent setup may have installed one meanwhile: keep it (the trap removes ours).
+[ -f "$manifest" ] && [ -f "$dest/libvulkan_lvp.so" ] && exit 0
+rm -rf "$dest"  # an incomplete copy (manifest or library missing), or nothing
+mv -T "$partial" "$dest" 2>/dev/null || [ -f "$manifest" ] || warn "could not move it into $dest"
 echo "dicsynth: lavapipe $(cat "$dest/VERSION") installed in $dest" >&2

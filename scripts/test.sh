@@ -10,9 +10,10 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 ctest --test-dir build --output-on-failure -j"$(nproc)" "$@"
-# The driver of the device a render would use (`dicsynth devices` marks it with '*').
+# The driver of the device a render would use (`dicsynth devices` marks it with '*'); its df64
+# self-test and calibration are cached with the tests' (tests/test_main.cpp).
 chosen_driver() {
-  build/dicsynth devices | awk '/^\* / { mark = 1; next } mark && /driver:/ { sub(/^ *driver: */, ""); print; mark = 0 }'
+  DICSYNTH_CACHE_DIR="${DICSYNTH_CACHE_DIR:-$PWD/build/test-cache}" build/dicsynth devices | awk '/^\* / { mark = 1; next } mark && /driver:/ { sub(/^ *driver: */, ""); print; mark = 0 }'
 }
 if [ $# -eq 0 ] && [ -f .deps/lavapipe/dicsynth_lvp_icd.json ] && [ -z "${DICSYNTH_LAVAPIPE:-}" ] &&
    [ -z "${VK_ICD_FILENAMES:-}${VK_DRIVER_FILES:-}${VK_ADD_DRIVER_FILES:-}" ]; then

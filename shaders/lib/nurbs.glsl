@@ -209,9 +209,10 @@ bvec4 ds_surface_edges(int patchIndex) {
   return bvec4(h_le(h_x(r), zero), h_le(h_y(r), zero), h_ge(h_z(r), one), h_ge(h_w(r), one));
 }
 
-// Ray–box slabs in `real`; returns the entry and exit parameters (entry > exit: missed).
-real2 ds_box_range(vec4 lo, vec4 hi, real3 o, real3 invD) {
-  const real3 t0 = (real3(lo.xyz) - o) * invD, t1 = (real3(hi.xyz) - o) * invD;
+// Ray–box slabs in `real`, the box widened by boxPad (m) on every side; returns the entry and exit
+// parameters (entry > exit: missed).
+real2 ds_box_range(vec4 lo, vec4 hi, real boxPad, real3 o, real3 invD) {
+  const real3 t0 = (real3(lo.xyz) - boxPad - o) * invD, t1 = (real3(hi.xyz) + boxPad - o) * invD;
   const real3 tmin = min(t0, t1), tmax = max(t0, t1);
   return real2(max(max(tmin.x, tmin.y), tmin.z), min(min(tmax.x, tmax.y), tmax.z));
 }
@@ -467,6 +468,13 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   const real3 extent = max(abs(real3(nurbsNodes[rootNode].boundsMin.xyz)), abs(real3(nurbsNodes[rootNode].boundsMax.xyz)));
   const real3 ao = abs(o);
   const real pad = 64.0 * DS_NURBS_EPSILON * (max(max(extent.x, extent.y), extent.z) + max(max(ao.x, ao.y), ao.z) + scale);
+  // The slab test's rounding: b − o in `real` errs by ~ε (|b| + |o|), and o and d carry the
+  // transform's ~4 ε |o|. The boxes' stored margin (gpu/pack.cpp: 64 ε of the surface size) covers
+  // the |b| part; the ray's part grows with its origin's distance, and for a small surface seen from
+  // afar it exceeded that margin: a plate of 0.2 mm at 0.5 m (distance/size 2,500), turned 50° and
+  // 30°, lost 9 of its pixels in df64 to boxes the ray was computed to miss (bench/RESULTS.md,
+  // "BVH boxes widened by the ray's rounding"). So the boxes are widened by 64 ε |o| too.
+  const real boxPad = 64.0 * DS_NURBS_EPSILON * max(max(ao.x, ao.y), ao.z);
 #if defined(DS_FP64)
   const real sameRoot = 1e-10LF;
 #else
@@ -525,13 +533,13 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
     while (mode == DS_NURBS_MODE_NODE && top > 0) {
       const int node = stack[--top];
       const ivec4 links = nurbsNodes[node].links;
-      const real2 range = ds_box_range(nurbsNodes[node].boundsMin, nurbsNodes[node].boundsMax, o, invD);
+      const real2 range = ds_box_range(nurbsNodes[node].boundsMin, nurbsNodes[node].boundsMax, boxPad, o, invD);
       if (range.x > range.y || range.y < sMin || range.x > sMax) continue;
       if (links.x >= 0) {
         // Children: the nearer one is searched first (pushed last); both are kept.
         const int left = node + 1, right = links.x;
-        const real2 rl = ds_box_range(nurbsNodes[left].boundsMin, nurbsNodes[left].boundsMax, o, invD);
-        const real2 rr = ds_box_range(nurbsNodes[right].boundsMin, nurbsNodes[right].boundsMax, o, invD);
+        const real2 rl = ds_box_range(nurbsNodes[left].boundsMin, nurbsNodes[left].boundsMax, boxPad, o, invD);
+        const real2 rr = ds_box_range(nurbsNodes[right].boundsMin, nurbsNodes[right].boundsMax, boxPad, o, invD);
         const bool leftFirst = rl.x <= rr.x;
         stack[top++] = leftFirst ? right : left;
         stack[top++] = leftFirst ? left : right;

@@ -156,6 +156,17 @@ TEST_CASE("nurbs-stress: an object 1 km from the origin") {
                                 {nurbsObject("plate", plateAround(0.01, 0.01, far), {0, 0, 0})}));
 }
 
+TEST_CASE("nurbs-stress: a small surface seen from afar (distance / size 500)") {
+  // A 1 mm plate 0.5 m away, turned by 50° and 30°, through a 0.6 m lens that fills the view
+  // with it. The slab tests of the BVH round b − o with errors of ε |o|, 500 times the plate's own
+  // ε size that the boxes' stored margin covers: without the boxes widened by the ray's rounding
+  // (lib/nurbs.glsl, boxPad) df64 missed the plate on a few pixels along its edges.
+  const dmat4 turn = glm::rotate(dmat4(1.0), 50 * kPi / 180, dvec3(0, 1, 0)) *
+                     glm::rotate(dmat4(1.0), 30 * kPi / 180, dvec3(1, 0, 0));
+  checkCase("small and far", sceneOf(stressCamera({0, 0, 0}, {0, 0, 0.5}, 0.6),
+                                     {nurbsObject("plate", plateSurface(0.001, 0.001, 4), {0, 0, 0.5}, turn)}));
+}
+
 TEST_CASE("nurbs-stress: non-affine homography on a NURBS") {
   dmat4 keystone(1.0);
   keystone[0][3] = 2.0;  // bottom row (2, 1.5, 0, 1): w = 1 + 2x + 1.5y in the plate's frame

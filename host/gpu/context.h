@@ -1,7 +1,8 @@
 #pragma once
 // Vulkan instance + logical device + compute queue, headless (no window system).
 // Device choice (docs/design.md §5): a discrete GPU if present, else an integrated one, else a virtual one,
-// else a CPU implementation (lavapipe); ContextOptions::device overrides (index, or name or driver substring).
+// else a CPU implementation (lavapipe), and of two drivers of one device the newer
+// (gpu/bundled_driver.h); ContextOptions::device overrides (index, or name or driver substring).
 #include <vulkan/vulkan.h>
 
 #include <cstdint>

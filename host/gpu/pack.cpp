@@ -129,7 +129,8 @@ int packNurbs(const PreparedNurbs& n, int degree, PackedScene<Layout>& p) {
   const int nodeOffset = int(p.nurbsNodes.size()), subOffset = int(p.nurbsSubPatches.size());
   const int patchOffset = int(p.nurbsPatches.size());
   // The ray's rounding in `real` (float: 2^-24 relative) at coordinates up to the surface size,
-  // with a factor 64 of margin for the few operations of a slab test.
+  // with a factor 64 of margin for the few operations of a slab test. The part that grows with the
+  // ray origin's distance is added per ray in the shader (lib/nurbs.glsl, boxPad).
   const double margin = 64 * 0x1p-24 * n.size;
   for (const NurbsBvhNode& node : n.nodes) {
     typename Layout::GpuNurbsNode g{};

@@ -472,8 +472,9 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   // transform's ~4 ε |o|. The boxes' stored margin (gpu/pack.cpp: 64 ε of the surface size) covers
   // the |b| part; the ray's part grows with its origin's distance, and for a small surface seen from
   // afar it exceeded that margin: a plate of 0.2 mm at 0.5 m (distance/size 2,500), turned 50° and
-  // 30°, lost 9 of its pixels in df64 to boxes the ray was computed to miss (bench/RESULTS.md,
-  // "BVH boxes widened by the ray's rounding"). So the boxes are widened by 64 ε |o| too.
+  // 30°, lost 9 (curved) to 32 (flat) of its pixels in df64 to boxes the ray was computed to miss
+  // (bench/RESULTS.md, "BVH boxes widened by the ray's rounding"). So the boxes are widened by
+  // 64 ε |o| too.
   const real boxPad = 64.0 * DS_NURBS_EPSILON * max(max(ao.x, ao.y), ao.z);
 #if defined(DS_FP64)
   const real sameRoot = 1e-10LF;

@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -114,8 +113,7 @@ TEST_CASE("bundled driver: an install that cannot run warns, succeeds and writes
   const int status = std::system(command.c_str());
   CHECK(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 0);
-  std::ifstream err(root.file("err"));
-  const std::string message((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  const std::string message = test::readBytes(root.file("err"));
   CHECK(message.find("lavapipe of bookworm-backports not installed (no apt-get/dpkg-deb)") != std::string::npos);
   CHECK_FALSE(fs::exists(root.path() / ".deps"));
 }

@@ -61,13 +61,21 @@ awk -v ts="$t0" -v te="$t1" -v rs="$t2" -v re="$t3" -v ss="$t4" -v se="$t5" -v f
   printf "rerun with every point complete (checks %d records and CRC-32s): %.2f s\n", n, rerun
 }'
 
-# 3. Peak memory: 10 vs MANY vs 8×MANY points of the 32×24 scene.
-rss() { /usr/bin/time -f %M "$BIN" sweep "$HERE/tiny_sweep.lua" -o "$OUT/$1" --spp 1 --precision fp32 --sweep "shift=0:0.01:$1" 2>&1 >/dev/null | tail -n 1; }
-r10=$(rss 10)
+# 3. Peak memory: 10 vs MANY vs 8×MANY points of the 32×24 scene (GNU time's max RSS; a machine
+# without /usr/bin/time, e.g. a lent GPU machine, skips this part with a message).
+if [ ! -x /usr/bin/time ]; then
+  echo "peak RSS: skipped, /usr/bin/time not installed (apt install time)"
+  exit 0
+fi
+# rss POINTS FOLDER (a folder per run: the same count twice, e.g. MANY = 10, must not find the first
+# run's complete points and skip them).
+rss() { /usr/bin/time -f %M "$BIN" sweep "$HERE/tiny_sweep.lua" -o "$OUT/$2" --spp 1 --precision fp32 --sweep "shift=0:0.01:$1" 2>&1 >/dev/null | tail -n 1; }
+r10=$(rss 10 rss_a)
 t6=$(now)
-r1000=$(rss "$MANY")
+r1000=$(rss "$MANY" rss_b)
 t7=$(now)
-r8000=$(rss "$((8 * MANY))")
-awk -v a="$r10" -v b="$r1000" -v c="$r8000" -v m="$MANY" -v t="$(echo "$t7 - $t6" | bc)" 'BEGIN {
+r8000=$(rss "$((8 * MANY))" rss_c)
+awk -v a="$r10" -v b="$r1000" -v c="$r8000" -v m="$MANY" -v t6="$t6" -v t7="$t7" 'BEGIN {
+  t = t7 - t6
   printf "peak RSS: 10 points %.1f MiB, %d points %.1f MiB (ratio %.3f; the %d points took %.1f s), %d points %.1f MiB (ratio to %d: %.3f)\n",
     a / 1024, m, b / 1024, b / a, m, t, 8 * m, c / 1024, m, c / b }'

@@ -12,6 +12,8 @@
 #   compare   `dicsynth compare scenes --downscale 4` in fp32, df64 and fp64
 #   bench     `dicsynth bench` (run time versus error, Figure 1, NURBS plate, dogbone)
 #   process   bench/bench_process.sh (whole processes, Figure 1, 1600x1200, 16 spp; fixed overhead)
+#   sweep     bench/bench_sweep.sh (50 points of Figure 1 at 800x600, 4 spp) with the default layers
+#             and with `--layers image`: issue 15's time per point against the render-only time
 #   phases    one render's phases (DICSYNTH_TIMINGS=1): Figure 1 fp32 with all layers and with the
 #             image alone, the dogbone in df64 and fp64 (on the H100 every frame took ~0.1 s
 #             whatever the precision: where the time goes)
@@ -26,7 +28,7 @@ B=$(cd "$1" && pwd)
 LOG=$2
 BUDGET=${3:-420}
 shift $(($# < 3 ? $# : 3))
-STEPS=${*:-env checks scenes compare bench process phases long}
+STEPS=${*:-env checks scenes compare bench process sweep phases long}
 mkdir -p "$LOG"
 LOG=$(cd "$LOG" && pwd)
 ROOT=$(pwd)
@@ -98,8 +100,14 @@ phases_step() {
       grep '^timings'
   done
 }
+sweep_step() {
+  echo "== default layers"
+  bench/bench_sweep.sh "$BUILD" 50 4 100
+  echo "== --layers image"
+  EXTRA_OPTS="--layers image" bench/bench_sweep.sh "$BUILD" 50 4 100
+}
 long_step() { DICSYNTH_NURBS_RANDOM_SCENES=140 "$CHECKS" -tc="nurbs-random: GPU*"; }
-export -f env_step compare_step phases_step long_step
+export -f env_step compare_step sweep_step phases_step long_step
 export DS CHECKS BUILD
 
 step env 60 env_step
@@ -110,6 +118,7 @@ step scenes 240 'DICSYNTH_VALIDATION=1 "$CHECKS" --duration=true -tc="$SCENES_CA
 step compare 120 compare_step
 step bench 60 '"$DS" bench -o /tmp/gpu-checks-bench --runs 3'
 step process 90 'bench/bench_process.sh "$BUILD" 3 16'
+step sweep 90 sweep_step
 step phases 60 phases_step
 step long 200 long_step
 echo "total $(($(date +%s) - T0)) s" >>"$LOG/summary.txt"

@@ -215,6 +215,48 @@ void checkRigCamerasNotGlobals(const RigGlobal& rig,
   }
 }
 
+// A scene can make any string a global's name (_G["..."] = ...), and the names of cameras, rigs,
+// objects and lights leave the scene: as file names (<camera>_<frame>.exr, <rig>.yml, written in
+// the output folder: a '/' or a leading '.' would write beside it, over "." or "..", or as one of
+// the run's hidden temporary files), as entries of comma-separated lists (the EXR header's
+// dicsynth:objects) and as CSV fields (a target's features). So a name is refused, before any
+// work, when it is empty, begins with '.', or holds '/', ',', '"' or a control character. Returns
+// what is wrong, or "" for a good name.
+std::string nameProblem(const std::string& name) {
+  if (name.empty()) return "is empty";
+  if (name[0] == '.') return "begins with '.'";
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) return "holds a control character";
+    if (c == '/' || c == ',' || c == '"') return std::string("holds '") + c + "'";
+  }
+  return "";
+}
+
+// The name as an error line can show it: control characters as \xNN, at most 40 bytes.
+std::string printableName(const std::string& name) {
+  std::string out;
+  for (const char c : name.substr(0, 40)) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", u);
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return name.size() > 40 ? out + "..." : out;
+}
+
+void checkName(const char* kind, const std::string& name, const SourceLoc& where) {
+  const std::string problem = nameProblem(name);
+  if (!problem.empty())
+    throw InputError(where, std::string("the ") + kind + " name '" + printableName(name) + "' " + problem +
+                                "; names of cameras, rigs, objects and lights become file names and list "
+                                "entries: use letters, digits, '_', '-' and '.' (not first)");
+}
+
 // Copies every Camera, Object, Light and Rig held by a global (string key) into the scene.
 Scene collectGlobals(lua_State* L, const std::string& path) {
   Scene scene;
@@ -227,16 +269,20 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
     if (lua_type(L, -2) == LUA_TSTRING && lua_type(L, -1) == LUA_TUSERDATA) {
       const std::string name = lua_tostring(L, -2);
       if (const Camera* camera = toUserdata<Camera>(L, -1)) {
+        checkName("camera", name, camera->where);
         scene.cameras.push_back(*camera);
         scene.cameras.back().name = name;
         cameraGlobals.emplace_back(lua_touserdata(L, -1), name);
       } else if (const Object* object = toUserdata<Object>(L, -1)) {
+        checkName("object", name, object->where);
         scene.objects.push_back(*object);
         scene.objects.back().name = name;
       } else if (const Light* light = toUserdata<Light>(L, -1)) {
+        checkName("light", name, light->where);
         scene.lights.push_back(*light);
         scene.lights.back().name = name;
       } else if (const StereoRigValue* rig = toUserdata<StereoRigValue>(L, -1)) {
+        checkName("rig", name, rig->where);
         rigs.push_back(rigGlobal(L, name, rig));
       }
     }

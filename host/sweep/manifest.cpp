@@ -67,7 +67,8 @@ FileLock::~FileLock() {
 }
 
 ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
-                              const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets) {
+                              const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets,
+                              const std::function<void(const SweepPoint&, const PointRecord&)>& otherKey) {
   FileLock lock((fs::path(outputDir) / ".manifest.lock").string(), true);
   ManifestSummary summary;
   summary.total = plan.count;
@@ -96,6 +97,7 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
     const std::string folderName = pointFolderName(p.index);
     const std::string folder = (fs::path(outputDir) / folderName).string();
     const auto record = readPointRecord(folder);
+    if (otherKey && record && record->index == p.index && record->key != keyOf(p)) otherKey(p, *record);
     // The point's own files by size only (their checksums are verified when a run decides to skip
     // a point); its assets by checksum, computed once per file and run.
     if (!record || record->index != p.index || !pointFilesIntact(folder, *record, keyOf(p), false, assets)) continue;

@@ -18,9 +18,12 @@ struct ManifestSummary {
 };
 
 // `keyOf` gives each point's key (a record with another key is not complete); `assets` checks the
-// records' assets (point_record.h). Throws Error naming a file that cannot be written.
+// records' assets (point_record.h). `otherKey`, when given, is called for each point whose record
+// holds another key, before the manifest is replaced: it may throw, and the manifest already there
+// then stays as it was. Throws Error naming a file that cannot be written.
 ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
-                              const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets);
+                              const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets,
+                              const std::function<void(const SweepPoint&, const PointRecord&)>& otherKey = {});
 
 // An exclusive advisory lock (flock) on a file, held while the object lives.
 class FileLock {

@@ -188,6 +188,8 @@ SweepPlan planSweep(const std::string& scenePath, const std::vector<std::pair<st
       throw InputError(what + "a built-in name of the scene language (like Shape, linspace, _G, string): choose another name");
     for (const auto& define : defines)
       if (define.first == name) throw InputError(what + "also given by -D " + name + "; give it in one place");
+    if (std::count(plan.names.begin(), plan.names.end(), name) > 1)
+      throw InputError(what + "given twice; give each parameter once (a grid's values in one --sweep)");
   }
   return plan;
 }

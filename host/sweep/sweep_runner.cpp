@@ -87,6 +87,40 @@ std::string readWholeFile(const std::string& path) {
   return text;
 }
 
+// The fields of a point's key, in the order runSweep writes them ("name=value", space-separated).
+constexpr const char* kKeyFields[] = {"scene_crc32", "spp",    "precision",       "max_error_px", "downscale", "backend",
+                                      "frames",      "defines", "exr_compression", "layers",       "seed",      "parameters"};
+
+// What differs between a point's recorded key and this run's, for people: "spp 16 (now 4),
+// downscale 8 (now 1)"; the scene by its content. Each field's value runs to the next field's name,
+// searched in the fixed order (a define's value may itself hold "=" and spaces).
+std::string keyDifference(const std::string& recorded, const std::string& now) {
+  auto fields = [](const std::string& key) {
+    std::vector<std::string> values;
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < std::size(kKeyFields); ++k) {
+      const std::string name = std::string(k ? " " : "") + kKeyFields[k] + "=";
+      const std::size_t start = key.find(name, at);
+      if (start == std::string::npos) return std::vector<std::string>{};  // a key of another version
+      if (k) values.back() = key.substr(at, start - at);
+      at = start + name.size();
+      values.emplace_back();
+    }
+    values.back() = key.substr(at);
+    return values;
+  };
+  const std::vector<std::string> a = fields(recorded), b = fields(now);
+  if (a.size() != b.size() || a.empty()) return "a record of another dicsynth version";
+  std::string out;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (a[k] == b[k]) continue;
+    if (!out.empty()) out += ", ";
+    out += std::string(k == 0 ? "the scene file's content" : kKeyFields[k]) +
+           (k == 0 ? " (changed since)" : " " + (a[k].empty() ? "(none)" : a[k]) + " (now " + (b[k].empty() ? "(none)" : b[k]) + ")");
+  }
+  return out;
+}
+
 // Progress (core/progress.h): the points done of this shard, and the images written per second.
 class Progress {
  public:
@@ -142,6 +176,9 @@ void runSweep(const SweepRun& cmd) {
 
   // Before anything is created: the output folder can be written, and the first point's scene
   // evaluates (a --sweep value the scene cannot take, e.g. a string for a coordinate, stops here).
+  // --merge-only reads what is there: a folder that does not exist is a mistyped -o, not an empty sweep.
+  if (cmd.mergeOnly && !fs::is_directory(cmd.outputDir))
+    throw InputError("-o " + cmd.outputDir + ": no such folder: --merge-only merges the points of an existing sweep");
   checkOutputWritable(cmd.outputDir);
   {
     SceneParams first{pointDefines(defines, plan.point(0)), frames.front()};
@@ -152,7 +189,15 @@ void runSweep(const SweepRun& cmd) {
   createOutputDir(cmd.outputDir);  // writable: checkOutputWritable created a file where it goes
   sweep::AssetChecksums assets;
   if (cmd.mergeOnly) {
-    const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets);
+    // A point made with other options (a forgotten --spp, another scene) would silently drop out of
+    // the manifest, and a good manifest be replaced by a shorter one: refused, the manifest untouched.
+    const auto summary = sweep::writeManifest(
+        cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets, [&](const SweepPoint& p, const sweep::PointRecord& r) {
+          throw InputError("sweep --merge-only: " + pointFolderName(p.index) + " was rendered with other inputs: " +
+                           keyDifference(r.key, keyOf(p)) +
+                           ". Give the options the sweep was run with (the manifest is left as it was), or run the "
+                           "sweep without --merge-only to render such points again");
+        });
     std::printf("manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
                 (long long)summary.complete, (long long)summary.total, cmd.outputDir.c_str());
     return;
@@ -168,6 +213,7 @@ void runSweep(const SweepRun& cmd) {
   RenderSession session(cmd.args, cmd.backend);
   Progress progress(mine, stderrIsTerminal());
   std::int64_t done = 0, rendered = 0, skipped = 0, busy = 0, images = 0;
+  std::int64_t replaced = 0;  // finished points of other inputs, rendered again
   const std::string host = hostName();
   // The files of point i are written (sensor, truth, files, record) on a worker thread while the
   // main thread evaluates, prepares and renders point i+1: at most one point waits to be written,
@@ -193,12 +239,20 @@ void runSweep(const SweepRun& cmd) {
       continue;
     }
     const std::string key = keyOf(p);
-    if (const auto record = sweep::readPointRecord(folder);
-        record && record->index == p.index && sweep::pointFilesIntact(folder, *record, key, true, assets)) {
+    const auto recorded = sweep::readPointRecord(folder);
+    if (recorded && recorded->index == p.index && sweep::pointFilesIntact(folder, *recorded, key, true, assets)) {
       ++skipped;
       progress.update(++done, rendered, images);
       continue;
     }
+    // A finished point made with other inputs is rendered again (its files replaced): said once, with
+    // what differs, since a forgotten option would otherwise replace a whole sweep unnoticed.
+    if (recorded && recorded->index == p.index && recorded->key != key && replaced++ == 0)
+      std::fprintf(stderr,
+                   "dicsynth: warning: %s was rendered with other inputs (%s): it is rendered again, as is every "
+                   "point whose record differs (stop now to keep them, and rerun with the options they were made "
+                   "with)\n",
+                   pointFolderName(p.index).c_str(), keyDifference(recorded->key, key).c_str());
     auto job = std::make_shared<RenderJob>();
     job->sceneFile = cmd.args.scenePath;
     job->outputDir = folder;
@@ -253,13 +307,15 @@ void runSweep(const SweepRun& cmd) {
   }
   finishWriting();
   const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets);
-  std::printf("sweep: %lld points%s: rendered %lld, already complete %lld, in progress elsewhere %lld; "
+  const std::string replacedText =
+      replaced ? " (" + std::to_string(replaced) + " of them replacing points rendered with other inputs)" : "";
+  std::printf("sweep: %lld points%s: rendered %lld%s, already complete %lld, in progress elsewhere %lld; "
               "manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
               (long long)mine,
               shard.count > 1 ? (" (shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) + " of " +
                                  std::to_string(plan.count) + ", by " + shard.origin + ")").c_str()
                               : "",
-              (long long)rendered, (long long)skipped, (long long)busy, (long long)summary.complete,
+              (long long)rendered, replacedText.c_str(), (long long)skipped, (long long)busy, (long long)summary.complete,
               (long long)summary.total, cmd.outputDir.c_str());
   return;
 }

@@ -122,12 +122,27 @@ TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered ag
   const test::CliResult merged = runCli("sweep " + scene + " -o " + out + kFast + " --merge-only");
   CHECK(merged.out == "manifest: 6 of 6 points complete (" + out + "/manifest.csv, manifest.json)\n");
   CHECK(readText(out + "/manifest.csv") == manifest);
-  // Another spp is another sweep: every point is rendered again.
+  // --merge-only with an option forgotten (another key) would list none of the points: refused,
+  // naming what differs, the manifest left as it was (found by the 2026-11-27 audit: it was
+  // replaced by an empty one, exit 0). A folder that does not exist is refused, not created.
+  const test::CliResult forgot = runCli("sweep " + scene + " -o " + out + " --merge-only");
+  CHECK(forgot.exitCode == 2);
+  CHECK(forgot.err.find("sweep --merge-only: point_00000 was rendered with other inputs: spp 1 (now 4), precision fp32 (now auto)") !=
+        std::string::npos);
+  CHECK(readText(out + "/manifest.csv") == manifest);
+  const test::CliResult typo = runCli("sweep " + scene + " -o " + dir.file("typo") + kFast + " --merge-only");
+  CHECK(typo.exitCode == 2);
+  CHECK(typo.err.find("-o " + dir.file("typo") + ": no such folder") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("typo")));
+  // Another spp is another sweep: every point is rendered again, and the first one says so.
   const test::CliResult other = runCli("sweep " + scene + " -o " + out + " --spp 2 --precision fp32");
-  CHECK(other.out.find("rendered 6, already complete 0") != std::string::npos);
+  CHECK(other.out.find("rendered 6 (6 of them replacing points rendered with other inputs), already complete 0") != std::string::npos);
+  CHECK(other.err.find("warning: point_00000 was rendered with other inputs (spp 1 (now 2)): it is rendered again") !=
+        std::string::npos);
   // So is another EXR compression (the files differ): every point again, written with it.
   const test::CliResult rle = runCli("sweep " + scene + " -o " + out + " --spp 2 --precision fp32 --exr-compression rle");
-  CHECK(rle.out.find("rendered 6, already complete 0") != std::string::npos);
+  CHECK(rle.out.find("rendered 6 (6 of them replacing points rendered with other inputs), already complete 0") != std::string::npos);
+  CHECK(rle.err.find("(exr_compression zip (now rle))") != std::string::npos);
   const auto in = OIIO::ImageInput::open(out + "/point_00004/cam.exr");
   REQUIRE(in);
   CHECK(in->spec().get_string_attribute("compression") == "rle");

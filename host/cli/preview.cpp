@@ -3,6 +3,7 @@
 // the first file, created if missing. Prints each picture written and what was skipped, and why.
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,15 +29,38 @@ int runPreview(const PreviewOptions& options) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) throw InputError(file + ": no such file (or not a regular file)");
   }
+  // The pictures are named by the file's stem: two files of one stem would overwrite each other's.
+  std::map<std::string, std::string> stems;
+  for (const std::string& file : options.files) {
+    const std::string stem = std::filesystem::path(file).stem().string();
+    if (const auto [it, fresh] = stems.emplace(stem, file); !fresh)
+      throw InputError("preview: " + it->second + " and " + file + " would both be drawn as " + stem +
+                       ".<layer>.png: preview them into separate folders (-o)");
+  }
   const std::string dir = options.outputDir.empty()
                               ? (std::filesystem::path(options.files.front()).parent_path() / "preview").string()
                               : options.outputDir;
   checkOutputWritable(dir);
+  std::error_code ec;
+  const bool created = !std::filesystem::exists(dir, ec);
   createOutputDir(dir);
-  for (const std::string& file : options.files) {
-    const PreviewFiles files = previewExr(file, dir, std::filesystem::path(file).stem().string(), options.width);
-    for (const std::string& png : files.written) std::printf("%s\n", png.c_str());
-    for (const std::string& why : files.skipped) std::printf("%s: skipped %s\n", file.c_str(), why.c_str());
+  std::vector<std::string> written;
+  try {
+    for (const std::string& file : options.files) {
+      const PreviewFiles files = previewExr(file, dir, std::filesystem::path(file).stem().string(), options.width);
+      written.insert(written.end(), files.written.begin(), files.written.end());
+      for (const std::string& png : files.written) std::printf("%s\n", png.c_str());
+      for (const std::string& why : files.skipped) std::printf("%s: skipped %s\n", file.c_str(), why.c_str());
+    }
+  } catch (...) {
+    // A folder the failed run made goes, with the pictures of the files before the failing one. In a
+    // folder that was there, those complete pictures stay (the failing file's own are removed by
+    // previewExr).
+    if (created) {
+      for (const std::string& png : written) std::filesystem::remove(png, ec);
+      std::filesystem::remove(dir, ec);  // only when empty
+    }
+    throw;
   }
   return kExitOk;
 }

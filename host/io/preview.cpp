@@ -1,5 +1,7 @@
 #include "io/preview.h"
 
+#include <cstdio>
+
 #include "core/error.h"
 #include "files/oiio_module/oiio_module.h"
 #include "files/oiio_reader.h"
@@ -19,7 +21,11 @@ PreviewFiles previewExr(const std::string& exrPath, const std::string& outputDir
   request.fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
   PreviewResult result;
   std::string error;
-  if (!preview(&request, &result, &error)) throw InputError(error);
+  if (!preview(&request, &result, &error)) {
+    // Nothing half-done: this file's pictures written before the failure go too.
+    for (const std::string& png : result.written) std::remove(png.c_str());
+    throw InputError(error);
+  }
   return {std::move(result.written), std::move(result.skipped)};
 }
 

@@ -112,6 +112,19 @@ TEST_CASE("preview: any EXR shows what it can and says what it skips, wide image
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) values.insert(values.end(), {float(x), 0.5f, NAN});
   writeExr(dir.file("other.exr"), w, h, {"temperature", "P.X", "void"}, values);
+  // `mask` is skipped as objectId > 0 (it said "a coordinate of the scene" before the 2026-11-27 audit).
+  std::vector<float> masks(std::size_t(w) * h, 1.0f);
+  writeExr(dir.file("masked.exr"), w, h, {"mask"}, masks);
+  const test::CliResult m = test::runCli("preview " + dir.file("masked.exr") + " -o " + dir.file("masked"));
+  CHECK(m.exitCode == 0);
+  CHECK(m.out.find("skipped mask: objectId > 0, shown by the objectId picture") != std::string::npos);
+  // Two files of one name would draw over each other's pictures: refused before any picture.
+  std::filesystem::create_directories(dir.file("sub"));
+  std::filesystem::copy_file(dir.file("other.exr"), dir.file("sub/other.exr"));
+  const test::CliResult same = test::runCli("preview " + dir.file("other.exr") + " " + dir.file("sub/other.exr") + " -o " + dir.file("same"));
+  CHECK(same.exitCode == 2);
+  CHECK(same.err.find("would both be drawn as other.<layer>.png") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("same")));
   const test::CliResult r = test::runCli("preview " + dir.file("other.exr") + " -o " + dir.file("pictures") + " --width 800");
   INFO(r.out << r.err);
   REQUIRE(r.exitCode == 0);
@@ -132,5 +145,9 @@ TEST_CASE("preview: any EXR shows what it can and says what it skips, wide image
     INFO(arguments << ": " << e.err);
     CHECK(e.exitCode == 2);
   }
-  CHECK(!std::filesystem::exists(dir.file("p2/text.temperature.png")));
+  CHECK(!std::filesystem::exists(dir.file("p2")));  // the folder the failed run made is gone
+  // A good file drawn, then a bad one: the folder the run made goes with the good file's pictures.
+  const test::CliResult half = test::runCli("preview " + dir.file("other.exr") + " " + dir.file("text.exr") + " -o " + dir.file("p3"));
+  CHECK(half.exitCode == 2);
+  CHECK(!std::filesystem::exists(dir.file("p3")));
 }

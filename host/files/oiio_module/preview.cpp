@@ -59,10 +59,15 @@ const std::vector<View>& knownViews() {
   return views;
 }
 
-// Channels that are coordinates of the scene rather than fields to look at, and duplicates.
-const std::set<std::string>& notShown() {
-  static const std::set<std::string> names = {"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "uv.U", "uv.V", "mask"};
-  return names;
+// Channels not drawn, with the reason printed: coordinates of the scene rather than fields to look
+// at, and `mask`, which is objectId > 0 (objectId is drawn).
+const std::map<std::string, std::string>& notShown() {
+  static const std::string coordinate = "a coordinate of the scene, not a field to look at";
+  static const std::map<std::string, std::string> reasons = {
+      {"P.X", coordinate},  {"P.Y", coordinate},  {"P.Z", coordinate}, {"N.X", coordinate},
+      {"N.Y", coordinate},  {"N.Z", coordinate},  {"uv.U", coordinate}, {"uv.V", coordinate},
+      {"mask", "objectId > 0, shown by the objectId picture"}};
+  return reasons;
 }
 
 std::string number(double v) {
@@ -135,8 +140,8 @@ bool preview(const PreviewRequest& request, PreviewResult& result, std::string& 
   }
   for (const auto& [name, c] : index) {
     if (used.count(name)) continue;
-    if (notShown().count(name)) {
-      result.skipped.push_back(name + ": a coordinate of the scene, not a field to look at");
+    if (const auto reason = notShown().find(name); reason != notShown().end()) {
+      result.skipped.push_back(name + ": " + reason->second);
       continue;
     }
     views.push_back({name, {name}, Map::Viridis, ""});

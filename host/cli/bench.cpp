@@ -24,6 +24,12 @@ struct BenchCommand {
 int runBench(BenchCommand cmd) {
   if (cmd.options.runs < 1 || cmd.options.cpuRuns < 1) throw InputError("--runs and --cpu-runs must be >= 1");
   if (cmd.options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
+  // Checked before the first scene renders (an audit found stride 0 failing an internal check
+  // after the first render, exit 3).
+  if (cmd.options.errorStride < 1)
+    throw InputError("--error-stride " + std::to_string(cmd.options.errorStride) + ": must be >= 1 (pixels)");
+  if (cmd.options.downscale < 1)
+    throw InputError("--downscale " + std::to_string(cmd.options.downscale) + ": must be >= 1");
   cmd.options.scenes = {{"figure1", cmd.scenesDir + "/figure1.lua", {}},
                         {"nurbs_plate", cmd.scenesDir + "/nurbs_plate.lua", {{"strain", "0.002"}}},
                         {"dogbone", cmd.scenesDir + "/dogbone.lua", {{"necking", "0.002"}}}};

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "io/outputs.h"
+#include "model/layers.h"
 #include "model/render_options.h"
 
 namespace dicsynth::cli {
@@ -11,8 +12,9 @@ namespace dicsynth::cli {
 void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect) {
   app.add_option("--sweep", options.sweeps,
                  "NAME=A:B:N (N values from A to B), NAME=V1,V2,... or, with --random, NAME=LO:HI" + effect);
-  app.add_option("--random", options.randomCount, "Random sweep of N points over the --sweep ranges");
-  app.add_option("--random-seed", options.randomSeed, "Seed of --random")->capture_default_str();
+  CLI::Option* random = app.add_option("--random", options.randomCount, "Random sweep of N points over the --sweep ranges");
+  // Without --random it would be ignored silently.
+  app.add_option("--random-seed", options.randomSeed, "Seed of --random")->capture_default_str()->needs(random);
 }
 
 void addExrCompressionOption(CLI::App& app, std::string& compression) {
@@ -24,10 +26,13 @@ void addExrCompressionOption(CLI::App& app, std::string& compression) {
 }
 
 void addLayersOption(CLI::App& app, std::string& layers) {
+  // The names from the layer schema (model/layers.h), so the help cannot miss one.
+  std::string names;
+  for (const LayerSpec& spec : layerSpecs())
+    names += std::string(names.empty() ? "" : ", ") + spec.name + (spec.layer == Layer::Image ? " (the TIFF)" : "");
   app.add_option("--layers", layers,
                  "Outputs to compute and write: all (every layer the scene can produce), or a comma-separated "
-                 "list of image (the TIFF), radiance, depth, P, normal, uv, mask, disp, flow, disparity, "
-                 "distortion, noise, defects (EXR channel groups; no EXR without one)")
+                 "list of " + names + " (EXR channel groups but image; no EXR without one)")
       ->capture_default_str();
 }
 
@@ -55,8 +60,8 @@ void addRenderArgs(CLI::App& app, RenderArgs& args) {
                  "error on this device is <= --max-error-px")
       ->check(CLI::IsMember(precisionChoices()))
       ->capture_default_str();
+  // Checked by renderOptions (a finite number > 0), with the message the manual shows for every bad value.
   app.add_option("--max-error-px", args.maxErrorPx, "--precision auto: largest acceptable geometric error (px)")
-      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--device", args.device, "Vulkan device: index, or a substring of its name or else of its driver (see `dicsynth devices`)");
   app.add_option("--downscale", args.downscale,

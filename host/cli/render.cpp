@@ -1,6 +1,7 @@
 // `dicsynth render SCENE.lua`: renders every camera of every frame and writes, per camera and frame,
 // the sensor image (TIFF) and the ground truth (EXR) into the output folder.
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <optional>
 
@@ -25,6 +26,9 @@ struct RenderCommand {
 
 int runRender(const RenderCommand& cmd) {
   const LayerSet layers = LayerSet::parse(cmd.layers);  // before any work
+  if (cmd.preview && !layers.anyGroundTruth())
+    std::fprintf(stderr, "dicsynth: warning: --preview draws the EXR's layers, and --layers %s writes no EXR: "
+                         "no picture will be drawn\n", cmd.layers.c_str());
   const bool numbered = !cmd.frames.empty();
   std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
   // The reference frame is rendered first: every frame's motion truth is measured from it.

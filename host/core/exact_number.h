@@ -14,7 +14,10 @@ inline std::string exactNumber(double value) {
 }
 
 // The shortest text that reads back as the same double ("0.04", "-3", "inf", "nan"): for messages.
+// A NaN is "nan" whatever its sign bit (Lua's 0/0 is a negative NaN on x86: "-nan" reads as a
+// number that is negative).
 inline std::string shortestNumber(double value) {
+  if (value != value) return "nan";
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   return std::string(buffer, result.ptr);

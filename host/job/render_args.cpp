@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +23,17 @@ std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<
     if (eq == std::string::npos || eq == 0)
       throw InputError("-D " + d + ": expected name=value");
     out.emplace_back(d.substr(0, eq), d.substr(eq + 1));
+    // "0,002" is the string "0,002" (numbers take a decimal point), which the scene then fails to
+    // multiply, at a line of its own: said here, where the cause is.
+    const std::string& value = out.back().second;
+    const auto comma = value.find(',');
+    const auto digits = [](const std::string& s) {
+      return !s.empty() && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+    };
+    if (comma != std::string::npos && digits(value.substr(value[0] == '-' ? 1 : 0, comma - (value[0] == '-' ? 1 : 0))) &&
+        digits(value.substr(comma + 1)))
+      std::fprintf(stderr, "dicsynth: warning: -D %s: '%s' is a string, not a number (a decimal comma? write %s)\n",
+                   d.c_str(), value.c_str(), (value.substr(0, comma) + "." + value.substr(comma + 1)).c_str());
   }
   return out;
 }

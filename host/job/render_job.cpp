@@ -186,6 +186,13 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
     const Camera& cam = scene.cameras[c].camera;
     const CameraImage& image = result.cameras[c];
+    // An image of background only is nearly always a mistake (a camera turned away, an object behind
+    // it or out of view): said, not refused (every pixel centre is traced on both backends).
+    if (std::none_of(image.objectId.begin(), image.objectId.end(), [](std::uint32_t id) { return id != 0; }))
+      std::fprintf(stderr,
+                   "dicsynth: warning: camera %s, frame %d: no pixel centre sees an object (the image is all "
+                   "background): check the camera's pose and the objects' locations\n",
+                   cam.name.c_str(), frame);
     const CameraFrame derived = deriveCamera(job, rendered, scene, c, *reference);
     const std::string stem = outputStem(cam.name, job.numbered, frame);
     const OutputFiles files =

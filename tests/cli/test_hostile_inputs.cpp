@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "files/image_limits.h"
+#include "model/layers.h"
 #include "run_cli.h"
 
 using namespace dicsynth;
@@ -189,6 +191,42 @@ TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme 
   }
 }
 
+TEST_CASE("hostile: names that would write outside the output folder or break its lists are refused with their line") {
+  // A scene can name a global anything (_G["..."] = ...). Found by an audit (2026-11-27): a camera
+  // named '../evil' wrote ../evil.yml beside the output folder, then failed an internal check (exit
+  // 3) and left the file there; a rig did the same with four calibration files. Every case must be
+  // exit 2 naming the line, before any file exists, inside or beside the output folder.
+  test::TempFolder dir;
+  const std::string pinhole = "Camera.Pinhole { resolution = {16, 12}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }";
+  const std::string object = "Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }";
+  struct Case {
+    std::string body, expected;
+  };
+  const std::vector<Case> cases = {
+      {"cam = " + pinhole + "\n_G['../evil'] = " + pinhole + "\n", ":2: the camera name '../evil' begins with '.'"},
+      {"cam = " + pinhole + "\n_G['sub/evil'] = " + pinhole + "\n", ":2: the camera name 'sub/evil' holds '/'"},
+      {"_G[''] = " + pinhole + "\n", ":1: the camera name '' is empty"},
+      {"_G['.hidden'] = " + pinhole + "\n", ":1: the camera name '.hidden' begins with '.'"},
+      {"local c = " + pinhole + "\n_G['../r'] = Rig.Stereo { left = c; right = c; baseline = 0.1; target = {0, 0, 1} }\n",
+       ":2: the rig name '../r' begins with '.'"},
+      {"cam = " + pinhole + "\n_G['a,b'] = " + object + "\n", ":2: the object name 'a,b' holds ','"},
+      {"cam = " + pinhole + "\n_G['a\"b'] = " + object + "\n", ":2: the object name 'a\"b' holds '\"'"},
+      {"cam = " + pinhole + "\n_G['lamp\\n2'] = Light.Point { position = {0, 0, 0} }\n",
+       ":2: the light name 'lamp\\x0a2' holds a control character"},
+  };
+  const std::string out = dir.file("run/out");
+  std::filesystem::create_directories(dir.file("run"));
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string scene = dir.write("n" + std::to_string(k) + ".lua", cases[k].body);
+    const test::CliResult r = test::runCli("render " + scene + " -o " + out + " --backend cpu");
+    INFO(cases[k].body << "\nstderr: " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.find(scene + cases[k].expected) != std::string::npos);
+    CHECK(r.err.find("letters, digits, '_', '-' and '.' (not first)") != std::string::npos);
+    CHECK(std::filesystem::is_empty(dir.file("run")));  // neither the output folder nor a file beside it
+  }
+}
+
 TEST_CASE("hostile: scene evaluation is bounded in time, and pattern matching by its work") {
   test::TempFolder dir;
   const std::string slow = dir.write("slow.lua", kCamera + "for i = 1, 1e9 do local s = string.rep('x', 1e6) end\n");
@@ -300,6 +338,64 @@ TEST_CASE("hostile: the smaller inconsistencies of the probe") {
   CHECK(lock.exitCode != 0);
   CHECK(lock.err.find("Too many levels of symbolic links") != std::string::npos);
   CHECK(test::readBytes(victim) == "keep me");
+}
+
+TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options refused early, silent outcomes said") {
+  test::TempFolder dir;
+  const std::string scene = dir.write("s.lua", plateWith("Texture.Constant { value = 0.5 }"));
+  // --max-error-px: every bad value gets the manual's message (0, -1 and inf got CLI11's before).
+  for (const char* value : {"0", "-1", "inf"}) {
+    const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") + " --max-error-px " + value);
+    INFO(value << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.find(std::string("--max-error-px ") + value + ": must be a finite number > 0 (px)") != std::string::npos);
+  }
+  // bench --error-stride 0 failed an internal check after the first render (exit 3) and left its folder.
+  for (const char* option : {"--error-stride 0", "--error-stride -3", "--downscale 0"}) {
+    const test::CliResult r = test::runCli("bench -o " + dir.file("bench") + " " + option);
+    INFO(option << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.find("must be >= 1") != std::string::npos);
+    CHECK(!std::filesystem::exists(dir.file("bench")));
+  }
+  // speckle: a size within 1..65536 whose buffers exceed the memory: refused from the size (72 GiB
+  // here; only where the machine has less available, which every CI machine has).
+  if (const auto available = availableMemoryBytes(); available && *available < 18.0 * 65536.0 * 65536.0) {
+    const test::CliResult r = test::runCli("speckle -o " + dir.file("big.tif") + " --size 65536 65536");
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.find("speckle: a 65536 x 65536 px image needs about 72 GiB, more than the ") != std::string::npos);
+    CHECK(!std::filesystem::exists(dir.file("big.tif")));
+  }
+  // Sweeps: one parameter in two --sweep options, --random-seed without --random.
+  const std::string sweepScene = dir.write("sweep.lua", kCamera + "shift = shift or 0\n"
+                                                                  "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {shift, 0, 1} } }\n");
+  const test::CliResult twice = test::runCli("sweep " + sweepScene + " -o " + dir.file("sweep") +
+                                             " --sweep shift=0:0.001:2 --sweep shift=0.01,0.02 --list");
+  CHECK(twice.exitCode == 2);
+  CHECK(twice.err.find("--sweep: sweep parameter 'shift': given twice") != std::string::npos);
+  const test::CliResult seed = test::runCli("sweep " + sweepScene + " -o " + dir.file("sweep") + " --sweep shift=0:0.1:2 --random-seed 4");
+  CHECK(seed.exitCode == 2);
+  CHECK(seed.err.find("--random-seed requires --random") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("sweep")));
+  // Silent outcomes, now said: a camera that sees no object, --preview without an EXR, a decimal comma.
+  const std::string behind = dir.write("behind.lua", kCamera + "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, -1} } }\n");
+  const test::CliResult empty = test::runCli("render " + behind + " -o " + dir.file("behind") + " --backend cpu");
+  CHECK(empty.exitCode == 0);
+  CHECK(empty.err.find("warning: camera cam, frame 0: no pixel centre sees an object") != std::string::npos);
+  const std::string reads = dir.write("reads.lua", plateWith("Texture.Constant { value = 0.5 }") + "local g = gain\n");
+  const test::CliResult seen = test::runCli("render " + reads + " -o " + dir.file("seen") + " --backend cpu --layers image --preview -D gain=0,5");
+  CHECK(seen.exitCode == 0);
+  CHECK(seen.err.find("no pixel centre sees an object") == std::string::npos);
+  CHECK(seen.err.find("warning: --preview draws the EXR's layers, and --layers image writes no EXR") != std::string::npos);
+  CHECK(seen.err.find("warning: -D gain=0,5: '0,5' is a string, not a number (a decimal comma? write 0.5)") != std::string::npos);
+  // A NaN in a message is "nan", whatever its sign bit (Lua's 0/0 printed "-nan").
+  const std::string nanFocal = dir.write("nanf.lua", "cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0/0; pixelSize = {2e-4, 2e-4} }\n");
+  const test::CliResult nanRun = test::runCli("render " + nanFocal + " -o " + dir.file("nanf") + " --backend cpu");
+  CHECK(nanRun.exitCode == 2);
+  CHECK(nanRun.err.find("'focalLength' must be finite, got nan") != std::string::npos);
+  // The help's --layers list comes from the layer schema: every layer is named (fieldError was not).
+  const test::CliResult help = test::runCli("render --help");
+  for (const LayerSpec& spec : layerSpecs()) CHECK_MESSAGE(help.out.find(spec.name) != std::string::npos, spec.name);
 }
 
 TEST_CASE("hostile: NURBS data over the device's storage-buffer limit is exit 2 naming the object") {

@@ -40,9 +40,12 @@ Run runScript(const TempFolder& dir, const std::string& env, const std::string& 
 TEST_CASE("slurm scripts: array tasks shard by the Slurm variables and the merge job checks completeness") {
   TempFolder dir;
   // An array 1-2 (SLURM_ARRAY_TASK_MIN=1): task 1 is shard 0 (points 0, 2), task 2 shard 1 (point 1).
+  // Before any task the folder does not exist: --merge-only refuses it (exit 2, as a mistyped
+  // folder) instead of creating it with an empty manifest, and the job fails.
   const Run merge0 = runScript(dir, "", "sweep-merge.sbatch");
-  CHECK(merge0.exitCode == 1);  // nothing rendered yet
-  CHECK(merge0.out.find("sweep incomplete: 3 of 3 points missing") != std::string::npos);
+  CHECK(merge0.exitCode == 2);
+  CHECK(merge0.out.find(": no such folder: --merge-only merges the points of an existing sweep") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("sweep")));
   const Run task1 = runScript(dir, "SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_MIN=1",
                               "sweep-array.sbatch");
   INFO(task1.out);

@@ -30,14 +30,9 @@ int runRender(const RenderCommand& cmd) {
     std::fprintf(stderr, "dicsynth: warning: --preview draws the EXR's layers, and --layers %s writes no EXR: "
                          "no picture will be drawn\n", cmd.layers.c_str());
   const bool numbered = !cmd.frames.empty();
-  std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
-  // The reference frame is rendered first: every frame's motion truth is measured from it.
-  const int referenceFrame = cmd.referenceFrame.value_or(frames.front());
-  const auto ref = std::find(frames.begin(), frames.end(), referenceFrame);
-  if (ref == frames.end())
-    throw InputError("--reference-frame " + std::to_string(referenceFrame) + " is not among the frames rendered (" +
-                     (numbered ? "--frames " + cmd.frames : "frame 0") + ")");
-  std::rotate(frames.begin(), ref, ref + 1);
+  const std::vector<int> frames =
+      referenceFirst(numbered ? parseFrames(cmd.frames) : std::vector<int>{0}, cmd.referenceFrame, "--reference-frame",
+                     numbered ? "--frames " + cmd.frames : "frame 0");
   RenderSession session(cmd.args, cmd.backend);
   RenderJob job;
   job.sceneFile = cmd.args.scenePath;

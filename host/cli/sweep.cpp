@@ -17,6 +17,9 @@ void addSweepCommand(CLI::App& root, RunFn& run) {
       ->check(CLI::IsMember({"gpu", "cpu"}))
       ->capture_default_str();
   sub->add_option("--frames", cmd->frames, "Frames A:B or N of every point (as render --frames)");
+  sub->add_option("--reference-frame", cmd->referenceFrame,
+                  "Frame whose pixels the motion ground truth (disp, flow) starts from, in every point; one of "
+                  "--frames (default: the first)");
   addExrCompressionOption(*sub, cmd->exrCompression);
   addLayersOption(*sub, cmd->layers);
   addSweepOptions(*sub, cmd->sweep, "; replaces the scene's `sweep`");

@@ -67,6 +67,16 @@ std::vector<int> parseFrames(const std::string& text) {
   return frames;
 }
 
+std::vector<int> referenceFirst(std::vector<int> frames, std::optional<int> reference, const std::string& option,
+                                const std::string& what) {
+  const int wanted = reference.value_or(frames.front());
+  const auto at = std::find(frames.begin(), frames.end(), wanted);
+  if (at == frames.end())
+    throw InputError(option + " " + std::to_string(wanted) + " is not among the frames rendered (" + what + ")");
+  std::rotate(frames.begin(), at, at + 1);
+  return frames;
+}
+
 RenderOptions renderOptions(const RenderArgs& args, int frame) {
   if (args.spp < 1 || args.spp > 65536) throw InputError("--spp " + std::to_string(args.spp) + ": must be in 1..65536");
   if (args.downscale < 1) throw InputError("--downscale must be >= 1");

@@ -37,6 +37,12 @@ inline constexpr long long kMaxFrameNumber = 999'999'999;
 inline constexpr long long kMaxFramesPerRun = 1'000'000;
 std::vector<int> parseFrames(const std::string& text);
 
+// `frames` with the reference frame first (a job renders it first: every frame's motion truth is
+// measured from it): `reference`, else the first. Throws InputError("OPTION N is not among the frames
+// rendered (WHAT)") when it is not one of them.
+std::vector<int> referenceFirst(std::vector<int> frames, std::optional<int> reference, const std::string& option,
+                                const std::string& what);
+
 // Validates spp and seed, returns RenderOptions (precision resolved by resolvePrecision).
 RenderOptions renderOptions(const RenderArgs& args, int frame);
 

@@ -129,12 +129,7 @@ class PyRenderer {
     job.spp = spp;
     job.verbose = false;
     job.numbered = true;
-    // The reference frame first: every frame's motion truth is measured from it.
-    const int reference = referenceFrame.value_or(frames.front());
-    const auto at = std::find(frames.begin(), frames.end(), reference);
-    if (at == frames.end()) throw InputError("reference_frame " + std::to_string(reference) + " is not among the frames");
-    std::rotate(frames.begin(), at, at + 1);
-    job.frames = frames;
+    job.frames = referenceFirst(frames, referenceFrame, "reference_frame", "frames");
 
     struct CameraResult {
       std::string camera;

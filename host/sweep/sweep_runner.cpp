@@ -143,7 +143,9 @@ void runSweep(const SweepRun& cmd) {
   renderOptions(cmd.args, 0);  // validate the sampling options before any work
   const LayerSet layers = LayerSet::parse(cmd.layers);
   const bool numbered = !cmd.frames.empty();
-  const std::vector<int> frames = numbered ? parseFrames(cmd.frames) : std::vector<int>{0};
+  const std::vector<int> frames =
+      referenceFirst(numbered ? parseFrames(cmd.frames) : std::vector<int>{0}, cmd.referenceFrame, "--reference-frame",
+                     numbered ? "--frames " + cmd.frames : "frame 0");
   const SweepPlan plan = planSweep(cmd.args.scenePath, defines, cmd.sweep);
   const Shard shard = resolveShard(cmd.shard);
 
@@ -166,6 +168,8 @@ void runSweep(const SweepRun& cmd) {
       "scene_crc32=" + std::to_string(sweep::crc32Of(sceneText)) + " spp=" + std::to_string(cmd.args.spp) +
       " precision=" + cmd.args.precision + " max_error_px=" + exactNumber(cmd.args.maxErrorPx) +
       " downscale=" + std::to_string(cmd.args.downscale) + " backend=" + cmd.backend + " frames=" + cmd.frames +
+      // Only when given: the keys of sweeps made before the option existed stay the same.
+      (cmd.referenceFrame ? " reference " + std::to_string(*cmd.referenceFrame) : "") +
       " defines=" + definesText + " exr_compression=" + cmd.exrCompression + " layers=" + layers.text();
   auto seedOf = [&](const SweepPoint& p) {
     return cmd.seedPerPoint ? ds_hash_combine(ds_hash(cmd.args.seed), std::uint32_t(p.index)) : cmd.args.seed;

@@ -4,6 +4,7 @@
 // and rebuilds DIR/manifest.{csv,json} (manifest.h). One process keeps the device, the pipelines
 // and the resolved precision across its points (RenderSession). Points already complete are
 // skipped; a shard (--shard I/N, or a Slurm job array) renders the points with index ≡ I (mod N).
+#include <optional>
 #include <string>
 
 #include "job/render_args.h"
@@ -17,6 +18,7 @@ struct SweepRun {
   std::string outputDir;
   std::string backend = "gpu";
   std::string frames;          // "" (one unnumbered frame), "A:B" or "N" (job/render_args.h parseFrames)
+  std::optional<int> referenceFrame;  // the frame motion truth starts from; default: the first of frames
   SweepOptions sweep;          // replaces the scene's `sweep` when it names any
   std::string shard;           // "I/N"; "" for the Slurm job array's task, else the whole sweep
   std::string exrCompression = "zip";

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "exr_test_util.h"
 #include "files/image_io.h"
 #include "run_cli.h"
 
@@ -92,6 +93,44 @@ TEST_CASE("cli: sweep renders every point into its folder, as render -D does, wi
   const test::CliResult list = runCli("sweep " + scene + " -o " + dir.file("unused") + " --list");
   CHECK(list.out.find("4 point_00004 gray=0.75 shift=0.02\n") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.file("unused")));
+}
+
+TEST_CASE("cli: sweep --reference-frame measures motion from that frame, as render's does") {
+  TempFolder dir;
+  // The plate moves 1 cm per frame; two points of gray, frames 0..2, motion measured from frame 2.
+  const std::string scene = dir.write(
+      "moving.lua", "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+                    "gray = gray or 0.5\n"
+                    "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {0.01 * frame, 0, 0.5} };\n"
+                    "  shader = Shader.Constant { color = gray } }\n");
+  const std::string options = kFast + " --frames 0:2 --reference-frame 2 --layers flow,disp";
+  const test::CliResult r = runCli("sweep " + scene + " -o " + dir.file("out") + options + " --sweep gray=0.25,0.75");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  REQUIRE(runCli("render " + scene + " -o " + dir.file("single") + options + " -D gray=0.75").exitCode == 0);
+  for (const char* frame : {"0000", "0001", "0002"}) {
+    const test::ExrContents a = test::readExr(dir.file("out/point_00001/cam_") + frame + ".exr");
+    const test::ExrContents b = test::readExr(dir.file("single/cam_") + frame + ".exr");
+    CHECK(a.spec.get_string_attribute("dicsynth:reference_frame") == "2");
+    for (const char* channel : {"flow.X", "disp.X"}) {
+      INFO(frame << " " << channel);
+      REQUIRE(a.floats.count(channel));
+      CHECK(a.floats.at(channel) == b.floats.at(channel));
+    }
+  }
+  // Frame 2 is the reference: no motion there; frame 0 moved 2 cm against it (disp.X = -0.02 m).
+  const std::vector<float>& disp0 = test::readExr(dir.file("out/point_00000/cam_0000.exr")).floats.at("disp.X");
+  CHECK(std::any_of(disp0.begin(), disp0.end(), [](float v) { return std::abs(v + 0.02f) < 1e-6f; }));
+  // Without the option the points are another sweep (their key names the reference frame).
+  const test::CliResult again = runCli("sweep " + scene + " -o " + dir.file("out") + kFast +
+                                       " --frames 0:2 --layers flow,disp --sweep gray=0.25,0.75");
+  CHECK(again.err.find("(frames 0:2 reference 2 (now 0:2))") != std::string::npos);
+  // A reference frame outside --frames: exit 2 before any file.
+  const test::CliResult bad = runCli("sweep " + scene + " -o " + dir.file("bad") + kFast +
+                                     " --frames 0:2 --reference-frame 5 --sweep gray=0.25");
+  CHECK(bad.exitCode == 2);
+  CHECK(bad.err.find("--reference-frame 5 is not among the frames rendered (--frames 0:2)") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("bad")));
 }
 
 TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered again") {

@@ -143,6 +143,9 @@ struct Scene {
   // What the scene's values still need after loading: the Lua state of a scene whose Nurbs.deform
   // took a Lua function (the fieldError layer calls it again). Null for most scenes.
   std::shared_ptr<const void> keepAlive;
+  // The -D defines (and sweep parameters) this evaluation did not read, in the order given; filled
+  // only when SceneParams::requireDefinesRead is false (a run then checks them over its frames).
+  std::vector<std::string> unreadDefines;
 };
 
 }  // namespace dicsynth

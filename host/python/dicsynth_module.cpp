@@ -99,6 +99,7 @@ class PyRenderer {
   PyRenderer(const std::string& backend, const std::string& precision, const std::string& device, std::uint32_t seed,
              int downscale, double maxErrorPx) {
     if (backend != "gpu" && backend != "cpu") throw InputError("backend must be \"gpu\" or \"cpu\", got \"" + backend + "\"");
+    backend_ = backend;  // known from the start; precision and device once a render resolved them
     if (precision != "auto" && !parsePrecision(precision))
       throw InputError("precision must be \"auto\", \"fp32\", \"df64\" or \"fp64\", got \"" + precision + "\"");
     RenderArgs args;
@@ -191,15 +192,19 @@ PYBIND11_MODULE(dicsynth, m) {
   });
 
   py::class_<PyScene>(m, "Scene", "A scene file and its defines (the CLI's -D name=value)")
-      .def(py::init([](const std::string& path, const py::dict& defines) {
+      .def(py::init([](const py::object& pathLike, const py::dict& defines) {
+             // A str or any path-like object (pathlib.Path), as open() takes.
+             const std::string path = py::str(py::module_::import("os").attr("fspath")(pathLike));
              PyScene s{path, {}};
              for (const auto& [key, value] : defines) {
                const std::string name = py::str(key);
                s.defines.emplace_back(name, defineText(value, name));
              }
-             // Evaluated once now, so that a scene error is raised here, with its FILE:LINE.
+             // Evaluated once now (frame 0), so that a scene error is raised here, with its FILE:LINE.
+             // A define only other frames read is checked by render, over the frames it renders.
              SceneParams params{s.defines, 0};
              params.quiet = true;
+             params.requireDefinesRead = false;
              loadScene(path, params);
              return s;
            }),

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstring>
 #include <set>
+#include <utility>
 
 #include "scene/constructors.h"
 #include "scene/lua_sandbox.h"
@@ -86,8 +87,6 @@ bool isLuaKeyword(const std::string& name) {
   return kKeywords.count(name) > 0;
 }
 
-std::string path(lua_State* L) { return LuaSandbox::of(L).scenePath(); }
-
 // _G.__index: serves a define (upvalue 1: name → value) and records the read (upvalue 2).
 int readDefine(lua_State* L) {
   lua_pushvalue(L, 2);
@@ -149,20 +148,25 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
   lua_settop(L, values - 1);
 }
 
-void checkDefinesRead(lua_State* L, const std::vector<std::pair<std::string, std::string>>& defines,
-                      const std::vector<std::string>& sweepParameters) {
+[[noreturn]] void refuseUnreadDefine(const std::string& scenePath, const std::string& name,
+                                     const std::vector<std::string>& sweepParameters) {
+  if (std::find(sweepParameters.begin(), sweepParameters.end(), name) != sweepParameters.end())
+    throw InputError(scenePath + ": sweep parameter '" + name + "': the scene never reads '" + name +
+                     "' (a typo in the sweep, or a scene that ignores it)");
+  throw InputError("-D " + name + ": the scene never reads '" + name + "'");
+}
+
+// The defines the evaluation did not read, in the order given.
+std::vector<std::string> unreadDefines(lua_State* L, const std::vector<std::pair<std::string, std::string>>& defines) {
+  std::vector<std::string> unread;
   lua_getfield(L, LUA_REGISTRYINDEX, kDefinesReadKey);
   for (const auto& define : defines) {
-    const std::string& name = define.first;
-    const bool read = lua_getfield(L, -1, name.c_str()) != LUA_TNIL;
+    const bool read = lua_getfield(L, -1, define.first.c_str()) != LUA_TNIL;
     lua_pop(L, 1);
-    if (read) continue;
-    if (std::find(sweepParameters.begin(), sweepParameters.end(), name) != sweepParameters.end())
-      throw InputError(path(L) + ": sweep parameter '" + name + "': the scene never reads '" + name +
-                       "' (a typo in the sweep, or a scene that ignores it)");
-    throw InputError("-D " + name + ": the scene never reads '" + name + "'");
+    if (!read) unread.push_back(define.first);
   }
   lua_pop(L, 1);
+  return unread;
 }
 
 template <class T>
@@ -366,14 +370,34 @@ Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& par
 
   sandbox->run(source);
 
-  scene::checkDefinesRead(L, params.defines, params.sweepParameters);
+  std::vector<std::string> unread = scene::unreadDefines(L, params.defines);
+  if (params.requireDefinesRead && !unread.empty()) scene::refuseUnreadDefine(path, unread.front(), params.sweepParameters);
   if (inspect) inspect(L);
   Scene scene = scene::collectGlobals(L, path);
+  scene.unreadDefines = std::move(unread);
   for (const Object& object : scene.objects)
     if (object.shape.deformation && !scene.keepAlive) scene.keepAlive = sandbox;
   if (scene.cameras.empty())
     throw InputError(path + ": the scene defines no camera (assign Camera.Pinhole{…} to a global)");
   return scene;
+}
+
+}  // namespace dicsynth
+
+namespace dicsynth {
+
+void UnreadDefines::add(const Scene& scene) {
+  if (!std::exchange(any_, true)) {
+    unread_ = scene.unreadDefines;
+    return;
+  }
+  std::erase_if(unread_, [&](const std::string& name) {
+    return std::find(scene.unreadDefines.begin(), scene.unreadDefines.end(), name) == scene.unreadDefines.end();
+  });
+}
+
+void UnreadDefines::check(const std::string& scenePath, const std::vector<std::string>& sweepParameters) const {
+  if (!unread_.empty()) scene::refuseUnreadDefine(scenePath, unread_.front(), sweepParameters);
 }
 
 }  // namespace dicsynth

@@ -36,6 +36,10 @@ struct SceneParams {
   // The scene's print and constructors' reports (Nurbs.deform's fit) write nothing: set when a
   // scene is evaluated again after a first evaluation whose output the user saw (render, sweep).
   bool quiet = false;
+  // A define the scene never reads is a typo: refused (InputError) when true. A run of several frames
+  // sets false, since a scene may read a define only in some frames (`frame >= 1 and ...`), and
+  // refuses one that no frame reads (UnreadDefines).
+  bool requireDefinesRead = true;
 };
 
 // The longest camera name (with a rig's ".left"/".right"): names become output file names.
@@ -50,5 +54,17 @@ bool isSceneLanguageName(const std::string& name);
 
 // Loads and validates a scene. Throws InputError("file:line: message") on any error.
 Scene loadScene(const std::string& path, const SceneParams& params);
+
+// The defines that none of a run's frames read, gathered frame by frame (scenes loaded with
+// requireDefinesRead = false); check() refuses the first of them as loadScene would.
+class UnreadDefines {
+ public:
+  void add(const Scene& scene);
+  void check(const std::string& scenePath, const std::vector<std::string>& sweepParameters) const;
+
+ private:
+  bool any_ = false;                // a scene was added
+  std::vector<std::string> unread_;  // unread by every scene added, in the order given
+};
 
 }  // namespace dicsynth

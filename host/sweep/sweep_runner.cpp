@@ -185,10 +185,16 @@ void runSweep(const SweepRun& cmd) {
     throw InputError("-o " + cmd.outputDir + ": no such folder: --merge-only merges the points of an existing sweep");
   checkOutputWritable(cmd.outputDir);
   {
-    SceneParams first{pointDefines(defines, plan.point(0)), frames.front()};
-    first.sweepParameters = plan.names;
-    first.quiet = true;  // a check: the point's own evaluation prints when it renders
-    loadScene(cmd.args.scenePath, first);
+    // Every frame of the first point: a parameter may be read in some frames only.
+    UnreadDefines unread;
+    for (const int frame : frames) {
+      SceneParams first{pointDefines(defines, plan.point(0)), frame};
+      first.sweepParameters = plan.names;
+      first.quiet = true;  // a check: the point's own evaluation prints when it renders
+      first.requireDefinesRead = false;
+      unread.add(loadScene(cmd.args.scenePath, first));
+    }
+    unread.check(cmd.args.scenePath, plan.names);
   }
   createOutputDir(cmd.outputDir);  // writable: checkOutputWritable created a file where it goes
   sweep::AssetChecksums assets;

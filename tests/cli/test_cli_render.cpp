@@ -127,6 +127,28 @@ TEST_CASE("cli: --exr-compression changes the EXR's compression, never its value
   }
 }
 
+TEST_CASE("cli: a define read only in some frames is accepted when a rendered frame reads it") {
+  // Found by the audit of 2026-11-27: `frame >= 1 and ... growth ...` was refused at frame 0 with
+  // "-D growth: the scene never reads 'growth'" in a run of frames 0:1. Now a run refuses a define
+  // that none of its frames reads, and only that (render and sweep alike).
+  TempFolder dir;
+  const std::string scene = dir.write("grow.lua", "cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n"
+                                                  "local r = 0.1\nif frame >= 1 then r = r * (1 + growth) end\n"
+                                                  "ball = Object.Simple { shape = Shape.Sphere { radius = r; location = {0, 0, 1} } }\n");
+  const test::CliResult both = runCli("render " + scene + " -o " + dir.file("both") + " --backend cpu --frames 0:1 -D growth=0.2");
+  INFO(both.err);
+  CHECK(both.exitCode == 0);
+  expectBadInput(dir, scene + " --backend cpu --frames 0 -D growth=0.2", "-D growth: the scene never reads 'growth'");
+  const test::CliResult sweep =
+      runCli("sweep " + scene + " -o " + dir.file("sweep") + " --backend cpu --frames 0:1 --sweep growth=0.1,0.2");
+  INFO(sweep.err);
+  CHECK(sweep.exitCode == 0);
+  const test::CliResult unread = runCli("sweep " + scene + " -o " + dir.file("unread") + " --backend cpu --frames 0 --sweep growth=0.1,0.2");
+  CHECK(unread.exitCode == 2);
+  CHECK(unread.err.find(scene + ": sweep parameter 'growth': the scene never reads 'growth'") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("unread")));
+}
+
 TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
   TempFolder dir;
   const std::string scene = kScenes + "rectangle.lua";

@@ -3,6 +3,7 @@ python3-pytest (PYTHONPATH=build, DICSYNTH_BINARY=the CLI). Its arrays are check
 the CLI writes for the same scene, read back with OpenImageIO's own Python binding (an independent
 reader), value for value."""
 import os
+import pathlib
 import subprocess
 import tempfile
 import time
@@ -99,6 +100,20 @@ def test_layers_errors_and_a_warm_loop():
         renderer.render("not a scene")
     with pytest.raises(dicsynth.InputError, match="a number, a bool or a str"):
         dicsynth.Scene(os.path.join(SCENES, "rectangle.lua"), defines={"x": [1, 2]})
+    # The audit of 2026-11-27: a define that only later frames read was refused at construction;
+    # now render refuses one that none of the rendered frames reads. Paths may be path-like.
+    with tempfile.NamedTemporaryFile("w", suffix=".lua", delete=False) as later:
+        later.write("cam = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.012; pixelSize = {2e-5, 2e-5} }\n"
+                    "local r = 0.1\nif frame >= 1 then r = r * (1 + growth) end\n"
+                    "ball = Object.Simple { shape = Shape.Sphere { radius = r; location = {0, 0, 1} } }\n")
+    try:
+        grown = dicsynth.Scene(pathlib.Path(later.name), defines={"growth": 0.5})
+        assert sorted(renderer.render(grown, frames=[0, 1], layers=["mask"]).keys()) == [("cam", 0), ("cam", 1)]
+        with pytest.raises(dicsynth.InputError, match="-D growth: the scene never reads 'growth'"):
+            renderer.render(grown, frames=[0], layers=["mask"])
+    finally:
+        os.unlink(later.name)
+    assert renderer.backend == "cpu" and dicsynth.Renderer(backend="cpu").backend == "cpu"
     # A loop of renders pays the start-up once: later renders reuse the session (a figure, not a
     # bound: the benchmark compares with processes, bench/RESULTS.md).
     start = time.perf_counter()

@@ -346,6 +346,7 @@ struct RememberedFit {
   std::size_t budget;
   NurbsSurface fitted;
   NurbsFitReport report;
+  std::string evaluation;  // who made the fit (fitDeformedNurbsCached)
 };
 
 bool sameSurface(const NurbsSurface& a, const NurbsSurface& b) {
@@ -357,7 +358,7 @@ bool sameSurface(const NurbsSurface& a, const NurbsSurface& b) {
 
 NurbsSurface fitDeformedNurbsCached(const NurbsSurface& reference, const DisplacementField& displacement,
                                     double tolerance_m, NurbsFitReport& report, bool& fromCache,
-                                    std::size_t maxControlPoints) {
+                                    std::size_t maxControlPoints, const std::string& evaluation) {
   static std::mutex mutex;
   static std::deque<std::shared_ptr<const RememberedFit>> memory;  // most recent first
   std::vector<std::shared_ptr<const RememberedFit>> candidates;
@@ -373,12 +374,12 @@ NurbsSurface fitDeformedNurbsCached(const NurbsSurface& reference, const Displac
     if (check.worst > tolerance_m) continue;
     report = m->report;
     report.maxError_m = check.worst;
-    fromCache = true;
+    fromCache = evaluation.empty() || m->evaluation != evaluation;
     return m->fitted;
   }
   fromCache = false;
   NurbsSurface fitted = fitDeformedNurbs(reference, displacement, tolerance_m, report, maxControlPoints);
-  auto remembered = std::make_shared<const RememberedFit>(RememberedFit{reference, tolerance_m, maxControlPoints, fitted, report});
+  auto remembered = std::make_shared<const RememberedFit>(RememberedFit{reference, tolerance_m, maxControlPoints, fitted, report, evaluation});
   std::lock_guard<std::mutex> lock(mutex);
   memory.push_front(std::move(remembered));
   if (memory.size() > kFitMemory) memory.pop_back();

@@ -24,6 +24,7 @@
 // then InputError("best reached ... m with N control points after K refinements: reason").
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "core/math.h"
@@ -64,10 +65,14 @@ NurbsSurface fitDeformedNurbs(const NurbsSurface& reference, const DisplacementF
 // on its own check grid (every 7th point first, to reject a changed field cheaply, then the whole
 // grid) and returned, with fromCache = true, if it is within the tolerance: the same guarantee a
 // fresh fit gives, and for an unchanged field the very surface a fresh fit would give (the fit is
-// deterministic). Otherwise a fresh fit is made and remembered. Thread-safe.
+// deterministic). Otherwise a fresh fit is made and remembered. Thread-safe. `evaluation` names
+// what asks (LuaSandbox::evaluation: scene, frame, defines): a fit remembered from the same
+// evaluation (a run evaluates each frame twice: to check, then to render) is that evaluation's own
+// fit, returned with fromCache = false; from another one (a later frame, another sweep point), true.
 inline constexpr std::size_t kFitMemory = 8;
 NurbsSurface fitDeformedNurbsCached(const NurbsSurface& reference, const DisplacementField& displacement,
                                     double tolerance_m, NurbsFitReport& report, bool& fromCache,
-                                    std::size_t maxControlPoints = kMaxNurbsControlPoints);
+                                    std::size_t maxControlPoints = kMaxNurbsControlPoints,
+                                    const std::string& evaluation = "");
 
 }  // namespace dicsynth

@@ -21,7 +21,7 @@ std::string describeDeformation(const Deformation& d) {
          exactNumber(d.tolerance_m) + " m) on a " + std::to_string(d.report.checkU) + " x " +
          std::to_string(d.report.checkV) + " check grid; " + std::to_string(d.report.controlPoints) +
          " control points; " + std::to_string(d.report.refinements) + " refinements" +
-         (d.fromCache ? "; reused from an earlier frame" : "");
+         (d.fromCache ? "; reused from an earlier frame or sweep point" : "");
 }
 
 namespace scene {
@@ -226,7 +226,7 @@ int nurbsDeform(lua_State* L) {
   NurbsSurface fitted;
   try {
     fitted = fitDeformedNurbsCached(*surface->nurbs, deformation->field, tolerance, deformation->report,
-                                    deformation->fromCache, std::size_t(budget));
+                                    deformation->fromCache, std::size_t(budget), LuaSandbox::of(L).evaluation());
   } catch (const InputError& e) {
     p.fail(e.what());
   }
@@ -236,7 +236,7 @@ int nurbsDeform(lua_State* L) {
     std::fprintf(stderr, "%s: Nurbs.deform: fit error %.3g m (tolerance %.3g m) on a %d x %d check grid, "
                "%zu control points, %d refinements%s%s\n",
                where.str().c_str(), report.maxError_m, tolerance, report.checkU, report.checkV,
-               report.controlPoints, report.refinements, deformation->fromCache ? ", reused from an earlier frame" : "",
+               report.controlPoints, report.refinements, deformation->fromCache ? ", reused from an earlier frame or sweep point" : "",
                function ? (", " + std::to_string(function->calls()) + " field evaluations").c_str() : "");
   Shape shape;
   shape.where = where;

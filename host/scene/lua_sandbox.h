@@ -76,6 +76,11 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   lua_State* state() const { return L_; }
   bool quiet() const { return limits_.quiet; }  // SandboxLimits::quiet: constructors report nothing either
   const std::string& scenePath() const { return scenePath_; }          // as given by the user
+  // What determines this evaluation's values: the scene's path and text, the frame and the defines
+  // (set by loadScene; a scene is deterministic). Evaluating the same again gives the same scene,
+  // so a Nurbs.deform fit remembered from it is this evaluation's own, not one reused.
+  const std::string& evaluation() const { return evaluation_; }
+  void setEvaluation(std::string evaluation) { evaluation_ = std::move(evaluation); }
   const std::filesystem::path& sceneDir() const { return sceneDir_; }  // folder of the scene file
 
   // Loads `source` (text only) as the scene's main chunk and runs it under the limits.
@@ -130,6 +135,7 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   std::string formatMessage(const std::string& luaMessage, int fallbackLine) const;
 
   std::string scenePath_;
+  std::string evaluation_;
   std::filesystem::path sceneDir_;
   SandboxLimits limits_;
   lua_State* L_ = nullptr;

@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <set>
 #include <utility>
 
@@ -363,6 +364,12 @@ Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& par
   const auto sandbox = std::make_shared<scene::LuaSandbox>(
       path, scene::SandboxLimits{params.maxInstructions, params.maxMemoryBytes, sceneSeconds(params), params.quiet});
   lua_State* L = sandbox->state();
+  {
+    std::string evaluation = path + '\n' + std::to_string(std::hash<std::string>{}(source)) + '\n' +
+                             std::to_string(params.frame);
+    for (const auto& [name, value] : params.defines) evaluation += '\n' + name + '=' + value;
+    sandbox->setEvaluation(std::move(evaluation));
+  }
   scene::registerSceneLanguage(L);
   lua_pushinteger(L, params.frame);
   lua_setglobal(L, "frame");

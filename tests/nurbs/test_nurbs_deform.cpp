@@ -163,7 +163,19 @@ TEST_CASE("nurbs-deform: the scene constructor fits, reports on stderr, and refu
     return count;
   };
   CHECK(countOf("Nurbs.deform: fit error") == 3);
-  CHECK(countOf("reused from an earlier frame") == 1);  // frame 1 reuses frame 0's fit; frame 2 refits
+  CHECK(countOf("reused from an earlier frame or sweep point") == 1);  // frame 1 reuses frame 0's fit; frame 2 refits
+  // The EXR headers say the same: a run evaluates each frame twice (to check, then to render), and
+  // the second evaluation's memory hit is the frame's own fit, not a reused one (the 2026-11-27
+  // audit found every frame's header saying "reused").
+  const test::CliResult h = test::runCli("render " + frames + " -o " + dir.file("headers") + " --frames 0:2 --spp 1 --backend cpu --layers mask");
+  REQUIRE(h.exitCode == 0);
+  for (int k = 0; k < 3; ++k) {
+    const std::string header =
+        test::readExr(dir.file("headers/cam_000") + std::to_string(k) + ".exr").spec.get_string_attribute("dicsynth:deformation:o");
+    INFO("frame " << k << ": " << header);
+    CHECK(header.find("field: Lua function") == 0);
+    CHECK((header.find("reused from an earlier frame") != std::string::npos) == (k == 1));
+  }
 
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"w = Nurbs.deform { surface = plate }\n", ":3: Nurbs.deform: missing required 'displacement'"},

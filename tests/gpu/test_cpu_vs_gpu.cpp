@@ -73,6 +73,39 @@ TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
   test::expectNoValidationMessages();
 }
 
+TEST_CASE("cpu-vs-gpu: df64's differences at other seeds are samples on the other side of an edge, the geometry intact") {
+  // The audit of 2026-11-27 ran compare with other seeds and found df64 over its radiance bound on
+  // single pixels, against the documented "none": shadows.lua and telecentric.lua at seed 3 (a
+  // sample on the other side of an object's edge) and plate_hole.lua at seed 4 (a sample by the
+  // ring's seam, u = 0 ≡ 1, given the other side's texture). df64's search decides hit or miss in
+  // float (host/render/compare.cpp), so the rule is fp32's: flips at object edges, at most 1e-4 of
+  // the pixels elsewhere, while every pixel-centre ray keeps its df64 bound.
+  gpu::Renderer renderer(test::gpuContext());
+  struct Case {
+    const char* scene;
+    std::uint32_t seed;
+  };
+  for (const Case& c : {Case{"shadows.lua", 3}, Case{"telecentric.lua", 3}, Case{"plate_hole.lua", 4}}) {
+    const PreparedScene scene = prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/" + c.scene, {}), {kDownscale});
+    RenderOptions options;
+    options.samplesPerPixel = 2;
+    options.seed = c.seed;
+    const RenderResult reference = cpu::render(scene, options);
+    options.precision = Precision::Df64;
+    const Tolerances tol = tolerancesFor(Precision::Df64);
+    for (const CameraDifference& d : compareResults(scene, reference, renderer.render(scene, options), tol)) {
+      INFO(std::string(c.scene) << " seed " << c.seed);
+      MESSAGE(std::string(c.scene) << " df64 seed " << c.seed << ": " << d.radianceOutliers << " px over the radiance bound ("
+                      << d.radianceOutliersOffEdge << " off edges), max dL " << d.maxRadianceDiff);
+      CHECK(withinTolerance(d, tol));
+      CHECK(d.geometryOutliers == 0);      // pixel centres: P and uv within the df64 bound
+      CHECK(d.objectIdMismatches == 0);    // and the same object
+      CHECK(d.wrongNearestHits() == 0);
+    }
+  }
+  test::expectNoValidationMessages();
+}
+
 TEST_CASE("cpu-vs-gpu: switching features off by specialization changes no pixel") {
   const PreparedScene scene =
       prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/rectangle.lua", {}), {kDownscale});

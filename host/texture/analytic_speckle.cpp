@@ -2,6 +2,7 @@
 // (model and decision: texture/analytic_speckle.h).
 #include "texture/analytic_speckle.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -47,8 +48,9 @@ AnalyticSpeckle makeAnalyticSpeckle(double radius_uv, double density, double asp
   s.light = light;
   s.cellsPerUv = {1.0 / (2.0 * radius_uv), aspect / (2.0 * radius_uv)};
   if (s.cellsPerUv.x > kMaxCells || s.cellsPerUv.y > kMaxCells)
-    throw InputError("radius " + str(radius_uv) + " (aspect " + str(aspect) + ") makes more than " +
-                     str(kMaxCells / 2) + " disk diameters across the surface; use a larger radius");
+    throw InputError("radius " + str(radius_uv) + " (aspect " + str(aspect) + ") makes more than 1048576 (2^20)" +
+                     " disk diameters (cells of 2 radii) across the surface's u or v range: the radius must be at "
+                     "least max(1, aspect) / 2^21 = " + str(std::max(1.0, aspect) / (2.0 * kMaxCells)));
   // Poisson CDF by the recurrence p_k = p_{k−1} m / k, in double; thresholds rounded to 32 bits.
   const double m = speckleMeanPerCell(density);
   double p = std::exp(-m), cumulative = 0;

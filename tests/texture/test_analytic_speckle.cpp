@@ -335,9 +335,17 @@ TEST_CASE("texture-speckle: scene errors name the line") {
                        "Texture.Speckle: 'seed' must be an integer in 0 .. 2^32 - 1, got -1");
   test::checkBodyError(dir, "t = Texture.Speckle { aspect = -2 }\n", 2,
                        "Texture.Speckle: aspect must be a finite number > 0, got -2");
+  // 2^20 cells of one diameter each: the radius must be at least max(1, aspect) / 2^21 (the message
+  // said 524288 diameters, half the count, until the audit of 2026-11-27).
   test::checkBodyError(dir, "t = Texture.Speckle { radius = 1e-9 }\n", 2,
-                       "Texture.Speckle: radius 1e-09 (aspect 1) makes more than 524288 disk diameters across the "
-                       "surface; use a larger radius");
+                       "Texture.Speckle: radius 1e-09 (aspect 1) makes more than 1048576 (2^20) disk diameters (cells "
+                       "of 2 radii) across the surface's u or v range: the radius must be at least max(1, aspect) / "
+                       "2^21 = 4.76837e-07");
+  test::checkBodyError(dir, "t = Texture.Speckle { radius = 1.42e-6; aspect = 3 }\n", 2,
+                       "Texture.Speckle: radius 1.42e-06 (aspect 3) makes more than 1048576 (2^20) disk diameters "
+                       "(cells of 2 radii) across the surface's u or v range: the radius must be at least max(1, "
+                       "aspect) / 2^21 = 1.43051e-06");
+  CHECK_NOTHROW(loadScene(dir.write("ok.lua", std::string(test::kCameraLine) + "t = Texture.Speckle { radius = 1.431e-6; aspect = 3 }\n"), {}));
   const std::string unknown = test::loadError(dir.write("s.lua", std::string(test::kCameraLine) +
                                                                      "t = Texture.Speckle { radious = 1 }\n"));
   CHECK(unknown.find("radious") != std::string::npos);

@@ -1,11 +1,14 @@
 #include "nurbs/nurbs_fit.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "core/exact_number.h"
@@ -224,24 +227,44 @@ NurbsSurface fitOnce(const NurbsSurface& reference, const Net& refined, const Di
       hi = glm::max(hi, point[k]);
     }
     const double near = 1e-10 * glm::length(hi - lo);
-    // Union-find over pairs within `near`, found by sorting along x (a sweep over a narrow window).
-    std::vector<std::size_t> parent(count), order(count);
-    for (std::size_t k = 0; k < count; ++k) parent[k] = order[k] = k;
+    // Union-find over the pairs within `near`, found through a hash grid of cells of that size (a
+    // pair within it lies in the same or adjacent cells): linear in the points, however they align.
+    std::vector<std::size_t> parent(count);
+    for (std::size_t k = 0; k < count; ++k) parent[k] = k;
     const auto root = [&](std::size_t k) {
       while (parent[k] != k) k = parent[k] = parent[parent[k]];
       return k;
     };
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return point[a].x != point[b].x ? point[a].x < point[b].x : a < b;
-    });
+    using Cell = std::array<std::int64_t, 3>;
+    struct CellHash {
+      std::size_t operator()(const Cell& c) const {
+        return std::hash<std::int64_t>{}(c[0] * 73856093 ^ c[1] * 19349663 ^ c[2] * 83492791);
+      }
+    };
+    std::unordered_map<Cell, std::vector<std::size_t>, CellHash> cells;
+    const auto cellOf = [&](const dvec3& x) {
+      const dvec3 c = glm::floor((x - lo) / near);
+      return Cell{std::int64_t(c.x), std::int64_t(c.y), std::int64_t(c.z)};
+    };
     bool any = false;
-    for (std::size_t a = 0; a < count; ++a)
-      for (std::size_t b = a + 1; b < count && point[order[b]].x - point[order[a]].x <= near; ++b)
-        if (glm::length(point[order[b]] - point[order[a]]) <= near) {
-          const std::size_t ra = root(order[a]), rb = root(order[b]);
-          if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
-          any = true;
-        }
+    if (near > 0) {
+      for (std::size_t k = 0; k < count; ++k) cells[cellOf(point[k])].push_back(k);
+      for (std::size_t k = 0; k < count; ++k) {
+        const Cell c = cellOf(point[k]);
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+          for (std::int64_t dy = -1; dy <= 1; ++dy)
+            for (std::int64_t dz = -1; dz <= 1; ++dz) {
+              const auto it = cells.find(Cell{c[0] + dx, c[1] + dy, c[2] + dz});
+              if (it == cells.end()) continue;
+              for (const std::size_t j : it->second)
+                if (j > k && glm::length(point[j] - point[k]) <= near) {
+                  const std::size_t rk = root(k), rj = root(j);
+                  if (rk != rj) parent[std::max(rk, rj)] = std::min(rk, rj);
+                  any = true;
+                }
+            }
+      }
+    }
     if (any) {
       std::vector<dvec3> sum(count, dvec3(0));
       std::vector<int> members(count, 0);

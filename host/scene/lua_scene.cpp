@@ -389,10 +389,6 @@ Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& par
   return scene;
 }
 
-}  // namespace dicsynth
-
-namespace dicsynth {
-
 void UnreadDefines::add(const Scene& scene) {
   if (!std::exchange(any_, true)) {
     unread_ = scene.unreadDefines;

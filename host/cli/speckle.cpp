@@ -53,6 +53,7 @@ struct SpeckleOptions {
   int bits = 16;
   std::optional<double> diameter;      // given instead of the radius
   std::optional<double> countDensity;  // disks per px², given instead of the density
+  bool perlinOptionGiven = false;      // --perlin-cell or --octaves on the command line
   std::string pattern = "disks";
 };
 
@@ -113,6 +114,9 @@ int runSpeckle(SpeckleOptions options) {
     p.pattern = SpecklePattern::Perlin;
   else if (options.pattern != "disks")
     throw InputError("speckle: --pattern must be disks or perlin (got " + options.pattern + ")");
+  // Ignored by disks, so refused rather than dropped silently (and never checked).
+  if (options.perlinOptionGiven && p.pattern != SpecklePattern::Perlin)
+    throw InputError("speckle: --perlin-cell and --octaves apply to --pattern perlin (the pattern is disks)");
   // Peak memory, checked before any buffer exists (as render checks a frame's): per pixel the image
   // (a double), the disks' sample masks (up to 8 bytes, texture/speckle.cpp) and the TIFF's values
   // (2 bytes): 18 bytes. 65536 x 65536 px would need 72 GiB.
@@ -140,8 +144,9 @@ int runSpeckle(SpeckleOptions options) {
   // The description is the command that regenerates the file.
   const std::string description =
       std::string("dicsynth ") + kVersion + ": speckle --size " + std::to_string(p.width_px) + " " +
-      std::to_string(p.height_px) + " --radius " + shortest(p.radius_px) + " --density " +
-      shortest(p.density) + " --seed " + std::to_string(p.seed) + " --supersampling " +
+      std::to_string(p.height_px) + " --radius " + shortest(p.radius_px) +
+      // --count-density (in extras) excludes --density: the line must run as written.
+      (p.disksPerPx2 != 0 ? "" : " --density " + shortest(p.density)) + " --seed " + std::to_string(p.seed) + " --supersampling " +
       std::to_string(p.supersampling) + " --bits " + std::to_string(options.bits) + extras(options) +
       (p.pattern == SpecklePattern::Perlin ? " (thresholded Perlin noise; value = 1 − mean darkness of the samples)"
                                            : " (black disks on white; value = fraction of the pixel covered by no disk)");
@@ -163,7 +168,7 @@ int runSpeckle(SpeckleOptions options) {
 
 void addSpeckleCommand(CLI::App& root, RunFn& run) {
   auto options = std::make_shared<SpeckleOptions>();
-  auto* sub = root.add_subcommand("speckle", "Write a speckle texture (black disks on white) as a TIFF");
+  auto* sub = root.add_subcommand("speckle", "Write a speckle texture (black disks on white, or thresholded Perlin noise) as a TIFF");
   sub->add_option("-o,--output", options->output, "TIFF file to write (.tif/.tiff)")->required();
   sub->add_option("--size", options->size, "Image size in pixels: W H")->required()->expected(2);
   auto* radius = sub->add_option("--radius", options->params.radius_px, "Disk radius in pixels")->capture_default_str();
@@ -186,7 +191,10 @@ void addSpeckleCommand(CLI::App& root, RunFn& run) {
   sub->add_option("--supersampling", options->params.supersampling, "Samples per pixel along each axis (1..8)")
       ->capture_default_str();
   sub->add_option("--bits", options->bits, "Bits per pixel: 8 or 16")->capture_default_str();
-  sub->callback([&run, options] { run = [options] { return runSpeckle(*options); }; });
+  sub->callback([&run, options, sub] {
+    options->perlinOptionGiven = sub->count("--perlin-cell") + sub->count("--octaves") > 0;
+    run = [options] { return runSpeckle(*options); };
+  });
 }
 
 }  // namespace dicsynth::cli

@@ -366,6 +366,26 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
     CHECK(r.err.find("speckle: a 65536 x 65536 px image needs about 72 GiB, more than the ") != std::string::npos);
     CHECK(!std::filesystem::exists(dir.file("big.tif")));
   }
+  // speckle: Perlin options with the disks pattern were ignored unchecked (fourth audit); a
+  // --count-density file recorded "--density" too, a line dicsynth refuses: the description must
+  // run as written and give the same file.
+  const test::CliResult perlin = test::runCli("speckle -o " + dir.file("p.tif") + " --size 16 16 --perlin-cell 0.5");
+  CHECK(perlin.exitCode == 2);
+  CHECK(perlin.err.find("--perlin-cell and --octaves apply to --pattern perlin") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("p.tif")));
+  REQUIRE(test::runCli("speckle -o " + dir.file("c.tif") + " --size 64 64 --radius 3 --count-density 0.01").exitCode == 0);
+  std::string description;
+  {
+    auto in = OIIO::ImageInput::open(dir.file("c.tif"));
+    REQUIRE(in);
+    description = in->spec().get_string_attribute("ImageDescription");
+  }
+  const auto command = description.find("speckle "), note = description.find(" (");
+  REQUIRE((command != std::string::npos && note != std::string::npos));
+  const test::CliResult again = test::runCli(description.substr(command, note - command) + " -o " + dir.file("c2.tif"));
+  INFO(description << "\n" << again.err);
+  CHECK(again.exitCode == 0);
+  CHECK(test::readBytes(dir.file("c2.tif")) == test::readBytes(dir.file("c.tif")));
   // Sweeps: one parameter in two --sweep options, --random-seed without --random.
   const std::string sweepScene = dir.write("sweep.lua", kCamera + "shift = shift or 0\n"
                                                                   "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {shift, 0, 1} } }\n");

@@ -54,6 +54,7 @@ struct SpeckleOptions {
   std::optional<double> diameter;      // given instead of the radius
   std::optional<double> countDensity;  // disks per px², given instead of the density
   bool perlinOptionGiven = false;      // --perlin-cell or --octaves on the command line
+  bool diskOptionGiven = false;        // --radius, --diameter, --radius-spread or --count-density
   std::string pattern = "disks";
 };
 
@@ -117,6 +118,9 @@ int runSpeckle(SpeckleOptions options) {
   // Ignored by disks, so refused rather than dropped silently (and never checked).
   if (options.perlinOptionGiven && p.pattern != SpecklePattern::Perlin)
     throw InputError("speckle: --perlin-cell and --octaves apply to --pattern perlin (the pattern is disks)");
+  if (options.diskOptionGiven && p.pattern == SpecklePattern::Perlin)
+    throw InputError("speckle: --radius, --diameter, --radius-spread and --count-density apply to the disks pattern "
+                     "(the pattern is perlin)");
   // Peak memory, checked before any buffer exists (as render checks a frame's): per pixel the image
   // (a double), the disks' sample masks (up to 8 bytes, texture/speckle.cpp) and the TIFF's values
   // (2 bytes): 18 bytes. 65536 x 65536 px would need 72 GiB.
@@ -144,8 +148,9 @@ int runSpeckle(SpeckleOptions options) {
   // The description is the command that regenerates the file.
   const std::string description =
       std::string("dicsynth ") + kVersion + ": speckle --size " + std::to_string(p.width_px) + " " +
-      std::to_string(p.height_px) + " --radius " + shortest(p.radius_px) +
-      // --count-density (in extras) excludes --density: the line must run as written.
+      std::to_string(p.height_px) +
+      // The line must run as written: no disk option for perlin, no --density beside --count-density.
+      (p.pattern == SpecklePattern::Perlin ? "" : " --radius " + shortest(p.radius_px)) +
       (p.disksPerPx2 != 0 ? "" : " --density " + shortest(p.density)) + " --seed " + std::to_string(p.seed) + " --supersampling " +
       std::to_string(p.supersampling) + " --bits " + std::to_string(options.bits) + extras(options) +
       (p.pattern == SpecklePattern::Perlin ? " (thresholded Perlin noise; value = 1 − mean darkness of the samples)"
@@ -193,6 +198,8 @@ void addSpeckleCommand(CLI::App& root, RunFn& run) {
   sub->add_option("--bits", options->bits, "Bits per pixel: 8 or 16")->capture_default_str();
   sub->callback([&run, options, sub] {
     options->perlinOptionGiven = sub->count("--perlin-cell") + sub->count("--octaves") > 0;
+    options->diskOptionGiven =
+        sub->count("--radius") + sub->count("--diameter") + sub->count("--radius-spread") + sub->count("--count-density") > 0;
     run = [options] { return runSpeckle(*options); };
   });
 }

@@ -88,6 +88,18 @@ bool isLuaKeyword(const std::string& name) {
   return kKeywords.count(name) > 0;
 }
 
+// _G.__newindex (a global assigned for the first time): for `sweep`, keeps the line in the registry
+// (kSweepLineKey: a grid table is read after the run, and its errors name this line); then assigns.
+int assignGlobal(lua_State* L) {
+  if (lua_type(L, 2) == LUA_TSTRING && std::strcmp(lua_tostring(L, 2), "sweep") == 0) {
+    lua_pushinteger(L, LuaSandbox::currentLine(L));
+    lua_setfield(L, LUA_REGISTRYINDEX, kSweepLineKey);
+  }
+  lua_settop(L, 3);
+  lua_rawset(L, 1);
+  return 0;
+}
+
 // _G.__index: serves a define (upvalue 1: name → value) and records the read (upvalue 2).
 int readDefine(lua_State* L) {
   lua_pushvalue(L, 2);
@@ -138,11 +150,13 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
   lua_setfield(L, LUA_REGISTRYINDEX, kDefinesReadKey);
 
   lua_pushglobaltable(L);
-  lua_createtable(L, 0, 2);  // _G's metatable
+  lua_createtable(L, 0, 3);  // _G's metatable
   lua_pushvalue(L, values);
   lua_pushvalue(L, values + 1);
   lua_pushcclosure(L, &readDefine, 2);
   lua_setfield(L, -2, "__index");
+  lua_pushcfunction(L, &assignGlobal);
+  lua_setfield(L, -2, "__newindex");
   lua_pushboolean(L, 0);
   lua_setfield(L, -2, "__metatable");  // the scene cannot replace or inspect it
   lua_setmetatable(L, -2);

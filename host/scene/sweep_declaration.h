@@ -79,7 +79,10 @@ namespace scene {
 // loadScene, calling `inspect` on the Lua state after the chunk ran (defines checked).
 Scene loadSceneInspecting(const std::string& path, const SceneParams& params,
                           const std::function<void(lua_State*)>& inspect);
-// Reads the global `sweep` of a state whose scene has run (sweep_functions.cpp).
+// Reads the global `sweep` of a state whose scene has run (sweep_functions.cpp). A table is read
+// after the run, so its errors name the line that first assigned `sweep`, which _G's __newindex
+// (lua_scene.cpp) keeps in the registry under kSweepLineKey.
+inline constexpr const char* kSweepLineKey = "dicsynth.sweepLine";
 SweepDeclaration readSweepGlobal(lua_State* L);
 }  // namespace scene
 

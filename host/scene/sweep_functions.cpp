@@ -247,7 +247,10 @@ SweepDeclaration readSweepGlobal(lua_State* L) {
     }
   } catch (const ScriptError& e) {
     lua_settop(L, top - 2);
-    throw InputError(path + ": " + e.what());
+    lua_getfield(L, LUA_REGISTRYINDEX, kSweepLineKey);
+    const lua_Integer line = lua_isinteger(L, -1) ? lua_tointeger(L, -1) : 0;
+    lua_pop(L, 1);
+    throw InputError(path + (line > 0 ? ":" + std::to_string(line) : "") + ": " + e.what());
   }
   lua_settop(L, top - 2);
   return d;

@@ -39,8 +39,8 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
-#include "files/image_limits.h"
 #include "core/version.h"
+#include "files/image_limits.h"
 #include "texture/speckle.h"
 
 namespace dicsynth::cli {
@@ -125,16 +125,10 @@ int runSpeckle(SpeckleOptions options) {
   // (a double), the disks' sample masks (up to 8 bytes, texture/speckle.cpp) and the TIFF's values
   // (2 bytes): 18 bytes. 65536 x 65536 px would need 72 GiB.
   // (A size out of 1..65536 is refused by generateSpeckle, with its own message.)
-  if (const auto available = availableMemoryBytes(); available && p.width_px >= 1 && p.height_px >= 1) {
-    const double bytes = 18.0 * double(p.width_px) * double(p.height_px);
-    if (bytes > double(*available)) {
-      char text[160];
-      std::snprintf(text, sizeof text, "needs about %.3g GiB, more than the %.3g GiB of memory available",
-                    bytes / double(1 << 30), double(*available) / double(1 << 30));
-      throw InputError("speckle: a " + std::to_string(p.width_px) + " x " + std::to_string(p.height_px) +
-                       " px image " + text + ": make it smaller");
-    }
-  }
+  if (p.width_px >= 1 && p.height_px >= 1)
+    if (const auto shortfall = memoryShortfall(18.0 * double(p.width_px) * double(p.height_px)))
+      throw InputError("speckle: a " + std::to_string(p.width_px) + " x " + std::to_string(p.height_px) + " px image " +
+                       *shortfall + ": make it smaller");
   const GrayImage image = generateSpeckle(p);  // validates the rest (InputError)
 
   const double maxValue = double((1u << options.bits) - 1u);

@@ -30,6 +30,19 @@ inline std::optional<std::uint64_t> availableMemoryBytes() {
   return std::nullopt;
 }
 
+// "needs about X GiB, more than the Y GiB of memory available" when `bytes` exceed what the system
+// can still give, else nullopt (also where that is unknown). For messages checked before a buffer
+// exists: the image readers' below, `dicsynth speckle`'s.
+inline std::optional<std::string> memoryShortfall(double bytes) {
+  const auto available = availableMemoryBytes();
+  if (!available || bytes <= double(*available)) return std::nullopt;
+  std::ostringstream s;
+  s.precision(3);
+  s << "needs about " << bytes / (1 << 30) << " GiB, more than the " << double(*available) / (1 << 30)
+    << " GiB of memory available";
+  return s.str();
+}
+
 // Why a width × height image with `channels` channels (those the reader keeps) cannot be read, or
 // nullopt when it can.
 inline std::optional<std::string> imageSizeProblem(std::uint64_t width, std::uint64_t height, int channels) {
@@ -39,13 +52,8 @@ inline std::optional<std::string> imageSizeProblem(std::uint64_t width, std::uin
            std::to_string(pixels) + " pixels, over the limit of " + std::to_string(kMaxImagePixels) +
            " (16384 x 16384)";
   const std::uint64_t bytes = pixels * 8 * (1 + std::uint64_t(channels));
-  if (const auto available = availableMemoryBytes(); available && bytes > *available) {
-    std::ostringstream s;
-    s.precision(3);
-    s << "reading the " << width << " x " << height << " image needs about " << double(bytes) / (1 << 30)
-      << " GiB, more than the " << double(*available) / (1 << 30) << " GiB of memory available";
-    return s.str();
-  }
+  if (const auto shortfall = memoryShortfall(double(bytes)))
+    return "reading the " + std::to_string(width) + " x " + std::to_string(height) + " image " + *shortfall;
   return std::nullopt;
 }
 

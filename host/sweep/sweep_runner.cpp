@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "core/exact_number.h"
@@ -87,36 +90,40 @@ std::string readWholeFile(const std::string& path) {
   return text;
 }
 
-// The fields of a point's key, in the order runSweep writes them ("name=value", space-separated).
-constexpr const char* kKeyFields[] = {"scene_crc32", "spp",    "precision",       "max_error_px", "downscale", "backend",
-                                      "frames",      "defines", "exr_compression", "layers",       "seed",      "parameters"};
+// A point's key as named fields, in order; "name=value" joined by spaces is the key its record
+// holds (runSweep builds them: everything that determines the point's files).
+using KeyFields = std::vector<std::pair<std::string, std::string>>;
 
-// What differs between a point's recorded key and this run's, for people: "spp 16 (now 4),
-// downscale 8 (now 1)"; the scene by its content. Each field's value runs to the next field's name,
-// searched in the fixed order (a define's value may itself hold "=" and spaces).
-std::string keyDifference(const std::string& recorded, const std::string& now) {
-  auto fields = [](const std::string& key) {
-    std::vector<std::string> values;
-    std::size_t at = 0;
-    for (std::size_t k = 0; k < std::size(kKeyFields); ++k) {
-      const std::string name = std::string(k ? " " : "") + kKeyFields[k] + "=";
-      const std::size_t start = key.find(name, at);
-      if (start == std::string::npos) return std::vector<std::string>{};  // a key of another version
-      if (k) values.back() = key.substr(at, start - at);
-      at = start + name.size();
-      values.emplace_back();
-    }
-    values.back() = key.substr(at);
-    return values;
-  };
-  const std::vector<std::string> a = fields(recorded), b = fields(now);
-  if (a.size() != b.size() || a.empty()) return "a record of another dicsynth version";
+std::string joinKey(const KeyFields& fields) {
+  std::string key;
+  for (const auto& [name, value] : fields) key += (key.empty() ? "" : " ") + name + "=" + value;
+  return key;
+}
+
+// What differs between a point's recorded key and this run's fields, for people: "spp 16 (now 4),
+// downscale 8 (now 1)"; the scene by its content. In the recorded key each field's value runs to
+// the next field's name, searched in order (a define's value may itself hold "=" and spaces).
+std::string keyDifference(const std::string& recorded, const KeyFields& now) {
+  std::vector<std::string> values;
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < now.size(); ++k) {
+    const std::string name = (k ? " " : "") + now[k].first + "=";
+    const std::size_t start = recorded.find(name, at);
+    if (start == std::string::npos) return "a record of another dicsynth version";
+    if (k) values.back() = recorded.substr(at, start - at);
+    at = start + name.size();
+    values.emplace_back();
+  }
+  values.back() = recorded.substr(at);
   std::string out;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    if (a[k] == b[k]) continue;
+  for (std::size_t k = 0; k < now.size(); ++k) {
+    const std::string& was = values[k];
+    const std::string& is = now[k].second;
+    if (was == is) continue;
     if (!out.empty()) out += ", ";
-    out += std::string(k == 0 ? "the scene file's content" : kKeyFields[k]) +
-           (k == 0 ? " (changed since)" : " " + (a[k].empty() ? "(none)" : a[k]) + " (now " + (b[k].empty() ? "(none)" : b[k]) + ")");
+    out += now[k].first == "scene_crc32" ? "the scene file's content (changed since)"
+                                         : now[k].first + " " + (was.empty() ? "(none)" : was) + " (now " +
+                                               (is.empty() ? "(none)" : is) + ")";
   }
   return out;
 }
@@ -164,18 +171,31 @@ void runSweep(const SweepRun& cmd) {
   const std::string sceneText = readWholeFile(cmd.args.scenePath);
   std::string definesText;
   for (const auto& [n, v] : defines) definesText += n + "=" + v + " ";
-  const std::string commonKey =
-      "scene_crc32=" + std::to_string(sweep::crc32Of(sceneText)) + " spp=" + std::to_string(cmd.args.spp) +
-      " precision=" + cmd.args.precision + " max_error_px=" + exactNumber(cmd.args.maxErrorPx) +
-      " downscale=" + std::to_string(cmd.args.downscale) + " backend=" + cmd.backend + " frames=" + cmd.frames +
-      // Only when given: the keys of sweeps made before the option existed stay the same.
-      (cmd.referenceFrame ? " reference " + std::to_string(*cmd.referenceFrame) : "") +
-      " defines=" + definesText + " exr_compression=" + cmd.exrCompression + " layers=" + layers.text();
+  const KeyFields commonFields = {
+      {"scene_crc32", std::to_string(sweep::crc32Of(sceneText))},
+      {"spp", std::to_string(cmd.args.spp)},
+      {"precision", cmd.args.precision},
+      {"max_error_px", exactNumber(cmd.args.maxErrorPx)},
+      {"downscale", std::to_string(cmd.args.downscale)},
+      {"backend", cmd.backend},
+      // The reference frame only when given: the keys of sweeps made before the option stay the same.
+      {"frames", cmd.frames + (cmd.referenceFrame ? " reference " + std::to_string(*cmd.referenceFrame) : "")},
+      {"defines", definesText},
+      {"exr_compression", cmd.exrCompression},
+      {"layers", layers.text()}};
+  const std::string commonKey = joinKey(commonFields);
   auto seedOf = [&](const SweepPoint& p) {
     return cmd.seedPerPoint ? ds_hash_combine(ds_hash(cmd.args.seed), std::uint32_t(p.index)) : cmd.args.seed;
   };
-  auto keyOf = [&](const SweepPoint& p) {
-    return commonKey + " seed=" + std::to_string(seedOf(p)) + " parameters=" + parametersJson(p);
+  auto pointFields = [&](const SweepPoint& p) {
+    return KeyFields{{"seed", std::to_string(seedOf(p))}, {"parameters", parametersJson(p)}};
+  };
+  // The key of every point (the manifest checks millions): the common part joined once.
+  auto keyOf = [&](const SweepPoint& p) { return commonKey + " " + joinKey(pointFields(p)); };
+  auto keyFieldsOf = [&](const SweepPoint& p) {  // for messages
+    KeyFields fields = commonFields;
+    for (auto& field : pointFields(p)) fields.push_back(std::move(field));
+    return fields;
   };
 
   // Before anything is created: the output folder can be written, and the first point's scene
@@ -204,7 +224,7 @@ void runSweep(const SweepRun& cmd) {
     const auto summary = sweep::writeManifest(
         cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets, [&](const SweepPoint& p, const sweep::PointRecord& r) {
           throw InputError("sweep --merge-only: " + pointFolderName(p.index) + " was rendered with other inputs: " +
-                           keyDifference(r.key, keyOf(p)) +
+                           keyDifference(r.key, keyFieldsOf(p)) +
                            ". Give the options the sweep was run with (the manifest is left as it was), or run the "
                            "sweep without --merge-only to render such points again");
         });
@@ -262,7 +282,7 @@ void runSweep(const SweepRun& cmd) {
                    "dicsynth: warning: %s was rendered with other inputs (%s): it is rendered again, as is every "
                    "point whose record differs (stop now to keep them, and rerun with the options they were made "
                    "with)\n",
-                   pointFolderName(p.index).c_str(), keyDifference(recorded->key, key).c_str());
+                   pointFolderName(p.index).c_str(), keyDifference(recorded->key, keyFieldsOf(p)).c_str());
     auto job = std::make_shared<RenderJob>();
     job->sceneFile = cmd.args.scenePath;
     job->outputDir = folder;

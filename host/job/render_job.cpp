@@ -292,7 +292,7 @@ void checkOutputWritable(const std::string& dir) {
   const int fd = ::mkstemp(name.data());
   if (fd < 0)
     throw InputError("-o " + dir + ": " + (at == std::filesystem::absolute(dir, ec) ? "the output folder" : at.string()) +
-                     " is not writable: " + std::strerror(errno));
+                     " is not writable (a new file there: " + std::strerror(errno) + ")");
   ::close(fd);
   ::unlink(name.data());
 }

@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "core/option_names.h"
 #include "core/exact_number.h"
 #include "files/image_io.h"
 #include "geometry/homography.h"
@@ -22,7 +23,7 @@ bool isAffine(const dmat4& m) { return m[0][3] == 0 && m[1][3] == 0 && m[2][3] =
 Camera downscaled(Camera c, int k) {
   if (k == 1) return c;
   if (c.width_px / k < 1 || c.height_px / k < 1)
-    throw InputError(c.where, "--downscale " + std::to_string(k) + " leaves camera '" + c.name +
+    throw InputError(c.where, optionName("--downscale") + " " + std::to_string(k) + " leaves camera '" + c.name +
                                   "' without pixels (" + std::to_string(c.width_px) + "x" +
                                   std::to_string(c.height_px) + ")");
   c.width_px /= k;
@@ -199,7 +200,7 @@ PinholeModel<double> pinholeModel(const Camera& c) {
 }
 
 PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
-  if (options.downscale < 1) throw InputError("--downscale must be >= 1");
+  if (options.downscale < 1) throw InputError(optionName("--downscale") + " must be >= 1");
   PreparedScene ps;
   ps.file = scene.file;
   ps.keepAlive = scene.keepAlive;

@@ -1,4 +1,5 @@
 // Device enumeration and the --device selection rule (context.h).
+#include "core/option_names.h"
 #include "gpu/device_query.h"
 
 #include <algorithm>
@@ -117,7 +118,7 @@ uint32_t selectDevice(const std::vector<DeviceInfo>& devices, const std::string&
         "and check VK_ICD_FILENAMES/VK_DRIVER_FILES if they are set");
 
   auto noMatch = [&] {
-    return InputError("--device '" + selector + "': no such Vulkan device; available: " +
+    return InputError(optionName("--device") + " '" + selector + "': no such Vulkan device; available: " +
                       describeDevices(devices));
   };
   if (!selector.empty() &&

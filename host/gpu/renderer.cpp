@@ -1,3 +1,4 @@
+#include "core/option_names.h"
 #include "gpu/renderer.h"
 
 #include <algorithm>
@@ -525,9 +526,9 @@ void Renderer::warmUp(Precision precision, const PreparedScene& scene, const Ren
 RenderResult Renderer::render(const PreparedScene& scene, const RenderOptions& options,
                               const RendererOptions& rendererOptions) {
   if (lacks(options.precision))
-    throw InputError("--precision fp64: device '" + context_.info().name +
-                     "' has no shaderFloat64; use --precision df64, fp32 or another --device");
-  if (options.samplesPerPixel < 1) throw InputError("--spp must be >= 1");
+    throw InputError(optionName("--precision") + " fp64: device '" + context_.info().name + "' has no shaderFloat64; use " +
+                     optionName("--precision") + " df64, fp32 or another " + optionName("--device"));
+  if (options.samplesPerPixel < 1) throw InputError(optionName("--spp") + " must be >= 1");
   if (rendererOptions.tileSize != 0 && (rendererOptions.tileSize < 8 || rendererOptions.tileSize % 8 != 0))
     throw InputError("tile size must be 0 (automatic) or a positive multiple of 8");
   // The pipeline is created (on lavapipe: SPIR-V to NIR to LLVM, ~0.09 s for Figure 1 even when

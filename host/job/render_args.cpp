@@ -1,3 +1,4 @@
+#include "core/option_names.h"
 #include "job/render_args.h"
 
 #include <unistd.h>
@@ -78,11 +79,11 @@ std::vector<int> referenceFirst(std::vector<int> frames, std::optional<int> refe
 }
 
 RenderOptions renderOptions(const RenderArgs& args, int frame) {
-  if (args.spp < 1 || args.spp > 65536) throw InputError("--spp " + std::to_string(args.spp) + ": must be in 1..65536");
-  if (args.downscale < 1) throw InputError("--downscale must be >= 1");
+  if (args.spp < 1 || args.spp > 65536) throw InputError(optionName("--spp") + " " + std::to_string(args.spp) + ": must be in 1..65536");
+  if (args.downscale < 1) throw InputError(optionName("--downscale") + " must be >= 1");
   // Checked with the other options, before work: the precision calibration it steers takes seconds.
   if (!(args.maxErrorPx > 0) || !std::isfinite(args.maxErrorPx))
-    throw InputError("--max-error-px " + shortestNumber(args.maxErrorPx) + ": must be a finite number > 0 (px)");
+    throw InputError(optionName("--max-error-px") + " " + shortestNumber(args.maxErrorPx) + ": must be a finite number > 0 (px)");
   RenderOptions o;
   o.samplesPerPixel = args.spp;
   o.seed = args.seed;

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "core/option_names.h"
+
 namespace dicsynth {
 
 struct Scene;
@@ -28,7 +30,7 @@ class LayerSet {
   static LayerSet all();
   // "all" or a comma-separated list of layer names. Throws InputError naming `option` and the
   // unknown name, with the list of known ones.
-  static LayerSet parse(const std::string& text, const std::string& option = "--layers");
+  static LayerSet parse(const std::string& text, const std::string& option = optionName("--layers"));
 
   bool has(Layer layer) const { return (bits_ >> std::uint32_t(layer)) & 1u; }
   LayerSet& add(Layer layer) {
@@ -114,11 +116,11 @@ struct LayerSources {
   void add(const Scene& scene);
   bool provides(LayerSource source) const;
 };
-void checkLayersProducible(const LayerSet& layers, const LayerSources& sources, const std::string& option = "--layers");
+void checkLayersProducible(const LayerSet& layers, const LayerSources& sources, const std::string& option = optionName("--layers"));
 
 // Throws InputError when `layers` names a layer that no camera of any of `scenes` can produce
 // (disparity without a stereo rig, noise without a sensor model, defects without DefectivePixels,
 // fieldError without a Nurbs.deform surface).
-void checkLayersProducible(const LayerSet& layers, const std::vector<Scene>& scenes, const std::string& option = "--layers");
+void checkLayersProducible(const LayerSet& layers, const std::vector<Scene>& scenes, const std::string& option = optionName("--layers"));
 
 }  // namespace dicsynth

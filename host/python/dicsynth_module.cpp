@@ -27,6 +27,7 @@
 #include "job/render_job.h"
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/option_names.h"
 #include "core/version.h"
 #include "io/outputs.h"
 #include "scene/scene.h"
@@ -96,16 +97,20 @@ py::dict cameraArrays(std::vector<ChannelValues>&& channels, std::vector<std::ui
 
 class PyRenderer {
  public:
-  PyRenderer(const std::string& backend, const std::string& precision, const std::string& device, std::uint32_t seed,
+  PyRenderer(const std::string& backend, const std::string& precision, const std::string& device, long long seed,
              int downscale, double maxErrorPx) {
     if (backend != "gpu" && backend != "cpu") throw InputError("backend must be \"gpu\" or \"cpu\", got \"" + backend + "\"");
     backend_ = backend;  // known from the start; precision and device once a render resolved them
     if (precision != "auto" && !parsePrecision(precision))
       throw InputError("precision must be \"auto\", \"fp32\", \"df64\" or \"fp64\", got \"" + precision + "\"");
+    // A Python int of any size: the CLI's --seed range, said as a ValueError rather than pybind11's
+    // "incompatible constructor arguments" TypeError for a negative one.
+    if (seed < 0 || seed > 0xffffffffLL)
+      throw InputError("seed " + std::to_string(seed) + ": must be in 0..4294967295");
     RenderArgs args;
     args.precision = precision;
     args.device = device;
-    args.seed = seed;
+    args.seed = std::uint32_t(seed);
     args.downscale = downscale;
     args.maxErrorPx = maxErrorPx;
     renderOptions(args, 0);  // the same checks as the CLI's options
@@ -126,7 +131,7 @@ class PyRenderer {
     RenderJob job;
     job.sceneFile = scene.path;
     job.defines = scene.defines;
-    job.layers = LayerSet::parse(layerText, "layers");
+    job.layers = LayerSet::parse(layerText);
     job.spp = spp;
     job.verbose = false;
     job.numbered = true;
@@ -180,6 +185,7 @@ class PyRenderer {
 PYBIND11_MODULE(dicsynth, m) {
   m.doc() = "dicsynth: synthetic images with exact ground truth for experimental mechanics";
   m.attr("__version__") = kVersion;
+  setOptionSpelling(OptionSpelling::Python);  // messages name max_error_px, defines['x']: not the CLI's options
   static py::exception<InputError> inputError(m, "InputError", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -218,7 +224,7 @@ PYBIND11_MODULE(dicsynth, m) {
       .def("__repr__", [](const PyScene& s) { return "dicsynth.Scene('" + s.path + "')"; });
 
   py::class_<PyRenderer>(m, "Renderer", "The renderer, its device kept warm between renders")
-      .def(py::init<const std::string&, const std::string&, const std::string&, std::uint32_t, int, double>(),
+      .def(py::init<const std::string&, const std::string&, const std::string&, long long, int, double>(),
            py::arg("backend") = "gpu", py::arg("precision") = "auto", py::arg("device") = "", py::arg("seed") = 1,
            py::arg("downscale") = 1, py::arg("max_error_px") = 1e-6)
       .def("render", &PyRenderer::render, py::arg("scene"), py::arg("frames") = std::vector<int>{0},

@@ -1,3 +1,4 @@
+#include "core/option_names.h"
 #include "render/precision_calibration.h"
 
 #include <chrono>
@@ -205,7 +206,7 @@ Precision choosePrecision(const PrecisionCalibration& calibration, double maxErr
   if (!best) {
     char bound[32];
     std::snprintf(bound, sizeof bound, "%g", maxErrorPx);
-    throw InputError(std::string("--precision auto: no precision of this device stays under --max-error-px ") + bound +
+    throw InputError(optionName("--precision") + " auto: no precision of this device stays under " + optionName("--max-error-px") + " " + bound +
                      " (" + describeCalibration(calibration) + ")");
   }
   return best->precision;

@@ -21,6 +21,7 @@
 #include <set>
 #include <utility>
 
+#include "core/option_names.h"
 #include "scene/constructors.h"
 #include "scene/lua_sandbox.h"
 #include "scene/lua_values.h"
@@ -123,16 +124,17 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
   lua_newtable(L);  // name → value
   const int values = lua_gettop(L);
   for (const auto& [name, value] : defines) {
-    const std::string option = "-D " + name + ": ";
+    const std::string option = defineName(name) + ": ";
     if (!isLuaIdentifier(name))
       throw InputError(
           option + "'" + name +
           "' is not a Lua identifier (letters, digits and _, not starting with a digit)");
     if (isLuaKeyword(name)) throw InputError(option + "'" + name + "' is a Lua keyword");
     if (name == "frame")
-      throw InputError(option +
-                       "'frame' is reserved: the frame number is set by --frames "
-                       "(render) or --frame (compare), not by -D");
+      throw InputError(option + (optionSpelling() == OptionSpelling::Cli
+                                   ? "'frame' is reserved: the frame number is set by --frames "
+                                     "(render) or --frame (compare), not by -D"
+                                   : "'frame' is reserved: the frame number is set by render's frames"));
     lua_pushglobaltable(L);
     const bool builtIn = lua_getfield(L, -1, name.c_str()) != LUA_TNIL;
     lua_pop(L, 2);
@@ -168,7 +170,7 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
   if (std::find(sweepParameters.begin(), sweepParameters.end(), name) != sweepParameters.end())
     throw InputError(scenePath + ": sweep parameter '" + name + "': the scene never reads '" + name +
                      "' (a typo in the sweep, or a scene that ignores it)");
-  throw InputError("-D " + name + ": the scene never reads '" + name + "'");
+  throw InputError(defineName(name) + ": the scene never reads '" + name + "'");
 }
 
 // The defines the evaluation did not read, in the order given.

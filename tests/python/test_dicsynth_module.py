@@ -3,6 +3,7 @@ python3-pytest (PYTHONPATH=build, DICSYNTH_BINARY=the CLI). Its arrays are check
 the CLI writes for the same scene, read back with OpenImageIO's own Python binding (an independent
 reader), value for value."""
 import os
+import re
 import pathlib
 import subprocess
 import tempfile
@@ -109,10 +110,25 @@ def test_layers_errors_and_a_warm_loop():
     try:
         grown = dicsynth.Scene(pathlib.Path(later.name), defines={"growth": 0.5})
         assert sorted(renderer.render(grown, frames=[0, 1], layers=["mask"]).keys()) == [("cam", 0), ("cam", 1)]
-        with pytest.raises(dicsynth.InputError, match="-D growth: the scene never reads 'growth'"):
+        with pytest.raises(dicsynth.InputError, match=re.escape("defines['growth']: the scene never reads 'growth'")):
             renderer.render(grown, frames=[0], layers=["mask"])
     finally:
         os.unlink(later.name)
+    # Messages name the arguments as Python spells them, not as the CLI's options (the audit of
+    # 2026-11-27 found "--downscale must be >= 1" and "-D growth" in Python's errors).
+    for make, message in [(lambda: dicsynth.Renderer(backend="cpu", downscale=0), "downscale must be >= 1"),
+                          (lambda: dicsynth.Renderer(backend="cpu", max_error_px=0), "max_error_px 0: must be"),
+                          (lambda: dicsynth.Renderer(backend="cpu", seed=-1), "seed -1: must be in 0..4294967295"),
+                          (lambda: dicsynth.Renderer(backend="cpu", seed=2**32), "seed 4294967296: must be"),
+                          (lambda: renderer.render(scene, layers=["disparity"]), "layers: layer 'disparity' cannot be produced"),
+                          (lambda: dicsynth.Renderer(device="no such device").render(scene), "device 'no such device': no such Vulkan device"),
+                          (lambda: dicsynth.Scene(os.path.join(SCENES, "rectangle.lua"), defines={"frame": 1}),
+                           "defines['frame']: 'frame' is reserved: the frame number is set by render's frames")]:
+        with pytest.raises(dicsynth.InputError) as error:
+            make()
+        assert str(error.value).startswith(message), str(error.value)
+        assert "--" not in str(error.value) and "-D " not in str(error.value), str(error.value)
+    assert dicsynth.Renderer(backend="cpu", seed=2**32 - 1).backend == "cpu"
     assert renderer.backend == "cpu" and dicsynth.Renderer(backend="cpu").backend == "cpu"
     # A loop of renders pays the start-up once: later renders reuse the session (a figure, not a
     # bound: the benchmark compares with processes, bench/RESULTS.md).

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <map>
 #include <random>
+#include <regex>
 #include <sstream>
 
 #include "core/error.h"
@@ -401,4 +402,23 @@ TEST_CASE("calibration: a failed write leaves none of the files behind") {
   CHECK_THROWS_WITH_AS(writeCalibrationFiles(dir.file("missing"), files),
                        doctest::Contains("missing"), Error);
   CHECK_FALSE(std::filesystem::exists(dir.file("missing")));
+}
+
+TEST_CASE("calibration: a zero is written 0, never -0 (a camera at the origin)") {
+  // The audit of 2026-11-27 read `t: [ -0, -0, -0 ]` in the .yml of a camera at the world origin
+  // (t = -R C with C = 0) and -0 entries in R. The same value for every reader, but not what a user
+  // expects to read; the fix writes +0.
+  dmat4 pose(1.0);
+  pose[1][1] = -1.0;  // looking along +z with y down: R = diag(1, -1, -1) and zeros
+  pose[2][2] = -1.0;
+  const Camera left = makeCamera("origin.left", 64, 48, 0.012, pose);
+  const Camera right = makeCamera("origin.right", 64, 48, 0.012, pose);  // the same place: R = I, T = 0
+  const std::regex negativeZero(R"((^|[^0-9.eE])-0($|[^0-9.]))");
+  for (const std::string& text : {cameraYaml(left), rigYaml("origin", left, right), diceCameraSystemXml(left, right)}) {
+    CAPTURE(text);
+    CHECK(!std::regex_search(text, negativeZero));
+  }
+  // The check can fail: it finds a -0 where there is one.
+  CHECK(std::regex_search(std::string("t: [ 0, -0, 0 ]"), negativeZero));
+  CHECK(!std::regex_search(std::string("t: [ -0.5, 1e-05, -0.25 ]"), negativeZero));
 }

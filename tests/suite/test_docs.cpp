@@ -19,7 +19,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <cctype>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -331,4 +333,71 @@ TEST_CASE("docs: every Texture.* kind of the registry is in the scene language's
     }
   });
   CHECK(documented >= 3);  // the scan found them
+}
+
+namespace {
+
+// GitHub's anchor of a heading: lower case, punctuation dropped (letters, digits, '-', '_' and
+// spaces kept; bytes of other scripts kept as letters), spaces made '-'.
+std::string headingAnchor(const std::string& heading) {
+  std::string anchor;
+  for (unsigned char c : heading) {
+    if (c == ' ') anchor += '-';
+    else if (std::isalnum(c) || c == '-' || c == '_' || c >= 0x80) anchor += char(std::tolower(c));
+  }
+  return anchor;
+}
+
+// A page without its fenced blocks (a `#` there is a comment, a `](` is code).
+std::string withoutFences(const std::string& text) {
+  std::string out;
+  std::istringstream in(text);
+  std::string line;
+  bool fenced = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("```", 0) == 0) fenced = !fenced;
+    else if (!fenced) out += line + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("docs: every relative link of README.md and docs/ names a file that exists, and a heading of it") {
+  namespace fs = std::filesystem;
+  const fs::path root(DS_SOURCE_DIR);
+  std::vector<fs::path> pages = {root / "README.md"};
+  for (const auto& e : fs::directory_iterator(root / "docs"))
+    if (e.path().extension() == ".md") pages.push_back(e.path());
+  const auto anchorsOf = [](const fs::path& page) {
+    std::vector<std::string> anchors;
+    const std::string text = withoutFences(test::readBytes(page.string()));
+    static const std::regex heading(R"((^|\n)#+ +([^\n]*))");
+    for (std::sregex_iterator m(text.begin(), text.end(), heading), end; m != end; ++m)
+      anchors.push_back(headingAnchor((*m)[2].str()));
+    return anchors;
+  };
+  static const std::regex link(R"(\]\(([^)\s]+)\))");
+  int links = 0;
+  for (const fs::path& page : pages) {
+    const std::string text = withoutFences(test::readBytes(page.string()));
+    for (std::sregex_iterator m(text.begin(), text.end(), link), end; m != end; ++m) {
+      const std::string target = (*m)[1].str();
+      if (std::regex_search(target, std::regex("^[a-z]+:"))) continue;  // https:, mailto:
+      ++links;
+      INFO(page.filename().string() << ": " << target);
+      const std::size_t hash = target.find('#');
+      const std::string file = target.substr(0, hash);
+      const fs::path resolved = file.empty() ? page : (page.parent_path() / file).lexically_normal();
+      REQUIRE(fs::exists(resolved));
+      if (hash == std::string::npos || resolved.extension() != ".md") continue;
+      const std::vector<std::string> anchors = anchorsOf(resolved);
+      CHECK(std::find(anchors.begin(), anchors.end(), target.substr(hash + 1)) != anchors.end());
+    }
+  }
+  CHECK(links > 50);  // the manual's cross references were found (95 on 2026-11-27)
+  // The slug rule itself, on headings of this manual.
+  CHECK(headingAnchor("Deformed surfaces: `Nurbs.deform`, `Field.load`, `Nurbs.from`") ==
+        "deformed-surfaces-nurbsdeform-fieldload-nurbsfrom");
+  CHECK(headingAnchor("Surface parameters (u, v) per shape") == "surface-parameters-u-v-per-shape");
 }

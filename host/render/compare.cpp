@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -127,16 +129,55 @@ Slopes offsetSlopes(const PreparedScene& scene, const PinholeModel<double>& m, d
   return g;
 }
 
-// Whether another object (or the background) is among the 8 neighbours of pixel i.
-bool edgePixel(const CameraImage& img, std::size_t i) {
-  const long w = img.width_px, h = img.height_px, x = long(i) % w, y = long(i) / w;
-  for (long dy = -1; dy <= 1; ++dy)
-    for (long dx = -1; dx <= 1; ++dx) {
-      const long nx = x + dx, ny = y + dy;
-      if (nx >= 0 && nx < w && ny >= 0 && ny < h && img.objectId[std::size_t(ny * w + nx)] != img.objectId[i])
-        return true;
+// Which pixels are edge pixels: another object (or the background) within `reach` pixels (the 8
+// neighbours for reach 1). A separable sliding minimum and maximum of the ids: a pixel is an edge
+// pixel where they differ.
+std::vector<char> edgePixels(const CameraImage& img, int reach) {
+  const long w = img.width_px, h = img.height_px;
+  if (reach >= std::max(w, h)) {  // every pixel sees the whole image
+    const bool mixed = std::adjacent_find(img.objectId.begin(), img.objectId.end(), std::not_equal_to<>()) !=
+                       img.objectId.end();
+    return std::vector<char>(img.objectId.size(), mixed);
+  }
+  std::vector<std::uint32_t> lo(img.objectId.size()), hi(img.objectId.size());
+  for (long y = 0; y < h; ++y)
+    for (long x = 0; x < w; ++x) {
+      std::uint32_t mn = img.objectId[std::size_t(y * w + x)], mx = mn;
+      for (long k = std::max(0L, x - reach); k <= std::min(w - 1, x + reach); ++k) {
+        mn = std::min(mn, img.objectId[std::size_t(y * w + k)]);
+        mx = std::max(mx, img.objectId[std::size_t(y * w + k)]);
+      }
+      lo[std::size_t(y * w + x)] = mn;
+      hi[std::size_t(y * w + x)] = mx;
     }
-  return false;
+  std::vector<char> edge(img.objectId.size());
+  for (long y = 0; y < h; ++y)
+    for (long x = 0; x < w; ++x) {
+      std::uint32_t mn = lo[std::size_t(y * w + x)], mx = hi[std::size_t(y * w + x)];
+      for (long k = std::max(0L, y - reach); k <= std::min(h - 1, y + reach); ++k) {
+        mn = std::min(mn, lo[std::size_t(k * w + x)]);
+        mx = std::max(mx, hi[std::size_t(k * w + x)]);
+      }
+      edge[std::size_t(y * w + x)] = mn != mx;
+    }
+  return edge;
+}
+
+// How far (px) a pixel's samples reach from its centre: the pixel itself, plus a ThinLens camera's
+// blur radius at the deepest or nearest depth the reference sees. A lens sample (R a, R b) of a
+// point at depth z lands fx R |1/z − 1/u| px from the chief ray's (cameras/thin_lens.h); so an
+// object's silhouette, sharp for the pixel-centre ray, is crossed by samples of pixels that far from
+// it. The randomized campaign of 2026-11-27 found fp32 outliers 2 to 4 px outside an edge pixel of
+// a defocused rectangle (blur ~4 px), which such pixels explain.
+int sampleReach(const PinholeModel<double>& m, const CameraImage& img) {
+  double blur = 0;
+  if (m.lensRadius > 0)
+    for (std::size_t i = 0; i < img.objectId.size(); ++i)
+      if (img.objectId[i] != 0 && img.depth_m[i] > 0)
+        blur = std::max(blur, std::max(m.fx, m.fy) * std::abs(m.lensRadius / img.depth_m[i] - m.lensRadiusOverFocus));
+  // Beyond 64 px the window is the whole image (cost: the sliding window is O(reach) per pixel).
+  const int reach = 1 + int(std::ceil(std::min(blur, 1e9)));
+  return reach > 65 ? std::max(img.width_px, img.height_px) : reach;
 }
 
 }  // namespace
@@ -150,10 +191,10 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
   const auto worst = [&](double m, double v) { return std::isnan(v) ? inf : std::max(m, v); };
   std::vector<dvec3> objectOrigins;
   std::vector<double> slopes, reflectances;
-  std::vector<char> specularTerms;  // per object: hasSpecularOrSpotTerms (a loop over the lights)
+  std::vector<char> lit;  // per object: shaded by the lights (render/shading_tolerance.h)
   for (const auto& o : scene.objects) {
-    specularTerms.push_back(hasSpecularOrSpotTerms(scene, o));
-    reflectances.push_back(tol.epsilon > 0 && specularTerms.back() ? reflectanceMax(o) : 0.0);
+    lit.push_back(reflectance::kindInfo(o.shader).lit && !scene.lights.empty());
+    reflectances.push_back(tol.epsilon > 0 && lit.back() ? reflectanceMax(o) : 0.0);
     const dvec4 h = o.worldFromObject * dvec4(0, 0, 0, 1);
     objectOrigins.push_back(dvec3(h) / h.w);
     slopes.push_back(tol.epsilon > 0 ? textureSlope(o) : 0.0);
@@ -170,15 +211,20 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
     d.pixels = a.pixelCount();
     const std::size_t width = std::size_t(a.width_px);
     double sumSquares = 0;
+    const std::vector<char> edges = edgePixels(a, sampleReach(model, a));
     for (std::size_t i = 0; i < d.pixels; ++i) {
       double dr = std::abs(a.radiance[i] - b.radiance[i]) * cam.exposure;
       if (std::isnan(dr)) dr = inf;  // a NaN is never "equal"
       d.maxRadianceDiff = std::max(d.maxRadianceDiff, dr);
       sumSquares += dr * dr;
       if (digitize(a.radiance[i], cam) != digitize(b.radiance[i], cam)) ++d.pixelsDiffering;
-      double boundRadiance = tol.radiance;
+      // r0 is relative to the values it bounds (float roundings, a sample's step of at most the
+      // local radiance): of full scale for pixels up to full scale, of the pixel's own value above
+      // it. Over-exposed pixels (exposure × radiance ≫ 1, clipped in the TIFF) erred by 3.5 times
+      // df64's 2e-6 in the randomized campaign of 2026-11-27 with identical DN.
+      double boundRadiance = tol.radiance * std::max(1.0, std::abs(a.radiance[i]) * cam.exposure);
       const bool sameObject = a.objectId[i] == b.objectId[i];
-      const bool edge = edgePixel(a, i);
+      const bool edge = edges[i] != 0;
       if (!sameObject) {
         ++d.objectIdMismatches;
         if (!edge) ++d.objectIdMismatchesOffEdge;
@@ -219,8 +265,8 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
                     (std::max(1.0, g * glm::length(a.position_m[i] - objectOrigins[obj])) + g * D / cosTheta);
           boundRadiance += slopes[obj] * shadingFactor(scene, scene.objects[obj], a.position_m[i]) * boundUv *
                            cam.exposure;
-          // Specular lobes and spot cones, shaded in float (render/shading_tolerance.h).
-          if (specularTerms[obj]) {
+          // The lights' terms from the errors of the shading's inputs (render/shading_tolerance.h).
+          if (lit[obj]) {
             ShadingErrorInputs in;
             in.position = a.position_m[i];
             in.cosView = cosTheta;
@@ -229,7 +275,8 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
             in.epsilon = 0x1p-24;  // lib/real.glsl: shading runs in float in fp32 and df64
             in.k = tol.k;
             in.reflectanceMax = reflectances[obj];
-            boundRadiance += specularRadianceBound(scene, scene.objects[obj], in) * cam.exposure;
+            in.cameraCentre = model.centre;
+            boundRadiance += lightingRadianceBound(scene, scene.objects[obj], in) * cam.exposure;
           }
         }
         if (!(dp <= boundP)) ++(b.depth_m[i] > a.depth_m[i] ? d.wrongFartherRoot : d.wrongNearerRoot);
@@ -262,8 +309,23 @@ std::optional<double> layerDifference(const CameraDifference& d, Layer layer) {
   return std::nullopt;
 }
 
+double allowedOutliers(const Tolerances& t, std::size_t pixels) {
+  // The expected count is at most λ = outlierFraction × pixels (tolerancesFor); a count that
+  // has that mean exceeds it about half the time, so the allowance is the Poisson(λ) count
+  // exceeded with probability < 1e-6 (λ = 0.69, a 96×72 image: 7; λ = 192, 1600×1200: 261). The
+  // former floor(λ) allowed none below 10 000 px, where the randomized campaign of 2026-11-27
+  // found one legitimate speckle-edge flip in fp32 (96×72 px, 4 spp).
+  const double lambda = t.outlierFraction * double(pixels);
+  if (!(lambda > 0)) return 0;
+  double tail = 1;  // P(X >= k)
+  for (double k = 0;; ++k) {
+    tail -= std::exp(k * std::log(lambda) - lambda - std::lgamma(k + 1));  // − P(X = k)
+    if (tail < 1e-6) return k;
+  }
+}
+
 bool withinTolerance(const CameraDifference& d, const Tolerances& t) {
-  const double allowed = std::floor(t.outlierFraction * double(d.pixels));
+  const double allowed = allowedOutliers(t, d.pixels);
   if (t.outlierFraction == 0)
     return d.radianceOutliers == 0 && d.geometryOutliers == 0 && d.objectIdMismatches == 0;
   return double(d.radianceOutliersOffEdge) <= allowed && double(d.geometryOutliers) <= allowed &&
@@ -286,14 +348,15 @@ std::string describeExcess(const CameraDifference& d, const Tolerances& t) {
   std::ostringstream o;
   o.precision(3);
   const bool strict = t.outlierFraction == 0;  // then every pixel counts, edge or not
-  const double allowed = strict ? 0.0 : std::floor(t.outlierFraction * double(d.pixels));
+  const double allowed = strict ? 0.0 : allowedOutliers(t, d.pixels);
   const std::size_t radiance = strict ? d.radianceOutliers : d.radianceOutliersOffEdge;
   const std::size_t objects = strict ? d.objectIdMismatches : d.objectIdMismatchesOffEdge;
   const char* where = strict ? "" : " off edges";
   const auto separator = [&] { if (o.tellp() > 0) o << "; "; };
   if (double(radiance) > allowed) {
     o << "radiance: " << radiance << " px over the bound" << where << " (max |diff| " << d.maxRadianceDiff
-      << " of full scale, tolerance " << t.radiance << (t.epsilon > 0 ? " + texture slope x uv bound" : "")
+      << " of full scale, tolerance " << t.radiance << " x max(1, L)"
+      << (t.epsilon > 0 ? " + texture slope x uv bound + lights' terms" : "")
       << "; allowed " << allowed << " px)";
   }
   if (double(d.geometryOutliers) > allowed) {

@@ -83,6 +83,8 @@ double positionBound(const Tolerances& tolerances, double cosTheta, double D_m, 
 std::vector<CameraDifference> compareResults(const PreparedScene& scene, const RenderResult& reference,
                                              const RenderResult& test, const Tolerances& tolerances);
 
+// Off-edge outliers allowed in an image of `pixels` (0 where outlierFraction is 0).
+double allowedOutliers(const Tolerances& t, std::size_t pixels);
 bool withinTolerance(const CameraDifference& d, const Tolerances& t);
 
 // The statistic of `d` that judges a layer the GPU returns (by its slot in the layer schema,

@@ -11,32 +11,28 @@ double reflectanceMax(const PreparedObject& o) {
   return o.albedo * std::max(1.0, textures::maxValue(o.texture));
 }
 
-bool hasSpecularOrSpotTerms(const PreparedScene& scene, const PreparedObject& o) {
+double lightingRadianceBound(const PreparedScene& scene, const PreparedObject& o, const ShadingErrorInputs& in) {
   const reflectance::KindInfo& model = reflectance::kindInfo(o.shader);
-  if (!model.lit) return false;
-  if (model.specular) return true;
-  return std::any_of(scene.lights.begin(), scene.lights.end(),
-                     [](const PreparedLight& l) { return l.kind == LightKind::Spot; });
-}
-
-double specularRadianceBound(const PreparedScene& scene, const PreparedObject& o, const ShadingErrorInputs& in) {
-  if (!hasSpecularOrSpotTerms(scene, o)) return 0;
+  if (!model.lit) return 0;
   // The lobe's largest f_spec · cosθi and its relative slope (the model's home derives them).
-  const reflectance::LobeBound lobe = reflectance::lobeBound(o.shader, in.cosView);
-  const double maxValue = lobe.maxValue, slope = lobe.slope;
+  const reflectance::LobeBound lobe = model.specular ? reflectance::lobeBound(o.shader, in.cosView) : reflectance::LobeBound{};
   const double own = in.k * in.epsilon;
   const double normalError = own + in.normalSlope * in.positionBound_m;
   const double diffuseMax = in.reflectanceMax / kPi;
+  const double pointToCamera = glm::length(in.position - in.cameraCentre);
   double bound = 0;
   for (const PreparedLight& l : scene.lights) {
     if (l.kind == LightKind::Ambient) continue;
     const dvec3 toLight = l.position_m - in.position;
     const double r2 = glm::dot(toLight, toLight), r = std::sqrt(r2);
-    const double directionError = own + in.positionBound_m / r;
-    const double cosError = 4 * normalError + 3 * directionError;
-    double perLight = maxValue * slope * cosError;
+    // δx of the header: the vector to the light as the float shading has it.
+    const double inputError =
+        in.positionBound_m + 2 * in.epsilon * (pointToCamera + glm::length(l.position_m - in.cameraCentre) + r);
+    const double directionError = own + inputError / r;
+    double perLight = diffuseMax * (3 * inputError / r + in.normalSlope * in.positionBound_m);
+    if (model.specular) perLight += lobe.maxValue * lobe.slope * (4 * normalError + 3 * directionError);
     if (l.kind == LightKind::Spot)
-      perLight += (diffuseMax + maxValue) * 1.5 * directionError / (l.cosInner - l.cosOuter);
+      perLight += (diffuseMax + lobe.maxValue) * 1.5 * directionError / (l.cosInner - l.cosOuter);
     bound += l.intensity / r2 * perLight;
   }
   return bound;

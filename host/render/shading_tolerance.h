@@ -1,5 +1,6 @@
 #pragma once
-// The part of a pixel's CPU-vs-GPU radiance tolerance that the specular lobes and spot cones add
+// The part of a pixel's CPU-vs-GPU radiance tolerance that the lights' terms add: the errors of the
+// shading's inputs through the diffuse term, the specular lobes and the spot cones
 // (render/compare.cpp holds the rest). The GPU shades in `real`: float in the fp32 and df64
 // variants (lib/real.glsl), so both get the bound below with ε = 2⁻²⁴; fp64 has its absolute 1e-9.
 //
@@ -15,6 +16,18 @@
 // cos φ, which errs by kε + δP / r. Each term is weighted by what the light can deliver there,
 // I / r² times the largest lobe (and ρ_max/π for the spot's diffuse part). Shadows are not here:
 // a shadow edge is a discontinuity, counted among compare.cpp's off-edge outliers.
+//
+// The diffuse term I cos θ / r² (every lit model) moves with the same inputs: the point and the
+// light are shaded as camera-relative float vectors (lib/shading.glsl rounds the hit position,
+// df64's included, to `real`; the lights are stored so), so the vector to the light errs by
+// δx ≤ δP + ε (|P − C| + |L − C| + r) (each float vector within ε of its length, the difference
+// within ε r), doubled for the df64 → float conversion and the lights' own packing: the ε term
+// carries 2. Then δ(1/r²) r² ≤ 2 δx / r and δ cos θ ≤ δn + δx / r: the diffuse part errs by at
+// most ρ_max/π · I/r² · (3 δx / r + |∂n/∂P| δP). It matters where a lamp is close to the surface
+// compared with the camera's distance (the randomized campaign of 2026-11-27: a lamp 0.5 mm from a
+// plate 2 m away put df64 at 68 times its fixed 2e-6); the δx above also replaces δP in the
+// specular direction error. The fixed parts (kε of each operation) stay in compare.cpp's r0,
+// scaled there by the pixel's radiance.
 #include "geometry/prepared_scene.h"
 
 namespace dicsynth {
@@ -27,16 +40,14 @@ struct ShadingErrorInputs {
   double epsilon = 0;          // unit roundoff of the shading arithmetic
   double k = 0;                // roundoff steps allowed per quantity (compare.cpp's k)
   double reflectanceMax = 1;   // largest albedo × texture of the object (reflectanceMax below)
+  dvec3 cameraCentre{0};       // C: the GPU's coordinates are relative to it (gpu/pack.h)
 };
 
 // Largest diffuse reflectance albedo × texture of o (scans a file texture: compute once per object).
 double reflectanceMax(const PreparedObject& o);
 
-// Radiance bound (scene units, before exposure) of the specular and spot terms; 0 for
-// Constant objects and scenes without spot lights or specular shaders.
-double specularRadianceBound(const PreparedScene& scene, const PreparedObject& o, const ShadingErrorInputs& in);
-
-// Whether o's radiance has specular or spot terms at all (compare.cpp measures |∂n/∂P| only then).
-bool hasSpecularOrSpotTerms(const PreparedScene& scene, const PreparedObject& o);
+// Radiance bound (scene units, before exposure) of the point and spot lights' terms, diffuse,
+// specular and spot cone, from the errors of the shading inputs (above); 0 for unlit objects.
+double lightingRadianceBound(const PreparedScene& scene, const PreparedObject& o, const ShadingErrorInputs& in);
 
 }  // namespace dicsynth

@@ -68,6 +68,7 @@ FileLock::~FileLock() {
 
 ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
                               const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets,
+                              bool verifyChecksums,
                               const std::function<void(const SweepPoint&, const PointRecord&)>& otherKey) {
   FileLock lock((fs::path(outputDir) / ".manifest.lock").string(), true);
   ManifestSummary summary;
@@ -98,9 +99,11 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
     const std::string folder = (fs::path(outputDir) / folderName).string();
     const auto record = readPointRecord(folder);
     if (otherKey && record && record->index == p.index && record->key != keyOf(p)) otherKey(p, *record);
-    // The point's own files by size only (their checksums are verified when a run decides to skip
-    // a point); its assets by checksum, computed once per file and run.
-    if (!record || record->index != p.index || !pointFilesIntact(folder, *record, keyOf(p), false, assets)) continue;
+    // The point's own files by size, and by checksum when asked (a run verified the checksums of
+    // the points it skipped and wrote the others; --merge-only has seen none of them); its assets
+    // by checksum, computed once per file and run.
+    if (!record || record->index != p.index || !pointFilesIntact(folder, *record, keyOf(p), verifyChecksums, assets))
+      continue;
     std::string files, filesJson;
     for (const PointFile& f : record->files) {
       files += (files.empty() ? "" : " ") + folderName + "/" + f.name;

@@ -18,11 +18,14 @@ struct ManifestSummary {
 };
 
 // `keyOf` gives each point's key (a record with another key is not complete); `assets` checks the
-// records' assets (point_record.h). `otherKey`, when given, is called for each point whose record
+// records' assets (point_record.h). `verifyChecksums`: a point is listed only when its files have
+// their recorded CRC-32 too, not only their sizes (sweep --merge-only, the merge after shards;
+// a run's own rebuild lists what it has just checked or written). `otherKey`, when given, is called for each point whose record
 // holds another key, before the manifest is replaced: it may throw, and the manifest already there
 // then stays as it was. Throws Error naming a file that cannot be written.
 ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
                               const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets,
+                              bool verifyChecksums,
                               const std::function<void(const SweepPoint&, const PointRecord&)>& otherKey = {});
 
 // An exclusive advisory lock (flock) on a file, held while the object lives.

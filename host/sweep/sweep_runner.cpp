@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/progress.h"
@@ -47,7 +48,9 @@ Shard resolveShard(const std::string& option) {
     const auto slash = option.find('/');
     const auto i = slash == std::string::npos ? std::nullopt : parseInteger(option.substr(0, slash).c_str());
     const auto n = slash == std::string::npos ? std::nullopt : parseInteger(option.substr(slash + 1).c_str());
-    if (!i || !n || *n < 1 || *i < 0 || *i >= *n)
+    // strtoll skips leading blanks: " 0/2" is refused as --frames " 2" is (digits only).
+    const bool digitsOnly = option.find_first_not_of("0123456789/") == std::string::npos;
+    if (!digitsOnly || !i || !n || *n < 1 || *i < 0 || *i >= *n)
       throw InputError("--shard " + option + ": expected I/N with 0 <= I < N");
     return {*i, *n, "--shard " + option};
   }
@@ -217,12 +220,16 @@ void runSweep(const SweepRun& cmd) {
     unread.check(cmd.args.scenePath, plan.names);
   }
   createOutputDir(cmd.outputDir);  // writable: checkOutputWritable created a file where it goes
+  // A killed run's partial manifests (.manifest.csv.tmp<pid>_<n>.csv): the points' own are removed
+  // when a point is rendered again, these here.
+  removeStaleTemporaries(cmd.outputDir);
   sweep::AssetChecksums assets;
   if (cmd.mergeOnly) {
     // A point made with other options (a forgotten --spp, another scene) would silently drop out of
     // the manifest, and a good manifest be replaced by a shorter one: refused, the manifest untouched.
+    // Checksums verified: a merge after shards (a Slurm job's last step) must not list a damaged point.
     const auto summary = sweep::writeManifest(
-        cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets, [&](const SweepPoint& p, const sweep::PointRecord& r) {
+        cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets, true, [&](const SweepPoint& p, const sweep::PointRecord& r) {
           throw InputError("sweep --merge-only: " + pointFolderName(p.index) + " was rendered with other inputs: " +
                            keyDifference(r.key, keyFieldsOf(p)) +
                            ". Give the options the sweep was run with (the manifest is left as it was), or run the "
@@ -277,12 +284,16 @@ void runSweep(const SweepRun& cmd) {
     }
     // A finished point made with other inputs is rendered again (its files replaced): said once, with
     // what differs, since a forgotten option would otherwise replace a whole sweep unnoticed.
-    if (recorded && recorded->index == p.index && recorded->key != key && replaced++ == 0)
+    if (recorded && recorded->index == p.index && recorded->key != key && replaced++ == 0) {
       std::fprintf(stderr,
                    "dicsynth: warning: %s was rendered with other inputs (%s): it is rendered again, as is every "
                    "point whose record differs (stop now to keep them, and rerun with the options they were made "
-                   "with)\n",
+                   "with); the manifest, which lists the points as they were, is removed until this run rebuilds it\n",
                    pointFolderName(p.index).c_str(), keyDifference(recorded->key, keyFieldsOf(p)).c_str());
+      // An interrupted run would otherwise leave a manifest naming folders by values they no longer hold.
+      sweep::FileLock manifestLock((fs::path(cmd.outputDir) / ".manifest.lock").string(), true);
+      for (const char* name : {"manifest.csv", "manifest.json"}) fs::remove(fs::path(cmd.outputDir) / name, ec);
+    }
     auto job = std::make_shared<RenderJob>();
     job->sceneFile = cmd.args.scenePath;
     job->outputDir = folder;
@@ -336,7 +347,7 @@ void runSweep(const SweepRun& cmd) {
     });
   }
   finishWriting();
-  const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets);
+  const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets, false);
   const std::string replacedText =
       replaced ? " (" + std::to_string(replaced) + " of them replacing points rendered with other inputs)" : "";
   std::printf("sweep: %lld points%s: rendered %lld%s, already complete %lld, in progress elsewhere %lld; "

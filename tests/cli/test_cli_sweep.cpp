@@ -161,6 +161,25 @@ TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered ag
   const test::CliResult merged = runCli("sweep " + scene + " -o " + out + kFast + " --merge-only");
   CHECK(merged.out == "manifest: 6 of 6 points complete (" + out + "/manifest.csv, manifest.json)\n");
   CHECK(readText(out + "/manifest.csv") == manifest);
+  // A damaged file of the same size: --merge-only verifies the checksums too (the sweep audit of
+  // 2026-11-27: it listed such a point, and a Slurm merge job passed on corrupted data), and a
+  // killed merge's partial manifests (.manifest.csv.tmp<pid>_<n>.csv) are removed by the next run.
+  {
+    const std::string tif = readText(out + "/point_00005/cam.tif");
+    std::string damaged = tif;
+    damaged[damaged.size() / 2] ^= 0x55;
+    std::ofstream(out + "/point_00005/cam.tif", std::ios::binary) << damaged;
+    const std::string stale = out + "/.manifest.csv.tmp999999998_0.csv";  // no such process
+    std::ofstream(stale) << "index,folder\n0,point_";
+    const test::CliResult checked = runCli("sweep " + scene + " -o " + out + kFast + " --merge-only");
+    CHECK(checked.out == "manifest: 5 of 6 points complete (" + out + "/manifest.csv, manifest.json)\n");
+    CHECK(readText(out + "/manifest.csv").find("point_00005") == std::string::npos);
+    CHECK(!std::filesystem::exists(stale));
+    std::ofstream(out + "/point_00005/cam.tif", std::ios::binary) << tif;  // mended: listed again
+    CHECK(runCli("sweep " + scene + " -o " + out + kFast + " --merge-only").out ==
+          "manifest: 6 of 6 points complete (" + out + "/manifest.csv, manifest.json)\n");
+    CHECK(readText(out + "/manifest.csv") == manifest);
+  }
   // --merge-only with an option forgotten (another key) would list none of the points: refused,
   // naming what differs, the manifest left as it was (found by the 2026-11-27 audit: it was
   // replaced by an empty one, exit 0). A folder that does not exist is refused, not created.
@@ -185,6 +204,28 @@ TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered ag
   const auto in = OIIO::ImageInput::open(out + "/point_00004/cam.exr");
   REQUIRE(in);
   CHECK(in->spec().get_string_attribute("compression") == "rle");
+}
+
+TEST_CASE("cli: sweep removes the manifest before it replaces a point made with other inputs") {
+  // An interrupted rerun with other inputs left the old manifest naming folders by values they no
+  // longer held (the sweep audit of 2026-11-27). Here the rerun stops at its third point (a scene
+  // error for that value only), after replacing the second: no manifest is left to mislead.
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua",
+      "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+      "shift = shift or 0\n"
+      "if shift > 0.0015 then error('too far') end\n"
+      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {shift, 0, 0.5} } }\n");
+  const std::string out = dir.file("out");
+  REQUIRE(runCli("sweep " + scene + " -o " + out + kFast + " --sweep shift=0:0.001:3").exitCode == 0);
+  REQUIRE(std::filesystem::exists(out + "/manifest.csv"));
+  const test::CliResult r = runCli("sweep " + scene + " -o " + out + kFast + " --sweep shift=0:0.002:3");
+  INFO(r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("the manifest, which lists the points as they were, is removed until this run rebuilds it") !=
+        std::string::npos);
+  CHECK(!std::filesystem::exists(out + "/manifest.csv"));
+  CHECK(!std::filesystem::exists(out + "/manifest.json"));
 }
 
 TEST_CASE("cli: sweep shards write one folder safely and merge to the single-process manifest") {

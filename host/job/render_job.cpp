@@ -12,6 +12,8 @@
 #include <future>
 #include <limits>
 #include <memory>
+#include <atomic>
+#include <chrono>
 #include <optional>
 #include <set>
 #include <utility>
@@ -100,7 +102,18 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   LayerSources sources;
   UnreadDefines unread;  // a define may be read in some frames only (`frame >= 1 and ...`)
   std::vector<std::string> firstCalibration;
+  // Long frame ranges take a while here (a million frames: ~45 s before the first render, silent,
+  // in the sweep audit of 2026-11-27): progress as the render's (a log's quiet lines once the check
+  // has taken ProgressBar::kQuietSeconds); on a terminal only once it has taken 2 s, so that the
+  // usual short ranges draw no bar of their own.
+  std::optional<ProgressBar> bar;
+  const bool terminal = stderrIsTerminal();
+  const auto checkStart = std::chrono::steady_clock::now();
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
+    if (!bar && !job.progressLabel.empty() && job.frames.size() > 1 &&
+        (!terminal || (fi % 64 == 63 && std::chrono::steady_clock::now() - checkStart > std::chrono::seconds(2))))
+      bar.emplace("check", "frames", std::int64_t(job.frames.size()), terminal);
+    if (bar) bar->update(std::int64_t(fi));
     const Scene scene = loadFrameScene(job, job.frames[fi], false);
     unread.add(scene);
     checkNurbsFitsDevice(session, scene);
@@ -114,6 +127,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     if (fi == 0) firstCalibration = std::move(calibration);
     else if (calibration != firstCalibration) out.calibrationPerFrame = true;
   }
+  if (bar) bar->update(std::int64_t(job.frames.size()));
   unread.check(job.sceneFile, job.sweepParameters);
   checkLayersProducible(job.layers, sources);
   // Memory: measured ~220 bytes per pixel for a frame rendered on the GPU path with every layer
@@ -192,11 +206,19 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
     const CameraImage& image = result.cameras[c];
     // An image of background only is nearly always a mistake (a camera turned away, an object behind
     // it or out of view): said, not refused (every pixel centre is traced on both backends).
-    if (std::none_of(image.objectId.begin(), image.objectId.end(), [](std::uint32_t id) { return id != 0; }))
-      std::fprintf(stderr,
-                   "dicsynth: warning: camera %s, frame %d: no pixel centre sees an object (the image is all "
-                   "background): check the camera's pose and the objects' locations\n",
-                   cam.name.c_str(), frame);
+    // At most kEmptyImageWarnings per process: a long run whose object leaves the view printed it for
+    // every frame (a million lines in a sweep audit of 2026-11-27).
+    constexpr int kEmptyImageWarnings = 10;
+    static std::atomic<int> emptyImages{0};
+    if (std::none_of(image.objectId.begin(), image.objectId.end(), [](std::uint32_t id) { return id != 0; })) {
+      const int n = ++emptyImages;
+      if (n <= kEmptyImageWarnings)
+        std::fprintf(stderr,
+                     "dicsynth: warning: camera %s, frame %d: no pixel centre sees an object (the image is all "
+                     "background): check the camera's pose and the objects' locations%s\n",
+                     cam.name.c_str(), frame,
+                     n == kEmptyImageWarnings ? " (further images of background only are not reported)" : "");
+    }
     const CameraFrame derived = deriveCamera(job, rendered, scene, c, *reference);
     const std::string stem = outputStem(cam.name, job.numbered, frame);
     const OutputFiles files =

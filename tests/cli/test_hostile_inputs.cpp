@@ -178,6 +178,11 @@ TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme 
       {"render " + huge + " -o " + out, "huge.lua: a frame of 4294836225 pixels (all cameras) needs about"},
       {"render " + scene + " -o /proc/dicsynth-test", "-o /proc/dicsynth-test: /proc is not writable"},
       {"render " + scene + " -o " + scene + "/sub", "is not a folder"},
+      // The sweep audit of 2026-11-27: an empty --frames rendered one unnumbered frame, a --shard with
+      // a leading blank was read as the number.
+      {"render " + scene + " -o " + out + " --frames ''", "--frames: expected A:B or N, got nothing"},
+      {"sweep " + scene + " -o " + out + " --sweep g=1,2 --frames ''", "--frames: expected A:B or N, got nothing"},
+      {"sweep " + scene + " -o " + out + " --sweep g=1,2 --shard ' 0/2'", "--shard  0/2: expected I/N with 0 <= I < N"},
   };
   for (const Case& c : cases) {
     const auto start = std::chrono::steady_clock::now();
@@ -402,6 +407,18 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
   const test::CliResult empty = test::runCli("render " + behind + " -o " + dir.file("behind") + " --backend cpu");
   CHECK(empty.exitCode == 0);
   CHECK(empty.err.find("warning: camera cam, frame 0: no pixel centre sees an object") != std::string::npos);
+  // Said at most 10 times a run: a long run whose object leaves the view printed it for every frame
+  // (a million lines in the sweep audit of 2026-11-27).
+  const test::CliResult many = test::runCli("render " + behind + " -o " + dir.file("behind12") + " --backend cpu --frames 0:11");
+  CHECK(many.exitCode == 0);
+  std::size_t warnings = 0;
+  for (std::size_t at = many.err.find("no pixel centre sees an object"); at != std::string::npos;
+       at = many.err.find("no pixel centre sees an object", at + 1))
+    ++warnings;
+  CHECK(warnings == 10);
+  CHECK(many.err.find("frame 9: no pixel centre sees an object") != std::string::npos);
+  CHECK(many.err.find("(further images of background only are not reported)") != std::string::npos);
+  CHECK(many.err.find("frame 10: no pixel centre") == std::string::npos);
   const std::string reads = dir.write("reads.lua", plateWith("Texture.Constant { value = 0.5 }") + "local g = gain\n");
   const test::CliResult seen = test::runCli("render " + reads + " -o " + dir.file("seen") + " --backend cpu --layers image --preview -D gain=0,5");
   CHECK(seen.exitCode == 0);

@@ -369,12 +369,17 @@ Precision RenderSession::precision() {
 
 // A run either completes its output set or leaves the folder as it found it: on failure, the
 // files that did not exist before the run, and the folder if the run created it (when empty), are
-// removed. Files the run overwrote cannot be given back (the README says so).
+// removed, with the folders above it that the run created for it (-o new/a/b on a full disk left
+// new/a behind: sweep audit of 2026-11-27). Files the run overwrote cannot be given back (the README says so).
 class OutputRollback {
  public:
   explicit OutputRollback(std::string dir) : dir_(std::move(dir)) {
     std::error_code ec;
     existed_ = std::filesystem::is_directory(dir_, ec);
+    // The nearest folder above that exists now: the run creates those in between.
+    existing_ = std::filesystem::absolute(dir_, ec).lexically_normal();
+    while (!std::filesystem::exists(existing_, ec) && existing_.has_parent_path() && existing_ != existing_.parent_path())
+      existing_ = existing_.parent_path();
     if (existed_)
       for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) before_.insert(entry.path().filename().string());
   }
@@ -386,12 +391,19 @@ class OutputRollback {
     for (const auto& entry : std::filesystem::directory_iterator(dir_, ec))
       if (!before_.count(entry.path().filename().string()) && !entry.is_symlink(ec)) added.push_back(entry.path());
     for (const auto& path : added) std::filesystem::remove_all(path, ec);
-    if (!existed_) std::filesystem::remove(dir_, ec);  // only when empty: remove() does not recurse
+    if (existed_) return;
+    // Only when empty: remove() does not recurse.
+    std::filesystem::path created = std::filesystem::absolute(dir_, ec).lexically_normal();
+    if (created.filename().empty()) created = created.parent_path();  // "out/"
+    for (std::filesystem::path p = created;
+         p != existing_ && p.has_parent_path() && p != p.parent_path() && std::filesystem::remove(p, ec); p = p.parent_path()) {
+    }
   }
   void keep() { kept_ = true; }
 
  private:
   std::string dir_;
+  std::filesystem::path existing_;
   bool existed_ = false, kept_ = false;
   std::set<std::string> before_;
 };

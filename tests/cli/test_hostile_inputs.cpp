@@ -275,6 +275,12 @@ TEST_CASE("hostile: a run that fails leaves the folder as it found it, and stale
   CHECK(r.exitCode == 2);
   CHECK(r.err.find("non-finite texel") != std::string::npos);
   CHECK(!std::filesystem::exists(dir.file("fresh")));  // created by the run: gone with it
+  // So are the folders above it that the run created (the sweep audit of 2026-11-27: -o new/a/b
+  // left new/a), while an existing folder above stays.
+  const test::CliResult nested = test::runCli("render " + scene + " -o " + dir.file("new/a/b/") + " --frames 0:1 --backend cpu");
+  CHECK(nested.exitCode == 2);
+  CHECK(!std::filesystem::exists(dir.file("new")));
+  CHECK(std::filesystem::is_directory(dir.path()));
 
   // A folder that existed keeps what it held; the run's new files go; a dead run's temporary goes,
   // a live process's stays.

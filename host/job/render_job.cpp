@@ -305,6 +305,19 @@ void checkOutputWritable(const std::string& dir) {
   // mount). Nothing else is created.
   std::error_code ec;
   std::filesystem::path at = std::filesystem::absolute(dir, ec);
+  // The files go below it: a name of up to 255 bytes (camera names are held to that, with a
+  // temporary suffix while written) and, in a sweep, a point folder. The system's limits (PATH_MAX
+  // 4096 bytes for a path, NAME_MAX 255 for a component) would otherwise stop the run mid-way, or
+  // with a raw "File name too long" (sweep audit of 2026-11-27: exit 3 after work at 4058 bytes).
+  constexpr std::size_t kPathMax = 4096, kNameMax = 255, kBelow = 1 + kNameMax + 1 + 16;
+  for (const auto& component : at)
+    if (component.native().size() > kNameMax)
+      throw InputError("-o " + dir.substr(0, 60) + "...: a folder name of " + std::to_string(component.native().size()) +
+                       " bytes, over the system's limit of 255");
+  if (at.native().size() + kBelow >= kPathMax)
+    throw InputError("-o " + dir.substr(0, 60) + "...: the folder's path is " + std::to_string(at.native().size()) +
+                     " bytes long; with the files' names below it, paths would pass the system's limit of 4096 "
+                     "bytes: use a shorter path (at most " + std::to_string(kPathMax - kBelow - 1) + " bytes)");
   while (!std::filesystem::exists(at, ec) && at.has_parent_path() && at != at.parent_path()) at = at.parent_path();
   if (!std::filesystem::is_directory(at, ec))
     throw InputError("-o " + dir + ": cannot create the output folder: " + at.string() + " is not a folder");

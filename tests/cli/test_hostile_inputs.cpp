@@ -167,6 +167,8 @@ TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme 
   const std::string huge = dir.write("huge.lua", "cam = Camera.Pinhole { resolution = {65535, 65535}; focalLength = 0.012; "
                                                  "pixelSize = {2e-6, 2e-6} }\n");
   const std::string device = dir.write("device.lua", plateWith("Texture.File { fileName = '/dev/zero' }"));
+  std::string longPath;  // 19 folders of 200 bytes: 3819 bytes, plus the temporary folder's path
+  for (int k = 0; k < 19; ++k) longPath += "/" + std::string(200, char('a' + k));
   const std::vector<Case> cases = {
       {"render " + scene + " -o " + out + " --frames 0:2147483647", "--frames 0:2147483647: frame numbers go up to 999999999"},
       {"render " + scene + " -o " + out + " --frames 0:1000000", "1000001 frames, over the limit of 1000000 per run"},
@@ -181,6 +183,11 @@ TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme 
       // The sweep audit of 2026-11-27: an empty --frames rendered one unnumbered frame, a --shard with
       // a leading blank was read as the number.
       {"render " + scene + " -o " + out + " --frames ''", "--frames: expected A:B or N, got nothing"},
+      // Paths the system cannot hold with the files' names (sweep audit: exit 3 mid-run, or a raw
+      // "File name too long"); checked before work.
+      {"render " + scene + " -o " + out + "/" + std::string(256, 'n'), "a folder name of 256 bytes, over the system's limit of 255"},
+      {"render " + scene + " -o " + out + longPath, "bytes long; with the files' names below it, paths would pass the system's limit"},
+      {"sweep " + scene + " --sweep g=1,2 -o " + out + longPath, "bytes long; with the files' names below it, paths would pass the system's limit"},
       {"sweep " + scene + " -o " + out + " --sweep g=1,2 --frames ''", "--frames: expected A:B or N, got nothing"},
       {"sweep " + scene + " -o " + out + " --sweep g=1,2 --shard ' 0/2'", "--shard  0/2: expected I/N with 0 <= I < N"},
   };

@@ -25,6 +25,12 @@ void addExrCompressionOption(CLI::App& app, std::string& compression) {
       ->capture_default_str();
 }
 
+void addFramesOption(CLI::App& app, std::string& frames, const std::string& help) {
+  app.add_option("--frames", frames, help)
+      ->check(CLI::Validator(
+          [](const std::string& v) { return v.empty() ? std::string("expected A:B or N, got nothing") : std::string(); }, ""));
+}
+
 void addLayersOption(CLI::App& app, std::string& layers) {
   // The names from the layer schema (model/layers.h), so the help cannot miss one.
   std::string names;

@@ -15,6 +15,10 @@ void addRenderArgs(CLI::App& app, RenderArgs& args);
 // --exr-compression: how the ground-truth EXR is compressed (render, sweep).
 void addExrCompressionOption(CLI::App& app, std::string& compression);
 
+// --frames A:B or N (render, sweep; parsed by job/render_args.h's parseFrames). Given empty it is
+// refused here: an empty value would read as "not given" and render one unnumbered frame.
+void addFramesOption(CLI::App& app, std::string& frames, const std::string& help);
+
 // --layers: which outputs are computed and written (render, sweep; model/layers.h).
 void addLayersOption(CLI::App& app, std::string& layers);
 

@@ -59,9 +59,7 @@ void addRenderCommand(CLI::App& root, RunFn& run) {
   sub->add_option("--backend", cmd->backend, "gpu (Vulkan) or cpu (double-precision reference)")
       ->check(CLI::IsMember({"gpu", "cpu"}))
       ->capture_default_str();
-  sub->add_option("--frames", cmd->frames,
-                  "Frames A:B (both included) or N; sets the scene global `frame` and numbers the files")
-      ->check(CLI::Validator([](const std::string& v) { return v.empty() ? std::string("expected A:B or N, got nothing") : std::string(); }, ""));
+  addFramesOption(*sub, cmd->frames, "Frames A:B (both included) or N; sets the scene global `frame` and numbers the files");
   addExrCompressionOption(*sub, cmd->exrCompression);
   addLayersOption(*sub, cmd->layers);
   sub->add_option("--reference-frame", cmd->referenceFrame,

@@ -16,8 +16,7 @@ void addSweepCommand(CLI::App& root, RunFn& run) {
   sub->add_option("--backend", cmd->backend, "gpu (Vulkan) or cpu (double-precision reference)")
       ->check(CLI::IsMember({"gpu", "cpu"}))
       ->capture_default_str();
-  sub->add_option("--frames", cmd->frames, "Frames A:B or N of every point (as render --frames)")
-      ->check(CLI::Validator([](const std::string& v) { return v.empty() ? std::string("expected A:B or N, got nothing") : std::string(); }, ""));
+  addFramesOption(*sub, cmd->frames, "Frames A:B or N of every point (as render --frames)");
   sub->add_option("--reference-frame", cmd->referenceFrame,
                   "Frame whose pixels the motion ground truth (disp, flow) starts from, in every point; one of "
                   "--frames (default: the first)");

@@ -18,6 +18,12 @@ namespace dicsynth::sweep {
 namespace fs = std::filesystem;
 namespace {
 
+// DIR/manifest.csv, DIR/manifest.json, and the lock their writers and removers take.
+std::string manifestPath(const std::string& outputDir, const char* extension) {
+  return (fs::path(outputDir) / (std::string("manifest.") + extension)).string();
+}
+std::string manifestLockPath(const std::string& outputDir) { return (fs::path(outputDir) / ".manifest.lock").string(); }
+
 // RFC 4180: a field with a comma, quote, space or line break is quoted, quotes doubled.
 std::string csvField(const std::string& s) {
   if (s.find_first_of(",\" \r\n") == std::string::npos) return s;
@@ -66,17 +72,24 @@ FileLock::~FileLock() {
   if (fd_ >= 0) ::close(fd_);  // closing releases the lock
 }
 
+void removeManifest(const std::string& outputDir) {
+  FileLock lock(manifestLockPath(outputDir), true);
+  std::error_code ec;
+  fs::remove(manifestPath(outputDir, "csv"), ec);
+  fs::remove(manifestPath(outputDir, "json"), ec);
+}
+
 ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
                               const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets,
                               bool verifyChecksums,
                               const std::function<void(const SweepPoint&, const PointRecord&)>& otherKey) {
-  FileLock lock((fs::path(outputDir) / ".manifest.lock").string(), true);
+  FileLock lock(manifestLockPath(outputDir), true);
   ManifestSummary summary;
   summary.total = plan.count;
   // Streamed point by point: the manifest of a long sweep is never held in memory (a sweep's peak
   // memory must not grow with its points; bench/RESULTS.md, "Sweeps").
-  AtomicFile csvFile((fs::path(outputDir) / "manifest.csv").string());
-  AtomicFile jsonFile((fs::path(outputDir) / "manifest.json").string());
+  AtomicFile csvFile(manifestPath(outputDir, "csv"));
+  AtomicFile jsonFile(manifestPath(outputDir, "json"));
   TextWriter csv(csvFile), js(jsonFile);
 
   std::string head = "index,folder";

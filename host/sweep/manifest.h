@@ -28,6 +28,10 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
                               bool verifyChecksums,
                               const std::function<void(const SweepPoint&, const PointRecord&)>& otherKey = {});
 
+// Removes the manifest (under its lock), for a run that starts replacing points it lists: an
+// interrupted run then leaves none rather than one naming folders by values they no longer hold.
+void removeManifest(const std::string& outputDir);
+
 // An exclusive advisory lock (flock) on a file, held while the object lives.
 class FileLock {
  public:

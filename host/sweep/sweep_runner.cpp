@@ -290,9 +290,7 @@ void runSweep(const SweepRun& cmd) {
                    "point whose record differs (stop now to keep them, and rerun with the options they were made "
                    "with); the manifest, which lists the points as they were, is removed until this run rebuilds it\n",
                    pointFolderName(p.index).c_str(), keyDifference(recorded->key, keyFieldsOf(p)).c_str());
-      // An interrupted run would otherwise leave a manifest naming folders by values they no longer hold.
-      sweep::FileLock manifestLock((fs::path(cmd.outputDir) / ".manifest.lock").string(), true);
-      for (const char* name : {"manifest.csv", "manifest.json"}) fs::remove(fs::path(cmd.outputDir) / name, ec);
+      sweep::removeManifest(cmd.outputDir);
     }
     auto job = std::make_shared<RenderJob>();
     job->sceneFile = cmd.args.scenePath;

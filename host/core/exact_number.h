@@ -13,6 +13,11 @@ inline std::string exactNumber(double value) {
   return std::string(buffer, result.ptr);
 }
 
+// exactNumber, with a zero written "0", never "-0" (a camera at the origin: t = -R C; R's zero
+// entries after a product): the same value for every reader, and what a person expects to read.
+// For calibration files and headers; not for keys, whose text must stay as earlier runs wrote it.
+inline std::string exactNumberPlainZero(double value) { return exactNumber(value == 0 ? 0.0 : value); }
+
 // The shortest text that reads back as the same double ("0.04", "-3", "inf", "nan"): for messages.
 // A NaN is "nan" whatever its sign bit (Lua's 0/0 is a negative NaN on x86: "-nan" reads as a
 // number that is negative).

@@ -27,14 +27,10 @@
 namespace dicsynth {
 namespace {
 
-// A zero is written "0", never "-0" (a camera at the origin, R's zero entries after a product):
-// the same value for every reader, and what a user expects to read.
-std::string calibrationNumber(double value) { return exactNumber(value == 0 ? 0.0 : value); }
-
 template <class Container>
 std::string numberList(const Container& values, const char* separator) {
   std::string text;
-  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? separator : "") + calibrationNumber(values[i]);
+  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? separator : "") + exactNumberPlainZero(values[i]);
   return text;
 }
 
@@ -82,7 +78,7 @@ std::string yamlLens(const Camera& camera, const std::string& side) {
       [&side](const auto& kind) {
         if (kind.kOpenCv) return std::string();
         std::string text = yamlString("camera_model" + side, kind.kModelName);
-        for (const auto& [name, value] : kind.header()) text += name + side + ": " + calibrationNumber(value) + "\n";
+        for (const auto& [name, value] : kind.header()) text += name + side + ": " + exactNumberPlainZero(value) + "\n";
         return text;
       },
       camera.model);
@@ -134,16 +130,16 @@ std::string diceCamera(int index, const Camera& camera, const std::array<double,
   const std::pair<const char*, double> intrinsics[] = {
       {"CX", K[2]}, {"CY", K[5]}, {"FX", K[0]}, {"FY", K[4]}, {"FS", K[1]},
       {"K1", d[0]}, {"K2", d[1]}, {"K3", d[4]}, {"P1", d[2]}, {"P2", d[3]}};
-  for (const auto& [name, value] : intrinsics) xml += xmlParameter(name, "double", calibrationNumber(value));
+  for (const auto& [name, value] : intrinsics) xml += xmlParameter(name, "double", exactNumberPlainZero(value));
   // OpenCV's rational and thin-prism terms, under DICe's names for them.
   const char* more[] = {"K4", "K5", "K6", "S1", "S2", "S3", "S4"};
-  for (std::size_t i = 5; i < d.size(); ++i) xml += xmlParameter(more[i - 5], "double", calibrationNumber(d[i]));
+  for (std::size_t i = 5; i < d.size(); ++i) xml += xmlParameter(more[i - 5], "double", exactNumberPlainZero(d[i]));
   xml += xmlParameter("LENS_DISTORTION_MODEL", "string",
                       camera.distortion.kind != DistortionKind::None ? "OPENCV_LENS_DISTORTION"
                                                                       : "NO_LENS_DISTORTION");
-  xml += xmlParameter("TX", "double", calibrationNumber(T[0]));
-  xml += xmlParameter("TY", "double", calibrationNumber(T[1]));
-  xml += xmlParameter("TZ", "double", calibrationNumber(T[2]));
+  xml += xmlParameter("TX", "double", exactNumberPlainZero(T[0]));
+  xml += xmlParameter("TY", "double", exactNumberPlainZero(T[1]));
+  xml += xmlParameter("TZ", "double", exactNumberPlainZero(T[2]));
   xml += "<ParameterList name=\"rotation_3x3_matrix\">\n";
   for (int row = 0; row < 3; ++row) {
     const std::array<double, 3> values = {R[3 * row], R[3 * row + 1], R[3 * row + 2]};

@@ -58,7 +58,7 @@ std::string formatNumbers(const Container& values) {
   std::string text;
   for (double v : values) {
     if (!text.empty()) text += ' ';
-    text += exactNumber(v == 0 ? 0.0 : v);  // "0", never "-0" (as in the calibration files)
+    text += exactNumberPlainZero(v);
   }
   return text;
 }

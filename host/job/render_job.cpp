@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,8 +14,6 @@
 #include <future>
 #include <limits>
 #include <memory>
-#include <atomic>
-#include <chrono>
 #include <optional>
 #include <set>
 #include <utility>
@@ -242,6 +242,14 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
   }
 }
 
+// The nearest folder at or above the absolute `path` that exists: a run creates those below it.
+std::filesystem::path nearestExistingFolder(std::filesystem::path path) {
+  std::error_code ec;
+  while (!std::filesystem::exists(path, ec) && path.has_parent_path() && path != path.parent_path())
+    path = path.parent_path();
+  return path;
+}
+
 }  // namespace
 
 const PreparedScene& frameScene(const RenderJob& job, RenderedFrame& rendered, bool first,
@@ -318,7 +326,7 @@ void checkOutputWritable(const std::string& dir) {
     throw InputError("-o " + dir.substr(0, 60) + "...: the folder's path is " + std::to_string(at.native().size()) +
                      " bytes long; with the files' names below it, paths would pass the system's limit of 4096 "
                      "bytes: use a shorter path (at most " + std::to_string(kPathMax - kBelow - 1) + " bytes)");
-  while (!std::filesystem::exists(at, ec) && at.has_parent_path() && at != at.parent_path()) at = at.parent_path();
+  at = nearestExistingFolder(at);
   if (!std::filesystem::is_directory(at, ec))
     throw InputError("-o " + dir + ": cannot create the output folder: " + at.string() + " is not a folder");
   const std::string probe = (at / ".dicsynth-write-test-XXXXXX").string();
@@ -389,10 +397,9 @@ class OutputRollback {
   explicit OutputRollback(std::string dir) : dir_(std::move(dir)) {
     std::error_code ec;
     existed_ = std::filesystem::is_directory(dir_, ec);
-    // The nearest folder above that exists now: the run creates those in between.
-    existing_ = std::filesystem::absolute(dir_, ec).lexically_normal();
-    while (!std::filesystem::exists(existing_, ec) && existing_.has_parent_path() && existing_ != existing_.parent_path())
-      existing_ = existing_.parent_path();
+    created_ = std::filesystem::absolute(dir_, ec).lexically_normal();
+    if (created_.filename().empty()) created_ = created_.parent_path();  // "out/"
+    existing_ = nearestExistingFolder(created_);  // the run creates the folders below it
     if (existed_)
       for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) before_.insert(entry.path().filename().string());
   }
@@ -406,9 +413,7 @@ class OutputRollback {
     for (const auto& path : added) std::filesystem::remove_all(path, ec);
     if (existed_) return;
     // Only when empty: remove() does not recurse.
-    std::filesystem::path created = std::filesystem::absolute(dir_, ec).lexically_normal();
-    if (created.filename().empty()) created = created.parent_path();  // "out/"
-    for (std::filesystem::path p = created;
+    for (std::filesystem::path p = created_;
          p != existing_ && p.has_parent_path() && p != p.parent_path() && std::filesystem::remove(p, ec); p = p.parent_path()) {
     }
   }
@@ -416,7 +421,7 @@ class OutputRollback {
 
  private:
   std::string dir_;
-  std::filesystem::path existing_;
+  std::filesystem::path created_, existing_;  // the output folder (absolute), and the folder above it that existed
   bool existed_ = false, kept_ = false;
   std::set<std::string> before_;
 };

@@ -257,12 +257,30 @@ TEST_CASE("df64: the self-test is cached per device and ignores a damaged cache 
   // rewritten.
   const std::string badNumber = edited("mul", [](Json::Value& op) { op["max_rel_error"] = "0x1pZZ"; });
   const std::string missing = edited("mul", [](Json::Value& op) { op.removeMember("inputs"); });
-  for (const std::string& damaged : {std::string("not a cache\n"), valid.substr(0, valid.size() / 2), badNumber, missing}) {
+  const std::string noBound = edited("div", [](Json::Value& op) { op.removeMember("bound"); });
+  for (const std::string& damaged :
+       {std::string("not a cache\n"), valid.substr(0, valid.size() / 2), badNumber, missing, noBound}) {
     test::writeBytes(first.cachePath, damaged);
     const gpu::Df64SelfTest remeasured = gpu::runDf64SelfTest(ctx);
     CHECK_FALSE(remeasured.fromCache);
     CHECK(remeasured.passed);
     CHECK(gpu::runDf64SelfTest(ctx).fromCache);  // rewritten
+  }
+
+  // div's and sqrt's bounds follow the device's float division and sqrt, measured with the errors:
+  // the cache keeps them. Before it did, a cached read gave the bounds of correctly rounded ones (on
+  // an NVIDIA H200: div 4.3e-14 read back where 7.1e-14 was measured). A bound other than this
+  // device's is read back as written.
+  {
+    double divBound = 0;
+    for (const gpu::Df64OpError& e : first.dekker)
+      if (e.name == "div") divBound = e.bound;
+    REQUIRE(divBound > 0);
+    test::writeBytes(first.cachePath, edited("div", [divBound](Json::Value& op) { op["bound"] = 1.5 * divBound; }));
+    const gpu::Df64SelfTest looser = gpu::runDf64SelfTest(ctx);
+    CHECK(looser.fromCache);
+    for (const gpu::Df64OpError& e : looser.dekker)
+      if (e.name == "div") CHECK(e.bound == 1.5 * divBound);
   }
 
   // A valid entry claiming a failure: requireDf64 refuses df64, naming the operation, error, bound.

@@ -77,6 +77,7 @@ std::string toJson(const CompareItem& item, const RenderResult& cpu, const Rende
     c["radiance_outliers_off_edge"] = Json::UInt64(d.radianceOutliersOffEdge);
     c["object_id_mismatches"] = Json::UInt64(d.objectIdMismatches);
     c["object_id_mismatches_off_edge"] = Json::UInt64(d.objectIdMismatchesOffEdge);
+    c["object_ties"] = Json::UInt64(d.objectTies);
     c["max_uv_diff"] = json::value(d.maxUvDiff);
     c["max_P_diff_m"] = json::value(d.maxPositionDiff_m);
     c["max_Z_diff_m"] = json::value(d.maxDepthDiff_m);
@@ -115,12 +116,13 @@ std::string format(const char* fmt, auto... values) {
 std::string cameraText(const CameraDifference& d, const Tolerances& tol) {
   return format(
       "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, over tolerance %.3g: %zu px (%zu off edges);"
-      " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px (%zu off edges); max |duv| %.3g,"
+      " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px (%zu off edges),"
+      " ties %zu px; max |duv| %.3g,"
       " max |dP| %.3g m, max |dZ| %.3g m, max |dN| %.3g; worst error/bound %.3g, over bound: %zu px\n"
       "    wrong nearest hits: %zu px (miss %zu, extra hit %zu, other object %zu, farther root %zu, nearer root %zu)\n",
       d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff, tol.radiance,
       d.radianceOutliers, d.radianceOutliersOffEdge, d.pixelsDiffering, d.objectIdMismatches,
-      d.objectIdMismatchesOffEdge, d.maxUvDiff, d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxNormalDiff, d.maxGeometryRatio,
+      d.objectIdMismatchesOffEdge, d.objectTies, d.maxUvDiff, d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxNormalDiff, d.maxGeometryRatio,
       d.geometryOutliers, d.wrongNearestHits(), d.wrongMiss, d.wrongExtraHit, d.wrongOtherObject, d.wrongFartherRoot,
       d.wrongNearerRoot);
 }

@@ -217,7 +217,7 @@ TEST_CASE("cpu-vs-gpu: switching features off by specialization changes no pixel
     // Identical arithmetic on the paths that run; only dead code differs. The specialized pipeline
     // of this scene without NURBS is also made from the module compiled without the NURBS search
     // (gpu::renderSpirv), the general one from the module with it.
-    test::checkIdenticalResults(scene, general, specialized);
+    test::checkSameArithmetic(scene, general, specialized, p);
   }
   test::expectNoValidationMessages();
 }
@@ -244,7 +244,7 @@ TEST_CASE("cpu-vs-gpu: without a radiance layer only the ground-truth ray is tra
         CHECK(std::all_of(radiance.begin(), radiance.end(), [](double r) { return r == 0.0; }));
         withRadiance.cameras[c].radiance = a.cameras[c].radiance;
       }
-      test::checkIdenticalResults(scene, a, withRadiance);
+      test::checkSameArithmetic(scene, a, withRadiance, p);
     }
     RenderResult cpuTruth = cpu::render(scene, truthOnly);
     const RenderResult cpuFull = cpu::render(scene, full);
@@ -271,7 +271,7 @@ TEST_CASE("compare: wrong nearest hits are counted by kind") {
   CameraImage& image = altered.cameras[0];
   std::vector<std::size_t> hits, misses;
   for (std::size_t i = 0; i < image.pixelCount(); ++i) (image.objectId[i] != 0 ? hits : misses).push_back(i);
-  REQUIRE(hits.size() >= 4);
+  REQUIRE(hits.size() >= 5);
   REQUIRE(!misses.empty());
   const Camera& cam = scene.cameras[0].camera;
   const dvec3 centre = scene.cameras[0].model.centre;
@@ -283,9 +283,11 @@ TEST_CASE("compare: wrong nearest hits are counted by kind") {
   image.objectId[hits[0]] = 0;  // miss
   image.objectId[misses[0]] = 1;  // extra hit
   image.position_m[misses[0]] = dvec3(0, 0, 0.3);
-  image.objectId[hits[1]] = 99;  // other object
+  image.objectId[hits[1]] = 99;  // other object, in front
+  moveAlongRay(hits[1], -0.01);
   moveAlongRay(hits[2], 0.01);   // farther root
   moveAlongRay(hits[3], -0.01);  // nearer root
+  image.objectId[hits[4]] = 99;  // other object at the same point: a tie (an edge two objects share)
   INFO("camera " << cam.name);
   for (const Precision p : {Precision::Fp64, Precision::Fp32}) {
     const std::vector<CameraDifference> d = compareResults(scene, reference, altered, tolerancesFor(p));
@@ -296,6 +298,9 @@ TEST_CASE("compare: wrong nearest hits are counted by kind") {
     CHECK(d[0].wrongFartherRoot == 1);
     CHECK(d[0].wrongNearerRoot == 1);
     CHECK(d[0].wrongNearestHits() == 5);
+    CHECK(d[0].objectTies == 1);  // not a wrong hit, nor a mismatch
+    CHECK(d[0].objectIdMismatches == 3);  // miss, extra hit, other object
+    CHECK(*layerDifference(d[0], Layer::Mask) == 4.0);  // the objectId layer differs at the tie too
     // The unaltered comparison counts none.
     CHECK(compareResults(scene, reference, reference, tolerancesFor(p))[0].wrongNearestHits() == 0);
   }

@@ -411,6 +411,11 @@ class OutputRollback {
     for (const auto& entry : std::filesystem::directory_iterator(dir_, ec))
       if (!before_.count(entry.path().filename().string()) && !entry.is_symlink(ec)) added.push_back(entry.path());
     for (const auto& path : added) std::filesystem::remove_all(path, ec);
+    // The lines of the frames written before the failure named these files (stdout): say they are
+    // gone. Printed as the error unwinds, before its own message.
+    if (!added.empty())
+      std::fprintf(stderr, "dicsynth: removing the %zu file%s this run wrote in %s (a failed run keeps none)\n",
+                   added.size(), added.size() == 1 ? "" : "s", dir_.c_str());
     if (existed_) return;
     // Only when empty: remove() does not recurse.
     for (std::filesystem::path p = created_;

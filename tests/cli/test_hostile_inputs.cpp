@@ -282,6 +282,11 @@ TEST_CASE("hostile: a run that fails leaves the folder as it found it, and stale
   CHECK(r.exitCode == 2);
   CHECK(r.err.find("non-finite texel") != std::string::npos);
   CHECK(!std::filesystem::exists(dir.file("fresh")));  // created by the run: gone with it
+  // Frame 0's line named its files; the run says they are removed (the sweep audit of 2026-11-27:
+  // "written" lines stood for files a failed run had removed).
+  CHECK(r.out.find(dir.file("fresh")) != std::string::npos);
+  CHECK(r.err.find("dicsynth: removing the 3 files this run wrote in " + dir.file("fresh") + " (a failed run keeps none)") !=
+        std::string::npos);
   // So are the folders above it that the run created (the sweep audit of 2026-11-27: -o new/a/b
   // left new/a), while an existing folder above stays.
   const test::CliResult nested = test::runCli("render " + scene + " -o " + dir.file("new/a/b/") + " --frames 0:1 --backend cpu");

@@ -22,6 +22,7 @@
 #include "shared/rng.h"
 #include "sweep/manifest.h"
 #include "sweep/point_record.h"
+#include "sweep/run_lock.h"
 
 namespace dicsynth {
 namespace {
@@ -243,6 +244,14 @@ void runSweep(const SweepRun& cmd) {
   std::error_code ec;
   fs::create_directories(lockDir, ec);
   if (ec) throw InputError("-o " + cmd.outputDir + ": cannot create " + lockDir.string() + ": " + ec.message());
+
+  // What makes this run's points: the common key and the points' keys (first, middle, last: a
+  // sweep's points follow from its declaration). Shards and reruns of one sweep share it.
+  const std::string runKey = std::to_string(plan.count) + "\n" + keyOf(plan.point(0)) + "\n" +
+                             keyOf(plan.point(plan.count / 2)) + "\n" + keyOf(plan.point(plan.count - 1));
+  char fingerprint[16];
+  std::snprintf(fingerprint, sizeof fingerprint, "%08x", unsigned(sweep::crc32Of(runKey)));
+  const sweep::RunLock runLock(lockDir, fingerprint, cmd.outputDir);
 
   // This shard's points: index ≡ shard.index (mod shard.count).
   const std::int64_t mine = plan.count > shard.index ? (plan.count - shard.index + shard.count - 1) / shard.count : 0;

@@ -3,7 +3,10 @@
 // tmpfs; needs root to mount).
 #include <doctest/doctest.h>
 #include <OpenImageIO/imageio.h>
+#include <sys/file.h>
 #include <sys/mount.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -226,6 +229,35 @@ TEST_CASE("cli: sweep removes the manifest before it replaces a point made with 
         std::string::npos);
   CHECK(!std::filesystem::exists(out + "/manifest.csv"));
   CHECK(!std::filesystem::exists(out + "/manifest.json"));
+}
+
+TEST_CASE("cli: a sweep is refused while a sweep with other inputs runs into the folder") {
+  // Two sweeps of different scenes, options or points into one folder each replaced the other's
+  // finished points and both exited 0 (the sweep audit of 2026-11-27). Another sweep at work is
+  // a live process sharing a lock on out/.locks/run-<its fingerprint>.lock (sweep/run_lock.h): here
+  // this test holds one, of a fingerprint no sweep has.
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  const std::string out = dir.file("out");
+  std::filesystem::create_directories(out + "/.locks");
+  const std::string other = out + "/.locks/run-00000000.lock";
+  const int fd = ::open(other.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  REQUIRE(fd >= 0);
+  REQUIRE(::flock(fd, LOCK_SH) == 0);
+  const test::CliResult refused = runCli("sweep " + scene + " -o " + out + kFast);
+  CHECK(refused.exitCode == 2);
+  CHECK(refused.err.find("-o " + out + ": another sweep with other inputs (scene, options or points) is running into "
+                         "this folder (a live process holds " + other + ")") != std::string::npos);
+  CHECK(!std::filesystem::exists(out + "/point_00000"));
+  ::close(fd);  // that sweep ends (or is killed): its lock is free, and the next run removes it
+  const test::CliResult r = runCli("sweep " + scene + " -o " + out + kFast);
+  INFO(r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(r.out.find("rendered 6") != std::string::npos);
+  bool runLockLeft = false;
+  for (const auto& e : std::filesystem::directory_iterator(out + "/.locks"))
+    runLockLeft |= e.path().filename().string().rfind("run-", 0) == 0;
+  CHECK_FALSE(runLockLeft);  // the stale one removed, the run's own removed at its end
 }
 
 TEST_CASE("cli: sweep shards write one folder safely and merge to the single-process manifest") {

@@ -2,6 +2,9 @@
 // command line, the index order, the random draws, bad declarations (file:line), and the point
 // records that decide whether a point is complete.
 #include <doctest/doctest.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <chrono>
@@ -11,9 +14,11 @@
 #include <fstream>
 #include <set>
 
+#include "core/error.h"
 #include "scene/sweep_declaration.h"
 #include "scene_test_util.h"
 #include "sweep/point_record.h"
+#include "sweep/run_lock.h"
 #include "sweep/sweep_points.h"
 #include "temp_folder.h"
 
@@ -375,4 +380,36 @@ TEST_CASE("sweep: point records are read in any layout, and a wrong member makes
   CHECK(back->files[0].name == "a.exr");
   CHECK(back->files[1].crc32 == 2u);
   CHECK(back->index == 7);
+}
+
+TEST_CASE("sweep: runs of one fingerprint share the folder, another is refused while one lives") {
+  test::TempFolder dir;
+  const std::filesystem::path locks = dir.path();
+  const auto runLocks = [&] {
+    std::set<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(locks)) names.insert(e.path().filename().string());
+    return names;
+  };
+  {
+    const sweep::RunLock a(locks, "aaaa", "out");
+    const sweep::RunLock shard(locks, "aaaa", "out");  // the same sweep's other shard: admitted
+    CHECK_THROWS_WITH_AS(sweep::RunLock(locks, "bbbb", "out"),
+                         doctest::Contains("-o out: another sweep with other inputs (scene, options or points) is "
+                                           "running into this folder"),
+                         InputError);
+    CHECK(runLocks() == std::set<std::string>{"run-aaaa.lock"});  // the refused run left nothing
+  }
+  CHECK(runLocks().empty());  // the last of the fingerprint removed its file
+  // A killed run's file (no process holds it) is removed by the next run; a live one refuses it.
+  test::writeBytes((locks / "run-cccc.lock").string(), "");
+  const int live = ::open((locks / "run-dddd.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  REQUIRE(live >= 0);
+  REQUIRE(::flock(live, LOCK_SH) == 0);
+  CHECK_THROWS_AS(sweep::RunLock(locks, "eeee", "out"), InputError);
+  ::close(live);
+  {
+    const sweep::RunLock e(locks, "eeee", "out");
+    CHECK(runLocks() == std::set<std::string>{"run-eeee.lock"});
+  }
+  CHECK(runLocks().empty());
 }

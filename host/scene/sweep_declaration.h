@@ -20,9 +20,10 @@ struct lua_State;
 namespace dicsynth {
 
 // One value of a sweep parameter: a number, a boolean or a string, set as a Lua global.
-// Largest number of points of one declaration (scene or --sweep/--random): the points are enumerated
-// in memory (about 100 bytes each), so 10 million is ~1 GB — far beyond any sweep a machine renders,
-// far below a mistake like n = 1e12 that would exhaust memory instead of failing clearly.
+// Largest number of points of one declaration (scene or --sweep/--random): points are generated on
+// demand, but each value a declaration lists is held (~90 bytes: a one-parameter sweep at this limit
+// takes 0.93 GB), so 10 million is far beyond any sweep a machine renders, and far below a mistake
+// like n = 1e12 that would exhaust memory instead of failing clearly.
 inline constexpr std::int64_t kMaxSweepPoints = 10'000'000;
 
 // The i-th of n values evenly spaced from a to b (n >= 1): linspace(a, b, n) in a scene and

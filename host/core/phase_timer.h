@@ -11,14 +11,19 @@
 
 namespace dicsynth {
 
-// phaseDone(nullptr) starts the clock without printing (main() does, first thing).
-inline void phaseDone(const char* phase) {
-  using Clock = std::chrono::steady_clock;
+// DICSYNTH_TIMINGS is set (and not 0).
+inline bool phaseTimingsEnabled() {
   static const bool enabled = [] {
     const char* v = std::getenv("DICSYNTH_TIMINGS");
     return v && *v && *v != '0';
   }();
-  if (!enabled) return;
+  return enabled;
+}
+
+// phaseDone(nullptr) starts the clock without printing (main() does, first thing).
+inline void phaseDone(const char* phase) {
+  using Clock = std::chrono::steady_clock;
+  if (!phaseTimingsEnabled()) return;
   static std::mutex mutex;  // a render's frames are written on a worker thread
   std::lock_guard lock(mutex);
   static const Clock::time_point start = Clock::now();

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "core/error.h"
+#include "core/phase_timer.h"
 #include "gpu/device_query.h"
 #include "gpu/instance.h"
 #include "gpu/pipeline_cache.h"
@@ -108,7 +110,16 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
   DS_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool));
   m.commandPool = UniqueCommandPool(device, pool);
 
-  m.submitter = std::make_unique<Submitter>(device, m.queue, m.queueFamily, options.submitTimeout_s);
+  uint32_t timestampBits = 0;
+  if (options.deviceTimestamps || phaseTimingsEnabled()) {
+    uint32_t families = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(m.physical, &families, nullptr);
+    std::vector<VkQueueFamilyProperties> props(families);
+    vkGetPhysicalDeviceQueueFamilyProperties(m.physical, &families, props.data());
+    timestampBits = props[m.queueFamily].timestampValidBits;
+  }
+  m.submitter = std::make_unique<Submitter>(device, m.queue, m.queueFamily, options.submitTimeout_s, timestampBits,
+                                            m.properties.limits.timestampPeriod);
 }
 
 Context::~Context() = default;

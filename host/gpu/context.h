@@ -45,6 +45,9 @@ struct ContextOptions {
   // false: Input buffers are never mapped, every upload goes through a staging copy — what a
   // discrete GPU without host-visible device memory does. For tests of that path on any device.
   bool mapInputBuffers = true;
+  // Time every submission on the device with timestamp queries (Submitter::deviceTime), where the
+  // compute queue supports them. Also switched on by DICSYNTH_TIMINGS=1 (core/phase_timer.h).
+  bool deviceTimestamps = false;
 };
 
 // Every physical device the loader reports, in enumeration order (no validation layers).

@@ -25,7 +25,8 @@ void globalBarrier(VkCommandBuffer commands, VkPipelineStageFlags srcStages, VkA
 
 }  // namespace
 
-Submitter::Submitter(VkDevice device, VkQueue queue, uint32_t queueFamily, double timeout_s)
+Submitter::Submitter(VkDevice device, VkQueue queue, uint32_t queueFamily, double timeout_s, uint32_t timestampBits,
+                     float timestampPeriod_ns)
     : device_(device), queue_(queue), timeout_s_(timeout_s) {
   timeout_ns_ = timeout_s > 0 && timeout_s < 1e9 ? static_cast<uint64_t>(std::ceil(timeout_s * 1e9))
                                                  : UINT64_MAX;
@@ -47,6 +48,23 @@ Submitter::Submitter(VkDevice device, VkQueue queue, uint32_t queueFamily, doubl
   VkFence fence = VK_NULL_HANDLE;
   DS_VK(vkCreateFence(device, &fenceInfo, nullptr, &fence));
   fence_ = UniqueFence(device, fence);
+
+  if (timestampBits > 0 && timestampPeriod_ns > 0) {
+    VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = 2;
+    VkQueryPool queries = VK_NULL_HANDLE;
+    DS_VK(vkCreateQueryPool(device, &queryInfo, nullptr, &queries));
+    timestamps_ = UniqueQueryPool(device, queries);
+    timestampMask_ = timestampBits >= 64 ? ~uint64_t(0) : (uint64_t(1) << timestampBits) - 1;
+    secondsPerTick_ = double(timestampPeriod_ns) * 1e-9;
+  }
+}
+
+std::optional<Submitter::DeviceTime> Submitter::deviceTime() {
+  std::lock_guard lock(mutex_);
+  if (!timestamps_) return std::nullopt;
+  return deviceTime_;
 }
 
 VkDescriptorSet Submitter::Recording::descriptorSet(VkDescriptorSetLayout layout, uint32_t bindings) {
@@ -110,6 +128,10 @@ void Submitter::run(const char* what, const std::function<void(Recording&)>& rec
   globalBarrier(commands_, kWorkStages, kWrites, kWorkStages,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                     VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+  if (timestamps_) {
+    vkCmdResetQueryPool(commands_, timestamps_.get(), 0, 2);
+    vkCmdWriteTimestamp(commands_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_.get(), 0);
+  }
   try {
     Recording recording(*this, commands_);
     record(recording);
@@ -117,6 +139,7 @@ void Submitter::run(const char* what, const std::function<void(Recording&)>& rec
     vkResetCommandBuffer(commands_, 0);  // leave the recording state so the next run can begin
     throw;
   }
+  if (timestamps_) vkCmdWriteTimestamp(commands_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_.get(), 1);
   // This submission's writes → host reads after the fence wait.
   globalBarrier(commands_, kWorkStages, kWrites, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
   DS_VK(vkEndCommandBuffer(commands_));
@@ -129,6 +152,14 @@ void Submitter::run(const char* what, const std::function<void(Recording&)>& rec
   DS_VK(vkQueueSubmit(queue_, 1, &submit, fence));
   pending_ = true;
   waitForPending(what);
+  if (timestamps_) {
+    uint64_t ticks[2] = {0, 0};
+    DS_VK(vkGetQueryPoolResults(device_, timestamps_.get(), 0, 2, sizeof ticks, ticks, sizeof ticks[0],
+                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    // Ticks wrap at timestampValidBits: the difference modulo that width.
+    deviceTime_.seconds += double((ticks[1] - ticks[0]) & timestampMask_) * secondsPerTick_;
+    ++deviceTime_.submissions;
+  }
 }
 
 }  // namespace dicsynth::gpu

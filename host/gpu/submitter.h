@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <optional>
 
 #include "gpu/vk_handle.h"
 
@@ -14,7 +15,11 @@ namespace dicsynth::gpu {
 
 class Submitter {
  public:
-  Submitter(VkDevice device, VkQueue queue, uint32_t queueFamily, double timeout_s);
+  // timestampBits > 0: every submission is timed on the device (two timestamp queries around the
+  // recorded work; the queue family's timestampValidBits, and the device's timestampPeriod in ns
+  // per tick). 0: none (the default: a query costs a little on every submission).
+  Submitter(VkDevice device, VkQueue queue, uint32_t queueFamily, double timeout_s, uint32_t timestampBits = 0,
+            float timestampPeriod_ns = 0);
   Submitter(const Submitter&) = delete;
   Submitter& operator=(const Submitter&) = delete;
 
@@ -41,6 +46,14 @@ class Submitter {
   // are serialised). Throws Error on failure or when the work takes longer than the timeout.
   void run(const char* what, const std::function<void(Recording&)>& record);
 
+  // With timestamps: the device's time between the two queries of every submission so far, summed
+  // (the work itself, without the host's recording, submission and wait), and their count.
+  struct DeviceTime {
+    double seconds = 0;
+    std::int64_t submissions = 0;
+  };
+  std::optional<DeviceTime> deviceTime();
+
  private:
   void waitForPending(const char* what);
 
@@ -55,6 +68,10 @@ class Submitter {
   UniqueDescriptorPool descriptors_;
   uint32_t descriptorCapacity_ = 0;  // descriptors of each buffer type descriptors_ can hold
   bool pending_ = false;             // a submission whose fence has not been seen signalled
+  UniqueQueryPool timestamps_;       // two queries per submission, when timed
+  uint64_t timestampMask_ = 0;
+  double secondsPerTick_ = 0;
+  DeviceTime deviceTime_;
 };
 
 }  // namespace dicsynth::gpu

@@ -52,6 +52,7 @@ using UniquePipeline = DeviceObject<VkPipeline, &vkDestroyPipeline>;
 using UniquePipelineCache = DeviceObject<VkPipelineCache, &vkDestroyPipelineCache>;
 using UniqueCommandPool = DeviceObject<VkCommandPool, &vkDestroyCommandPool>;
 using UniqueFence = DeviceObject<VkFence, &vkDestroyFence>;
+using UniqueQueryPool = DeviceObject<VkQueryPool, &vkDestroyQueryPool>;
 
 // Dispatchable handles are pointers, so std::unique_ptr owns them.
 struct InstanceDeleter {

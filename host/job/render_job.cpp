@@ -27,6 +27,7 @@
 #include "cpu/reference_renderer.h"
 #include "files/image_limits.h"
 #include "gpu/df64.h"
+#include "gpu/submitter.h"
 #include "io/calibration_files.h"
 #include "io/feature_files.h"
 #include "io/outputs.h"
@@ -178,8 +179,19 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   phaseDone("precision");
   // One frame: its tiles' progress; several: the frames' bar (runRenderJob) instead.
   if (!job.progressLabel.empty() && job.frames.size() == 1) options.progress = progressPrinter(job.progressLabel);
+  // DICSYNTH_TIMINGS=1 times every submission on the device too (gpu/submitter.h): the render's
+  // dispatches, and staging copies where a buffer is not mapped; not the host's part of the phase.
+  gpu::Submitter::DeviceTime before;
+  const bool timedOnDevice = session.context() && session.context()->submitter().deviceTime();
+  if (timedOnDevice) before = *session.context()->submitter().deviceTime();
   out.result = renderer ? renderer->render(out.scene, options) : cpu::render(out.scene, options);
   phaseDone("render");
+  if (timedOnDevice) {
+    const gpu::Submitter::DeviceTime after = *session.context()->submitter().deviceTime();
+    const long long submissions = after.submissions - before.submissions;
+    std::fprintf(stderr, "timings: render on the device %.3f s (%lld submission%s, timestamp queries)\n",
+                 after.seconds - before.seconds, submissions, submissions == 1 ? "" : "s");
+  }
   if (session.context()) failOnValidationMessages(*session.context());  // before any file of this frame is written
   out.options = options;
   out.visibility = session.visibilityTracer();

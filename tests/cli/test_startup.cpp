@@ -109,4 +109,29 @@ TEST_CASE("startup: DICSYNTH_TIMINGS=1 prints every phase of a render on stderr,
   REQUIRE(timed.exitCode == 0);
   for (const char* phase : {"scenes", "prepare", "render", "truth", "sensor", "write"})
     CHECK(timed.err.find(std::string("timings: ") + phase + " ") != std::string::npos);
+  CHECK(timed.err.find("on the device") == std::string::npos);  // the CPU reference has no device
+
+  // On the GPU backend the render's submissions are also timed on the device (timestamp queries;
+  // lavapipe has them): a part of the render phase.
+  setenv("DICSYNTH_TIMINGS", "1", 1);
+  const dicsynth::test::CliResult gpu = runCli("render " + std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua -o " +
+                                               dir.file("gpu") + " --downscale 25 --spp 1 --precision fp32");
+  unsetenv("DICSYNTH_TIMINGS");
+  INFO(gpu.err);
+  REQUIRE(gpu.exitCode == 0);
+  double renderPhase = -1, onDevice = -1;
+  long long submissions = -1;
+  for (std::size_t at = 0; (at = gpu.err.find("timings: render ", at)) != std::string::npos; ++at) {
+    double v = 0;
+    long long n = 0;
+    if (std::sscanf(gpu.err.c_str() + at, "timings: render on the device %lf s (%lld submissions", &v, &n) == 2) {
+      onDevice = v;
+      submissions = n;
+    } else if (std::sscanf(gpu.err.c_str() + at, "timings: render %lf s", &v) == 1) {
+      renderPhase = v;
+    }
+  }
+  CHECK(submissions >= 1);  // at least the dispatch
+  CHECK(onDevice > 0);
+  CHECK(onDevice <= renderPhase + 0.0005);  // both printed to the ms
 }

@@ -6,12 +6,14 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/phase_timer.h"
+#include "core/termination.h"
 #include "core/version.h"
 #include "io/zip_deflate.h"
 
 int main(int argc, char** argv) {
   using namespace dicsynth;
   phaseDone(nullptr);  // DICSYNTH_TIMINGS=1: phases are timed from here
+  removeTemporariesOnTermination();  // before any thread: SIGTERM, SIGINT, SIGHUP clean up first
   CLI::App app{"dicsynth: ray-traced synthetic images and ground truth for stereo DIC", "dicsynth"};
   app.require_subcommand(1);
   // With the deflate that compresses zip EXRs (io/zip_deflate.h): it decides their writing time.

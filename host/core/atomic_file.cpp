@@ -17,6 +17,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/termination.h"
 
 namespace dicsynth {
 namespace {
@@ -65,14 +66,17 @@ AtomicFile::AtomicFile(std::string finalPath) : final_(std::move(finalPath)) {
   if (target.filename().empty()) throw Error("cannot write '" + final_ + "': not a file name");
   // Create the temporary file now (O_EXCL: never adopt someone else's file), so that a missing or
   // read-only folder is reported before any work goes into the contents.
+  // Registered before it exists (core/termination.h): a run ended by a signal removes it.
   for (int attempt = 0;; ++attempt) {
     temp_ = (target.parent_path() / tempName(target, gTempCounter.fetch_add(1))).string();
+    registerTemporary(temp_);
     const int fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) {
       ::close(fd);
       return;
     }
     const int err = errno;
+    unregisterTemporary(temp_);  // not ours: another process's, or none
     if (err != EEXIST || attempt >= 100) {
       const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
       throw Error("cannot write '" + final_ + "': cannot create a file in folder '" + folder +
@@ -82,7 +86,9 @@ AtomicFile::AtomicFile(std::string finalPath) : final_(std::move(finalPath)) {
 }
 
 AtomicFile::~AtomicFile() {
-  if (!committed_) ::unlink(temp_.c_str());  // nothing to report from a destructor
+  if (committed_) return;
+  ::unlink(temp_.c_str());  // nothing to report from a destructor
+  unregisterTemporary(temp_);
 }
 
 void AtomicFile::commit() {
@@ -92,6 +98,7 @@ void AtomicFile::commit() {
     throw Error("cannot write '" + final_ + "': rename from '" + temp_ + "' failed: " + errnoText(err));
   }
   committed_ = true;
+  unregisterTemporary(temp_);
 }
 
 TextWriter::TextWriter(const AtomicFile& file) : finalPath_(file.finalPath()) {

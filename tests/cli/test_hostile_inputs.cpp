@@ -313,6 +313,29 @@ TEST_CASE("hostile: a run that fails leaves the folder as it found it, and stale
   CHECK(names == std::vector<std::string>{live, "notes.txt"});
 }
 
+TEST_CASE("hostile: a run ended by SIGTERM removes its temporary files and ends by the signal") {
+  // A Slurm time limit sends SIGTERM; the run's unfinished writes left ".NAME.tmpPID_N.EXT" files
+  // for the next run to remove (the sweep audit of 2026-11-27). Figure 1 at full size writes its
+  // EXR for ~0.3 s on 2 cores: the script waits until a temporary file exists, then signals.
+  test::TempFolder dir;
+  const std::string out = dir.file("out"), status = dir.file("status");
+  const std::string script =
+      std::string(DS_BINARY) + " render " + DS_SOURCE_DIR + "/scenes/figure1.lua -o " + out +
+      " --precision fp32 --spp 1 > " + dir.file("log") + " 2> " + dir.file("err") + " & pid=$!\n"
+      "for i in $(seq 1 20000); do ls -A " + out + " 2>/dev/null | grep -q '[.]tmp' && { echo seen > " + status +
+      "; break; }; sleep 0.001; done\n"
+      "kill -TERM $pid; wait $pid; echo $? >> " + status + "\n";
+  const std::string scriptFile = dir.write("kill.sh", script);
+  REQUIRE(std::system(("bash " + scriptFile).c_str()) == 0);
+  const std::string result = test::readBytes(status), err = test::readBytes(dir.file("err"));
+  INFO(result << err);
+  CHECK(result == "seen\n143\n");  // a temporary file was there; the run ended by SIGTERM (128 + 15)
+  CHECK(err.find("dicsynth: ended by SIGTERM: removed ") != std::string::npos);
+  CHECK(err.find(" temporary file") != std::string::npos);
+  for (const auto& e : std::filesystem::directory_iterator(out))
+    CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
+}
+
 TEST_CASE("hostile: the smaller inconsistencies of the probe") {
   test::TempFolder dir;
   const std::string scene = dir.write("s.lua", plateWith("Texture.Constant { value = 0.5 }"));

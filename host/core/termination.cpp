@@ -1,0 +1,80 @@
+#include "core/termination.h"
+
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+#include <set>
+#include <thread>
+
+namespace dicsynth {
+namespace {
+
+std::mutex& registryMutex() {
+  static std::mutex m;
+  return m;
+}
+
+std::multiset<std::string>& registry() {
+  static std::multiset<std::string> paths;
+  return paths;
+}
+
+sigset_t terminationSignals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGHUP);
+  return set;
+}
+
+[[noreturn]] void cleanUpAndEnd(int sig) {
+  // The lock is kept to the end: no write registers, commits or removes a file meanwhile.
+  registryMutex().lock();
+  std::size_t removed = 0;
+  for (const std::string& path : registry()) removed += ::unlink(path.c_str()) == 0 ? 1 : 0;
+  std::fprintf(stderr, "dicsynth: ended by %s: removed %zu temporary file%s of unfinished writes\n",
+               sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGHUP", removed, removed == 1 ? "" : "s");
+  std::fflush(stderr);
+  // End by the same signal, with its default action, so that the parent (a shell, Slurm) sees it.
+  ::signal(sig, SIG_DFL);
+  sigset_t one;
+  sigemptyset(&one);
+  sigaddset(&one, sig);
+  ::pthread_sigmask(SIG_UNBLOCK, &one, nullptr);
+  ::raise(sig);
+  ::_exit(128 + sig);  // not reached: the default action of the three ends the process
+}
+
+}  // namespace
+
+void removeTemporariesOnTermination() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    const sigset_t set = terminationSignals();
+    if (::pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return;  // then signals act as before
+    std::thread([set] {
+      int sig = 0;
+      while (::sigwait(&set, &sig) != 0) {
+      }
+      cleanUpAndEnd(sig);
+    }).detach();
+  });
+}
+
+void registerTemporary(const std::string& path) {
+  std::lock_guard lock(registryMutex());
+  registry().insert(path);
+}
+
+void unregisterTemporary(const std::string& path) {
+  std::lock_guard lock(registryMutex());
+  const auto it = registry().find(path);
+  if (it != registry().end()) registry().erase(it);
+}
+
+}  // namespace dicsynth

@@ -1,0 +1,26 @@
+#pragma once
+// A command-line run ended by a signal (SIGTERM: a Slurm time limit or `kill`; SIGINT: Ctrl-C;
+// SIGHUP: a closed terminal) removes the temporary files of its unfinished writes before it ends,
+// instead of leaving them for the next run into the folder (core/atomic_file.h). Files already
+// complete under their final names stay.
+//
+// How: main() blocks the three signals before any thread exists (every thread, the libraries'
+// included, inherits the mask) and one thread waits for them (sigwait). On a signal that thread,
+// in ordinary context, takes the registry's lock (so no write registers or finishes meanwhile),
+// removes every registered temporary file, says so on stderr, and ends the process by the same
+// signal (its exit status is the signal's: 128 + 15 = 143 in a shell for SIGTERM).
+#include <string>
+
+namespace dicsynth {
+
+// Call first in main(), before any thread is created. Not for library users (the Python module:
+// Python handles its own signals); without it the registry below costs a lock per file and nothing
+// else.
+void removeTemporariesOnTermination();
+
+// AtomicFile registers its temporary file before creating it and unregisters it once committed or
+// removed.
+void registerTemporary(const std::string& path);
+void unregisterTemporary(const std::string& path);
+
+}  // namespace dicsynth

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "sweep/manifest.h"
 
 namespace dicsynth::sweep {
 namespace {
@@ -36,45 +37,66 @@ bool stillLinked(int fd, const fs::path& path) {
 
 RunLock::RunLock(const fs::path& lockDir, const std::string& fingerprint, const std::string& outputDir) {
   path_ = lockDir / (kPrefix + fingerprint + kSuffix);
-  const fs::path& own = path_;
-  // Own lock first, then the others: of two runs starting together with other fingerprints, the
-  // later to look finds the earlier's lock held; at worst both are refused, never both admitted.
-  // A stale lock is removed under an exclusive lock, which a run of its fingerprint may be waiting
-  // to share: that run then finds its file unlinked and opens a new one.
+  // Starting runs take turns (a brief exclusive lock on .locks/runs.lock): each takes its own lock,
+  // then tries the others; stale locks are removed only there, so no two runs judge a file while one
+  // removes it. Of two runs with other fingerprints, the second to start finds the first's lock held.
+  const FileLock turn((lockDir / "runs.lock").string(), true);
   for (;;) {
     // O_NOFOLLOW: a symbolic link planted under the lock's name is refused, not followed.
-    fd_ = ::open(own.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
-    if (fd_ < 0) throw Error("cannot create the lock file '" + own.string() + "': " + std::strerror(errno));
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
+    if (fd_ < 0) throw Error("cannot create the lock file '" + path_.string() + "': " + std::strerror(errno));
+    // Blocks only while the last run of this fingerprint, ending, removes the file (release()).
     if (flockRetrying(fd_, LOCK_SH) != 0) {
       const int err = errno;
       ::close(fd_);
-      throw Error("cannot lock '" + own.string() + "': " + std::strerror(err));
+      fd_ = -1;
+      throw Error("cannot lock '" + path_.string() + "': " + std::strerror(err));
     }
-    if (stillLinked(fd_, own)) break;
+    if (stillLinked(fd_, path_)) break;
     ::close(fd_);
   }
+  try {
+    checkOthers(lockDir, outputDir);
+  } catch (...) {
+    release();  // refused: nothing of this run stays
+    throw;
+  }
+}
+
+void RunLock::checkOthers(const fs::path& lockDir, const std::string& outputDir) {
   std::error_code ec;
   std::vector<fs::path> others;
-  for (const auto& entry : fs::directory_iterator(lockDir, ec)) {
-    const std::string name = entry.path().filename().string();
+  for (fs::directory_iterator it(lockDir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
     if (name.rfind(kPrefix, 0) == 0 && name.size() > std::strlen(kPrefix) + std::strlen(kSuffix) &&
-        name.compare(name.size() - std::strlen(kSuffix), std::string::npos, kSuffix) == 0 && entry.path() != own)
-      others.push_back(entry.path());
+        name.compare(name.size() - std::strlen(kSuffix), std::string::npos, kSuffix) == 0 && it->path() != path_)
+      others.push_back(it->path());
   }
+  if (ec) throw Error("cannot list '" + lockDir.string() + "': " + ec.message());
+  const auto refuse = [&](const fs::path& other, const std::string& why) {
+    throw InputError("-o " + outputDir + ": another sweep with other inputs (scene, options or points) is running " +
+                     "into this folder (" + why + " " + other.string() + "). Two such sweeps would replace each " +
+                     "other's points: wait for it to end, or give another -o");
+  };
   for (const fs::path& other : others) {
-    const int fd = ::open(other.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
-    if (fd < 0) continue;  // removed meanwhile (or not a regular file: left alone)
-    if (flockRetrying(fd, LOCK_EX | LOCK_NB) != 0) {
+    // Read-only: flock needs no write access (another user's lock in a shared folder).
+    const int fd = ::open(other.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    if (fd < 0) {
       const int err = errno;
-      ::close(fd);
-      if (err != EWOULDBLOCK) continue;
-      release();  // refused: nothing of this run stays
-      throw InputError("-o " + outputDir + ": another sweep with other inputs (scene, options or points) is running " +
-                       "into this folder (a live process holds " + other.string() + "). Two such sweeps would " +
-                       "replace each other's points: wait for it to end, or give another -o");
+      if (err == ENOENT || err == ELOOP) continue;  // removed meanwhile; a symbolic link is no lock of ours
+      refuse(other, std::string("its lock cannot be opened (") + std::strerror(err) + "):");
     }
-    if (stillLinked(fd, other)) fs::remove(other, ec);  // a finished or killed run's
+    bool held = false;
+    if (flockRetrying(fd, LOCK_EX | LOCK_NB) == 0) {
+      if (stillLinked(fd, other)) fs::remove(other, ec);  // no run holds it: a killed run's
+    } else if (errno == EWOULDBLOCK) {
+      // Shared holders are live runs. An exclusive holder is the last run of that fingerprint
+      // removing its file as it ends (release()): wait for it, and look again.
+      if (flockRetrying(fd, LOCK_SH | LOCK_NB) == 0) held = true;
+      else if (flockRetrying(fd, LOCK_SH) == 0) held = stillLinked(fd, other);
+    }
     ::close(fd);
+    if (held) refuse(other, "a live process holds");
   }
 }
 

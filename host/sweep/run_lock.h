@@ -24,6 +24,7 @@ class RunLock {
   RunLock& operator=(const RunLock&) = delete;
 
  private:
+  void checkOthers(const std::filesystem::path& lockDir, const std::string& outputDir);
   void release();
 
   std::filesystem::path path_;

@@ -245,10 +245,15 @@ void runSweep(const SweepRun& cmd) {
   fs::create_directories(lockDir, ec);
   if (ec) throw InputError("-o " + cmd.outputDir + ": cannot create " + lockDir.string() + ": " + ec.message());
 
-  // What makes this run's points: the common key and the points' keys (first, middle, last: a
-  // sweep's points follow from its declaration). Shards and reruns of one sweep share it.
-  const std::string runKey = std::to_string(plan.count) + "\n" + keyOf(plan.point(0)) + "\n" +
-                             keyOf(plan.point(plan.count / 2)) + "\n" + keyOf(plan.point(plan.count - 1));
+  // What makes this run's points: the common key (the scene's content, which holds a declared
+  // sweep, the -D values and the options), the --sweep/--random options as given (a listed value
+  // changed in the middle changes no end point), and the keys of the first, middle and last points.
+  // Shards and reruns of one sweep share it.
+  std::string runKey = std::to_string(plan.count) + "\n" + keyOf(plan.point(0)) + "\n" +
+                       keyOf(plan.point(plan.count / 2)) + "\n" + keyOf(plan.point(plan.count - 1)) + "\n";
+  for (const std::string& s : cmd.sweep.sweeps) runKey += "--sweep " + s + "\n";
+  if (cmd.sweep.randomCount)
+    runKey += "--random " + std::to_string(*cmd.sweep.randomCount) + " " + std::to_string(cmd.sweep.randomSeed) + "\n";
   char fingerprint[16];
   std::snprintf(fingerprint, sizeof fingerprint, "%08x", unsigned(sweep::crc32Of(runKey)));
   const sweep::RunLock runLock(lockDir, fingerprint, cmd.outputDir);

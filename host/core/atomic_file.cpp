@@ -66,17 +66,17 @@ AtomicFile::AtomicFile(std::string finalPath) : final_(std::move(finalPath)) {
   if (target.filename().empty()) throw Error("cannot write '" + final_ + "': not a file name");
   // Create the temporary file now (O_EXCL: never adopt someone else's file), so that a missing or
   // read-only folder is reported before any work goes into the contents.
-  // Registered before it exists (core/termination.h): a run ended by a signal removes it.
+  // Registered once made (core/termination.h): a run ended by a signal removes it. A signal between
+  // the two leaves it to the next run (removeStaleTemporaries), never removes another's file.
   for (int attempt = 0;; ++attempt) {
     temp_ = (target.parent_path() / tempName(target, gTempCounter.fetch_add(1))).string();
-    registerTemporary(temp_);
     const int fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) {
       ::close(fd);
+      registerTemporary(temp_);
       return;
     }
     const int err = errno;
-    unregisterTemporary(temp_);  // not ours: another process's, or none
     if (err != EEXIST || attempt >= 100) {
       const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
       throw Error("cannot write '" + final_ + "': cannot create a file in folder '" + folder +

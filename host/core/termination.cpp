@@ -13,22 +13,27 @@
 namespace dicsynth {
 namespace {
 
+// Never destroyed: a signal during the static destructors at exit must still find them.
 std::mutex& registryMutex() {
-  static std::mutex m;
-  return m;
+  static std::mutex* m = new std::mutex;
+  return *m;
 }
 
 std::multiset<std::string>& registry() {
-  static std::multiset<std::string> paths;
-  return paths;
+  static std::multiset<std::string>* paths = new std::multiset<std::string>;
+  return *paths;
 }
 
+// The three signals, but those the process was started ignoring: `nohup` (SIGHUP) and a shell
+// script's background jobs (SIGINT) must keep ignoring them. A blocked signal is queued even when
+// ignored, and sigwait would take it.
 sigset_t terminationSignals() {
   sigset_t set;
   sigemptyset(&set);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGHUP);
+  for (int sig : {SIGTERM, SIGINT, SIGHUP}) {
+    struct sigaction current{};
+    if (::sigaction(sig, nullptr, &current) == 0 && current.sa_handler != SIG_IGN) sigaddset(&set, sig);
+  }
   return set;
 }
 
@@ -56,6 +61,7 @@ void removeTemporariesOnTermination() {
   static std::once_flag once;
   std::call_once(once, [] {
     const sigset_t set = terminationSignals();
+    if (sigisemptyset(&set)) return;
     if (::pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return;  // then signals act as before
     std::thread([set] {
       int sig = 0;

@@ -2,7 +2,8 @@
 // A command-line run ended by a signal (SIGTERM: a Slurm time limit or `kill`; SIGINT: Ctrl-C;
 // SIGHUP: a closed terminal) removes the temporary files of its unfinished writes before it ends,
 // instead of leaving them for the next run into the folder (core/atomic_file.h). Files already
-// complete under their final names stay.
+// complete under their final names stay. A signal the process was started ignoring (`nohup`'s
+// SIGHUP, SIGINT in a script's background job) stays ignored.
 //
 // How: main() blocks the three signals before any thread exists (every thread, the libraries'
 // included, inherits the mask) and one thread waits for them (sigwait). On a signal that thread,
@@ -18,7 +19,7 @@ namespace dicsynth {
 // else.
 void removeTemporariesOnTermination();
 
-// AtomicFile registers its temporary file before creating it and unregisters it once committed or
+// AtomicFile registers its temporary file once created and unregisters it once committed or
 // removed.
 void registerTemporary(const std::string& path);
 void unregisterTemporary(const std::string& path);

@@ -50,7 +50,8 @@ struct Df64OpError {
   std::string name;            // "add", "mul", "div", "dot", … (see df64_cases.cpp)
   double maxRelError = 0.0;    // largest over the inputs (dot, cross: relative to Σ|aᵢbᵢ|)
   double log2 = 0.0;           // log2(maxRelError); -inf when every result was exact
-  double bound = 0.0;          // the algorithm's documented bound (shaders/lib/df64.glsl)
+  double bound = 0.0;          // the algorithm's documented bound (shaders/lib/df64.glsl); div's and
+                               // sqrt's with the device's measured float division and sqrt
   std::size_t inputs = 0;      // results checked (components)
   std::size_t unnormalized = 0;  // results with fl(hi + lo) != hi (must be 0)
   bool passed() const { return maxRelError <= kDf64MaxRelError && unnormalized == 0; }

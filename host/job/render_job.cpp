@@ -181,6 +181,8 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   if (!job.progressLabel.empty() && job.frames.size() == 1) options.progress = progressPrinter(job.progressLabel);
   // DICSYNTH_TIMINGS=1 times every submission on the device too (gpu/submitter.h): the render's
   // dispatches, and staging copies where a buffer is not mapped; not the host's part of the phase.
+  // (A sweep's writer thread may submit meanwhile, e.g. the previous point's visibility masks:
+  // those are counted too.)
   gpu::Submitter::DeviceTime before;
   const bool timedOnDevice = session.context() && session.context()->submitter().deviceTime();
   if (timedOnDevice) before = *session.context()->submitter().deviceTime();

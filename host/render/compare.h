@@ -28,9 +28,10 @@ struct CameraDifference {
   // specimen is common); away from edges nothing explains a difference.
   std::size_t radianceOutliersOffEdge = 0;
   std::size_t objectIdMismatchesOffEdge = 0;
-  // Pixel-centre rays that hit different objects at the same point (|ΔP| within the P bound): a
-  // ray through an edge two objects share, where either is the nearest hit. Not among the
-  // mismatches above nor the wrong hits below; bit-identical renders have none (identical_results.h).
+  // Pixel-centre rays at an edge pixel that hit different objects at the same point (|ΔP| within
+  // the P bound): a ray through an edge two objects share, where either is the nearest hit. Not
+  // among the mismatches above nor the wrong hits below; bit-identical renders have none
+  // (identical_results.h).
   std::size_t objectTies = 0;
   // Ground truth of the pixel-centre ray, over pixels where both hit the same object.
   double maxUvDiff = 0;                 // max(|Δu|, |Δv|), u and v taken modulo 1 (periodic seams)

@@ -287,20 +287,35 @@ TEST_CASE("compare: wrong nearest hits are counted by kind") {
   moveAlongRay(hits[1], -0.01);
   moveAlongRay(hits[2], 0.01);   // farther root
   moveAlongRay(hits[3], -0.01);  // nearer root
-  image.objectId[hits[4]] = 99;  // other object at the same point: a tie (an edge two objects share)
+  // Another object at the same point: a tie at an edge pixel (an edge two objects share), a wrong
+  // hit away from edges. The plate's first pixel in raster order has background above it; the
+  // interior pixel has the plate all around (compare's edge map: the 8 neighbours, for a pinhole).
+  const long width = image.width_px;
+  const auto interior = std::find_if(hits.begin(), hits.end(), [&](std::size_t i) {
+    const long x = long(i) % width, y = long(i) / width;
+    if (x == 0 || y == 0 || x + 1 >= width || y + 1 >= image.height_px) return false;
+    for (long dy = -1; dy <= 1; ++dy)
+      for (long dx = -1; dx <= 1; ++dx)
+        if (reference.cameras[0].objectId[std::size_t((y + dy) * width + x + dx)] != 1) return false;
+    return true;
+  });
+  REQUIRE(interior != hits.end());
+  REQUIRE(*interior > hits[4]);
+  image.objectId[hits[4]] = 99;    // a tie
+  image.objectId[*interior] = 99;  // a wrong hit
   INFO("camera " << cam.name);
   for (const Precision p : {Precision::Fp64, Precision::Fp32}) {
     const std::vector<CameraDifference> d = compareResults(scene, reference, altered, tolerancesFor(p));
     REQUIRE(d.size() == 1);
     CHECK(d[0].wrongMiss == 1);
     CHECK(d[0].wrongExtraHit == 1);
-    CHECK(d[0].wrongOtherObject == 1);
+    CHECK(d[0].wrongOtherObject == 2);  // in front, and at the same point away from edges
     CHECK(d[0].wrongFartherRoot == 1);
     CHECK(d[0].wrongNearerRoot == 1);
-    CHECK(d[0].wrongNearestHits() == 5);
+    CHECK(d[0].wrongNearestHits() == 6);
     CHECK(d[0].objectTies == 1);  // not a wrong hit, nor a mismatch
-    CHECK(d[0].objectIdMismatches == 3);  // miss, extra hit, other object
-    CHECK(*layerDifference(d[0], Layer::Mask) == 4.0);  // the objectId layer differs at the tie too
+    CHECK(d[0].objectIdMismatches == 4);  // miss, extra hit, the two other objects
+    CHECK(*layerDifference(d[0], Layer::Mask) == 5.0);  // the objectId layer differs at the tie too
     // The unaltered comparison counts none.
     CHECK(compareResults(scene, reference, reference, tolerancesFor(p))[0].wrongNearestHits() == 0);
   }

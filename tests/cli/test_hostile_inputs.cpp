@@ -334,6 +334,19 @@ TEST_CASE("hostile: a run ended by SIGTERM removes its temporary files and ends 
   CHECK(err.find(" temporary file") != std::string::npos);
   for (const auto& e : std::filesystem::directory_iterator(out))
     CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
+
+  // A signal the run was started ignoring stays ignored (nohup: SIGHUP): the run goes on and ends
+  // normally, its files written.
+  const std::string hup = dir.file("hup"), hupStatus = dir.file("hup_status");
+  const std::string ignoring = dir.write(
+      "hup.sh", "(trap '' HUP; exec " + std::string(DS_BINARY) + " render " + DS_SOURCE_DIR + "/scenes/figure1.lua -o " +
+                    hup + " --precision fp32 --spp 1 > /dev/null 2>&1) & pid=$!\n"
+                    "for i in $(seq 1 20000); do ls -A " + hup + " 2>/dev/null | grep -q '[.]tmp' && { echo seen > " +
+                    hupStatus + "; break; }; sleep 0.001; done\n"
+                    "kill -HUP $pid; wait $pid; echo $? >> " + hupStatus + "\n");
+  REQUIRE(std::system(("bash " + ignoring).c_str()) == 0);
+  CHECK(test::readBytes(hupStatus) == "seen\n0\n");
+  CHECK(std::filesystem::exists(hup + "/camera1.exr"));
 }
 
 TEST_CASE("hostile: the smaller inconsistencies of the probe") {

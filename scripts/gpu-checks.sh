@@ -16,7 +16,7 @@
 #   sweep     bench/bench_sweep.sh (50 points of Figure 1 at 800x600, 4 spp) with the default layers
 #             and with `--layers image`: issue 15's time per point against the render-only time
 #   phases    one render's phases (DICSYNTH_TIMINGS=1): Figure 1 fp32 with all layers (EXR zip, none,
-#             rle) and with the image alone, the dogbone in df64 and fp64 (on the H100 every frame took ~0.1 s
+#             rle; zip in bands of 64 to 1200 rows) and with the image alone, the dogbone in df64 and fp64 (on the H100 every frame took ~0.1 s
 #             whatever the precision: where the time goes)
 #   long      the randomized NURBS test's long run (140 scenes, 1.08e7 rays per precision)
 #   cases     the test cases CASES names (doctest -tc patterns, comma-separated; e.g. those a step
@@ -98,14 +98,16 @@ compare_step() {
 phases_step() {
   local args
   # The EXR compressions split the write phase: none (conversion and file I/O), rle, zip (the
-  # default). On the H200 the write phase took 0.46 s with zip, as long as on 2 cores.
-  for args in "figure1 fp32 all zip" "figure1 fp32 all none" "figure1 fp32 all rle" "figure1 fp32 image zip" \
-              "dogbone df64 all zip" "dogbone fp64 all zip"; do
+  # default); and zip with wider bands per writePixels call (DICSYNTH_EXR_BAND_ROWS; 64 keeps at
+  # most 4 threads compressing). On the H200 the write phase took 0.46 s with zip, as on 2 cores.
+  for args in "figure1 fp32 all zip 64" "figure1 fp32 all none 64" "figure1 fp32 all rle 64" \
+              "figure1 fp32 all zip 256" "figure1 fp32 all zip 512" "figure1 fp32 all zip 1200" \
+              "figure1 fp32 image zip 64" "dogbone df64 all zip 64" "dogbone fp64 all zip 64"; do
     set -- $args
-    echo "== $1 $2 --layers $3 --exr-compression $4"
+    echo "== $1 $2 --layers $3 --exr-compression $4, DICSYNTH_EXR_BAND_ROWS=$5"
     "$DS" render "scenes/$1.lua" -o /tmp/gpu-checks-phases --precision "$2" --layers "$3" --exr-compression "$4" >/dev/null
-    DICSYNTH_TIMINGS=1 "$DS" render "scenes/$1.lua" -o /tmp/gpu-checks-phases --precision "$2" --layers "$3" \
-      --exr-compression "$4" 2>&1 | grep '^timings'
+    DICSYNTH_EXR_BAND_ROWS=$5 DICSYNTH_TIMINGS=1 "$DS" render "scenes/$1.lua" -o /tmp/gpu-checks-phases \
+      --precision "$2" --layers "$3" --exr-compression "$4" 2>&1 | grep '^timings'
   done
 }
 sweep_step() {

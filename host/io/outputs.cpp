@@ -34,6 +34,8 @@
 #include <OpenEXR/ImfThreading.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -227,6 +229,25 @@ Imf::Compression exrCompression(const std::string& name) {
 // OpenEXR compresses the blocks of one writePixels call on its global thread pool (16 rows per
 // zip block, 32 per piz). Sized once per process to the machine's cores; the calling thread does
 // the file I/O.
+// Rows per writePixels call: 64, or $DICSYNTH_EXR_BAND_ROWS (a measurement knob). A call compresses
+// its blocks (16 rows each in zip) on the pool and returns when all are done, so 64 rows keep at most
+// 4 threads busy: right on 2 cores (measured fastest there, bench/RESULTS.md), a cap on more. On an
+// NVIDIA H200 machine's 16 cores Figure 1's write phase took 0.46 s, as on 2 cores; the knob lets
+// the next GPU machine measure wider bands (scripts/gpu-checks.sh, phases) before the default changes.
+// The file's bytes do not depend on it (the blocks are the compression's).
+int exrBandRows() {
+  static const int rows = [] {
+    const char* v = std::getenv("DICSYNTH_EXR_BAND_ROWS");
+    if (!v || !*v) return 64;
+    char* end = nullptr;
+    const long parsed = std::strtol(v, &end, 10);
+    if (end && *end == '\0' && parsed >= 1 && parsed <= 65536) return int(parsed);
+    std::fprintf(stderr, "dicsynth: warning: DICSYNTH_EXR_BAND_ROWS=%s is not a row count from 1 to 65536: using 64\n", v);
+    return 64;
+  }();
+  return rows;
+}
+
 void useAllCoresForExr() {
   static const bool once = [] {
     Imf::setGlobalThreadCount(int(hardwareThreads()));
@@ -260,14 +281,14 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
 
   try {
     Imf::OutputFile out(file.tempPath().c_str(), header);
-    // Convert and write in bands of rows: bounded memory for any image size, and several zip blocks
-    // per call (16 rows each) to keep every core compressing. 64 rows measured fastest (Figure 1:
-    // 16 and 32 rows leave cores idle, 256 and the whole image thrash the cache; bench/RESULTS.md).
-    // Every channel is 4 bytes. A row of the band is channelCount runs of `width` words, one per
+    // Convert and write in bands of rows (exrBandRows): bounded memory for any image size, and
+    // several zip blocks per call (16 rows each) to keep the cores compressing. 64 rows measured
+    // fastest on 2 cores (Figure 1: 16 and 32 rows left cores idle, 256 and the whole image were
+    // slower; bench/RESULTS.md). Every channel is 4 bytes. A row of the band is channelCount runs of `width` words, one per
     // channel, the order of a scanline in the file: OpenEXR copies each run in one sweep (pixels
     // interleaved, 80-byte strides for Figure 1's 20 channels, made the write phase 0.02 s longer:
     // bench/RESULTS.md, "Truth without copies"). The band's rows are converted on all cores.
-    const int bandRows = 64;
+    const int bandRows = exrBandRows();
     const std::size_t rowWords = std::size_t(width) * std::size_t(channelCount);
     const std::size_t rowBytes = sizeof(std::uint32_t) * rowWords;
     std::vector<std::uint32_t> band(rowWords * bandRows);

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -163,4 +164,28 @@ TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
   const test::CliResult r = runCli("render " + scene + " --backend vulkan");  // CLI11's own check
   CHECK(r.exitCode == 2);
   CHECK(oneLine(r.err));
+}
+
+TEST_CASE("cli: the EXR's bytes do not depend on the rows written per call (DICSYNTH_EXR_BAND_ROWS)") {
+  // The knob lets a many-core machine measure wider bands (host/io/outputs.cpp, exrBandRows): the
+  // file must be the same whatever it is, including bands that do not divide the height (150 rows)
+  // or a zip block (16 rows), and a value that is not a count is refused with a warning.
+  TempFolder dir;
+  const std::string args = "render " + std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua --downscale 8 --spp 1 "
+                           "--precision fp32 -o ";
+  const test::CliResult plain = runCli(args + dir.file("default"));
+  REQUIRE(plain.exitCode == 0);
+  const std::string expected = test::readBytes(dir.file("default/camera1.exr"));
+  REQUIRE(!expected.empty());
+  for (const char* rows : {"1", "7", "150", "1000", "many"}) {
+    INFO(rows);
+    setenv("DICSYNTH_EXR_BAND_ROWS", rows, 1);  // inherited by the child
+    const std::string folder = dir.file(std::string("rows_") + rows);
+    const test::CliResult r = runCli(args + folder);
+    unsetenv("DICSYNTH_EXR_BAND_ROWS");
+    REQUIRE(r.exitCode == 0);
+    CHECK((r.err.find("DICSYNTH_EXR_BAND_ROWS=many is not a row count") != std::string::npos) ==
+          (std::string(rows) == "many"));
+    CHECK(test::readBytes(folder + "/camera1.exr") == expected);
+  }
 }

@@ -21,9 +21,9 @@ namespace dicsynth {
 
 // One value of a sweep parameter: a number, a boolean or a string, set as a Lua global.
 // Largest number of points of one declaration (scene or --sweep/--random): points are generated on
-// demand, but each value a declaration lists is held (~90 bytes: a one-parameter sweep at this limit
-// takes 0.93 GB), so 10 million is far beyond any sweep a machine renders, and far below a mistake
-// like n = 1e12 that would exhaust memory instead of failing clearly.
+// demand, but each value a declaration lists is held (~90 bytes: a one-parameter sweep of listed
+// values at this limit takes 0.9 GB; SweepAxis), so 10 million is far beyond any sweep a machine
+// renders, and far below a mistake like n = 1e12 that would exhaust memory instead of failing clearly.
 inline constexpr std::int64_t kMaxSweepPoints = 10'000'000;
 
 // The i-th of n values evenly spaced from a to b (n >= 1): linspace(a, b, n) in a scene and
@@ -55,6 +55,21 @@ struct SweepValue {
 
 using SweepAssignment = std::vector<std::pair<std::string, SweepValue>>;  // sorted by name
 
+// One parameter of a grid: its listed values, or (spaced > 0) the `spaced` values evenly spaced from
+// a to b of --sweep NAME=A:B:N, made on demand: a listed value is held (~90 bytes), so a
+// one-parameter sweep of 10 million listed values takes ~0.9 GB, of 10 million spaced ones nothing.
+// A scene's linspace() is a Lua table of listed values (the scene may read it as one).
+struct SweepAxis {
+  std::string name;
+  std::vector<SweepValue> values;
+  double a = 0, b = 0;
+  std::int64_t spaced = 0;
+  std::int64_t size() const { return spaced > 0 ? spaced : std::int64_t(values.size()); }
+  SweepValue at(std::int64_t i) const {
+    return spaced > 0 ? SweepValue::ofNumber(linspaceValue(a, b, spaced, i)) : values[std::size_t(i)];
+  }
+};
+
 struct SweepRange {
   std::string name;
   double lo = 0, hi = 0;  // uniform in [lo, hi)
@@ -64,7 +79,7 @@ struct SweepDeclaration {
   enum class Kind { None, Grid, Points, Random };
   Kind kind = Kind::None;
   std::string origin;  // "SCENE:LINE" or "--sweep", for messages
-  std::vector<std::pair<std::string, std::vector<SweepValue>>> grid;  // Grid: sorted by name
+  std::vector<SweepAxis> grid;                                       // Grid: sorted by name
   std::vector<SweepAssignment> points;                               // Points: each sorted by name
   std::vector<SweepRange> ranges;                                    // Random: sorted by name
   std::int64_t count = 0;                                            // Random: n

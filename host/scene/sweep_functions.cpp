@@ -238,10 +238,10 @@ SweepDeclaration readSweepGlobal(lua_State* L) {
         } else {
           values.push_back(readValue(L, -1, what, "the value"));
         }
-        d.grid.emplace_back(name, std::move(values));
+        d.grid.push_back({name, std::move(values)});
       });
       if (d.grid.empty()) fail("sweep", "the table is empty (no parameter to sweep)");
-      std::sort(d.grid.begin(), d.grid.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      std::sort(d.grid.begin(), d.grid.end(), [](const auto& x, const auto& y) { return x.name < y.name; });
     } else if (!lua_isnil(L, top)) {
       fail("sweep", "must be a table {name = {values}, ...}, points {...} or random {...}, got " + typeName(L, top));
     }

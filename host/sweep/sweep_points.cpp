@@ -88,7 +88,7 @@ SweepDeclaration parseSweepOptions(const SweepOptions& options) {
       d.ranges.push_back({name, *lo, *hi});
       continue;
     }
-    std::vector<SweepValue> values;
+    SweepAxis axis{name, {}};
     if (colons.size() == 3) {
       const auto a = parseNumber(colons[0]), b = parseNumber(colons[1]);
       long long n = 0;
@@ -97,18 +97,20 @@ SweepDeclaration parseSweepOptions(const SweepOptions& options) {
         throw InputError(option + "expected A:B:N (numbers A, B and an integer N)");
       if (n < 1) throw InputError(option + "N = " + std::to_string(n) + " gives an empty range (N must be >= 1)");
       if (n > kMaxSweepPoints) throw InputError(option + "N is more than " + std::to_string(kMaxSweepPoints));
-      for (long long i = 0; i < n; ++i) values.push_back(SweepValue::ofNumber(linspaceValue(*a, *b, n, i)));
+      axis.a = *a;
+      axis.b = *b;
+      axis.spaced = n;  // made on demand (SweepAxis)
     } else if (colons.size() == 1) {
       for (const std::string& v : split(spec, ',')) {
         if (v.empty()) throw InputError(option + "empty value in the list (write V1,V2,...)");
-        values.push_back(parseValue(v));
+        axis.values.push_back(parseValue(v));
       }
     } else {
       throw InputError(option + "expected A:B:N or V1,V2,... (LO:HI needs --random COUNT)");
     }
-    d.grid.emplace_back(name, std::move(values));
+    d.grid.push_back(std::move(axis));
   }
-  std::sort(d.grid.begin(), d.grid.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::sort(d.grid.begin(), d.grid.end(), [](const auto& x, const auto& y) { return x.name < y.name; });
   std::sort(d.ranges.begin(), d.ranges.end(), [](const auto& x, const auto& y) { return x.name < y.name; });
   return d;
 }
@@ -118,11 +120,11 @@ std::int64_t sweepPointCount(const SweepDeclaration& d) {
     case SweepDeclaration::Kind::None: return 0;
     case SweepDeclaration::Kind::Grid: {
       std::int64_t total = 1;
-      for (const auto& [name, values] : d.grid) {
-        if (values.empty()) throw InputError(d.origin + ": sweep parameter '" + name + "' has no value");
-        if (total > kMaxSweepPoints / std::int64_t(values.size()))
+      for (const SweepAxis& axis : d.grid) {
+        if (axis.size() == 0) throw InputError(d.origin + ": sweep parameter '" + axis.name + "' has no value");
+        if (total > kMaxSweepPoints / axis.size())
           throw InputError(d.origin + ": the grid has more than " + std::to_string(kMaxSweepPoints) + " points");
-        total *= std::int64_t(values.size());
+        total *= axis.size();
       }
       return total;
     }
@@ -140,9 +142,9 @@ SweepPoint sweepPoint(const SweepDeclaration& d, std::int64_t i) {
       p.values.resize(d.grid.size());
       std::int64_t rest = i;
       for (std::size_t k = d.grid.size(); k-- > 0;) {  // the last name varies fastest
-        const auto& values = d.grid[k].second;
-        p.values[k] = {d.grid[k].first, values[std::size_t(rest % std::int64_t(values.size()))]};
-        rest /= std::int64_t(values.size());
+        const SweepAxis& axis = d.grid[k];
+        p.values[k] = {axis.name, axis.at(rest % axis.size())};
+        rest /= axis.size();
       }
       break;
     }

@@ -91,9 +91,9 @@ void RunLock::checkOthers(const fs::path& lockDir, const std::string& outputDir)
       if (stillLinked(fd, other)) fs::remove(other, ec);  // no run holds it: a killed run's
     } else if (errno == EWOULDBLOCK) {
       // Shared holders are live runs. An exclusive holder is the last run of that fingerprint
-      // removing its file as it ends (release()): wait for it, and look again.
-      if (flockRetrying(fd, LOCK_SH | LOCK_NB) == 0) held = true;
-      else if (flockRetrying(fd, LOCK_SH) == 0) held = stillLinked(fd, other);
+      // removing its file as it ends (release()): wait for it, and look again. Either way a file
+      // unlinked meanwhile (its last run ended between the two tries) is no run's.
+      if (flockRetrying(fd, LOCK_SH | LOCK_NB) == 0 || flockRetrying(fd, LOCK_SH) == 0) held = stillLinked(fd, other);
     }
     ::close(fd);
     if (held) refuse(other, "a live process holds");

@@ -66,16 +66,11 @@ AtomicFile::AtomicFile(std::string finalPath) : final_(std::move(finalPath)) {
   if (target.filename().empty()) throw Error("cannot write '" + final_ + "': not a file name");
   // Create the temporary file now (O_EXCL: never adopt someone else's file), so that a missing or
   // read-only folder is reported before any work goes into the contents.
-  // Registered once made (core/termination.h): a run ended by a signal removes it. A signal between
-  // the two leaves it to the next run (removeStaleTemporaries), never removes another's file.
+  // Made and registered at once (core/termination.h): a run ended by a signal removes it.
   for (int attempt = 0;; ++attempt) {
     temp_ = (target.parent_path() / tempName(target, gTempCounter.fetch_add(1))).string();
-    const int fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd >= 0) {
-      ::close(fd);
-      registerTemporary(temp_);
-      return;
-    }
+    fd_ = createTemporary(temp_);
+    if (fd_ >= 0) return;
     const int err = errno;
     if (err != EEXIST || attempt >= 100) {
       const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
@@ -86,9 +81,16 @@ AtomicFile::AtomicFile(std::string finalPath) : final_(std::move(finalPath)) {
 }
 
 AtomicFile::~AtomicFile() {
+  if (fd_ >= 0) ::close(fd_);
   if (committed_) return;
   ::unlink(temp_.c_str());  // nothing to report from a destructor
   unregisterTemporary(temp_);
+}
+
+int AtomicFile::duplicateFd() const {
+  const int fd = ::fcntl(fd_, F_DUPFD_CLOEXEC, 0);
+  if (fd < 0) throw Error("cannot write '" + final_ + "': " + errnoText(errno));
+  return fd;
 }
 
 void AtomicFile::commit() {
@@ -102,9 +104,13 @@ void AtomicFile::commit() {
 }
 
 TextWriter::TextWriter(const AtomicFile& file) : finalPath_(file.finalPath()) {
-  out_ = std::fopen(file.tempPath().c_str(), "wb");
-  if (out_ == nullptr)
-    throw Error("cannot write '" + finalPath_ + "': cannot open " + file.tempPath() + ": " + errnoText(errno));
+  const int fd = file.duplicateFd();
+  out_ = ::fdopen(fd, "wb");
+  if (out_ == nullptr) {
+    const int err = errno;
+    ::close(fd);
+    throw Error("cannot write '" + finalPath_ + "': cannot open " + file.tempPath() + ": " + errnoText(err));
+  }
 }
 
 TextWriter::~TextWriter() {

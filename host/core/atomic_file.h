@@ -17,11 +17,16 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   const std::string& tempPath() const { return temp_; }
+  // A new descriptor (the caller closes it) of the temporary file, open for reading and writing.
+  // Writers write through it, never by reopening tempPath(): a run ended by a signal removes the
+  // temporary file (core/termination.h), and a reopen by name just then would make it again.
+  int duplicateFd() const;
   const std::string& finalPath() const { return final_; }
   void commit();  // rename temp → final; throws Error on failure
 
  private:
   std::string final_, temp_;
+  int fd_ = -1;
   bool committed_ = false;
 };
 

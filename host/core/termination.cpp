@@ -1,5 +1,6 @@
 #include "core/termination.h"
 
+#include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
 #include <unistd.h>
@@ -38,13 +39,18 @@ sigset_t terminationSignals() {
 }
 
 [[noreturn]] void cleanUpAndEnd(int sig) {
-  // The lock is kept to the end: no write registers, commits or removes a file meanwhile.
+  // The lock is kept to the end: no temporary file is made, or forgotten, meanwhile. A writer that
+  // reopens its temporary file by name (OpenEXR, libtiff, fopen) between the removal and the end
+  // makes it again: a window of the message's write, the signal's delivery; the next run into the
+  // folder removes such a file (removeStaleTemporaries).
   registryMutex().lock();
   std::size_t removed = 0;
   for (const std::string& path : registry()) removed += ::unlink(path.c_str()) == 0 ? 1 : 0;
   std::fprintf(stderr, "dicsynth: ended by %s: removed %zu temporary file%s of unfinished writes\n",
                sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGHUP", removed, removed == 1 ? "" : "s");
   std::fflush(stderr);
+  // Once more: a writer may have reopened one by name while the message was written.
+  for (const std::string& path : registry()) ::unlink(path.c_str());
   // End by the same signal, with its default action, so that the parent (a shell, Slurm) sees it.
   ::signal(sig, SIG_DFL);
   sigset_t one;
@@ -72,9 +78,11 @@ void removeTemporariesOnTermination() {
   });
 }
 
-void registerTemporary(const std::string& path) {
+int createTemporary(const std::string& path) {
   std::lock_guard lock(registryMutex());
-  registry().insert(path);
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd >= 0) registry().insert(path);
+  return fd;
 }
 
 void unregisterTemporary(const std::string& path) {

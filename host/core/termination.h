@@ -19,9 +19,12 @@ namespace dicsynth {
 // else.
 void removeTemporariesOnTermination();
 
-// AtomicFile registers its temporary file once created and unregisters it once committed or
-// removed.
-void registerTemporary(const std::string& path);
+// AtomicFile makes its temporary file here: created (open with O_RDWR | O_CREAT | O_EXCL) and registered
+// under the registry's lock, so a signal's cleanup either removes it or runs before it exists (the
+// caller then waits at the lock until the process ends, and never makes it). Returns open's file
+// descriptor, or -1 with errno set (EEXIST: another's file, not registered). Unregistered once
+// committed or removed.
+int createTemporary(const std::string& path);
 void unregisterTemporary(const std::string& path);
 
 }  // namespace dicsynth

@@ -36,7 +36,7 @@ void writeGrayTiff(AtomicFile& file, int width, int height, const std::vector<st
   DS_CHECK(values.empty() || *std::max_element(values.begin(), values.end()) <= maxValue,
            path + ": a value exceeds 2^bits - 1");
 
-  writeGrayTiffFile(file.tempPath(), path, width, height, values, bits, description);
+  writeGrayTiffFile(file.duplicateFd(), path, width, height, values, bits, description);
 }
 
 void writeGrayTiff(const std::string& path, int width, int height,

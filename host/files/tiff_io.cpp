@@ -3,6 +3,7 @@
 #include "files/image_limits.h"
 
 #include <tiffio.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdarg>
@@ -124,12 +125,15 @@ std::optional<GrayImage> readCommonTiff(const std::string& path) {
   return image;
 }
 
-void writeGrayTiffFile(const std::string& tempPath, const std::string& finalPath, int width, int height,
+void writeGrayTiffFile(int fd, const std::string& finalPath, int width, int height,
                        const std::vector<std::uint16_t>& values, int bits, const std::string& description) {
   installHandlers();
   tLastTiffError.clear();
-  TiffPtr tif(TIFFOpen(tempPath.c_str(), "w"));
-  if (!tif) throw Error(finalPath + ": cannot create TIFF: " + lastError());
+  TiffPtr tif(TIFFFdOpen(fd, finalPath.c_str(), "w"));  // TIFFClose closes fd
+  if (!tif) {
+    ::close(fd);
+    throw Error(finalPath + ": cannot create TIFF: " + lastError());
+  }
   TIFF* t = tif.get();
   const bool eightBit = bits <= 8;
   const std::uint32_t rowsPerStrip = 32;  // 32 rows per zip strip: ~100 KB of a 1600-px 16-bit image

@@ -21,9 +21,10 @@ bool looksLikeTiff(const std::string& path);
 // reads it through OpenImageIO. Throws InputError("PATH: reason") for a damaged file.
 std::optional<GrayImage> readCommonTiff(const std::string& path);
 
-// The single-channel zip-compressed TIFF of writeGrayTiff (files/image_io.h) at `tempPath`; errors
-// name `finalPath`.
-void writeGrayTiffFile(const std::string& tempPath, const std::string& finalPath, int width, int height,
+// The single-channel zip-compressed TIFF of writeGrayTiff (files/image_io.h), written through the
+// descriptor `fd` of an empty file (AtomicFile::duplicateFd), which it closes; errors name
+// `finalPath`.
+void writeGrayTiffFile(int fd, const std::string& finalPath, int width, int height,
                        const std::vector<std::uint16_t>& values, int bits, const std::string& description);
 
 }  // namespace dicsynth

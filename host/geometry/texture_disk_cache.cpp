@@ -2,6 +2,7 @@
 
 #include <libdeflate.h>
 #include <openssl/evp.h>
+#include <unistd.h>
 #include <zlib.h>  // adler32_combine64
 
 #include <algorithm>
@@ -168,8 +169,12 @@ void TextureDiskCache::store(const std::string& digest, const PreparedTexture& t
     copyText(h.buildId, codeBuildId());
     AtomicFile atomic(file);
     {
-      File out(std::fopen(atomic.tempPath().c_str(), "wb"));
-      if (!out) throw Error("cannot write " + atomic.tempPath());
+      const int fd = atomic.duplicateFd();
+      File out(::fdopen(fd, "wb"));
+      if (!out) {
+        ::close(fd);
+        throw Error("cannot write " + atomic.tempPath());
+      }
       const bool written = std::fwrite(&h, sizeof h, 1, out.get()) == 1 &&
                            std::fwrite(texture.values().data(), sizeof(double), h.count, out.get()) == h.count;
       if (!written || std::fclose(out.release()) != 0) throw Error("cannot write " + atomic.tempPath() + " completely");

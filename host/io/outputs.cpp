@@ -28,12 +28,17 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfMatrixAttribute.h>
+#include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -256,6 +261,30 @@ void useAllCoresForExr() {
   (void)once;
 }
 
+// OpenEXR's output stream on the temporary file's descriptor (AtomicFile::duplicateFd, closed here):
+// the file is never reopened by name (core/termination.h). Positioned writes (pwrite): the
+// descriptor's own offset is not used.
+class DescriptorOStream : public Imf::OStream {
+ public:
+  DescriptorOStream(int fd, const std::string& name) : Imf::OStream(name.c_str()), fd_(fd) {}
+  ~DescriptorOStream() override { ::close(fd_); }
+  void write(const char c[], int n) override {
+    for (int done = 0; done < n;) {
+      const ssize_t w = ::pwrite(fd_, c + done, std::size_t(n - done), off_t(position_));
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) throw Error(std::string("write failed: ") + std::strerror(w < 0 ? errno : ENOSPC));
+      done += int(w);
+      position_ += std::uint64_t(w);
+    }
+  }
+  std::uint64_t tellp() override { return position_; }
+  void seekp(std::uint64_t position) override { position_ = position; }
+
+ private:
+  int fd_;
+  std::uint64_t position_ = 0;
+};
+
 void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraImage& image,
                          const DerivedTruth* truth, const SensorImage* sensor, const OutputInfo& info,
                          const std::vector<ExrChannel>& channels) {
@@ -280,7 +309,8 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
   useAllCoresForExr();
 
   try {
-    Imf::OutputFile out(file.tempPath().c_str(), header);
+    DescriptorOStream stream(file.duplicateFd(), file.tempPath());
+    Imf::OutputFile out(stream, header);
     // Convert and write in bands of rows (exrBandRows): bounded memory for any image size, and
     // several zip blocks per call (16 rows each) to keep the cores compressing. 64 rows measured
     // fastest on 2 cores (Figure 1: 16 and 32 rows left cores idle, 256 and the whole image were

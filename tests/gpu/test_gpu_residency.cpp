@@ -42,7 +42,7 @@ gpu::RendererOptions withoutLocalCopies() {
   return o;
 }
 
-bool cpuDevice() { return test::gpuContext().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+using test::cpuDevice;
 
 // `spheres` Lambert spheres on a grid in front of a 160 × 120 camera, lit by `lights` point lights,
 // on a textured Lambert floor that receives their shadows.

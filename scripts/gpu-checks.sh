@@ -16,8 +16,9 @@
 #   sweep     bench/bench_sweep.sh (50 points of Figure 1 at 800x600, 4 spp) with the default layers
 #             and with `--layers image`: issue 15's time per point against the render-only time
 #   phases    one render's phases (DICSYNTH_TIMINGS=1): Figure 1 fp32 with all layers (EXR zip, none,
-#             rle; zip in bands of 64 to 1200 rows) and with the image alone, the dogbone in df64 and fp64 (on the H100 every frame took ~0.1 s
-#             whatever the precision: where the time goes)
+#             rle; zip in bands of 64 to 1200 rows) and with the image alone, the dogbone in df64
+#             and fp64 (on the H100 every frame took ~0.1 s whatever the precision: where the time
+#             goes)
 #   long      the randomized NURBS test's long run (140 scenes, 1.08e7 rays per precision)
 #   cases     the test cases CASES names (doctest -tc patterns, comma-separated; e.g. those a step
 #             cut off by its limit left), under the validation layer

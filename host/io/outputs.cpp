@@ -231,9 +231,6 @@ Imf::Compression exrCompression(const std::string& name) {
   throw InputError("EXR compression '" + name + "': expected " + names);
 }
 
-// OpenEXR compresses the blocks of one writePixels call on its global thread pool (16 rows per
-// zip block, 32 per piz). Sized once per process to the machine's cores; the calling thread does
-// the file I/O.
 // Rows per writePixels call: 64, or $DICSYNTH_EXR_BAND_ROWS (a measurement knob). A call compresses
 // its blocks (16 rows each in zip) on the pool and returns when all are done, so 64 rows keep at most
 // 4 threads busy: right on 2 cores (measured fastest there, bench/RESULTS.md), a cap on more. On an
@@ -253,6 +250,9 @@ int exrBandRows() {
   return rows;
 }
 
+// OpenEXR compresses the blocks of one writePixels call on its global thread pool (16 rows per
+// zip block, 32 per piz). Sized once per process to the machine's cores; the calling thread does
+// the file I/O.
 void useAllCoresForExr() {
   static const bool once = [] {
     Imf::setGlobalThreadCount(int(hardwareThreads()));
@@ -314,8 +314,8 @@ void writeGroundTruthExr(AtomicFile& file, const Camera& camera, const CameraIma
     // Convert and write in bands of rows (exrBandRows): bounded memory for any image size, and
     // several zip blocks per call (16 rows each) to keep the cores compressing. 64 rows measured
     // fastest on 2 cores (Figure 1: 16 and 32 rows left cores idle, 256 and the whole image were
-    // slower; bench/RESULTS.md). Every channel is 4 bytes. A row of the band is channelCount runs of `width` words, one per
-    // channel, the order of a scanline in the file: OpenEXR copies each run in one sweep (pixels
+    // slower; bench/RESULTS.md). Every channel is 4 bytes. A row of the band is channelCount runs
+    // of `width` words, one per channel, the order of a scanline in the file: OpenEXR copies each run in one sweep (pixels
     // interleaved, 80-byte strides for Figure 1's 20 channels, made the write phase 0.02 s longer:
     // bench/RESULTS.md, "Truth without copies"). The band's rows are converted on all cores.
     const int bandRows = exrBandRows();

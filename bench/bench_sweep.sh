@@ -9,7 +9,9 @@
 #  3. peak memory (max RSS of the child process) of a 10-, MANY- and 8×MANY-point sweep of a 32×24
 #     scene: no growth per point.
 # Usage: bench/bench_sweep.sh [BUILD_DIR] [POINTS] [PROCS] [MANY]   (defaults: build 50 10 1000)
-# EXTRA_OPTS="..." adds options to both the sweep and the render processes (e.g. --exr-compression rle).
+# EXTRA_OPTS="..." adds options to both the sweep and the render processes (e.g. --exr-compression rle);
+# DICSYNTH_SWEEP_WRITERS=N sets how many points the sweep writes at once (default: 1 below 8
+# hardware threads, else one per 4, at most 8).
 set -eu
 BUILD=${1:-build}
 POINTS=${2:-50}
@@ -48,6 +50,7 @@ t4=$(now)
 "$BIN" sweep "$HERE/figure1_sweep.lua" -o "$OUT/sweep" $OPTS --sweep angle=30:40:$POINTS >/dev/null  # all complete: skips
 t5=$(now)
 
+echo "sweep writers: ${DICSYNTH_SWEEP_WRITERS:-the default} on $(nproc) hardware threads"
 awk -v ts="$t0" -v te="$t1" -v rs="$t2" -v re="$t3" -v ss="$t4" -v se="$t5" -v fs="$t8" -v fe="$t9" -v n="$POINTS" -v p="$PROCS" -v gpu="$gpu" 'BEGIN {
   sweep = (te - ts) / n; render = (re - rs) / p; rerun = se - ss; first = fe - fs
   steady = ((te - ts) - first) / (n - 1)

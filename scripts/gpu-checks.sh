@@ -14,7 +14,8 @@
 #   bench     `dicsynth bench` (run time versus error, Figure 1, NURBS plate, dogbone)
 #   process   bench/bench_process.sh (whole processes, Figure 1, 1600x1200, 16 spp; fixed overhead)
 #   sweep     bench/bench_sweep.sh (50 points of Figure 1 at 800x600, 4 spp) with the default layers
-#             and with `--layers image`: issue 15's time per point against the render-only time
+#             (one writer, then the default number) and with `--layers image`: issue 15's time per
+#             point against the render-only time
 #   phases    one render's phases (DICSYNTH_TIMINGS=1): Figure 1 fp32 with all layers (EXR zip, none,
 #             rle; zip in bands of 64 to 1200 rows) and with the image alone, the dogbone in df64
 #             and fp64 (on the H100 every frame took ~0.1 s whatever the precision: where the time
@@ -112,6 +113,9 @@ phases_step() {
   done
 }
 sweep_step() {
+  # The default writes several points at once on many cores (sweepWriters); one writer for comparison.
+  echo "== default layers, one writer"
+  DICSYNTH_SWEEP_WRITERS=1 bench/bench_sweep.sh "$BUILD" 50 4 100
   echo "== default layers"
   bench/bench_sweep.sh "$BUILD" 50 4 100
   echo "== --layers image"
@@ -134,7 +138,7 @@ for name in $STEPS; do
     compare) step compare 120 compare_step ;;
     bench) step bench 60 '"$DS" bench -o /tmp/gpu-checks-bench --runs 3' ;;
     process) step process 90 'bench/bench_process.sh "$BUILD" 3 16' ;;
-    sweep) step sweep 90 sweep_step ;;
+    sweep) step sweep 130 sweep_step ;;
     phases) step phases 60 phases_step ;;
     long) step long 200 long_step ;;
     *) echo "gpu-checks: unknown step $name" >&2; exit 2 ;;

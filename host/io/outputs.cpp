@@ -50,6 +50,7 @@
 #include <system_error>
 
 #include "core/atomic_file.h"
+#include "core/env_count.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/parallel.h"
@@ -238,15 +239,7 @@ Imf::Compression exrCompression(const std::string& name) {
 // the next GPU machine measure wider bands (scripts/gpu-checks.sh, phases) before the default changes.
 // The file's bytes do not depend on it (the blocks are the compression's).
 int exrBandRows() {
-  static const int rows = [] {
-    const char* v = std::getenv("DICSYNTH_EXR_BAND_ROWS");
-    if (!v || !*v) return 64;
-    char* end = nullptr;
-    const long parsed = std::strtol(v, &end, 10);
-    if (end && *end == '\0' && parsed >= 1 && parsed <= 65536) return int(parsed);
-    std::fprintf(stderr, "dicsynth: warning: DICSYNTH_EXR_BAND_ROWS=%s is not a row count from 1 to 65536: using 64\n", v);
-    return 64;
-  }();
+  static const int rows = int(envCount("DICSYNTH_EXR_BAND_ROWS", 64, 1, 65536));
   return rows;
 }
 

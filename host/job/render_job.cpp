@@ -23,7 +23,7 @@
 #include "core/exact_number.h"
 #include "core/phase_timer.h"
 #include "core/progress.h"
-#include "core/serial_worker.h"
+#include "core/worker_pool.h"
 #include "cpu/reference_renderer.h"
 #include "files/image_limits.h"
 #include "gpu/df64.h"
@@ -98,6 +98,18 @@ void checkNurbsFitsDevice(RenderSession& session, const Scene& scene) {
   }
 }
 
+}  // namespace
+
+std::uint64_t framePixels(const Scene& scene, int downscale) {
+  std::uint64_t pixels = 0;
+  const auto k = std::uint64_t(std::max(1, downscale));
+  for (const Camera& camera : scene.cameras)
+    pixels += std::max<std::uint64_t>(1, std::uint64_t(camera.width_px) / k) * std::max<std::uint64_t>(1, std::uint64_t(camera.height_px) / k);
+  return pixels;
+}
+
+namespace {
+
 FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   FramesChecked out;
   LayerSources sources;
@@ -119,11 +131,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     unread.add(scene);
     checkNurbsFitsDevice(session, scene);
     sources.add(scene);
-    std::uint64_t pixels = 0;
-    const auto k = std::uint64_t(std::max(1, session.args().downscale));
-    for (const Camera& camera : scene.cameras)
-      pixels += std::max<std::uint64_t>(1, std::uint64_t(camera.width_px) / k) * std::max<std::uint64_t>(1, std::uint64_t(camera.height_px) / k);
-    out.maxPixelsPerFrame = std::max(out.maxPixelsPerFrame, pixels);
+    out.maxPixelsPerFrame = std::max(out.maxPixelsPerFrame, framePixels(scene, session.args().downscale));
     std::vector<std::string> calibration = calibrationSignature(scene);
     if (fi == 0) firstCalibration = std::move(calibration);
     else if (calibration != firstCalibration) out.calibrationPerFrame = true;
@@ -131,10 +139,8 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   if (bar) bar->update(std::int64_t(job.frames.size()));
   unread.check(job.sceneFile, job.sweepParameters);
   checkLayersProducible(job.layers, sources);
-  // Memory: measured ~220 bytes per pixel for a frame rendered on the GPU path with every layer
-  // (Figure 1, 1600 x 1200: 721 MB peak RSS against 327 MB at a 16th of the pixels); a frame is
-  // written while the next renders, so two frames' worth, at 256 bytes per pixel.
-  const std::uint64_t need = 2 * out.maxPixelsPerFrame * 256;
+  // A frame is written while the next renders: two frames' worth.
+  const std::uint64_t need = 2 * out.maxPixelsPerFrame * kBytesPerPixelInFlight;
   if (const auto available = availableMemoryBytes(); available && need > *available)
     throw InputError(job.sceneFile + ": a frame of " + std::to_string(out.maxPixelsPerFrame) +
                      " pixels (all cameras) needs about " + std::to_string(need >> 20) + " MiB to render and write, more than the " +
@@ -461,12 +467,8 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   // Frame i is derived and written on a worker thread while frame i + 1 renders, as a sweep writes
   // its points: at most one frame waits to be written. The frames are written in order, so the
   // reference frame (the first) is written, and its ReferenceFrame built, before any other.
-  SerialWorker writer;
-  bool writing = false;
-  auto finishWriting = [&] {
-    if (!std::exchange(writing, false)) return;
-    writer.wait();  // rethrows the writer's error
-  };
+  WorkerPool writer(1);
+  auto finishWriting = [&] { writer.waitAll(); };  // rethrows the writer's error
   std::optional<ProgressBar> bar;
   if (!job.progressLabel.empty() && job.frames.size() > 1) bar.emplace("render", "frames", std::int64_t(job.frames.size()), stderrIsTerminal());
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
@@ -483,7 +485,6 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
     writer.start([&job, &reference, rendered, first = fi == 0, calibrationPerFrame] {
       writeFrame(job, *rendered, first, calibrationPerFrame, reference);
     });
-    writing = true;
   }
   finishWriting();
   if (bar) bar->update(std::int64_t(job.frames.size()));

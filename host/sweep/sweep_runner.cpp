@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -14,10 +15,13 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/env_count.h"
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/parallel.h"
 #include "core/progress.h"
-#include "core/serial_worker.h"
+#include "core/worker_pool.h"
+#include "files/image_limits.h"
 #include "job/render_job.h"
 #include "shared/rng.h"
 #include "sweep/manifest.h"
@@ -147,6 +151,23 @@ class Progress {
   ProgressBar bar_;
 };
 
+// How many points are written at once. Writing a point (its ground truth derived on the host, the
+// sensor model, the EXR compressed by OpenEXR, whose calls keep at most 4 cores busy with the
+// default 64-row bands) takes longer than rendering it on a GPU: on an NVIDIA H200 machine (16
+// cores) a point of Figure 1 at 800x600 took 0.127 s with one writer, of which 0.015 s rendering
+// (bench/RESULTS.md, "GPU machines"): the writer set the pace. Writers in parallel put the other
+// cores to work. One writer per 4 hardware threads (1 below 8 threads: on 2 cores rendering and
+// writing already fill the machine), at most 8, and no more than the available memory holds beside
+// the point rendering: each writer holds one point's frames until written (`pointBytes`: the first
+// point's, at render_job.h's kBytesPerPixelInFlight). DICSYNTH_SWEEP_WRITERS overrides it (for
+// measuring).
+unsigned sweepWriters(std::uint64_t pointBytes) {
+  long writers = std::clamp(long(hardwareThreads() / 4), 1L, 8L);
+  if (const auto available = availableMemoryBytes(); available && pointBytes > 0)
+    writers = std::clamp(long(*available / pointBytes) - 1, 1L, writers);
+  return unsigned(envCount("DICSYNTH_SWEEP_WRITERS", writers, 1, 64));
+}
+
 }  // namespace
 
 void runSweep(const SweepRun& cmd) {
@@ -208,6 +229,7 @@ void runSweep(const SweepRun& cmd) {
   if (cmd.mergeOnly && !fs::is_directory(cmd.outputDir))
     throw InputError("-o " + cmd.outputDir + ": no such folder: --merge-only merges the points of an existing sweep");
   checkOutputWritable(cmd.outputDir);
+  std::uint64_t firstPointBytes = 0;  // its rendered frames until written (a point's size, for the writers)
   {
     // Every frame of the first point: a parameter may be read in some frames only.
     UnreadDefines unread;
@@ -216,7 +238,9 @@ void runSweep(const SweepRun& cmd) {
       first.sweepParameters = plan.names;
       first.quiet = true;  // a check: the point's own evaluation prints when it renders
       first.requireDefinesRead = false;
-      unread.add(loadScene(cmd.args.scenePath, first));
+      const Scene scene = loadScene(cmd.args.scenePath, first);
+      unread.add(scene);
+      firstPointBytes += framePixels(scene, cmd.args.downscale) * kBytesPerPixelInFlight;
     }
     unread.check(cmd.args.scenePath, plan.names);
   }
@@ -266,18 +290,18 @@ void runSweep(const SweepRun& cmd) {
   std::int64_t done = 0, rendered = 0, skipped = 0, busy = 0, images = 0;
   std::int64_t replaced = 0;  // finished points of other inputs, rendered again
   const std::string host = hostName();
-  // The files of point i are written (sensor, truth, files, record) on a worker thread while the
-  // main thread evaluates, prepares and renders point i+1: at most one point waits to be written,
-  // so memory does not grow with the number of points.
-  SerialWorker writer;
-  bool writing = false;  // a point was handed to the writer and not yet collected
-  auto finishWriting = [&] {
-    if (!writing) return;
-    writing = false;
-    writer.wait();  // rethrows the writer's error
-    ++rendered;
-    images += std::int64_t(frames.size());
-    progress.update(++done, rendered, images);
+  // The files of a point are written (sensor, truth, files, record) on a worker thread while the
+  // main thread evaluates, prepares and renders the next: at most sweepWriters() points wait to be
+  // written, so memory does not grow with the number of points.
+  WorkerPool writers(sweepWriters(firstPointBytes));
+  // Counts the points written since the last call; `all`: waits for every one, else for a free writer.
+  // Rethrows a writer's error.
+  auto collectWritten = [&](bool all) {
+    for (std::size_t n = all ? writers.waitAll() : writers.waitForFree(); n > 0; --n) {
+      ++rendered;
+      images += std::int64_t(frames.size());
+      progress.update(++done, rendered, images);
+    }
   };
   for (std::int64_t index = shard.index; index < plan.count; index += shard.count) {
     const SweepPoint p = plan.point(index);
@@ -321,10 +345,10 @@ void runSweep(const SweepRun& cmd) {
     try {
       result = renderJob(session, *job);
     } catch (...) {
-      finishWriting();  // the previous point still completes (its own error, if any, wins)
+      collectWritten(true);  // the points being written still complete (a writer's error, if any, wins)
       throw;
     }
-    finishWriting();
+    collectWritten(false);
     // Not complete: the point starts from an empty folder (a killed run may have left part of it).
     std::error_code ec;
     fs::remove_all(folder, ec);
@@ -344,8 +368,7 @@ void runSweep(const SweepRun& cmd) {
     for (const RenderedFrame& f : result.frames)
       for (const PreparedTexture& t : f.scene.textures) texturePaths.push_back(t.path);
     record->assets = assets.of(texturePaths);
-    writing = true;
-    writer.start([job, record, lock, folder, r = std::make_shared<RenderedJob>(std::move(result))] {
+    writers.start([job, record, lock, folder, r = std::make_shared<RenderedJob>(std::move(result))] {
       try {
         writeRenderedJob(std::move(*r), *job);
         record->files = sweep::scanPointFiles(folder);
@@ -358,7 +381,7 @@ void runSweep(const SweepRun& cmd) {
       }
     });
   }
-  finishWriting();
+  collectWritten(true);
   const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets, false);
   const std::string replacedText =
       replaced ? " (" + std::to_string(replaced) + " of them replacing points rendered with other inputs)" : "";

@@ -136,6 +136,42 @@ TEST_CASE("cli: sweep --reference-frame measures motion from that frame, as rend
   CHECK(!std::filesystem::exists(dir.file("bad")));
 }
 
+TEST_CASE("cli: sweep writes several points at once with the same files (DICSYNTH_SWEEP_WRITERS)") {
+  // Many-core machines write up to 8 points at once (host/sweep/sweep_runner.cpp, sweepWriters;
+  // 1 below 8 hardware threads, so the suite's 2-core runs would not see it without the knob):
+  // every file of every point and the manifest must be those of one writer, and a value that is
+  // not a count is said and replaced by the default.
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  auto sweepWith = [&](const char* writers) {
+    setenv("DICSYNTH_SWEEP_WRITERS", writers, 1);  // inherited by the child
+    const test::CliResult r = runCli("sweep " + scene + " -o " + dir.file(std::string("out_") + writers) + kFast);
+    unsetenv("DICSYNTH_SWEEP_WRITERS");
+    return r;
+  };
+  const test::CliResult one = sweepWith("1");
+  INFO(one.err);
+  REQUIRE(one.exitCode == 0);
+  for (const char* writers : {"3", "6", "many"}) {
+    INFO(writers);
+    const test::CliResult r = sweepWith(writers);
+    INFO(r.err);
+    REQUIRE(r.exitCode == 0);
+    CHECK((r.err.find("DICSYNTH_SWEEP_WRITERS=many is not a whole number from 1 to 64") != std::string::npos) ==
+          (std::string(writers) == "many"));
+    CHECK(r.out.find("rendered 6, already complete 0") != std::string::npos);
+    for (int i = 0; i < 6; ++i) {
+      const std::string folder = "/point_0000" + std::to_string(i);
+      for (const char* f : {"/cam.tif", "/cam.exr", "/cam.yml"}) {
+        const std::string a = test::readBytes(dir.file("out_1") + folder + f);
+        CHECK(!a.empty());
+        CHECK(a == test::readBytes(dir.file(std::string("out_") + writers) + folder + f));
+      }
+    }
+    CHECK(manifestWithoutTimes(dir.file(std::string("out_") + writers)) == manifestWithoutTimes(dir.file("out_1")));
+  }
+}
+
 TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered again") {
   TempFolder dir;
   const std::string scene = dir.write("scene.lua", kScene);
@@ -320,41 +356,49 @@ TEST_CASE("cli: sweep bad input: one line, exit code 2") {
 TEST_CASE("cli: sweep on a full disk stops with a clean error and resumes afterwards") {
   TempFolder dir;
   const std::string scene = dir.write("scene.lua", kScene);
-  const std::string mnt = dir.file("mnt");
-  std::filesystem::create_directories(mnt);
-  // One point's files need about 12 KiB here (page-granular on tmpfs: 5 files + record); 40 KiB
-  // holds a few points but not six.
-  if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=40k") != 0) {
-    MESSAGE("cannot mount a tmpfs (not root?): full-disk test skipped");
-    return;
+  // One writer, and four at once (a many-core machine's default, sweepWriters): each point is
+  // complete or absent whichever writer hit the full disk.
+  for (const char* writers : {"1", "4"}) {
+    INFO("DICSYNTH_SWEEP_WRITERS=" << writers);
+    const std::string mnt = dir.file(std::string("mnt") + writers);
+    std::filesystem::create_directories(mnt);
+    // One point's files need about 12 KiB here (page-granular on tmpfs: 5 files + record); 40 KiB
+    // holds a few points but not six.
+    if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=40k") != 0) {
+      MESSAGE("cannot mount a tmpfs (not root?): full-disk test skipped");
+      return;
+    }
+    struct Unmount {
+      std::string path;
+      ~Unmount() { ::umount(path.c_str()); }
+    } unmount{mnt};
+    setenv("DICSYNTH_SWEEP_WRITERS", writers, 1);  // inherited by the child
+    const test::CliResult full = runCli("sweep " + scene + " -o " + mnt + "/out" + kFast);
+    unsetenv("DICSYNTH_SWEEP_WRITERS");
+    INFO(full.err);
+    CHECK(full.exitCode == 3);
+    // One line naming the file that could not be written (the writer's own wording).
+    CHECK(full.err.rfind("dicsynth: error: ", 0) == 0);
+    CHECK(full.err.find(mnt + "/out/point_0000") != std::string::npos);
+    CHECK(full.err.find('\n') == full.err.size() - 1);
+    int complete = 0;
+    for (int i = 0; i < 6; ++i) {
+      const std::string p = mnt + "/out/point_0000" + std::to_string(i);
+      if (std::filesystem::exists(p + "/point.json")) ++complete;
+      else CHECK_FALSE(std::filesystem::exists(p));  // the failed points' files are removed
+    }
+    // One writer fills the disk point after point; four share it, and may all fail together.
+    if (std::string(writers) == "1") CHECK(complete >= 1);
+    CHECK(complete < 6);
+    // More room: the rerun renders only what is missing.
+    REQUIRE(::mount("tmpfs", mnt.c_str(), "tmpfs", MS_REMOUNT, "size=4m") == 0);
+    const test::CliResult resumed = runCli("sweep " + scene + " -o " + mnt + "/out" + kFast);
+    INFO(resumed.err);
+    CHECK(resumed.exitCode == 0);
+    CHECK(resumed.out.find("rendered " + std::to_string(6 - complete) + ", already complete " + std::to_string(complete)) !=
+          std::string::npos);
+    CHECK(resumed.out.find("manifest: 6 of 6 points complete") != std::string::npos);
   }
-  struct Unmount {
-    std::string path;
-    ~Unmount() { ::umount(path.c_str()); }
-  } unmount{mnt};
-  const test::CliResult full = runCli("sweep " + scene + " -o " + mnt + "/out" + kFast);
-  INFO(full.err);
-  CHECK(full.exitCode == 3);
-  // One line naming the file that could not be written (the writer's own wording).
-  CHECK(full.err.rfind("dicsynth: error: ", 0) == 0);
-  CHECK(full.err.find(mnt + "/out/point_0000") != std::string::npos);
-  CHECK(full.err.find('\n') == full.err.size() - 1);
-  int complete = 0;
-  for (int i = 0; i < 6; ++i) {
-    const std::string p = mnt + "/out/point_0000" + std::to_string(i);
-    if (std::filesystem::exists(p + "/point.json")) ++complete;
-    else CHECK_FALSE(std::filesystem::exists(p));  // the failed point's files are removed
-  }
-  CHECK(complete >= 1);
-  CHECK(complete < 6);
-  // More room: the rerun renders only what is missing.
-  REQUIRE(::mount("tmpfs", mnt.c_str(), "tmpfs", MS_REMOUNT, "size=4m") == 0);
-  const test::CliResult resumed = runCli("sweep " + scene + " -o " + mnt + "/out" + kFast);
-  INFO(resumed.err);
-  CHECK(resumed.exitCode == 0);
-  CHECK(resumed.out.find("rendered " + std::to_string(6 - complete) + ", already complete " + std::to_string(complete)) !=
-        std::string::npos);
-  CHECK(resumed.out.find("manifest: 6 of 6 points complete") != std::string::npos);
 }
 
 TEST_CASE("cli: sweep points that switch textures render exactly as render does (caches across points)") {

@@ -95,9 +95,12 @@ Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::R
   if (const auto named = parsePrecision(args.precision)) return *named;
   const PrecisionCalibration calibration = calibratePrecisions(context, renderer);
   const Precision chosen = choosePrecision(calibration, args.maxErrorPx);
-  std::fprintf(stderr, "precision auto: %s (max error %g px; %s calibration on %s: %s)\n", toString(chosen),
-               args.maxErrorPx, calibration.fromCache ? "cached" : "new", context.info().name.c_str(),
-               describeCalibration(calibration).c_str());
+  // Said when measured now (the run took seconds for it); from the cache the choice is silent, so
+  // that logs of repeated runs stay quiet: the precision is in every output's metadata, the
+  // render's lines on stdout and a sweep's manifest, and `dicsynth devices` shows the calibration.
+  if (!calibration.fromCache)
+    std::fprintf(stderr, "precision auto: %s (max error %g px; calibration measured on %s: %s)\n", toString(chosen),
+                 args.maxErrorPx, context.info().name.c_str(), describeCalibration(calibration).c_str());
   return chosen;
 }
 

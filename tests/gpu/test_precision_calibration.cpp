@@ -106,3 +106,18 @@ TEST_CASE("calibration: render --precision auto refuses an unreachable bound") {
   CHECK(r.exitCode == 2);
   CHECK(r.err.find("--precision auto: no precision of this device stays under --max-error-px") != std::string::npos);
 }
+
+TEST_CASE("calibration: render --precision auto names its choice when it measures, and is quiet from the cache") {
+  // Repeated runs' logs stay quiet (host/job/render_args.cpp, resolvePrecision). The suite's cache
+  // folder is shared: the first run may measure or read the cache; the second reads it.
+  const std::string args = "render " + std::string(DS_SOURCE_DIR) + "/scenes/rectangle.lua --downscale 8 --spp 1 -o ";
+  test::TempFolder dir;
+  const test::CliResult first = test::runCli(args + dir.file("first"));
+  REQUIRE(first.exitCode == 0);
+  if (first.err.find("precision auto:") != std::string::npos)
+    CHECK(first.err.find("calibration measured on") != std::string::npos);
+  const test::CliResult second = test::runCli(args + dir.file("second"));
+  REQUIRE(second.exitCode == 0);
+  CHECK(second.err.empty());
+  CHECK(second.out.find("gpu fp") != std::string::npos);  // the choice is still on stdout
+}

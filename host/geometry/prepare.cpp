@@ -116,6 +116,24 @@ void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, cons
                                    " to infinity (it lies on the homography's singular plane)");
 }
 
+// With a projective transform, a ray whose origin lies on the other side than the object of the plane
+// that the map sends to infinity reaches the object only after crossing that plane: its image in the
+// object frame runs out to infinity and comes back from the other end, and both renderers search
+// the first part alone (geometry/homography.h), so the object would be missing from the image (or
+// from the shadow rays) without a word. Refused, naming the point. The object's side: the sign of
+// w of its frame's origin mapped to the world (H's bottom row · (0, 0, 0, 1)); a point's: that of
+// w of the point mapped into the object frame (equal signs: the ray's w stays of one sign up to the
+// object, being linear in the ray parameter).
+void checkSameSide(const PreparedObject& o, const Object& so, const dvec3& p, const std::string& what) {
+  const double objectSide = o.worldFromObject[3][3];
+  if (isAffine(o.worldFromObject) || objectSide == 0) return;
+  const double pointSide = (o.objectFromWorld * dvec4(p, 1)).w;
+  if ((pointSide > 0) != (objectSide > 0))
+    throw InputError(so.where, "the transform of object '" + so.name + "' is projective and " + what +
+                                   " lies beyond the plane it sends to infinity, on the other side than the "
+                                   "object: rays from there would miss it (keep it on the object's side)");
+}
+
 // The key of a file texture in prepareScene's table: one entry per path and kernel.
 std::string textureKey(const textures::File& t) { return std::to_string(int(t.interpolation)) + ":" + t.path; }
 
@@ -269,14 +287,32 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
       o.target = std::move(layout);
       checkTargetInFront(o, so, ps.cameras);
     }
-    for (const PreparedCamera& c : ps.cameras)
+    // An unbounded plane under a projective map crosses the plane sent to infinity: part of it is
+    // beyond, whatever the camera.
+    if (!isAffine(o.worldFromObject) && so.shape.kind() == ShapeKind::Plane)
+      throw InputError(so.where, "object '" + so.name + "': an infinite Shape.Plane cannot take a projective "
+                                 "transform (part of it would lie beyond the plane the map sends to infinity): "
+                                 "use a Shape.Rectangle");
+    for (const PreparedCamera& c : ps.cameras) {
       checkFinite(o, so, c.model.centre, "camera '" + c.camera.name + "'");
+      checkSameSide(o, so, c.model.centre, "camera '" + c.camera.name + "'");
+    }
     for (const Light& l : scene.lights)
       if (l.kind != LightKind::Ambient) checkFinite(o, so, l.position_m, "light '" + l.name + "'");
     ps.objects.push_back(std::move(o));
   }
 
   ps.features.lights = anyLit && !ps.lights.empty();
+  // Shadow rays leave the other objects: their origins too (an object's frame origin stands for it).
+  if (ps.features.lights)
+    for (std::size_t a = 0; a < ps.objects.size(); ++a)
+      for (std::size_t b = 0; b < ps.objects.size(); ++b)
+        if (b != a) {
+          const dvec4 origin = ps.objects[b].worldFromObject * dvec4(0, 0, 0, 1);
+          if (origin.w != 0)
+            checkSameSide(ps.objects[a], scene.objects[a], dvec3(origin) / origin.w,
+                          "object '" + ps.objects[b].name + "' (which its shadow rays leave)");
+        }
   for (const PreparedLight& l : ps.lights) ps.features.lightKinds |= 1u << int(l.kind);
   for (const PreparedCamera& c : ps.cameras) {
     ps.features.distortion |= c.model.distorted;

@@ -448,11 +448,13 @@ void ds_nurbs_newton_step(real4 q[DS_NURBS_MAX_POINTS], inout real2 t, out real 
 const int DS_NURBS_MODE_NODE = 0, DS_NURBS_MODE_SUBPATCH = 1, DS_NURBS_MODE_BOX = 2, DS_NURBS_MODE_NEWTON = 3;
 
 // Nearest root with s in (sMin, sMax). With an origin (a shadow ray leaving this surface), a root
-// in the origin's patch within 1e-5 (float; 1e-10 double) of its local parameters is the origin.
-// oh, dh: the same ray in hreal (df64 decides roots near a patch border with it). attributes:
-// whether the caller will ask for the winner's attributes (df64 then leaves hit.refined for them).
+// in the origin's patch within 1e-5 (float; 1e-10 double) of its local parameters is the origin,
+// and so is a root nearer than the origin's rounding allows (below; originCos: |cos| of the ray's
+// angle to the surface normal there, from the world normal). oh, dh: the same ray in hreal (df64
+// decides roots near a patch border with it). attributes: whether the caller will ask for the
+// winner's attributes (df64 then leaves hit.refined for them).
 bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sMin, real sMax, bool originOnSurface,
-                     ShapeHit origin, bool attributes, inout ShapeHit hit) {
+                     real originCos, ShapeHit origin, bool attributes, inout ShapeHit hit) {
   const RayPlanes planes = ds_ray_planes(o, d);
   const real dLength = length(d);
   const real3 dn = d / dLength;
@@ -476,6 +478,16 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   // (bench/RESULTS.md, "BVH boxes widened by the ray's rounding"). So the boxes are widened by
   // 64 ε |o| too.
   const real boxPad = 64.0 * DS_NURBS_EPSILON * max(max(ao.x, ao.y), ao.z);
+  // A shadow ray's origin is its hit point rounded into the ray frame: it lies within `pad` of the
+  // surface, on either side, so the surface's own root there can lie up to pad / cos along the ray.
+  // The patch-parameter identity (sameRoot, below) misses it where that exceeds sameRoot of the
+  // patch's size: on a plate of 128 × 128 spans at 0.4 m (patches of 0.8 mm), df64's float search
+  // blocked every shadow ray of a lamp at cos 0.11 and fp32 a fifth of them (the CPU reference
+  // lit them all). Roots nearer than that are the origin; a real occluder so near (a surface
+  // within a few µm of itself in fp32) is not seen. cos at least 1/64: under a light that grazing
+  // the lit share is below 1/64 of the light's full term. The world angle stands for the object
+  // frame's, exact for rigid maps and off by the transform's anisotropy otherwise.
+  if (originOnSurface) sMin = max(sMin, pad / (dLength * max(originCos, 1.0 / 64.0)));
 #if defined(DS_FP64)
   const real sameRoot = 1e-10LF;
 #else

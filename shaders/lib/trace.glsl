@@ -212,7 +212,8 @@ bool ds_trace_nearest(hreal3 o, hreal3 d, bool ties, out SurfaceHit hit) {
       if (!ds_object_ray(i, o, d, oo, od, w)) continue;
       ShapeHit found;
       found.part = -1;
-      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_search_limit(nearest, w, ties), false, found, true, found))
+      if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_search_limit(nearest, w, ties), false, 1.0, found, true,
+                          found))
         ds_keep_nearer(i, found, oo, od, w, ties, nearest);
     }
   }
@@ -258,6 +259,7 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
   }
   if (blocked) return true;
   if (DS_HAS_NURBS) {
+    const real originCos = abs(dot(hit.normal, normalize(h_real(dh))));  // the ray's angle at its origin
     [[dont_unroll]] for (int i = 0; i < ds_object_count(); ++i) {
       if (!ds_is_nurbs(i)) continue;
       hreal3 oo, od;
@@ -266,7 +268,7 @@ bool ds_occluded(SurfaceHit hit, real3 lightPosition) {
       ShapeHit found;
       found.part = -1;
       if (ds_search_nurbs(i, h_real(oo), h_real(od), oo, od, 0.0, ds_object_param(1.0, h_real(w)), i == hit.object,
-                          hit.shape, false, found))
+                          originCos, hit.shape, false, found))
         return true;
     }
   }

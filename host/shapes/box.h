@@ -20,7 +20,8 @@ Shape.Box: a rectangular box with edges along the axes of its frame, whose origi
   location  | {x, y, z}, m   | {0, 0, 0} | origin of the box's frame
 
 (u, v): a 3 × 2 atlas of the faces, each seen from outside: row 0: −z (front), +x, +z (back);
-row 1: −x, −y (top), +y (bottom); side faces upright (image-down = +y).
+row 1: −x, −y (top), +y (bottom); side faces upright (image-down = +y); a face's cell holds
+(s, t) ∈ [0, 1]² at u = (column + s)/3, v = (row + t)/2, on −y and +y (s, t) = (x/sx + ½, ½ ∓ z/sz).
 
 Example:  Shape.Box { size = {0.2, 0.1, 0.01} }
 ------------------------------------------------------------------------------------------------ */
@@ -32,7 +33,8 @@ struct Box {
   // Its (u, v) in docs/cameras.md's table (tests/suite/test_docs.cpp writes that row from this).
   static constexpr const char* kUv =
       "`size = {sx, sy, sz}`: a 3×2 atlas of faces, each seen from outside: row 0: −z (front), "
-      "+x, +z (back); row 1: −x, −y (top), +y (bottom); side faces upright (image-down = +y)";
+      "+x, +z (back); row 1: −x, −y (top), +y (bottom); side faces upright (image-down = +y); a face's cell "
+      "holds (s, t) ∈ [0, 1]² at u = (column + s)/3, v = (row + t)/2, on −y and +y (s, t) = (x/sx + ½, ½ ∓ z/sz)";
 
   dvec3 size_m{0};  // full edge lengths
 

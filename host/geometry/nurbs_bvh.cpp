@@ -228,6 +228,32 @@ NurbsPieceCriteria pieceCriteria(const dvec4* points, int degreeU, int degreeV) 
   return c;
 }
 
+bool nurbsClosed(const NurbsSurface& surface, bool alongU) {
+  const int degree = alongU ? surface.degreeU : surface.degreeV;
+  const std::vector<double>& knots = alongU ? surface.knotsU : surface.knotsV;
+  const int rows = alongU ? surface.countU : surface.countV, columns = alongU ? surface.countV : surface.countU;
+  const std::size_t k = std::size_t(degree);
+  if (knots.size() < 2 * k + 2 || rows < 2) return false;
+  for (std::size_t i = 1; i <= k; ++i)
+    if (knots[i] != knots[0] || knots[knots.size() - 1 - i] != knots.back()) return false;  // not clamped
+  auto at = [&](int row, int column) {
+    return std::size_t(alongU ? row * surface.countV + column : column * surface.countV + row);
+  };
+  dvec3 lo(kInfinity), hi(-kInfinity);
+  for (const dvec3& q : surface.controlPoints) {
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  const double tolerance = 1e-10 * glm::distance(lo, hi);
+  const double ratio = surface.weights[at(0, 0)] / surface.weights[at(rows - 1, 0)];
+  for (int c = 0; c < columns; ++c) {
+    const std::size_t first = at(0, c), last = at(rows - 1, c);
+    if (!(glm::distance(surface.controlPoints[first], surface.controlPoints[last]) <= tolerance)) return false;
+    if (!(std::abs(surface.weights[first] / surface.weights[last] - ratio) <= 1e-12 * ratio)) return false;
+  }
+  return true;
+}
+
 PreparedNurbs prepareNurbs(const NurbsSurface& surface, std::size_t maxSubPatches) {
   PreparedNurbs r;
   // Each patch gives at least one sub-patch: refuse before extracting (and allocating) them.
@@ -241,6 +267,8 @@ PreparedNurbs prepareNurbs(const NurbsSurface& surface, std::size_t maxSubPatche
       hi = glm::max(hi, dvec3(h) / h.w);
     }
   r.size = r.patches.empty() ? 0.0 : glm::distance(lo, hi);
+  r.closedU = nurbsClosed(surface, true);
+  r.closedV = nurbsClosed(surface, false);
   Subdivider(surface, r.patches, r.size, maxSubPatches, r.subPatches).run();
   r.subPatches = BvhBuilder(r.subPatches, r.nodes).run(r.bvhDepth);
   return r;

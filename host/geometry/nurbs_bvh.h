@@ -82,7 +82,15 @@ struct PreparedNurbs {
   std::vector<NurbsBvhNode> nodes;        // depth-first, nodes[0] is the root
   int bvhDepth = 0;
   double size = 0;  // diagonal of the surface's bounds, m
+  // The surface is closed across u (v): its borders u = 0 and u = 1 (v) are one seam, which the GPU
+  // must not judge as the surface's own edges (shaders/lib/nurbs.glsl, ds_surface_edges).
+  bool closedU = false, closedV = false;
 };
+
+// Whether the border curves u = 0 and u = 1 (alongU) or v = 0 and v = 1 coincide: clamped knots
+// and the first and last control rows at the same Cartesian points (within 1e-10 of the net's
+// extent, as nurbs_fit.cpp's seams) with proportional weights (so the same rational curve).
+bool nurbsClosed(const NurbsSurface& surface, bool alongU);
 
 // Throws InputError("Shape.Nurbs: ...", without location: the caller prepends file:line) when the
 // surface would need more than maxSubPatches sub-patches (tests lower the limit).

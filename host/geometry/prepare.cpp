@@ -287,12 +287,6 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
       o.target = std::move(layout);
       checkTargetInFront(o, so, ps.cameras);
     }
-    // An unbounded plane under a projective map crosses the plane sent to infinity: part of it is
-    // beyond, whatever the camera.
-    if (!isAffine(o.worldFromObject) && so.shape.kind() == ShapeKind::Plane)
-      throw InputError(so.where, "object '" + so.name + "': an infinite Shape.Plane cannot take a projective "
-                                 "transform (part of it would lie beyond the plane the map sends to infinity): "
-                                 "use a Shape.Rectangle");
     for (const PreparedCamera& c : ps.cameras) {
       checkFinite(o, so, c.model.centre, "camera '" + c.camera.name + "'");
       checkSameSide(o, so, c.model.centre, "camera '" + c.camera.name + "'");

@@ -148,7 +148,9 @@ int packNurbs(const PreparedNurbs& n, int degree, PackedScene<Layout>& p) {
     const BezierPatch& bp = elevated.emplace_back(elevateBezier(original, degree, degree));
     typename Layout::GpuNurbsPatch g{};
     g.uvRange = h4<Layout>(bp.uvMin.x, bp.uvMin.y, bp.uvMax.x, bp.uvMax.y);
-    g.info = {bp.degreeU, bp.degreeV, int(p.nurbsPoints.size()), 0};
+    // w: the borders that are a closed surface's seam, not its edges (bits a = 0, b = 0, a = 1, b = 1:
+    // 1, 2, 4, 8; shaders/lib/nurbs.glsl, ds_surface_edges).
+    g.info = {bp.degreeU, bp.degreeV, int(p.nurbsPoints.size()), (n.closedU ? 1 | 4 : 0) | (n.closedV ? 2 | 8 : 0)};
     p.nurbsPatches.push_back(g);
     for (const dvec4& q : bp.points) p.nurbsPoints.push_back(h4<Layout>(q.x, q.y, q.z, q.w));
   }

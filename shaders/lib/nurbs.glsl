@@ -201,12 +201,18 @@ bool ds_nurbs_inside_edges(hreal2 ab, bvec4 edges) {
 #endif
 
 // Which borders of a patch are the surface's own edges (a = 0, b = 0, a = 1, b = 1): its uvRange
-// reaches 0 or 1 there (exactly: host/nurbs/nurbs.cpp), compared in hreal, unrounded; the other
-// borders have a neighbour patch that continues the surface.
+// reaches 0 or 1 there (exactly: host/nurbs/nurbs.cpp), compared in hreal, unrounded, and the
+// border is not the seam of a closed surface (info.w, gpu/pack.cpp); the other borders have a
+// neighbour patch that continues the surface. A seam judged as an edge lost roots on it in df64:
+// the copy found beyond u = 1 by the patch searched first was refined, rejected as beyond the
+// edge, and the search resumed strictly beyond its s, past the other patch's copy of the same float
+// s, to the far side of a sphere (a randomized campaign of 2026-11-28).
 bvec4 ds_surface_edges(int patchIndex) {
   const hreal4 r = nurbsPatches[patchIndex].uvRange;
+  const int seams = nurbsPatches[patchIndex].info.w;
   const hreal zero = h(real(0.0)), one = h(real(1.0));
-  return bvec4(h_le(h_x(r), zero), h_le(h_y(r), zero), h_ge(h_z(r), one), h_ge(h_w(r), one));
+  return bvec4(h_le(h_x(r), zero) && (seams & 1) == 0, h_le(h_y(r), zero) && (seams & 2) == 0,
+               h_ge(h_z(r), one) && (seams & 4) == 0, h_ge(h_w(r), one) && (seams & 8) == 0);
 }
 
 // Ray–box slabs in `real`, the box widened by boxPad (m) on every side; returns the entry and exit
@@ -807,6 +813,14 @@ void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hr
   const hreal4 range = nurbsPatches[patchIndex].uvRange;
   uv = h2(h_add(h_x(range), h_mul(h_sub(h_z(range), h_x(range)), h_x(ab))),
           h_add(h_y(range), h_mul(h_sub(h_w(range), h_y(range)), h_y(ab))));
+  // A root just across a closed surface's seam (beyond a = 1 of a patch at u = 1, within the border
+  // tolerance) is named by the parameter on the other side: (u, v) stays in [0, 1]².
+  const int seams = nurbsPatches[patchIndex].info.w;
+  const hreal zero = h(real(0.0)), one = h(real(1.0));
+  if ((seams & 5) != 0 && h_gt(h_x(uv), one)) uv = h2(h_sub(h_x(uv), one), h_y(uv));
+  if ((seams & 5) != 0 && h_lt(h_x(uv), zero)) uv = h2(h_add(h_x(uv), one), h_y(uv));
+  if ((seams & 10) != 0 && h_gt(h_y(uv), one)) uv = h2(h_x(uv), h_sub(h_y(uv), one));
+  if ((seams & 10) != 0 && h_lt(h_y(uv), zero)) uv = h2(h_x(uv), h_add(h_y(uv), one));
 }
 
 #endif

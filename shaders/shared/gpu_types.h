@@ -88,7 +88,7 @@ struct GpuNurbsSubPatch {
 
 struct GpuNurbsPatch {
   hreal4 uvRange;  // uMin, vMin, uMax, vMax: the normalized surface parameters the patch covers
-  ivec4 info;      // degreeU, degreeV, first control point, 0
+  ivec4 info;      // degreeU, degreeV, first control point, seam bits (gpu/pack.cpp)
   ivec4 pad;
 };
 

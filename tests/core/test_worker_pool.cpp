@@ -85,7 +85,7 @@ TEST_CASE("worker pool: N workers run up to N tasks at once, never more") {
   CHECK(pool.waitAll() == kWorkers);
 }
 
-TEST_CASE("worker pool: of several errors one is rethrown, once; the other tasks complete") {
+TEST_CASE("worker pool: of several errors one is rethrown once, and the other tasks complete") {
   WorkerPool pool(4);
   std::atomic<int> completed{0};
   pool.start([] { throw std::runtime_error("one"); });

@@ -35,6 +35,13 @@ constexpr int kDownscale = 4;
 constexpr int kNurbsDownscale = 8;
 constexpr int kSpp = 4;
 
+// A scene file's frame 0, prepared at full resolution, its prints silenced.
+PreparedScene prepareQuietly(const std::string& path) {
+  SceneParams params;
+  params.quiet = true;
+  return prepareScene(loadScene(path, params), {1});
+}
+
 }  // namespace
 
 TEST_CASE("cpu-vs-gpu: every scene in scenes/, fp64 and fp32") {
@@ -155,9 +162,7 @@ TEST_CASE("cpu-vs-gpu: the randomized campaign's cases within the bounds that no
     INFO(std::string(c.name));
     const std::string path = dir.file(std::string("case_") + std::to_string(&c - cases) + ".lua");
     test::writeBytes(path, c.text);
-    SceneParams params;
-    params.quiet = true;
-    const PreparedScene scene = prepareScene(loadScene(path, params), {1});
+    const PreparedScene scene = prepareQuietly(path);
     RenderOptions options;
     options.samplesPerPixel = c.spp;
     options.seed = c.seed;
@@ -190,9 +195,7 @@ TEST_CASE("cpu-vs-gpu: shadow rays leaving a NURBS surface do not block themselv
       "plate = Object.Simple { shape = Nurbs.plate { size = {0.1, 0.075}; spans = {128, 128}; location = {0, 0, 0.4} }; "
       "shader = Shader.Lambert { color = 0.5 } }\n"
       "lamp = Light.Point { position = {-0.3, -0.01, 0.37}; intensity = 1.2 }\n");
-  SceneParams params;
-  params.quiet = true;
-  const PreparedScene scene = prepareScene(loadScene(path, params), {1});
+  const PreparedScene scene = prepareQuietly(path);
   gpu::Renderer renderer(test::gpuContext());
   RenderOptions options;
   options.samplesPerPixel = 1;
@@ -231,9 +234,7 @@ TEST_CASE("cpu-vs-gpu: a closed NURBS surface's seam is no edge: df64 keeps the 
       "homography {1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -0.27817563267333556, "
       "1.5934967466693206, -0.6263091145869628, 1.0} * rotate_x(1.1186532503801425) * rotate_y(1.1183499448969727) "
       "* rotate_z(-0.013507742098785695) }\n");
-  SceneParams params;
-  params.quiet = true;
-  const PreparedScene scene = prepareScene(loadScene(path, params), {1});
+  const PreparedScene scene = prepareQuietly(path);
   REQUIRE(scene.objects[0].nurbs);
   CHECK(scene.objects[0].nurbs->closedU);        // the ring's seam
   CHECK_FALSE(scene.objects[0].nurbs->closedV);  // poles, not a seam

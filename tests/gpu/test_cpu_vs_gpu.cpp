@@ -196,6 +196,9 @@ TEST_CASE("cpu-vs-gpu: shadow rays leaving a NURBS surface do not block themselv
       "shader = Shader.Lambert { color = 0.5 } }\n"
       "lamp = Light.Point { position = {-0.3, -0.01, 0.37}; intensity = 1.2 }\n");
   const PreparedScene scene = prepareQuietly(path);
+  REQUIRE(scene.objects[0].nurbs);
+  CHECK_FALSE(scene.objects[0].nurbs->closedU);  // an open plate: its borders are edges, no seam
+  CHECK_FALSE(scene.objects[0].nurbs->closedV);
   gpu::Renderer renderer(test::gpuContext());
   RenderOptions options;
   options.samplesPerPixel = 1;

@@ -1,7 +1,6 @@
 // `dicsynth render SCENE.lua`: renders every camera of every frame and writes, per camera and frame,
 // the sensor image (TIFF) and the ground truth (EXR) into the output folder.
 #include <algorithm>
-#include <cstdio>
 #include <memory>
 #include <optional>
 
@@ -9,6 +8,7 @@
 #include "cli/options.h"
 #include "job/render_job.h"
 #include "core/error.h"
+#include "core/warning.h"
 
 namespace dicsynth::cli {
 namespace {
@@ -27,8 +27,7 @@ struct RenderCommand {
 int runRender(const RenderCommand& cmd) {
   const LayerSet layers = LayerSet::parse(cmd.layers);  // before any work
   if (cmd.preview && !layers.anyGroundTruth())
-    std::fprintf(stderr, "dicsynth: warning: --preview draws the EXR's layers, and --layers %s writes no EXR: "
-                         "no picture will be drawn\n", cmd.layers.c_str());
+    warn("--preview draws the EXR's layers, and --layers " + cmd.layers + " writes no EXR: no picture will be drawn");
   const bool numbered = !cmd.frames.empty();
   const std::vector<int> frames =
       referenceFirst(numbered ? parseFrames(cmd.frames) : std::vector<int>{0}, cmd.referenceFrame, "--reference-frame",

@@ -1,8 +1,10 @@
 #include "core/env_count.h"
 
 #include <cerrno>
-#include <cstdio>
 #include <cstdlib>
+#include <string>
+
+#include "core/warning.h"
 
 namespace dicsynth {
 
@@ -13,8 +15,8 @@ long envCount(const char* name, long fallback, long lo, long hi) {
   errno = 0;
   const long parsed = std::strtol(v, &end, 10);
   if (errno == 0 && end != v && *end == '\0' && parsed >= lo && parsed <= hi) return parsed;
-  std::fprintf(stderr, "dicsynth: warning: %s=%s is not a whole number from %ld to %ld: using %ld\n", name, v, lo, hi,
-               fallback);
+  warn(std::string(name) + "=" + v + " is not a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+       ": using " + std::to_string(fallback));
   return fallback;
 }
 

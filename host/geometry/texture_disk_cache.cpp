@@ -16,10 +16,12 @@
 
 #include "core/atomic_file.h"
 #include "core/cache_dir.h"
+#include "core/env_count.h"
 #include "core/error.h"
 #include "core/hex.h"
 #include "core/module_folder.h"
 #include "core/parallel.h"
+#include "core/warning.h"
 
 namespace dicsynth {
 
@@ -89,14 +91,10 @@ TextureDiskCache::TextureDiskCache(std::string folder, std::uint64_t limitBytes)
 }
 
 TextureDiskCache TextureDiskCache::fromEnvironment() {
-  std::uint64_t limitMiB = kDefaultLimitMiB;
-  if (const char* v = std::getenv("DICSYNTH_TEXTURE_CACHE_MB"); v && *v) {
-    char* end = nullptr;
-    const unsigned long long parsed = std::strtoull(v, &end, 10);
-    if (end && *end == '\0') limitMiB = parsed;
-    else std::fprintf(stderr, "warning: DICSYNTH_TEXTURE_CACHE_MB=%s is not a whole number of MiB: using %llu\n", v,
-                      static_cast<unsigned long long>(kDefaultLimitMiB));
-  }
+  // At most 2^30 MiB (a pebibyte), so that the limit in bytes fits 64 bits; a negative value, which
+  // strtoull would have wrapped to a huge one, is refused as well.
+  const std::uint64_t limitMiB =
+      std::uint64_t(envCount("DICSYNTH_TEXTURE_CACHE_MB", long(kDefaultLimitMiB), 0, 1L << 30));
   return TextureDiskCache(resolveCacheDir(""), limitMiB << 20);
 }
 
@@ -182,7 +180,7 @@ void TextureDiskCache::store(const std::string& digest, const PreparedTexture& t
     atomic.commit();
     trim(file);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "warning: texture cache: %s (the texture is prepared again next time)\n", e.what());
+    warn(std::string("texture cache: ") + e.what() + " (the texture is prepared again next time)");
   }
 }
 

@@ -14,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/warning.h"
 #include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu/context.h"
@@ -197,7 +198,7 @@ void writeCache(const std::string& path, const std::string& text) {
   try {
     writeCacheFile(path, text);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "dicsynth: warning: df64 self-test result not cached: %s\n", e.what());
+    warn(std::string("df64 self-test result not cached: ") + e.what());
   }
 }
 

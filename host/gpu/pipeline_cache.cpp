@@ -4,7 +4,6 @@
 
 #include <unistd.h>
 
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/hex.h"
+#include "core/warning.h"
 #include "gpu/device_query.h"
 #include "gpu/vk_check.h"
 
@@ -77,7 +77,7 @@ void PipelineCache::save() noexcept {
     lastWritten_ = std::move(data);
   } catch (const std::exception& e) {
     if (std::exchange(warned_, true)) return;
-    std::fprintf(stderr, "dicsynth: warning: pipeline cache not saved: %s\n", e.what());
+    warn(std::string("pipeline cache not saved: ") + e.what());
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/warning.h"
 #include "render/precision_calibration.h"
 
 namespace dicsynth {
@@ -33,8 +34,8 @@ std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<
     };
     if (comma != std::string::npos && digits(value.substr(value[0] == '-' ? 1 : 0, comma - (value[0] == '-' ? 1 : 0))) &&
         digits(value.substr(comma + 1)))
-      std::fprintf(stderr, "dicsynth: warning: -D %s: '%s' is a string, not a number (a decimal comma? write %s)\n",
-                   d.c_str(), value.c_str(), (value.substr(0, comma) + "." + value.substr(comma + 1)).c_str());
+      warn("-D " + d + ": '" + value + "' is a string, not a number (a decimal comma? write " + value.substr(0, comma) +
+           "." + value.substr(comma + 1) + ")");
   }
   return out;
 }

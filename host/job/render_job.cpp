@@ -23,6 +23,7 @@
 #include "core/exact_number.h"
 #include "core/phase_timer.h"
 #include "core/progress.h"
+#include "core/warning.h"
 #include "core/worker_pool.h"
 #include "cpu/reference_renderer.h"
 #include "files/image_limits.h"
@@ -224,21 +225,6 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
     const Camera& cam = scene.cameras[c].camera;
     const CameraImage& image = result.cameras[c];
-    // An image of background only is nearly always a mistake (a camera turned away, an object behind
-    // it or out of view): said, not refused (every pixel centre is traced on both backends).
-    // At most kEmptyImageWarnings per process: a long run whose object leaves the view printed it for
-    // every frame (a million lines in a sweep audit of 2026-11-27).
-    constexpr int kEmptyImageWarnings = 10;
-    static std::atomic<int> emptyImages{0};
-    if (std::none_of(image.objectId.begin(), image.objectId.end(), [](std::uint32_t id) { return id != 0; })) {
-      const int n = ++emptyImages;
-      if (n <= kEmptyImageWarnings)
-        std::fprintf(stderr,
-                     "dicsynth: warning: camera %s, frame %d: no pixel centre sees an object (the image is all "
-                     "background): check the camera's pose and the objects' locations%s\n",
-                     cam.name.c_str(), frame,
-                     n == kEmptyImageWarnings ? " (further images of background only are not reported)" : "");
-    }
     const CameraFrame derived = deriveCamera(job, rendered, scene, c, *reference);
     const std::string stem = outputStem(cam.name, job.numbered, frame);
     const OutputFiles files =
@@ -317,11 +303,26 @@ CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, co
                          const ReferenceFrame& reference) {
   const Camera& cam = scene.cameras[c].camera;
   CameraFrame out;
+  // An image of background only is nearly always a mistake (a camera turned away, an object behind
+  // it or out of view): said, not refused (every pixel centre is traced on both backends).
+  // At most kEmptyImageWarnings per process: a long run whose object leaves the view printed it for
+  // every frame (a million lines in a sweep audit of 2026-11-27).
+  constexpr int kEmptyImageWarnings = 10;
+  static std::atomic<int> emptyImages{0};
+  const std::vector<std::uint32_t>& objectId = rendered.result.cameras[c].objectId;
+  if (std::none_of(objectId.begin(), objectId.end(), [](std::uint32_t id) { return id != 0; })) {
+    const int n = ++emptyImages;
+    if (n <= kEmptyImageWarnings)
+      warn("camera " + cam.name + ", frame " + std::to_string(rendered.frame) +
+           ": no pixel centre sees an object (the image is all background): check the camera's pose and the "
+           "objects' locations" +
+           (n == kEmptyImageWarnings ? " (further images of background only are not reported)" : ""));
+  }
   out.truth = deriveTruth(reference, rendered.frame, scene, rendered.result, c, job.layers, rendered.visibility);
   phaseDone("truth");
   if (!out.truth.disparityCamera.empty() && out.truth.disparityVisibleCount == 0)
-    std::fprintf(stderr, "dicsynth: warning: camera %s sees nothing that camera %s sees: disparity.mask is empty\n",
-                 out.truth.disparityCamera.c_str(), cam.name.c_str());
+    warn("camera " + out.truth.disparityCamera + " sees nothing that camera " + cam.name +
+         " sees: disparity.mask is empty");
   out.sensed = applySensor(rendered.result.cameras[c].radiance, cam, {rendered.options.seed, rendered.frame, std::uint32_t(c)});
   phaseDone("sensor");
   return out;

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/json.h"
+#include "core/warning.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
@@ -193,7 +194,7 @@ PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& r
     try {
       gpu::writeCacheFile(path, serialize(c, key));
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "dicsynth: warning: precision calibration not cached: %s\n", e.what());
+      warn(std::string("precision calibration not cached: ") + e.what());
     }
   }
   return c;

@@ -20,6 +20,7 @@
 #include "core/exact_number.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "core/warning.h"
 #include "core/worker_pool.h"
 #include "files/image_limits.h"
 #include "job/render_job.h"
@@ -323,11 +324,11 @@ void runSweep(const SweepRun& cmd) {
     // A finished point made with other inputs is rendered again (its files replaced): said once, with
     // what differs, since a forgotten option would otherwise replace a whole sweep unnoticed.
     if (recorded && recorded->index == p.index && recorded->key != key && replaced++ == 0) {
-      std::fprintf(stderr,
-                   "dicsynth: warning: %s was rendered with other inputs (%s): it is rendered again, as is every "
-                   "point whose record differs (stop now to keep them, and rerun with the options they were made "
-                   "with); the manifest, which lists the points as they were, is removed until this run rebuilds it\n",
-                   pointFolderName(p.index).c_str(), keyDifference(recorded->key, keyFieldsOf(p)).c_str());
+      warn(pointFolderName(p.index) + " was rendered with other inputs (" +
+           keyDifference(recorded->key, keyFieldsOf(p)) +
+           "): it is rendered again, as is every point whose record differs (stop now to keep them, and rerun with "
+           "the options they were made with); the manifest, which lists the points as they were, is removed until "
+           "this run rebuilds it");
       sweep::removeManifest(cmd.outputDir);
     }
     auto job = std::make_shared<RenderJob>();

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "core/module_folder.h"
+#include "core/warning.h"
 #include "files/image_io.h"
 #include "geometry/prepared_scene.h"
 #include "geometry/texture_cache.h"
@@ -223,8 +225,36 @@ TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays un
   // A cache folder that cannot be created (a file stands in its way): preparing still works.
   std::ofstream(dir.path().string() + "/blocked") << "not a folder";
   TextureCache blocked(TextureDiskCache(dir.path().string() + "/blocked", kLimit));
+  WarningCapture warnings;
   CHECK(prepared(sceneWith(dir, b), &blocked) == texture.values());
+  const std::vector<std::string> said = warnings.take();
+  REQUIRE(said.size() == 1);
+  CHECK(said[0].rfind("texture cache: ", 0) == 0);
+  CHECK(said[0].find("(the texture is prepared again next time)") != std::string::npos);
   // Disabled: no folder, or a limit of 0.
   CHECK_FALSE(TextureDiskCache("", kLimit).enabled());
   CHECK_FALSE(TextureDiskCache(dir.path().string() + "/cache", 0).enabled());
+}
+
+TEST_CASE("texture-disk-cache: DICSYNTH_TEXTURE_CACHE_MB is a whole number of MiB up to 2^30, 0 turns the cache off") {
+  // A negative value or one whose byte count overflows 64 bits (2^44 MiB = 2^64 bytes, which the
+  // shift made 0: the cache silently off) is said and the default limit used.
+  struct Case {
+    const char* value;
+    bool enabled, warned;
+  };
+  const Case cases[] = {{"0", false, false},  {"1", true, false},       {"1073741824", true, false},
+                        {"-1", true, true},   {"17592186044416", true, true}, {"64M", true, true}};
+  for (const Case& c : cases) {
+    CAPTURE(c.value);
+    setenv("DICSYNTH_TEXTURE_CACHE_MB", c.value, 1);
+    WarningCapture warnings;
+    CHECK(TextureDiskCache::fromEnvironment().enabled() == c.enabled);
+    const std::vector<std::string> said = warnings.take();
+    CHECK(said.size() == (c.warned ? 1u : 0u));
+    if (c.warned && !said.empty())
+      CHECK(said[0] == "DICSYNTH_TEXTURE_CACHE_MB=" + std::string(c.value) +
+                           " is not a whole number from 0 to 1073741824: using 1024");
+  }
+  unsetenv("DICSYNTH_TEXTURE_CACHE_MB");
 }

@@ -13,7 +13,13 @@
 // "noise", "defects", "objectId" as themselves. Scalar channels are handed over without a copy;
 // the stacked groups are interleaved once.
 // Errors: dicsynth.InputError (a ValueError; scene errors carry FILE:LINE) for bad input,
-// RuntimeError for failures of the device or the machine. render() releases the GIL.
+// RuntimeError for failures of the device or the machine. render() releases the GIL. Warnings (what
+// the CLI says on stderr, core/warning.h) are Python warnings of category dicsynth.DicsynthWarning.
+//
+//   r.calibration(scene, frame=1)   # {"cameras": {name: {...}}, "rigs": {name: {...}}}
+//
+// The calibration the CLI's files state for that frame, at the renderer's downscale, under the
+// files' keys (io/calibration_files.h) as numpy float64 arrays: the same doubles the files print.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -29,6 +35,10 @@
 #include "core/exact_number.h"
 #include "core/option_names.h"
 #include "core/version.h"
+#include "core/warning.h"
+#include "geometry/prepared_scene.h"
+#include "io/calibration_files.h"
+#include "io/opencv_camera.h"
 #include "io/outputs.h"
 #include "scene/scene.h"
 
@@ -95,6 +105,62 @@ py::dict cameraArrays(std::vector<ChannelValues>&& channels, std::vector<std::ui
   return out;
 }
 
+// The category of dicsynth's Python warnings, set when the module is imported.
+PyObject* warningCategory = nullptr;
+
+// Raises every warning `capture` holds as a Python warning. A warnings filter that turns them into
+// errors raises the first as an exception (error_already_set).
+void raiseWarnings(WarningCapture& capture) {
+  for (const std::string& text : capture.take())
+    if (PyErr_WarnEx(warningCategory, text.c_str(), 1) < 0) throw py::error_already_set();
+}
+
+// Calls `work` with the warnings it raises captured, then raises them in Python, also where `work`
+// throws: a warning said before the error may explain it.
+template <class Work>
+auto withWarnings(Work&& work) {
+  WarningCapture capture;
+  try {
+    auto result = work();
+    raiseWarnings(capture);
+    return result;
+  } catch (...) {
+    try {
+      raiseWarnings(capture);
+    } catch (py::error_already_set&) {
+      // An error filter on a warning: the original error is still the one to report.
+    }
+    throw;
+  }
+}
+
+py::array_t<double> doubles(const double* values, std::vector<py::ssize_t> shape) {
+  py::array_t<double> a(shape);
+  std::copy(values, values + a.size(), a.mutable_data());
+  return a;
+}
+
+// One camera as its <camera>.yml states it (io/calibration_files.cpp), keys without a side suffix.
+py::dict cameraCalibration(const Camera& camera) {
+  const OpenCvCamera cv = toOpenCv(camera);
+  py::dict d;
+  d["camera_name"] = camera.name;
+  d["image_width"] = camera.width_px;
+  d["image_height"] = camera.height_px;
+  d["camera_matrix"] = doubles(cv.cameraMatrix.data(), {3, 3});
+  d["distortion_coefficients"] = doubles(cv.distortion.data(), {py::ssize_t(cv.distortion.size())});
+  std::visit(
+      [&d](const auto& kind) {
+        if (kind.kOpenCv) return;
+        d["camera_model"] = kind.kModelName;
+        for (const auto& [name, value] : kind.header()) d[name] = value;
+      },
+      camera.model);
+  d["R"] = doubles(cv.R.data(), {3, 3});
+  d["t"] = doubles(cv.t.data(), {3});
+  return d;
+}
+
 class PyRenderer {
  public:
   PyRenderer(const std::string& backend, const std::string& precision, const std::string& device, long long seed,
@@ -114,7 +180,40 @@ class PyRenderer {
     args.downscale = downscale;
     args.maxErrorPx = maxErrorPx;
     renderOptions(args, 0);  // the same checks as the CLI's options
+    downscale_ = downscale;
     session_ = std::make_unique<RenderSession>(args, backend);
+  }
+
+  // The scene's cameras and rigs at `frame`, as rendered (after the downscale): what the CLI's
+  // calibration files hold. The scene is evaluated and its cameras prepared (the same checks as a
+  // render: a distortion that folds over is an InputError here), its textures left unread.
+  py::dict calibration(const PyScene& scene, int frame) {
+    if (frame < 0) throw InputError("frame: frame numbers are >= 0, got " + std::to_string(frame));
+    SceneParams params{scene.defines, frame};
+    params.quiet = true;
+    params.requireDefinesRead = false;
+    PrepareOptions options;
+    options.downscale = downscale_;
+    options.textureData = false;
+    const PreparedScene prepared = prepareScene(loadScene(scene.path, params), options);
+    py::dict cameras, rigs;
+    for (const PreparedCamera& c : prepared.cameras) cameras[py::str(c.camera.name)] = cameraCalibration(c.camera);
+    for (const PreparedRig& rig : prepared.rigs) {
+      const Camera& left = prepared.cameras.at(rig.left).camera;
+      const Camera& right = prepared.cameras.at(rig.right).camera;
+      const StereoExtrinsics e = stereoExtrinsics(left, right);
+      py::dict d;
+      d["rig_name"] = rig.name;
+      d["left"] = left.name;
+      d["right"] = right.name;
+      d["R"] = doubles(e.R.data(), {3, 3});
+      d["T"] = doubles(e.T.data(), {3});
+      rigs[py::str(rig.name)] = d;
+    }
+    py::dict out;
+    out["cameras"] = cameras;
+    out["rigs"] = rigs;
+    return out;
   }
 
   py::dict render(const PyScene& scene, std::vector<int> frames, int spp, const std::vector<std::string>& layers,
@@ -177,6 +276,7 @@ class PyRenderer {
 
  private:
   std::unique_ptr<RenderSession> session_;
+  int downscale_ = 1;
   std::string backend_, precision_, device_;
 };
 
@@ -187,6 +287,11 @@ PYBIND11_MODULE(dicsynth, m) {
   m.attr("__version__") = kVersion;
   setOptionSpelling(OptionSpelling::Python);  // messages name max_error_px, defines['x']: not the CLI's options
   static py::exception<InputError> inputError(m, "InputError", PyExc_ValueError);
+  warningCategory = PyErr_NewExceptionWithDoc("dicsynth.DicsynthWarning",
+                                              "What a render says without stopping (the CLI's warnings on stderr)",
+                                              PyExc_UserWarning, nullptr);
+  if (!warningCategory) throw py::error_already_set();
+  m.attr("DicsynthWarning") = py::handle(warningCategory);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -211,7 +316,7 @@ PYBIND11_MODULE(dicsynth, m) {
              SceneParams params{s.defines, 0};
              params.quiet = true;
              params.requireDefinesRead = false;
-             loadScene(path, params);
+             withWarnings([&] { return loadScene(path, params); });
              return s;
            }),
            py::arg("path"), py::arg("defines") = py::dict())
@@ -227,10 +332,23 @@ PYBIND11_MODULE(dicsynth, m) {
       .def(py::init<const std::string&, const std::string&, const std::string&, long long, int, double>(),
            py::arg("backend") = "gpu", py::arg("precision") = "auto", py::arg("device") = "", py::arg("seed") = 1,
            py::arg("downscale") = 1, py::arg("max_error_px") = 1e-6)
-      .def("render", &PyRenderer::render, py::arg("scene"), py::arg("frames") = std::vector<int>{0},
+      .def("render",
+           [](PyRenderer& r, const PyScene& scene, std::vector<int> frames, int spp,
+              const std::vector<std::string>& layers, std::optional<int> referenceFrame) {
+             return withWarnings([&] { return r.render(scene, std::move(frames), spp, layers, referenceFrame); });
+           },
+           py::arg("scene"), py::arg("frames") = std::vector<int>{0},
            py::arg("spp") = 4, py::arg("layers") = std::vector<std::string>{"all"},
            py::arg("reference_frame") = py::none(),
            "Renders the frames; returns {(camera, frame): {name: numpy array}} (module docstring)")
+      .def(
+          "calibration",
+          [](PyRenderer& r, const PyScene& scene, int frame) {
+            return withWarnings([&] { return r.calibration(scene, frame); });
+          },
+          py::arg("scene"), py::arg("frame") = 0,
+          "The cameras' and rigs' calibration at that frame, after the downscale: "
+          "{'cameras': {name: {...}}, 'rigs': {name: {...}}}, the calibration files' keys and values")
       .def_property_readonly("backend", &PyRenderer::backend)
       .def_property_readonly("precision", &PyRenderer::precision, "the precision of the last render")
       .def_property_readonly("device", &PyRenderer::device);

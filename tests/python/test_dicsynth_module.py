@@ -136,3 +136,118 @@ def test_layers_errors_and_a_warm_loop():
     for _ in range(3):
         renderer.render(scene, layers=["image"])
     assert time.perf_counter() - start < 60
+
+
+def read_yaml(path):
+    """Every node of an OpenCV FileStorage file (cv2: an independent reader) as numbers, arrays or text."""
+    import cv2
+    storage = cv2.FileStorage(path, cv2.FILE_STORAGE_READ)
+    assert storage.isOpened(), path
+    out = {}
+    for key in storage.root().keys():
+        node = storage.getNode(key)
+        out[key] = node.mat() if node.isMap() else node.string() if node.isString() else node.real()
+    storage.release()
+    return out
+
+
+def assert_calibration_equals_file(calibration, path, side=""):
+    """The module's calibration of one camera equals the file's, double for double (the files print 17
+    significant digits, so a double reads back exactly)."""
+    stored = read_yaml(path)
+    for key, value in calibration.items():
+        if key in ("R", "t") and side:
+            continue  # a rig file states the stereo R, T instead of each camera's pose
+        expected = stored[key + side]
+        if isinstance(value, np.ndarray):
+            assert value.dtype == np.float64, key
+            np.testing.assert_array_equal(value, expected.reshape(value.shape), err_msg="%s %s" % (path, key))
+        else:
+            assert value == expected, (path, key, value, expected)
+    own = {key + side for key in calibration if not (side and key in ("R", "t"))}
+    assert own >= {key for key in stored if key.endswith(side) and key not in ("R", "T", "rig_name")}, path
+
+
+def test_calibration_equals_the_cli_files():
+    # A camera that moves between frames (numbered calibration files, one per frame), a stereo rig
+    # with Brown distortion at downscale 4, and a telecentric camera (not OpenCV's model: its
+    # camera_model and magnification keys).
+    with tempfile.TemporaryDirectory() as folder:
+        moving = os.path.join(folder, "moving.lua")
+        with open(moving, "w") as f:
+            f.write("cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.012; pixelSize = {4e-5, 4e-5};\n"
+                    "  position = {0.01 * frame, 0, 0}; principalPoint = {30.25, 25.5};\n"
+                    "  distortion = Distortion.Rational { radial = {0.01, 0.001, 0, 0.002, 0, 0}; thinPrism = {0, 1e-4, 0, 0} } }\n"
+                    "ball = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 1} } }\n")
+        cases = [(moving, [], 1, [0, 1]),
+                 (os.path.join(SCENES, "stereo_plate.lua"), ["-D", "strain=0.003"], 4, [0, 1]),
+                 (os.path.join(SCENES, "telecentric.lua"), [], 8, [0])]
+        for path, defines, downscale, frames in cases:
+            out = os.path.join(folder, os.path.basename(path) + ".out")
+            subprocess.run([BINARY, "render", path, "-o", out, "--backend", "cpu", "--downscale", str(downscale),
+                            "--spp", "1", "--layers", "image", "--frames", "%d:%d" % (frames[0], frames[-1])] + defines,
+                           check=True, capture_output=True)
+            renderer = dicsynth.Renderer(backend="cpu", downscale=downscale)
+            scene = dicsynth.Scene(path, defines={"strain": 0.003} if defines else {})
+            for frame in frames:
+                calibration = renderer.calibration(scene, frame=frame)
+                numbered = os.path.exists(os.path.join(out, "cam_0000.yml"))
+                suffix = "_%04d" % frame if numbered else ""
+                for name, camera in calibration["cameras"].items():
+                    assert camera["camera_name"] == name
+                    assert_calibration_equals_file(camera, os.path.join(out, name + suffix + ".yml"))
+                for name, rig in calibration["rigs"].items():
+                    rig_file = os.path.join(out, name + suffix + ".yml")
+                    for side in ("left", "right"):
+                        assert_calibration_equals_file(calibration["cameras"][rig[side]], rig_file, "_" + side)
+                    stored = read_yaml(rig_file)
+                    assert rig["rig_name"] == stored["rig_name"] == name
+                    np.testing.assert_array_equal(rig["R"], stored["R"])
+                    np.testing.assert_array_equal(rig["T"], stored["T"].reshape(3))
+            if path == moving:
+                assert numbered
+                first, second = (renderer.calibration(scene, frame=f)["cameras"]["cam"] for f in (0, 1))
+                assert second["t"][0] == first["t"][0] - 0.01  # x_cam = R x_world + t, the camera moved +1 cm in x
+                assert len(first["distortion_coefficients"]) == 12
+            if path.endswith("telecentric.lua"):
+                camera = calibration["cameras"]["camera"]
+                assert camera["camera_model"] == "orthographic" and camera["magnification"] == 0.5
+            if "stereo_plate" in path:
+                assert calibration["cameras"]["rig.left"]["image_width"] == 1600 // 4
+
+
+def test_calibration_checks_as_a_render_does():
+    renderer = dicsynth.Renderer(backend="cpu")
+    with tempfile.TemporaryDirectory() as folder:
+        folded = os.path.join(folder, "folded.lua")
+        with open(folded, "w") as f:
+            f.write("cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.012; pixelSize = {4e-4, 4e-4};\n"
+                    "  distortion = Distortion.Brown { radial = {-3} } }\n"
+                    "ball = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 1} } }\n")
+        scene = dicsynth.Scene(folded)
+        with pytest.raises(dicsynth.InputError, match=r"folded\.lua:1: Distortion\.Brown of camera 'cam' cannot be inverted"):
+            renderer.calibration(scene)
+    with pytest.raises(dicsynth.InputError, match="frame: frame numbers are >= 0"):
+        renderer.calibration(dicsynth.Scene(os.path.join(SCENES, "rectangle.lua")), frame=-1)
+
+
+def test_warnings_are_python_warnings(capfd):
+    # What the CLI says on stderr without stopping reaches Python's warnings (a notebook shows them,
+    # filters act on them): here a camera that sees nothing.
+    renderer = dicsynth.Renderer(backend="cpu")
+    with tempfile.TemporaryDirectory() as folder:
+        empty = os.path.join(folder, "empty.lua")
+        with open(empty, "w") as f:
+            f.write("cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0.012; pixelSize = {4e-5, 4e-5} }\n"
+                    "ball = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, -1} } }\n")
+        scene = dicsynth.Scene(empty)
+        capfd.readouterr()
+        with pytest.warns(dicsynth.DicsynthWarning, match="camera cam, frame 0: no pixel centre sees an object"):
+            renderer.render(scene, layers=["image"])
+        assert capfd.readouterr().err == ""  # not on stderr as well
+        assert issubclass(dicsynth.DicsynthWarning, UserWarning)
+        import warnings
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", dicsynth.DicsynthWarning)
+            with pytest.raises(dicsynth.DicsynthWarning, match="no pixel centre sees an object"):
+                renderer.render(scene, layers=["image"])

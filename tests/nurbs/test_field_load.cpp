@@ -471,3 +471,141 @@ TEST_CASE("field-load: quadratic triangles reproduce a quadratic field, hexahedr
     CHECK(worst <= 1e-13);
   }
 }
+
+TEST_CASE("field-load: a point near a cell's face is interpolated by the cell that holds it, never a neighbour's extrapolation") {
+  // VTK counts a point up to 1e-3 of a cell's parametric size outside it as inside, so its locator
+  // could hand a point just inside one cell to the neighbour, whose shape functions then extrapolate
+  // (the deformation audit of 2026-11-28: up to 6.6e-8 m on quad and tet meshes). Here meshes of
+  // affine cells with random nodal values (no common gradient: the field kinks at every face), and
+  // points built inside a known cell at a known distance from a face (barycentric or (ξ, η)
+  // coordinates, one of them in [1e-7, 1e-3]): the truth is that cell's interpolation, evaluated
+  // here from the coordinates the point was built from.
+  test::TempFolder dir;
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> unit(0, 1);
+  auto nodal = [&] { return dvec3(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5) * 2e-3; };  // ±1 mm
+  auto text = [](const dvec3& d) {
+    std::ostringstream v;
+    v.precision(17);
+    v << d.x << ' ' << d.y << ' ' << d.z;
+    return v.str();
+  };
+  // A coordinate near a face: 10^u with u uniform in [-7, -3], inside the 1e-3 slack.
+  auto nearFace = [&] { return std::pow(10.0, -7 + 4 * unit(rng)); };
+  // Tolerance: the values are ~1e-3 m, a point's interpolation is 4 terms with weights from a 3×3
+  // (tet) or Newton (quad, affine here: one step) solve, so rounding stays below ~1e-18 m; 1e-15 m
+  // keeps three orders of margin. A neighbour's extrapolation errs by the jump of the gradient
+  // (~1 m/m here) times the distance from the face (>= 1e-7 × 1 mm = 1e-10 m): far above it.
+  constexpr double kTolerance_m = 1e-15;
+  constexpr double h = 1e-3;  // cell size, metres
+  const int n = 4;
+
+  SUBCASE("tetrahedra (6 per cube, Kuhn's triangulation: conforming)") {
+    std::vector<dvec3> points, values;
+    for (int k = 0; k <= n; ++k)
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+          points.push_back(h * dvec3(i, j, k));
+          values.push_back(nodal());
+        }
+    auto node = [&](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
+    const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    std::vector<std::vector<int>> cells;
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+          for (const auto& perm : perms) {
+            int c[3] = {i, j, k};
+            std::vector<int> tet = {node(c[0], c[1], c[2])};
+            for (int axis : perm) {
+              ++c[axis];
+              tet.push_back(node(c[0], c[1], c[2]));
+            }
+            cells.push_back(tet);
+          }
+    std::vector<std::string> valueText;
+    for (const dvec3& v : values) valueText.push_back(text(v));
+    dir.write("tets.vtu", vtu(points, cells, 10, "displacement", 3, valueText));
+    MeshFieldOptions options;
+    options.path = dir.file("tets.vtu");
+    const MeshField field(options);
+    std::vector<dvec3> probes, truth;
+    for (int s = 0; s < 20000; ++s) {
+      const std::vector<int>& tet = cells[std::size_t(rng() % cells.size())];
+      double l[4] = {unit(rng), unit(rng), unit(rng), unit(rng)};
+      const int faceVertex = int(rng() % 4);  // the face opposite it is near
+      l[faceVertex] = 0;
+      const double rest = l[0] + l[1] + l[2] + l[3];
+      const double near = nearFace();
+      dvec3 x(0), f(0);
+      for (int v = 0; v < 4; ++v) {
+        const double w = v == faceVertex ? near : l[v] / rest * (1 - near);
+        x += w * points[std::size_t(tet[std::size_t(v)])];
+        f += w * values[std::size_t(tet[std::size_t(v)])];
+      }
+      probes.push_back(x);
+      truth.push_back(f);
+    }
+    const std::vector<dvec3> got = field.at(probes);
+    int wrong = 0;
+    double worst = 0;
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+      const double e = glm::length(got[k] - truth[k]);
+      worst = std::max(worst, e);
+      wrong += e > kTolerance_m;
+    }
+    MESSAGE("tets: " << wrong << " of " << probes.size() << " beyond 1e-15 m, worst " << worst << " m");
+    CHECK(wrong == 0);
+  }
+
+  SUBCASE("quadrilaterals (rectangles)") {
+    std::vector<dvec3> points, values;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        points.push_back(h * dvec3(i, 0.7 * j, 0));
+        values.push_back(nodal());
+      }
+    std::vector<std::vector<int>> cells;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int k = j * (n + 1) + i;
+        cells.push_back({k, k + 1, k + n + 2, k + n + 1});
+      }
+    std::vector<std::string> valueText;
+    for (const dvec3& v : values) valueText.push_back(text(v));
+    dir.write("quads.vtu", vtu(points, cells, 9, "displacement", 3, valueText));
+    MeshFieldOptions options;
+    options.path = dir.file("quads.vtu");
+    const MeshField field(options);
+    std::vector<dvec3> probes, truth;
+    for (int s = 0; s < 20000; ++s) {
+      const std::vector<int>& quad = cells[std::size_t(rng() % cells.size())];
+      double xi = unit(rng), eta = unit(rng);
+      const double near = nearFace();
+      switch (rng() % 4) {
+        case 0: xi = near; break;
+        case 1: xi = 1 - near; break;
+        case 2: eta = near; break;
+        default: eta = 1 - near;
+      }
+      const double w[4] = {(1 - xi) * (1 - eta), xi * (1 - eta), xi * eta, (1 - xi) * eta};
+      dvec3 x(0), f(0);
+      for (int v = 0; v < 4; ++v) {
+        x += w[v] * points[std::size_t(quad[std::size_t(v)])];
+        f += w[v] * values[std::size_t(quad[std::size_t(v)])];
+      }
+      probes.push_back(x);
+      truth.push_back(f);
+    }
+    const std::vector<dvec3> got = field.at(probes);
+    int wrong = 0;
+    double worst = 0;
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+      const double e = glm::length(got[k] - truth[k]);
+      worst = std::max(worst, e);
+      wrong += e > kTolerance_m;
+    }
+    MESSAGE("quads: " << wrong << " of " << probes.size() << " beyond 1e-15 m, worst " << worst << " m");
+    CHECK(wrong == 0);
+  }
+}

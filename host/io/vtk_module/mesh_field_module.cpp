@@ -43,7 +43,9 @@ struct MeshFieldHandle {
   vtkSmartPointer<vtkDataArray> array;
   vtkSmartPointer<vtkStaticCellLocator> locator;
   vtkSmartPointer<vtkGenericCell> cell = vtkSmartPointer<vtkGenericCell>::New();
-  std::vector<double> weights;
+  vtkSmartPointer<vtkGenericCell> candidate = vtkSmartPointer<vtkGenericCell>::New();  // probe's neighbour search
+  vtkSmartPointer<vtkIdList> candidates = vtkSmartPointer<vtkIdList>::New();
+  std::vector<double> weights, candidateWeights;
 };
 
 }  // namespace dicsynth
@@ -119,6 +121,27 @@ bool supportedCell(int type) {
       return true;
     default:
       return false;
+  }
+}
+
+// How far parametric coordinates `p` of a cell of `type` lie outside the cell's parametric domain
+// (0 inside or on its boundary): VTK's EvaluatePosition counts points up to 1e-3 outside as inside.
+// Simplices and wedges have triangular domains (r, s, t >= 0, r + s (+ t) <= 1), the others the unit
+// square or cube (a pyramid's apex is the collapsed top face t = 1). A polygon's pcoords name no
+// domain (its shape functions are mean value coordinates): VTK's own inside test stands.
+double parametricOutside(int type, const double p[3]) {
+  const double below = std::max({0.0, -p[0], -p[1], -p[2]});
+  switch (type) {
+    case VTK_TRIANGLE: case VTK_QUADRATIC_TRIANGLE:
+      return std::max({below, p[0] + p[1] - 1});
+    case VTK_TETRA: case VTK_QUADRATIC_TETRA:
+      return std::max({below, p[0] + p[1] + p[2] - 1});
+    case VTK_WEDGE: case VTK_QUADRATIC_WEDGE: case VTK_BIQUADRATIC_QUADRATIC_WEDGE:
+      return std::max({below, p[0] + p[1] - 1, p[2] - 1});
+    case VTK_POLYGON:
+      return 0;
+    default:
+      return std::max({below, p[0] - 1, p[1] - 1, p[2] - 1});
   }
 }
 
@@ -263,6 +286,7 @@ MeshFieldHandle* open(const char* path, const char* arrayName, int step, MeshFie
   field->locator->SetDataSet(field->mesh);
   field->locator->BuildLocator();
   field->weights.resize(std::size_t(std::max(mesh.GetMaxCellSize(), 1)));
+  field->candidateWeights.resize(field->weights.size());
   return field.release();
 }
 
@@ -278,6 +302,34 @@ void probe(MeshFieldHandle* field, const double* xyz, std::size_t n, double maxD
     // The shape functions' values at the nearest point of the nearest cell (inside it, or on its
     // boundary when x is off the mesh by at most maxDistance).
     field->cell->EvaluatePosition(closest, nullptr, subId, pcoords, d2, field->weights.data());
+    // A point that this cell holds only within VTK's slack of 1e-3 of its parametric size lies in a
+    // neighbour (or on a gap between cells, or just off the mesh): the cell whose domain holds it,
+    // or whose domain it misses least, is the one whose shape functions interpolate it. Without this
+    // the neighbour's shape functions extrapolated it: an audit of 2026-11-28 measured up to 6.6e-8 m
+    // on quad and tet meshes (tests/nurbs/test_field_load.cpp). The candidates are the cells whose
+    // bounds reach x within its distance from the mesh (a point beside a surface mesh in 3D).
+    double outside = parametricOutside(field->cell->GetCellType(), pcoords);
+    if (outside > 0) {
+      const double pad = std::sqrt(dist2);
+      double box[6] = {x[0] - pad, x[0] + pad, x[1] - pad, x[1] + pad, x[2] - pad, x[2] + pad};
+      field->locator->FindCellsWithinBounds(box, field->candidates);
+      for (vtkIdType i = 0; i < field->candidates->GetNumberOfIds() && outside > 0; ++i) {
+        const vtkIdType id = field->candidates->GetId(i);
+        if (id == cellId) continue;
+        field->mesh->GetCell(id, field->candidate);
+        double candidateClosest[3], candidatePcoords[3], candidateDist2 = 0;
+        int candidateSub = 0;
+        if (field->candidate->EvaluatePosition(x, candidateClosest, candidateSub, candidatePcoords, candidateDist2,
+                                               field->candidateWeights.data()) != 1)
+          continue;
+        const double candidateOutside = parametricOutside(field->candidate->GetCellType(), candidatePcoords);
+        if (candidateOutside < outside) {
+          outside = candidateOutside;
+          std::swap(field->cell, field->candidate);
+          std::swap(field->weights, field->candidateWeights);  // the chosen cell's are field->cell's
+        }
+      }
+    }
     double sum[3] = {0, 0, 0};
     vtkIdList* ids = field->cell->GetPointIds();
     for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)

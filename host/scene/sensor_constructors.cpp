@@ -56,7 +56,7 @@ values, then the derived ones).
   photonsAtFullScale  | photons    | fullWell_e / η                | photons per pixel at
                       |            |                               | exposure·radiance = 1
   gain_DN_per_e       | DN/e⁻      | (2^b - 1 - offset)/fullWell_e | K, overall system gain, > 0
-  darkOffset_DN       | DN         | floor((2^b - 1)/64)           | black level, >= 0
+  darkOffset_DN       | DN         | floor((2^b - 1)/64)           | black level, >= 0, < 2^b - 1
   shotNoise           | boolean    | true                          | false: no Poisson noise
 ------------------------------------------------------------------------------------------------ */
 int sensorEmva(lua_State* L) {
@@ -248,7 +248,15 @@ void setGlobalFunction(lua_State* L, const char* name, lua_CFunction f) {
 
 void readCameraSensor(lua_State* L, const Params& p, Camera& camera) {
   SensorModel& m = camera.sensor;
-  if (const EmvaSensor* s = p.userdata<EmvaSensor>("sensor", "a Sensor (Sensor.Emva { ... })")) m.emva = *s;
+  if (const EmvaSensor* s = p.userdata<EmvaSensor>("sensor", "a Sensor (Sensor.Emva { ... })")) {
+    m.emva = *s;
+    // A black level at or above full scale leaves the signal no range: every pixel would read full
+    // scale (and the default gain, which maps the well onto the range above the offset, be <= 0).
+    const double fullScale = double((1u << camera.bitsPerPixel) - 1u);
+    if (s->darkOffset_DN && *s->darkOffset_DN >= fullScale)
+      p.fail("'sensor': darkOffset_DN = " + formatNumber(*s->darkOffset_DN) + " leaves no range for the signal: " +
+             "it must be below the full scale 2^bitsPerPixel - 1 = " + formatNumber(fullScale) + " DN");
+  }
   const int type = p.luaType("postProcessing");
   if (type == LUA_TNIL) return;
   const char* expected = "'postProcessing' must be a list {Blur..., Vignetting..., Dust {...}, DefectivePixels {...}}";

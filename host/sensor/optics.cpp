@@ -35,6 +35,11 @@ std::vector<double> gaussianKernel(double sigma_px) {
 
 std::vector<double> diskKernel(double radius_px) {
   DS_CHECK(radius_px > 0 && std::isfinite(radius_px), "defocus disk radius must be > 0");
+  // A disk of radius <= 1/2 around the pixel centre lies inside its own pixel: the exact kernel is
+  // the identity. (The point sampling below found no sample inside disks under 0.011 px, the
+  // distance of the nearest sample, and normalized a kernel of zeros: an all-black image, found by
+  // the sensor audit of 2026-11-28, e.g. radius_px 0.04 at --downscale 4.)
+  if (radius_px <= 0.5) return {1.0};
   const int R = int(std::ceil(radius_px + 0.5));
   const int n = 2 * R + 1;
   const int sub = 64;

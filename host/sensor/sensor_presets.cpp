@@ -66,7 +66,9 @@ ResolvedEmva resolve(const EmvaSensor& s, int bitsPerPixel) {
   // A black level of 1/64 of the range keeps the read noise of dark pixels from being clipped.
   r.darkOffset_DN = s.darkOffset_DN.value_or(std::floor(maxDigital / 64.0));
   // The gain maps a full well onto the rest of the range: the well and the ADC saturate together.
-  r.gain_DN_per_e = s.gain_DN_per_e.value_or(std::max(maxDigital - r.darkOffset_DN, 1.0) / r.fullWell_e);
+  // The camera refuses an offset at or above full scale (scene/sensor_constructors.cpp), so it is > 0.
+  DS_CHECK(r.darkOffset_DN < maxDigital, "darkOffset_DN below full scale");
+  r.gain_DN_per_e = s.gain_DN_per_e.value_or((maxDigital - r.darkOffset_DN) / r.fullWell_e);
   r.shotNoise = s.shotNoise;
   return r;
 }

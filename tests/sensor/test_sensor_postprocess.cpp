@@ -102,6 +102,26 @@ TEST_CASE("sensor: defocus disk kernel holds the disk's area") {
   }
 }
 
+TEST_CASE("sensor: a defocus disk within its own pixel (radius <= 1/2 px) leaves the image as it is") {
+  // The disk around a pixel centre with radius r <= 1/2 lies inside that pixel, so each pixel's area
+  // inside it is πr² for the centre and 0 elsewhere: normalized, the identity (no sampling needed).
+  // Radii below the sampling's nearest sample (0.011 px) made an all-black image before.
+  const int w = 7, h = 5;
+  std::vector<double> image(std::size_t(w) * h);
+  for (std::size_t i = 0; i < image.size(); ++i) image[i] = 0.1 + 0.05 * double(i % 11);
+  for (double radius : {1e-9, 0.01, 0.011, 0.0111, 0.3, 0.5}) {
+    CAPTURE(radius);
+    CHECK(diskKernel(radius) == std::vector<double>{1.0});
+    CHECK(applyBlur(image, w, h, {BlurKind::Disk, 0, radius}) == image);
+  }
+  // Just beyond 1/2 the four edge neighbours get their first (sampled) area.
+  const std::vector<double> k = diskKernel(0.52);
+  REQUIRE(k.size() == 25);  // R = ceil(r + 1/2) = 2
+  CHECK(k[12] > k[13]);
+  CHECK(k[13] > 0);         // (1, 0): its nearest point is 0.5 px away
+  CHECK(k[18] == 0);        // (1, 1): 0.71 px away
+}
+
 TEST_CASE("sensor: defocus blur of one bright pixel is the disk kernel, and of a flat field is flat") {
   const double radius = 2.5;
   const std::vector<double> k = diskKernel(radius);

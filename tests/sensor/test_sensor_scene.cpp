@@ -98,6 +98,14 @@ TEST_CASE("sensor: scene errors name the line") {
                  "DefectivePixels {...}}; entry 2 is a number");
   checkBodyError(dir, cam + "  sensor = Vignetting.Cos4 {} }\n", 2,
                  "Camera.Pinhole: 'sensor' must be a Sensor (Sensor.Emva { ... }), got PostProcessor");
+  // A black level at full scale leaves no range (the sensor audit of 2026-11-28: every pixel read 63
+  // at 6 bits, with a default gain silently made 1/fullWell); just below it is a camera.
+  checkBodyError(dir, "\n" + cam + "  bitsPerPixel = 6; sensor = Sensor.Emva { darkOffset_DN = 63 } }\n", 3,
+                 "Camera.Pinhole: 'sensor': darkOffset_DN = 63 leaves no range for the signal: it must be below the "
+                 "full scale 2^bitsPerPixel - 1 = 63 DN");
+  checkBodyError(dir, cam + "  sensor = Sensor.Emva { darkOffset_DN = 300 } }\n", 2,
+                 "Camera.Pinhole: 'sensor': darkOffset_DN = 300 leaves no range for the signal: it must be below the "
+                 "full scale 2^bitsPerPixel - 1 = 255 DN");
 }
 
 TEST_CASE("sensor: render writes noiseFree, noise and defects layers that add up to the TIFF") {

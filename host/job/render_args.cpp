@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,9 +34,21 @@ std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<
       return !s.empty() && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
     };
     if (comma != std::string::npos && digits(value.substr(value[0] == '-' ? 1 : 0, comma - (value[0] == '-' ? 1 : 0))) &&
-        digits(value.substr(comma + 1)))
+        digits(value.substr(comma + 1))) {
       warn("-D " + d + ": '" + value + "' is a string, not a number (a decimal comma? write " + value.substr(0, comma) +
            "." + value.substr(comma + 1) + ")");
+      continue;
+    }
+    // Likewise a value that starts as a number and is not one ("0.0O2", "1e-3m"): a typo, nearly
+    // always (the docs walk of 2026-11-28 met the scene's "attempt to mul a 'number' with a
+    // 'string'" instead). A string meant as such ("2nd") only costs a line.
+    const std::size_t sign = value[0] == '-' || value[0] == '+' ? 1 : 0;
+    const bool startsNumeric = value.size() > sign && (std::isdigit(static_cast<unsigned char>(value[sign])) ||
+                                                       (value[sign] == '.' && value.size() > sign + 1 &&
+                                                        std::isdigit(static_cast<unsigned char>(value[sign + 1]))));
+    char* end = nullptr;
+    if (startsNumeric && (std::strtod(value.c_str(), &end), *end != '\0'))
+      warn("-D " + d + ": '" + value + "' is a string, not a number (from '" + std::string(end) + "' on)");
   }
   return out;
 }

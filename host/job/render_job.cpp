@@ -34,6 +34,7 @@
 #include "io/outputs.h"
 #include "io/preview.h"
 #include "nurbs/nurbs_basis.h"
+#include "reflectance/registry.h"
 #include "scene/scene.h"
 #include "sensor/sensor.h"
 
@@ -63,6 +64,21 @@ Scene loadFrameScene(const RenderJob& job, int frame, bool again) {
   params.quiet = again;
   params.requireDefinesRead = false;  // checkFrames refuses a define that no frame reads
   return loadScene(job.sceneFile, params);
+}
+
+// A lit object (any shader but Shader.Constant) in a frame without lights is black: nearly always a
+// forgotten light (the docs walk of 2026-11-28 rendered a tube snippet all black without a word).
+// Said, not refused (a black object is a valid image), once per process like the empty image.
+void warnUnlit(const Scene& scene, int frame) {
+  static std::atomic<bool> said{false};
+  if (!scene.lights.empty() || said) return;
+  for (const Object& object : scene.objects)
+    if (const reflectance::KindInfo& shader = reflectance::kindInfo(object.shader.model); shader.lit && !said.exchange(true)) {
+      warn(object.where.str() + ": object '" + object.name + "' has Shader." + shader.name +
+           ", which needs a light, and frame " +
+           std::to_string(frame) + " has none: it renders black (add a Light, or use Shader.Constant)");
+      return;
+    }
 }
 
 // Every frame's scene is evaluated before any work, so that a scene error in any frame stops the
@@ -129,6 +145,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
       bar.emplace("check", "frames", std::int64_t(job.frames.size()), terminal);
     if (bar) bar->update(std::int64_t(fi));
     const Scene scene = loadFrameScene(job, job.frames[fi], false);
+    warnUnlit(scene, job.frames[fi]);
     unread.add(scene);
     checkNurbsFitsDevice(session, scene);
     sources.add(scene);

@@ -478,6 +478,30 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
   CHECK(seen.err.find("no pixel centre sees an object") == std::string::npos);
   CHECK(seen.err.find("warning: --preview draws the EXR's layers, and --layers image writes no EXR") != std::string::npos);
   CHECK(seen.err.find("warning: -D gain=0,5: '0,5' is a string, not a number (a decimal comma? write 0.5)") != std::string::npos);
+  CHECK(seen.err.find("from ',5' on") == std::string::npos);  // one warning for one cause
+  // A value that starts as a number and is not one (the docs walk of 2026-11-28: a letter O for a 0).
+  const test::CliResult typo = test::runCli("render " + reads + " -o " + dir.file("typo") + " --backend cpu --layers image -D gain=0.0O2");
+  CHECK(typo.err.find("warning: -D gain=0.0O2: '0.0O2' is a string, not a number (from 'O2' on)") != std::string::npos);
+  for (const char* fine : {"gain=0.002", "gain=-1e-3", "gain=.5", "gain=0x10", "gain=steel", "gain=true"}) {
+    CAPTURE(fine);
+    const test::CliResult quiet = test::runCli("render " + reads + " -o " + dir.file("fine") + " --backend cpu --layers image -D " + fine);
+    CHECK(quiet.err.find("is a string, not a number") == std::string::npos);
+  }
+  // A lit object in a frame without lights renders black: said once, naming the object's line.
+  const std::string unlit = dir.write("unlit.lua", kCamera + "\np = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} };\n"
+                                                             "  shader = Shader.Lambert {} }\n"
+                                                             "q = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 0.8} };\n"
+                                                             "  shader = Shader.Phong {} }\n");
+  const test::CliResult dark = test::runCli("render " + unlit + " -o " + dir.file("unlit") + " --backend cpu --layers image --frames 0:2");
+  CHECK(dark.exitCode == 0);
+  CHECK(dark.err.find("warning: " + unlit + ":") != std::string::npos);
+  CHECK(dark.err.find(": object 'p' has Shader.Lambert, which needs a light, and frame 0 has none: it renders black (add a "
+                      "Light, or use Shader.Constant)") != std::string::npos);
+  CHECK(dark.err.find("which needs a light") == dark.err.rfind("which needs a light"));  // once
+  const std::string lit = dir.write("lit.lua", kCamera + "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} };\n"
+                                                         "  shader = Shader.Lambert {} }\nsun = Light.Ambient {}\n");
+  CHECK(test::runCli("render " + lit + " -o " + dir.file("lit") + " --backend cpu --layers image").err.find("needs a light") ==
+        std::string::npos);
   // A NaN in a message is "nan", whatever its sign bit (Lua's 0/0 printed "-nan").
   const std::string nanFocal = dir.write("nanf.lua", "cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0/0; pixelSize = {2e-4, 2e-4} }\n");
   const test::CliResult nanRun = test::runCli("render " + nanFocal + " -o " + dir.file("nanf") + " --backend cpu");

@@ -6,7 +6,7 @@
 //   out = r.render(scene, frames=[0, 1], spp=4, layers=["image", "disp", "disparity"])
 //   out["rig.left", 1]["disp"]                                # float32 (H, W, 3)
 //
-// Arrays by name (README, "Python"): "image" uint16 (H, W), the sensor's digital numbers (the TIFF);
+// Arrays by name (docs/python.md): "image" uint16 (H, W), the sensor's digital numbers (the TIFF);
 // every EXR channel of the render, float32 (H, W) or uint32 for objectId and defects, with the
 // vector groups stacked: P, N, disp, fieldError (H, W, 3); uv, flow, disparity, distortion
 // (H, W, 2); the masks "flow.mask", "disparity.mask" and "mask", and "Y", "Z", "noiseFree",
@@ -28,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "job/render_job.h"
@@ -334,8 +335,12 @@ PYBIND11_MODULE(dicsynth, m) {
            py::arg("downscale") = 1, py::arg("max_error_px") = 1e-6)
       .def("render",
            [](PyRenderer& r, const PyScene& scene, std::vector<int> frames, int spp,
-              const std::vector<std::string>& layers, std::optional<int> referenceFrame) {
-             return withWarnings([&] { return r.render(scene, std::move(frames), spp, layers, referenceFrame); });
+              const std::variant<std::string, std::vector<std::string>>& layers, std::optional<int> referenceFrame) {
+             // One layer may be given as a str ("image"), as the CLI's --layers image.
+             const std::vector<std::string> names = std::holds_alternative<std::string>(layers)
+                                                        ? std::vector<std::string>{std::get<std::string>(layers)}
+                                                        : std::get<std::vector<std::string>>(layers);
+             return withWarnings([&] { return r.render(scene, std::move(frames), spp, names, referenceFrame); });
            },
            py::arg("scene"), py::arg("frames") = std::vector<int>{0},
            py::arg("spp") = 4, py::arg("layers") = std::vector<std::string>{"all"},

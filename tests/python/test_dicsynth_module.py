@@ -81,6 +81,9 @@ def test_layers_errors_and_a_warm_loop():
     out = renderer.render(scene, layers=["image", "P"])
     arrays = next(iter(out.values()))
     assert sorted(arrays.keys()) == ["P", "image"]
+    # One layer as a str, as the CLI's --layers image (the docs walk of 2026-11-28 got a TypeError).
+    assert sorted(next(iter(renderer.render(scene, layers="image").values())).keys()) == ["image"]
+    assert sorted(next(iter(renderer.render(scene, layers="image,P").values())).keys()) == ["P", "image"]
     with pytest.raises(dicsynth.InputError, match="frame 0 is listed twice"):
         renderer.render(scene, frames=[0, 0])
     with pytest.raises(dicsynth.InputError, match="unknown layer 'bogus'"):

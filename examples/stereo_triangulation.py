@@ -13,6 +13,7 @@ against each other.
 
   PYTHONPATH=build /usr/bin/python3 examples/stereo_triangulation.py
 """
+import argparse
 import os
 import subprocess
 import tempfile
@@ -32,6 +33,7 @@ def matrix(storage, name):
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     downscale = 4
     with tempfile.TemporaryDirectory() as folder:
         subprocess.run([BINARY, "render", SCENE, "-o", folder, "--downscale", str(downscale), "--layers", "image"],

@@ -1,5 +1,5 @@
 -- A speckled box (12 x 8 x 10 cm) turned to show three faces, lit by one point light (Lambert).
--- Box (u, v): a 3 x 2 atlas of the six faces (README, "Shapes"), so the one speckle image covers all
+-- Box (u, v): a 3 x 2 atlas of the six faces (docs/cameras.md, "Surface parameters (u, v) per shape"), so the one speckle image covers all
 -- faces. The camera looks at it from above-left with position/lookAt; its up vector is -y (y down).
 camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.012; pixelSize = {5e-6, 5e-6};
   bitsPerPixel = 12; position = {-0.25, -0.2, -0.1}; lookAt = {0, 0, 0.5};

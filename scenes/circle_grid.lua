@@ -4,7 +4,7 @@
 -- and 10 degrees about its horizontal one, so that perspective shows.
 -- Detect with cv::findCirclesGrid(image, {4, 11}, centres, CALIB_CB_ASYMMETRIC_GRID); the ground
 -- truth (out/camera.features.csv) gives each dot's projected centre, which under perspective is
--- not the centroid of the dot's image that the detector finds (README, "Calibration targets").
+-- not the centroid of the dot's image that the detector finds (docs/calibration.md).
 -- Render: build/dicsynth render scenes/circle_grid.lua -o out
 camera = Camera.Pinhole { resolution = {1280, 960}; focalLength = 0.012; pixelSize = {4.4e-6, 4.4e-6};
   bitsPerPixel = 8; distortion = Distortion.Brown { radial = {-0.1, 0.05, 0}; tangential = {1e-4, 2e-4} } }

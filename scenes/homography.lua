@@ -1,7 +1,7 @@
 -- A non-affine homography: the speckled rectangle of rectangle.lua under a projective transform
 -- (bottom row 2, 1.5, 0, 1 in the rectangle's frame), which maps lines to lines but keystones the
 -- specimen and its texture, with a sphere beside it under another projective map. The paper allows
--- any homography per object; rays are mapped into object space (README, "Transforms").
+-- any homography per object; rays are mapped into object space (docs/cameras.md, "Conventions").
 camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.010; pixelSize = {5e-6, 5e-6}; };
 keystone = homography { 1,   0,   0, 0,
                         0,   1,   0, 0,

@@ -1,4 +1,4 @@
--- A speckled rectangle seen through a realistic machine-vision sensor (README "Sensor"): shot and
+-- A speckled rectangle seen through a realistic machine-vision sensor (docs/sensor.md): shot and
 -- read noise of an EMVA 1288-style preset, a slight lens blur, cos⁴ vignetting, one dust blob and a
 -- few defective pixels (with their own seed: a sensor's defects stay when --seed changes). The
 -- sensor acts after the renderer, so the rendered radiance is that of rectangle.lua at a smaller

@@ -2,7 +2,7 @@
 -- a speckle-painted GGX metal sphere (rough steel) and a polished Blinn-Phong sphere, lit by two
 -- point lights, a spot light and a little ambient light. Highlights saturate the sensor where a
 -- light's mirror image falls, exactly where DIC correlation fails on real specimens.
--- Formulas and parameters: host/cpu/shading.h and README "Reflectance and lights".
+-- Formulas and parameters: host/reflectance/ and docs/reflectance.md.
 -- Render: build/dicsynth render scenes/specular.lua -o out
 camera = Camera.Pinhole { resolution = {640, 480}; focalLength = 0.008; pixelSize = {7.4e-6, 7.4e-6};
   bitsPerPixel = 12; exposure = 1.5; position = {0, -0.05, 0}; lookAt = {0, 0, 0.6}; };

@@ -9,7 +9,7 @@
 -- (files out/rig.left_0000.tif ... out/rig.right_0014.tif)
 -- Calibrate with OpenCV: cv::findChessboardCornersSB(image, {9, 6}, corners) and object points
 -- (col * 0.012, row * 0.012, 0), as tests/io/test_opencv_calibration.cpp does; the accuracy it reaches
--- is in README ("Calibration targets").
+-- is in docs/calibration.md.
 -- The cameras are the rig's: rig.left and rig.right (Rig.Stereo), files named accordingly; the
 -- rig's calibration files (out/rig.yml, out/rig.dice.xml) state the true intrinsics, distortion
 -- and the stereo R, T that cv::stereoCalibrate should recover.

@@ -4,7 +4,7 @@
 -- telecentric model); a pinhole would shrink the far one threefold. A sphere
 -- shows its outline as a circle of radius m r / pixel size whatever its depth. Brown distortion on
 -- the metric normalized coordinates (k1 in m⁻²: -200 m⁻² displaces the image corner, 8 mm off
--- the axis, by about 1.3 %). Camera.Orthographic: README "Camera models".
+-- the axis, by about 1.3 %). Camera.Orthographic: docs/cameras.md.
 camera = Camera.Orthographic { resolution = {640, 480}; pixelSize = {1e-5, 1e-5}; magnification = 0.5;
   bitsPerPixel = 10; position = {0, 0, -0.05};
   distortion = Distortion.Brown { radial = {-200}; tangential = {0.01, -0.02} } }

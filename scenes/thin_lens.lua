@@ -4,7 +4,7 @@
 -- blurred by disks of diameter c = A fx |1/u - 1/d| ≈ 6.4 px and 5.9 px (A = f/N = 6.25 mm,
 -- fx = v / pixel size = 11111 px at v = 55.6 mm, the image distance of 0.5 m). A backdrop at 0.7 m
 -- is blurred by 40 px. The camera matrix (fx = v/sx) and the ground truth are the chief ray's.
--- Camera.ThinLens and Distortion.Rational: README "Camera models".
+-- Camera.ThinLens and Distortion.Rational: docs/cameras.md.
 -- Parameter: -D fnumber=<N> (default 8).
 fnumber = fnumber or 8
 camera = Camera.ThinLens { resolution = {640, 480}; pixelSize = {5e-6, 5e-6}; bitsPerPixel = 10;

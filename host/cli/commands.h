@@ -8,7 +8,7 @@
 
 namespace dicsynth::cli {
 
-// Exit codes, documented in README.
+// Exit codes, documented in docs/commands.md.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitCompareFailed = 1;  // compare: a difference exceeds its tolerance
 inline constexpr int kExitBadInput = 2;       // scene/parameter/file errors (InputError, CLI errors)

@@ -129,7 +129,7 @@ std::string cameraText(const CameraDifference& d, const Tolerances& tol) {
 
 std::string tolerancesText(const std::string& precision, const Tolerances& tol) {
   if (tol.epsilon > 0)
-    return format("tolerances (%s): radiance %.3g; P and uv per pixel, %g eps D / max(cos, sqrt eps) (README);"
+    return format("tolerances (%s): radiance %.3g; P and uv per pixel, %g eps D / max(cos, sqrt eps) (docs/precision.md);"
                   " outliers off edges <= %.3g of the pixels\n",
                   precision.c_str(), tol.radiance, tol.k, tol.outlierFraction);
   return format("tolerances (%s): radiance %.3g, P %.3g m, uv %.3g, no outliers\n", precision.c_str(), tol.radiance,

@@ -4,7 +4,7 @@
 // pixels (a "decompression bomb"). Header-only: used by the libtiff reader and by the OpenImageIO
 // module (files/oiio_module/), which do not link the same libraries.
 //
-// Limits (README, "Limits"):
+// Limits (docs/limits.md):
 //  - at most kMaxImagePixels pixels (16384 × 16384): a texture samples a speckle a few texels per
 //    image pixel, and 16k² already covers a 1600 × 1200 image at ten texels per pixel;
 //  - the reading's peak memory, 8 bytes per pixel for the gray image (doubles) plus the reader's

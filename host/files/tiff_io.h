@@ -1,7 +1,7 @@
 #pragma once
 // TIFF through libtiff directly: the sensor images dicsynth writes and the plain TIFF textures it
 // reads most, without OpenImageIO, whose ~250 shared libraries cost every process ~0.18 s of
-// dynamic linking at start (README, "Speed as a user times it"). Other formats and unusual TIFF
+// dynamic linking at start (docs/performance.md). Other formats and unusual TIFF
 // variants go through OpenImageIO, loaded only when needed (files/oiio_reader.h).
 #include <cstdint>
 #include <optional>

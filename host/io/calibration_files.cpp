@@ -1,4 +1,4 @@
-// Calibration files (see calibration_files.h and README "Calibration files").
+// Calibration files (see calibration_files.h and docs/outputs.md).
 //
 // OpenCV FileStorage YAML is written by hand in exactly the layout cv::FileStorage writes
 // (%YAML:1.0, "!!opencv-matrix" maps with rows, cols, dt, data), so the product needs no OpenCV; the
@@ -69,7 +69,7 @@ std::string yamlString(const std::string& key, const std::string& value) {
   return key + ": \"" + quoted + "\"\n";
 }
 
-// What OpenCV's pinhole model cannot say (README "Calibration files"). ThinLens: the camera matrix is
+// What OpenCV's pinhole model cannot say (docs/outputs.md). ThinLens: the camera matrix is
 // its chief ray's pinhole (exact for projections and the ground truth); the blur (aperture, focus)
 // is extra. Orthographic: OpenCV has no telecentric camera; the matrix holds px per metre of object
 // and the distortion acts on metric coordinates (cameras/orthographic.h): only dicsynth's model reads it.

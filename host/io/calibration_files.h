@@ -1,5 +1,5 @@
 #pragma once
-// Calibration ground truth in the formats calibration and DIC tools read (README "Calibration
+// Calibration ground truth in the formats calibration and DIC tools read (docs/outputs.md, "Calibration
 // files"). All numbers have 17 significant digits, so every double reads back exactly.
 //
 //   DIR/<camera>.yml      OpenCV FileStorage YAML: image size, camera matrix, distortion, pose R, t

@@ -1,6 +1,6 @@
 #pragma once
 // Writer of the calibration-target ground truth of one camera and frame:
-// DIR/<stem>.features.csv and DIR/<stem>.features.json (columns and fields: README, "Feature
+// DIR/<stem>.features.csv and DIR/<stem>.features.json (columns and fields: docs/calibration.md, "Feature
 // files"). Full double precision (%.17g); each file written under a temporary name and renamed
 // when complete (core/atomic_file.h).
 #include <cstddef>

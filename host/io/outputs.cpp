@@ -189,7 +189,7 @@ void addMetadata(Imf::Header& header, const Camera& camera, const OutputInfo& in
   for (const auto& [object, text] : info.deformations) attribute(("dicsynth:deformation:" + object).c_str(), text);
   attribute("dicsynth:camera_matrix", formatNumbers(cv.cameraMatrix));
   attribute("dicsynth:distortion_coefficients", formatNumbers(cv.distortion));
-  // The camera kind and what OpenCV's matrix cannot say (README "Outputs"; cameras/<kind>.h: header()).
+  // The camera kind and what OpenCV's matrix cannot say (docs/outputs.md; cameras/<kind>.h: header()).
   std::visit(
       [&](const auto& kind) {
         attribute("dicsynth:camera_model", kind.kModelName);

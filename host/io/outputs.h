@@ -26,7 +26,7 @@ struct OutputInfo {
   // header as dicsynth:deformation:<name>.
   std::vector<std::pair<std::string, std::string>> deformations;
   // OpenEXR compression of the ground truth (kExrCompressions); every one is lossless for float32
-  // and uint32 channels. Only size and writing time differ (README, "Output files").
+  // and uint32 channels. Only size and writing time differ (docs/outputs.md).
   std::string exrCompression = "zip";
   // What is written (--layers): the TIFF with `image`, the EXR's channels by layer (model/layers.h).
   LayerSet layers = LayerSet::all();

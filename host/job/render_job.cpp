@@ -429,7 +429,7 @@ Precision RenderSession::precision() {
 // A run either completes its output set or leaves the folder as it found it: on failure, the
 // files that did not exist before the run, and the folder if the run created it (when empty), are
 // removed, with the folders above it that the run created for it (-o new/a/b on a full disk left
-// new/a behind: sweep audit of 2026-11-27). Files the run overwrote cannot be given back (the README says so).
+// new/a behind: sweep audit of 2026-11-27). Files the run overwrote cannot be given back (docs/limits.md says so).
 class OutputRollback {
  public:
   explicit OutputRollback(std::string dir) : dir_(std::move(dir)) {

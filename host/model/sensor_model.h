@@ -5,7 +5,7 @@
 // digitize): no noise, no post-processing, no extra output layer, no cost.
 //
 // Units are in the names: _e electrons, _DN digital numbers, _px pixels of the image as the scene
-// declares it (before --downscale), _s seconds. Pipeline order and formulas: README "Sensor".
+// declares it (before --downscale), _s seconds. Pipeline order and formulas: docs/sensor.md.
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -50,7 +50,7 @@ struct CameraDifference {
   }
 };
 
-// Tolerances of one precision (values and derivations in compare.cpp, summarized in README).
+// Tolerances of one precision (values and derivations in compare.cpp, summarized in docs/precision.md).
 // fp64 has absolute bounds. fp32 and df64 bound each pixel by the conditioning of its pixel-centre
 // hit (ε = the variant's unit roundoff: 2^-24, 2^-44):
 //   P:        k ε D / c

@@ -2,7 +2,7 @@
 // Ground truth derived from the renders, per camera and frame: the motion of the material since the
 // reference frame (disp, flow), the stereo correspondence to the rig's other camera (disparity) and
 // the lens distortion of every pixel. Written to the .exr beside the backend's own layers
-// (io/outputs.h); README's ground-truth table documents channels, units and conventions.
+// (io/outputs.h); docs/outputs.md's table of channels documents channels, units and conventions.
 //
 // Every value is a difference computed in double from material points (geometry/material_point.h):
 // disp = P_k(m) − P_ref(m), flow = x_k(m) − x_ref(m), disparity = x_other(m) − x_this(m), where m

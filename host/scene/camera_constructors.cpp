@@ -155,9 +155,9 @@ readCommonCamera below) and its own (host/cameras/<kind>.h: focalLength, magnifi
   exposure       | number                 | 1                  | > 0; DN = round(clamp(exposure *
                  |                        |                    | radiance, 0, 1) * (2^bits - 1))
   distortion     | Distortion             | none               | Distortion.Brown or .Rational
-  sensor         | Sensor                 | none (ideal)       | Sensor.Emva { ... } (README Sensor)
+  sensor         | Sensor                 | none (ideal)       | Sensor.Emva { ... } (docs/sensor.md)
   postProcessing | {PostProcessor, ...}   | none               | Blur, Vignetting, Dust, Defective-
-                 |                        |                    | Pixels (README Sensor)
+                 |                        |                    | Pixels (docs/sensor.md)
   transform      | Transform              | identity           | pose as worldFromCamera; must be
                  |                        |                    | rigid (rotation + translation)
   position       | {x, y, z}, m           | {0, 0, 0}          | camera centre (optical centre)

@@ -45,7 +45,7 @@ struct SceneParams {
 // The longest camera name (with a rig's ".left"/".right"): names become output file names.
 inline constexpr std::size_t kMaxCameraNameBytes = 128;
 
-// The largest scene file loadScene reads (README, "Limits").
+// The largest scene file loadScene reads (docs/limits.md).
 inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t(16) << 20;
 
 // Whether `name` is taken by the scene language (a constructor table, a function, a Lua library,

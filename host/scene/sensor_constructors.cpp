@@ -1,6 +1,6 @@
 // The sensor and its post-processors in a scene: Sensor.Emva, Blur.Gaussian, Blur.Disk,
 // Vignetting.Cos4, Vignetting.Radial, Dust, DefectivePixels, and the camera keys `sensor` and
-// `postProcessing` that take them (readCameraSensor). What they do: host/sensor, README "Sensor".
+// `postProcessing` that take them (readCameraSensor). What they do: host/sensor, docs/sensor.md.
 //
 // Example:
 //   camera = Camera.Pinhole { resolution = {800, 600}; focalLength = 0.016; pixelSize = {5e-6, 5e-6};
@@ -9,7 +9,7 @@
 //     postProcessing = { Blur.Gaussian { sigma_px = 0.8 }, Vignetting.Cos4 {},
 //                        Dust { center_px = {200, 150}; radius_px = 40; opacity = 0.3 },
 //                        DefectivePixels { dead = 1e-4; hot = 1e-4; stuck = {{10, 20}} } } }
-// The order inside postProcessing does not matter: the pipeline's order is fixed (README).
+// The order inside postProcessing does not matter: the pipeline's order is fixed (docs/sensor.md).
 #include "scene/sensor_constructors.h"
 
 #include <cmath>
@@ -41,7 +41,7 @@ namespace {
 void pushPostProcessor(lua_State* L, PostProcessorValue value) { pushUserdata(L, std::move(value)); }
 
 /* ------------------------------------------------------------------------------------------------
-Sensor.Emva: the linear camera model of EMVA 1288 (README "Sensor" has the formulas). Every value
+Sensor.Emva: the linear camera model of EMVA 1288 (docs/sensor.md has the formulas). Every value
 not given comes from the preset, else from the defaults below (the "machine-vision-cmos" preset's
 values, then the derived ones).
 
@@ -200,7 +200,7 @@ void readDefectKind(lua_State* L, const Params& p, const char* key, double& frac
   if (!ok) p.fail(expected + ", got a table with named or missing entries");
 }
 
-/* DefectivePixels { dead; hot; stuck; seed; hotSignal_DN; stuck_DN } (see README "Sensor"):
+/* DefectivePixels { dead; hot; stuck; seed; hotSignal_DN; stuck_DN } (see docs/sensor.md):
    dead, hot, stuck: each a fraction of the pixels in [0, 1] (drawn from the seed) or a list of
    pixels {{x, y}, ...}; default 0. seed: integer, default the render's --seed. hotSignal_DN: added
    to hot pixels (default floor((2^b - 1)/4)); stuck_DN: value of stuck pixels (default 2^b - 1). */

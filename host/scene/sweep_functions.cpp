@@ -37,7 +37,7 @@ inline constexpr const char* kUserdataName<SweepDeclaration> = "Sweep";
 namespace {
 
 /* ------------------------------------------------------------------------------------------------
-Sweep declarations (README "Sweeps"). A scene declares its sweep by assigning the global `sweep`:
+Sweep declarations (docs/sweeps.md). A scene declares its sweep by assigning the global `sweep`:
 
   Form                                           | Points
   -----------------------------------------------+------------------------------------------------

@@ -133,7 +133,7 @@ Target.CircleGrid: dark dots on a light rectangle for cv::findCirclesGrid, drawn
 Target frame: origin at the centre of the first dot (top left), x along the first row, y to the
 next row, z away from the printed side. Features: the dots' centres, row by row, target
 coordinates (col·spacing, row·spacing, 0), asymmetric ((2·col + row mod 2)·spacing, row·spacing, 0).
-The image of a dot's centre is not the centroid of the dot's image under perspective (README).
+The image of a dot's centre is not the centroid of the dot's image under perspective (docs/calibration.md).
 
 Example:  dots = Target.CircleGrid { circles = {4, 11}; spacing = 0.01; asymmetric = true;
                                      location = {0, 0, 0.4} }

@@ -2,7 +2,7 @@
 // The sensor: radiance before the sensor → digital numbers. Applied after either backend.
 //
 // A camera without a sensor model (Camera::sensor empty) goes through digitize() alone, as it did
-// before sensor models existed. With one, applySensor() runs the pipeline of README "Sensor":
+// before sensor models existed. With one, applySensor() runs the pipeline of docs/sensor.md:
 //   radiance → blur → vignetting → dust → exposure → electrons (Sensor.Emva: shot noise, full well,
 //   read noise, gain, dark offset; else the ideal sensor) → defective pixels → quantization.
 #include <cstdint>

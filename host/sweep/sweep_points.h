@@ -2,7 +2,7 @@
 // The points of a sweep: from the scene's global `sweep` or from --sweep options, each point an
 // index and the values of the sweep's parameters (set as scene globals, like -D, when it renders).
 //
-// Index order (stable, documented in README "Sweeps"):
+// Index order (stable, documented in docs/sweeps.md):
 //  - grid: parameter names sorted by byte order, the LAST name varies fastest (row-major, like
 //    nested loops written in name order);
 //  - points: as listed;

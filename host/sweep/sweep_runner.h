@@ -1,5 +1,5 @@
 #pragma once
-// The sweep runner (`dicsynth sweep`, README "Sweeps"): renders every point of a sweep into
+// The sweep runner (`dicsynth sweep`, docs/sweeps.md): renders every point of a sweep into
 // DIR/point_NNNNN/ with the files `render` writes, records each finished point (point_record.h)
 // and rebuilds DIR/manifest.{csv,json} (manifest.h). One process keeps the device, the pipelines
 // and the resolved precision across its points (RenderSession). Points already complete are

@@ -8,7 +8,7 @@
 // Its coefficients c are computed once, in double, so that f passes exactly through every texel
 // value (prefilter below). Cubic: C² continuous, exact on polynomials up to degree 3; quintic: C⁴,
 // exact up to degree 5, and a frequency response much closer to the ideal low-pass (less
-// interpolation bias on a sub-pixel shift: tests/texture/test_bspline_bias.cpp, README). Catmull–Rom/Keys
+// interpolation bias on a sub-pixel shift: tests/texture/test_bspline_bias.cpp, docs/scene-language.md). Catmull–Rom/Keys
 // (a = −1/2) kernels are only C¹ and exact up to degree 2.
 //
 // Coordinates. Texel (i, j) is centred at u = (i + 1/2)/W, v = (j + 1/2)/H; (u, v) = (0, 0) is the

@@ -2,7 +2,7 @@
 // `dicsynth speckle --pattern perlin`: a speckle made from Perlin gradient noise, thresholded, in
 // the spirit of the "modified Perlin noise" speckle of Orteu, Garcia, Robert and Bugarin
 // (Speckle'06, reference 8 of the seed paper, which names the method but gives no formula; the
-// construction below is dicsynth's own and documented here and in README).
+// construction below is dicsynth's own and documented here and in docs/commands.md).
 //
 // Noise. Gradient noise on a square lattice of spacing c px (--perlin-cell): at lattice point
 // (i, j) of octave o a gradient g = (2U₁ − 1, 2U₂ − 1), U from the counter hash (uniform in the

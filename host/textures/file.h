@@ -29,7 +29,7 @@ Texture.File: an image (e.g. a speckle pattern) glued on the surface's (u, v) pa
                 |         |          | file's folder, not to the working directory
   interpolation | string  | "cubic"  | "cubic": interpolating cubic B-spline (4×4 texels);
                 |         |          | "quintic": interpolating quintic B-spline (6×6 texels),
-                |         |          | less interpolation bias (texture/bspline.h, README)
+                |         |          | less interpolation bias (texture/bspline.h, docs/scene-language.md)
 
 The file must exist and be readable when the constructor runs (the error names the line); it is
 decoded later, when the scene is prepared.

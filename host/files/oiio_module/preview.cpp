@@ -33,7 +33,7 @@ struct View {
   std::string unit;
 };
 
-// The dicsynth layers shown (README, "Output files": channels and units), in this order.
+// The dicsynth layers shown (docs/outputs.md: channels and units), in this order.
 const std::vector<View>& knownViews() {
   static const std::vector<View> views = {
       {"radiance", {"Y"}, Map::Gray, ""},

@@ -75,10 +75,15 @@ void checkDeviceCapacity(const Context& context, const PreparedScene& scene, con
     const PreparedTexture* largest = nullptr;
     for (const PreparedTexture& t : scene.textures)
       if (!largest || t.coefficients->size() > largest->coefficients->size()) largest = &t;
-    throw InputError(scene.file + ": the scene's textures hold " + std::to_string(texels) + " texels, more than the device " +
-                     "takes in one texel buffer (" + std::to_string(texelLimit) + " texels, " + mib(double(limit)) + ", " + device +
-                     "); the largest is " + largest->path + " (" + std::to_string(largest->width) + " x " +
-                     std::to_string(largest->height) + "): use a smaller texture, or --backend cpu");
+    // Two limits: texels per texel buffer, and bytes per buffer (the texel's size depends on the
+    // precision: fp64's 8-byte coefficients reach the byte limit first).
+    const double bytes = double(texels) * sizeof(typename Layout::real);
+    throw InputError(scene.file + ": the scene's textures hold " + std::to_string(texels) + " texels, " + mib(bytes) +
+                     " at " + std::to_string(sizeof(typename Layout::real)) + " bytes each in this precision, more than " +
+                     "the device takes in one buffer (" + std::to_string(texelLimit) + " texels, " + mib(double(limit)) +
+                     ", " + device + "); the largest is " + largest->path + " (" + std::to_string(largest->width) + " x " +
+                     std::to_string(largest->height) + "): use a smaller texture, a precision with smaller texels " +
+                     "(fp32 or df64 take 4 bytes), or --backend cpu");
   }
 }
 

@@ -1,16 +1,45 @@
 #include "io/feature_files.h"
 
+#include <atomic>
 #include <cmath>
 #include <sstream>
+#include <variant>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/json.h"
+#include "core/warning.h"
 #include "render/target_features.h"
 
 namespace dicsynth {
 namespace {
+
+// A target drawn on both sides is seen from its back too, mirrored, and its features stay visible;
+// a printed one would show a blank back, and a detector labels the mirrored pattern as a front view
+// with a false pose (the calibration audit of 2026-11-28). Said, once per process. The back faces
+// +z of the target frame: a ray meets it when it travels against z (ray · z < 0); the rays are the
+// chief rays from the camera centre to the visible features, or the axis of a telecentric camera.
+void warnBackView(const PreparedScene& scene, std::size_t camera, int frame, const std::vector<TargetTruth>& targets) {
+  static std::atomic<bool> said{false};
+  if (said) return;
+  const PreparedCamera& cam = scene.cameras[camera];
+  const bool telecentric = std::holds_alternative<cameras::Orthographic>(cam.camera.model);
+  for (const TargetTruth& target : targets) {
+    const dvec3 zCamera = cam.rotationCameraFromWorld * dvec3(scene.objects[target.object].worldFromTarget[2]);
+    for (const FeatureTruth& f : target.features) {
+      if (!f.visible()) continue;
+      const dvec3 ray = telecentric ? dvec3(0, 0, 1)
+                                    : cam.rotationCameraFromWorld * f.world_m + cam.translationCameraFromWorld;
+      if (glm::dot(ray, zCamera) < 0 && !said.exchange(true))
+        warn("camera " + cam.camera.name + ", frame " + std::to_string(frame) + ": target '" + target.name +
+             "' is seen from its back: a printed target would show a blank back there, while the render draws "
+             "its pattern mirrored and the feature files list its features as visible (turn the target or the "
+             "camera)");
+      if (said) return;
+    }
+  }
+}
 
 const char* kindName(TextureKind kind) {
   return kind == TextureKind::Checkerboard ? "checkerboard" : "circle_grid";
@@ -100,6 +129,7 @@ FeatureFiles writeFeatureFiles(const std::string& dir, const std::string& stem, 
                                std::size_t camera, int frame) {
   const std::vector<TargetTruth> targets = targetFeatureTruth(scene, camera);
   if (targets.empty()) return {};
+  warnBackView(scene, camera, frame, targets);
   FeatureFiles files{dir + "/" + stem + ".features.csv", dir + "/" + stem + ".features.json"};
   writeTextAtomically(files.csv, csvText(targets));
   writeTextAtomically(files.json, jsonText(scene, camera, frame, targets));

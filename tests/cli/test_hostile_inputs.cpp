@@ -502,6 +502,18 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
                                                          "  shader = Shader.Lambert {} }\nsun = Light.Ambient {}\n");
   CHECK(test::runCli("render " + lit + " -o " + dir.file("lit") + " --backend cpu --layers image").err.find("needs a light") ==
         std::string::npos);
+  // A target seen from its back (the calibration audit of 2026-11-28): said once; from the front not.
+  for (const char* turn : {"rotate_y(degrees(180))", "rotate_y(degrees(160))", "rotate_y(degrees(20))"}) {
+    CAPTURE(turn);
+    const std::string scene = dir.write("target.lua", "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.012; pixelSize = {1e-4, 1e-4} }\n"
+                                                      "board = Target.Checkerboard { squares = {6, 5}; squareSize = 0.02; location = {0.05, -0.04, 0.5};\n"
+                                                      "  transform = " + std::string(turn) + " }\n");
+    const test::CliResult run = test::runCli("render " + scene + " -o " + dir.file("target") + " --backend cpu --layers image");
+    CHECK(run.exitCode == 0);
+    const bool back = std::string(turn) != "rotate_y(degrees(20))";
+    CHECK((run.err.find("warning: camera cam, frame 0: target 'board' is seen from its back") != std::string::npos) == back);
+    std::filesystem::remove_all(dir.file("target"));
+  }
   // A NaN in a message is "nan", whatever its sign bit (Lua's 0/0 printed "-nan").
   const std::string nanFocal = dir.write("nanf.lua", "cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0/0; pixelSize = {2e-4, 2e-4} }\n");
   const test::CliResult nanRun = test::runCli("render " + nanFocal + " -o " + dir.file("nanf") + " --backend cpu");

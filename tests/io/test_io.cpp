@@ -278,6 +278,54 @@ TEST_CASE("io: readGrayImage of RGB(A) is the Rec. 709 luminance and 2 channels 
   for (int i = 0; i < n; ++i) CHECK(fromGa.pixels[i] == (17.0 * i) / 255.0);
 }
 
+TEST_CASE("io: an alpha channel is ignored by both readers: PNG, tiled and strip TIFF give the stored colour") {
+  // OpenImageIO multiplied colour by unassociated alpha by default: an RGBA or gray + alpha PNG, or
+  // a tiled TIFF, read half as bright at alpha 128 as the same strip TIFF through libtiff (the
+  // texture audit of 2026-11-28). The files are written with their alpha unassociated, values as
+  // given; the truth is the luminance of those values.
+  TempFolder folder;
+  const int width = 16, height = 4, n = width * height;
+  std::vector<std::uint8_t> rgba(std::size_t(n) * 4), ga(std::size_t(n) * 2);
+  for (int i = 0; i < n; ++i) {
+    rgba[4 * i] = std::uint8_t(37 * i % 256);
+    rgba[4 * i + 1] = std::uint8_t(200 - i);
+    rgba[4 * i + 2] = std::uint8_t(11 * i % 256);
+    rgba[4 * i + 3] = std::uint8_t(i % 4 == 0 ? 0 : i % 4 == 1 ? 1 : i % 4 == 2 ? 128 : 255);
+    ga[2 * i] = rgba[4 * i];
+    ga[2 * i + 1] = rgba[4 * i + 3];
+  }
+  auto write = [&](const std::string& name, int channels, const std::vector<std::uint8_t>& data, int tile) {
+    auto out = OIIO::ImageOutput::create(folder.file(name));
+    REQUIRE(out);
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+    spec.alpha_channel = channels - 1;
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // store the values as given
+    if (tile) spec.tile_width = spec.tile_height = tile;
+    REQUIRE_MESSAGE(out->open(folder.file(name), spec), out->geterror());
+    REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, data.data()));
+    REQUIRE(out->close());
+  };
+  write("rgba.png", 4, rgba, 0);
+  write("rgba_tiled.tif", 4, rgba, 16);
+  write("rgba_strip.tif", 4, rgba, 0);
+  write("ga.png", 2, ga, 0);
+  write("ga_tiled.tif", 2, ga, 16);
+  for (const char* name : {"rgba.png", "rgba_tiled.tif", "rgba_strip.tif"}) {
+    CAPTURE(name);
+    const GrayImage image = readGrayImage(folder.file(name));
+    for (int i = 0; i < n; ++i) {
+      CAPTURE(i);
+      const double expected = luminance(dvec3(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]) / 255.0);
+      CHECK(image.pixels[std::size_t(i)] == doctest::Approx(expected).epsilon(1e-15));
+    }
+  }
+  for (const char* name : {"ga.png", "ga_tiled.tif"}) {
+    CAPTURE(name);
+    const GrayImage image = readGrayImage(folder.file(name));
+    for (int i = 0; i < n; ++i) CHECK(image.pixels[std::size_t(i)] == ga[2 * i] / 255.0);
+  }
+}
+
 TEST_CASE("io: readGrayImage reads the first of several subimages") {
   TempFolder folder;
   const std::string path = folder.file("two.tif");

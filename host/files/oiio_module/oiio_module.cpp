@@ -34,7 +34,12 @@ bool readNormalized(OIIO::ImageInput& in, int nchannels, OIIO::TypeDesc type, do
 }
 
 bool readGray(const std::string& path, GrayImage& image, std::string& error) {
-  auto in = OIIO::ImageInput::open(path);
+  // The stored values, alpha ignored, as the libtiff reader gives them: by default OpenImageIO
+  // multiplies the colour of a file with unassociated alpha (PNG, TIFF with ExtraSamples = 2) by
+  // it, so an RGBA PNG read half as bright as the same strip TIFF (the texture audit of 2026-11-28).
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
   if (!in) {
     error = "cannot read image: " + oneLine(OIIO::geterror());
     return false;

@@ -124,6 +124,7 @@ class LuaFunctionField {
       lua_pushnumber(L, x.y);
       lua_pushnumber(L, x.z);
       try {
+        const LuaSandbox::OwnInstructionBudget budget(sandbox, "one call of the Nurbs.deform displacement");
         sandbox.call(3, 3);
       } catch (const InputError& e) {
         fail("'displacement' failed at " + at(x) + ": " + e.what());

@@ -88,6 +88,17 @@ LuaSandbox::UnlimitedScope::UnlimitedScope(lua_State* L)
 
 LuaSandbox::UnlimitedScope::~UnlimitedScope() { sandbox_.unlimited_ = previous_; }
 
+LuaSandbox::OwnInstructionBudget::OwnInstructionBudget(LuaSandbox& sandbox, const char* what)
+    : sandbox_(sandbox), saved_(sandbox.instructions_), savedWhat_(sandbox.budget_) {
+  sandbox_.instructions_ = 0;
+  sandbox_.budget_ = what;
+}
+
+LuaSandbox::OwnInstructionBudget::~OwnInstructionBudget() {
+  sandbox_.instructions_ = saved_;
+  sandbox_.budget_ = savedWhat_;
+}
+
 void LuaSandbox::recordLimit(Limit which, int line) {
   if (exceeded_ != Limit::None) return;  // keep the first: that is where the scene went wrong
   exceeded_ = which;
@@ -128,8 +139,10 @@ void LuaSandbox::countHook(lua_State* L, lua_Debug*) {
   LuaSandbox& sandbox = of(L);
   sandbox.instructions_ += kHookInterval;
   if constexpr (!kCanReadLineWhileAllocating) sandbox.lastHookLine_ = currentLine(L);
-  if (sandbox.instructions_ > sandbox.limits_.maxInstructions)
+  if (sandbox.instructions_ > sandbox.limits_.maxInstructions) {
+    if (sandbox.exceeded_ == Limit::None) sandbox.exceededBudget_ = sandbox.budget_;
     sandbox.recordLimit(Limit::Instructions, currentLine(L));
+  }
   if (sandbox.limits_.maxSeconds > 0 && sandbox.elapsedSeconds() > sandbox.limits_.maxSeconds)
     sandbox.recordLimit(Limit::Time, currentLine(L));
   if (sandbox.exceeded_ == Limit::None) return;
@@ -341,6 +354,7 @@ void LuaSandbox::run(const std::string& sourceText) {
 
   instructions_ = 0;
   exceeded_ = Limit::None;
+  exceededBudget_ = nullptr;
   startClock();
   lua_sethook(L, &LuaSandbox::countHook, LUA_MASKCOUNT, kHookInterval);
   enforceMemory_ = true;
@@ -353,8 +367,8 @@ void LuaSandbox::run(const std::string& sourceText) {
 
   const std::string at = scenePath_ + ":" + std::to_string(exceededLine_) + ": ";
   if (exceeded_ == Limit::Instructions)
-    throw InputError(at + "scene exceeded the instruction limit (" +
-                     std::to_string(limits_.maxInstructions) + " instructions)");
+    throw InputError(at + "scene exceeded the instruction limit (" + std::to_string(limits_.maxInstructions) +
+                     " instructions" + (exceededBudget_ ? std::string(" in ") + exceededBudget_ : std::string()) + ")");
   if (exceeded_ == Limit::Time)
     throw InputError(at + "scene exceeded the time limit (" + formatNumber(limits_.maxSeconds) +
                      " s of evaluation; DICSYNTH_SCENE_SECONDS sets another)");
@@ -375,6 +389,7 @@ void LuaSandbox::callAfterRun(const std::function<void()>& body) {
     explicit Limits(LuaSandbox& sandbox) : s(sandbox) {
       s.instructions_ = 0;
       s.exceeded_ = Limit::None;
+      s.exceededBudget_ = nullptr;
       s.startClock();
       lua_sethook(s.L_, &LuaSandbox::countHook, LUA_MASKCOUNT, kHookInterval);
       s.enforceMemory_ = true;
@@ -403,7 +418,7 @@ void LuaSandbox::call(int nargs, int nresults) {
   const std::string at = scenePath_ + ":" + std::to_string(exceededLine_) + ": ";
   if (exceeded_ == Limit::Instructions)
     throw InputError(at + "exceeded the instruction limit (" + std::to_string(limits_.maxInstructions) +
-                     " instructions) in one batch of calls after the scene ran");
+                     " instructions) in " + (exceededBudget_ ? exceededBudget_ : "one batch of calls after the scene ran"));
   if (exceeded_ == Limit::Time)
     throw InputError(at + "exceeded the time limit (" + formatNumber(limits_.maxSeconds) +
                      " s) in one batch of calls after the scene ran");

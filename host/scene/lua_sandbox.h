@@ -117,6 +117,25 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
     bool previous_;
   };
 
+  // While alive, the instructions counted are this scope's alone and do not count towards the
+  // enclosing run's or batch's: each call of a Nurbs.deform displacement function gets the whole
+  // instruction limit for itself (a runaway function still stops), while a fit's millions of calls
+  // no longer exhaust the scene's budget (the deformation audit of 2026-11-28: a mild sinusoid at
+  // tol 1e-9 stopped with "scene exceeded the instruction limit"). `what` names the call in the
+  // limit's message ("one call of the Nurbs.deform displacement").
+  class OwnInstructionBudget {
+   public:
+    OwnInstructionBudget(LuaSandbox& sandbox, const char* what);
+    ~OwnInstructionBudget();
+    OwnInstructionBudget(const OwnInstructionBudget&) = delete;
+    OwnInstructionBudget& operator=(const OwnInstructionBudget&) = delete;
+
+   private:
+    LuaSandbox& sandbox_;
+    std::uint64_t saved_;
+    const char* savedWhat_;
+  };
+
  private:
   enum class Limit { None, Instructions, Memory, Time };
 
@@ -149,6 +168,8 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   std::mutex afterRun_;  // callAfterRun
   Limit exceeded_ = Limit::None;  // first limit the scene ran into
   int exceededLine_ = 0;
+  const char* budget_ = nullptr;          // OwnInstructionBudget's `what` while one is alive
+  const char* exceededBudget_ = nullptr;  // budget_ when the instruction limit was exceeded
   int lastHookLine_ = 0;  // for Lua versions where the allocator cannot read the line
 };
 

@@ -280,6 +280,31 @@ TEST_CASE("scene: a runaway loop stops at the instruction limit") {
              "scene exceeded the instruction limit (1000000 instructions)", params);
 }
 
+TEST_CASE("scene: each call of a Nurbs.deform displacement has the instruction limit for itself") {
+  // A fit calls its field thousands to millions of times: together they exhausted the scene's
+  // budget (the deformation audit of 2026-11-28: a mild sinusoid at tol 1e-9 stopped with "scene
+  // exceeded the instruction limit"). Here a field of ~400 instructions a call, fitted at 1e-8, with
+  // the limit lowered to 1e6: several million instructions in all, each call far below the limit.
+  TempFolder dir;
+  SceneParams params;
+  params.maxInstructions = 1000000;
+  params.quiet = true;
+  const std::string plate = std::string(kCameraLine) + "plate = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n";
+  const std::string busy = dir.write("busy.lua", plate +
+      "wave = Nurbs.deform { surface = plate; tolerance = 1e-8;\n"
+      "  displacement = function(x, y, z)\n"
+      "    local s = 0\n    for i = 1, 100 do s = s + i end\n"
+      "    return 0, 0, 1e-5 * math.sin(2 * math.pi * x / 0.05) + 0 * s\n  end }\n"
+      "o = Object.Simple { shape = wave }\n");
+  CHECK_NOTHROW(loadScene(busy, params));
+  // The scene's own code still has the whole budget to itself, and a runaway field stops within one
+  // call, said as such, at its line.
+  checkError(dir, plate + "wave = Nurbs.deform { surface = plate;\n  displacement = function(x, y, z)\n    while true do end\n  end }\n", 5,
+             "scene exceeded the instruction limit (1000000 instructions in one call of the Nurbs.deform displacement)", params);
+  checkError(dir, plate + "local x = 0\nwhile true do x = x + 1 end\n", 4,
+             "scene exceeded the instruction limit (1000000 instructions)", params);
+}
+
 TEST_CASE("scene: a memory bomb stops at the memory limit") {
   TempFolder dir;
   checkMemoryError(dir, "x = 1\nlocal s = string.rep('x', 1e9)\n", 2,

@@ -173,14 +173,22 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
     throw InputError(where, std::string("Texture.File: ") + e.what());
   }
   // Texels are reflectances: finite and >= 0 (as Texture.Speckle's dark and light). One NaN would
-  // spread through the B-spline prefilter into every pixel of the image.
+  // spread through the B-spline prefilter into every pixel of the image. At most 1e30: the GPU's
+  // df64 splits a float a as 4097·a (Dekker), which overflows above ~8e34, and the prefilter can
+  // multiply a texel by up to 7.5 (quintic, alternating texels: 120 / (66 − 52 + 2)); 1e30 leaves
+  // that and a colour or light of up to ~1e3 within every precision (the texture audit of
+  // 2026-11-28: a texel of 1e35 made df64's radiance NaN, refused late with a misleading cause).
+  constexpr double kMaxTexel = 1e30;
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     const double v = image.pixels[i];
-    if (std::isfinite(v) && v >= 0) continue;
+    if (std::isfinite(v) && v >= 0 && v <= kMaxTexel) continue;
     const std::size_t x = i % std::size_t(image.width), y = i / std::size_t(image.width);
-    throw InputError(where, "Texture.File: " + t.path + ": " + (std::isfinite(v) ? "negative texel " + shortestNumber(v) : std::string("non-finite texel")) +
-                                  " at (" + std::to_string(x) + ", " + std::to_string(y) +
-                                  ") (x, y from the top-left; texels are reflectances: finite and >= 0)");
+    const std::string what = !std::isfinite(v) ? "non-finite texel"
+                             : v < 0           ? "negative texel " + shortestNumber(v)
+                                               : "texel " + shortestNumber(v) + " above 1e30";
+    throw InputError(where, "Texture.File: " + t.path + ": " + what + " at (" + std::to_string(x) + ", " +
+                                std::to_string(y) +
+                                ") (x, y from the top-left; texels are reflectances: finite, >= 0 and at most 1e30)");
   }
   PreparedTexture pt;
   pt.path = t.path;

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/exact_number.h"
 #include "files/image_limits.h"
 #include "model/layers.h"
 #include "run_cli.h"
@@ -82,7 +83,9 @@ TEST_CASE("hostile: non-finite and negative texels are refused with the scene li
   };
   const std::vector<Case> cases = {{std::numeric_limits<float>::quiet_NaN(), "non-finite texel at (10, 10)"},
                                    {std::numeric_limits<float>::infinity(), "non-finite texel at (10, 10)"},
-                                   {-0.25f, "negative texel -0.25 at (10, 10)"}};
+                                   {-0.25f, "negative texel -0.25 at (10, 10)"},
+                                   // The GPU's df64 overflowed near 1e35 (the texture audit of 2026-11-28).
+                                   {1e35f, "texel " + shortestNumber(double(1e35f)) + " above 1e30 at (10, 10)"}};
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const std::string texture = dir.file("t" + std::to_string(k) + ".exr");
     writeFloatTexture(texture, cases[k].value);

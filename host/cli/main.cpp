@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "cli/commands.h"
+#include "cli/suggestion.h"
 #include "core/error.h"
 #include "core/phase_timer.h"
 #include "core/termination.h"
@@ -35,7 +36,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "dicsynth: %s\n", e.what());
+    std::fprintf(stderr, "dicsynth: %s%s\n", e.what(), cli::suggestion(app, argc, argv).c_str());
     return cli::kExitBadInput;
   }
   try {

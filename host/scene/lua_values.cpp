@@ -4,25 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/closest_name.h"
+
 namespace dicsynth::scene {
 
 namespace {
-
-// Optimal string alignment distance (Levenshtein plus adjacent swaps: "raduis" → "radius" is 1).
-std::size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  }
-  return d[a.size()][b.size()];
-}
 
 // Number of entries of the table at `index`, and whether they are exactly [1..n].
 struct TableShape {
@@ -133,18 +119,9 @@ Params::Params(lua_State* L, std::string constructor, const std::vector<const ch
   std::string message = unknown.size() == 1 ? "unknown key " : "unknown keys ";
   for (std::size_t i = 0; i < unknown.size(); ++i) message += (i ? ", '" : "'") + unknown[i] + "'";
   // Suggest the closest valid key for a single typo.
-  if (unknown.size() == 1) {
-    const char* best = nullptr;
-    std::size_t bestDistance = 3;
-    for (const char* key : keys) {
-      const std::size_t distance = editDistance(unknown[0], key);
-      if (distance < bestDistance && distance < unknown[0].size()) {
-        best = key;
-        bestDistance = distance;
-      }
-    }
-    if (best) message += std::string(" (did you mean '") + best + "'?)";
-  }
+  if (unknown.size() == 1)
+    if (const auto best = closestName(unknown[0], std::vector<std::string>(keys.begin(), keys.end())))
+      message += " (did you mean '" + *best + "'?)";
   fail(message + "; valid keys: " + validKeys);
 }
 

@@ -546,3 +546,30 @@ TEST_CASE("hostile: NURBS data over the device's storage-buffer limit is exit 2 
   CHECK(r.err.find("use fewer knot spans, or --backend cpu") != std::string::npos);
   CHECK(!std::filesystem::exists(dir.file("out")));
 }
+
+TEST_CASE("hostile: a mistyped command or option is answered with the nearest name (the docs walk of 2026-11-28)") {
+  test::TempFolder dir;
+  const std::string scene = dir.write("s.lua", plateWith("Texture.Constant { value = 0.5 }"));
+  struct Case {
+    std::string args, expected;
+  };
+  const Case cases[] = {
+      {"rendr " + scene, "dicsynth: A subcommand is required (did you mean 'render'? The commands: render, compare, devices, "
+                         "speckle, preview, bench, sweep)"},
+      {"xyz", "dicsynth: A subcommand is required ('xyz' is no command; the commands: render, compare, devices, speckle, "
+              "preview, bench, sweep)"},
+      {"render " + scene + " --frame 1", "dicsynth: The following arguments were not expected: 1 --frame (did you mean "
+                                         "--frames for --frame?)"},
+      {"render " + scene + " --downscal=4", "dicsynth: The following argument was not expected: --downscal=4 (did you mean "
+                                            "--downscale for --downscal?)"},
+      {"sweep " + scene + " -o x --sweeep a=1", "(did you mean --sweep for --sweeep?)"},
+      {"render " + scene + " --zzzzzz", "dicsynth: The following argument was not expected: --zzzzzz"}};
+  for (const Case& c : cases) {
+    CAPTURE(c.args);
+    const test::CliResult r = test::runCli(c.args);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.find(c.expected) != std::string::npos);
+    CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
+  }
+  CHECK(test::runCli("render " + scene + " --zzzzzz").err.find("did you mean") == std::string::npos);
+}

@@ -271,6 +271,18 @@ class PyRenderer {
     return out;
   }
 
+  // The objects' names at `frame`, in objectId order (objectId k names objects[k - 1]): the EXR
+  // header's dicsynth:objects, as a list.
+  std::vector<std::string> objects(const PyScene& scene, int frame) {
+    if (frame < 0) throw InputError("frame: frame numbers are >= 0, got " + std::to_string(frame));
+    SceneParams params{scene.defines, frame};
+    params.quiet = true;
+    params.requireDefinesRead = false;
+    std::vector<std::string> names;
+    for (const Object& object : loadScene(scene.path, params).objects) names.push_back(object.name);
+    return names;
+  }
+
   std::string backend() const { return backend_; }
   std::string precision() const { return precision_; }
   std::string device() const { return device_; }
@@ -354,6 +366,13 @@ PYBIND11_MODULE(dicsynth, m) {
           py::arg("scene"), py::arg("frame") = 0,
           "The cameras' and rigs' calibration at that frame, after the downscale: "
           "{'cameras': {name: {...}}, 'rigs': {name: {...}}}, the calibration files' keys and values")
+      .def(
+          "objects",
+          [](PyRenderer& r, const PyScene& scene, int frame) {
+            return withWarnings([&] { return r.objects(scene, frame); });
+          },
+          py::arg("scene"), py::arg("frame") = 0,
+          "The objects' names at that frame in objectId order: objectId k is objects[k - 1] (0: background)")
       .def_property_readonly("backend", &PyRenderer::backend)
       .def_property_readonly("precision", &PyRenderer::precision, "the precision of the last render")
       .def_property_readonly("device", &PyRenderer::device);

@@ -73,6 +73,12 @@ def test_arrays_equal_the_cli_files(backend):
             assert arrays["disp"].shape == (h, w, 3) and arrays["disp"].dtype == np.float32
             assert np.isfinite(arrays["disp"]).any()
             assert arrays["objectId"].dtype == np.uint32
+            # objectId k names objects()[k - 1], as the EXR header's dicsynth:objects does.
+            spec = oiio.ImageInput.open(stem + ".exr")
+            header = spec.spec().get_string_attribute("dicsynth:objects")
+            spec.close()
+            assert renderer.objects(scene, frame=frame) == header.split(",")
+            assert int(arrays["objectId"].max()) <= len(header.split(","))
 
 
 def test_layers_errors_and_a_warm_loop():

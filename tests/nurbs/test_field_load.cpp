@@ -497,6 +497,30 @@ TEST_CASE("field-load: a point near a cell's face is interpolated by the cell th
   // keeps three orders of margin. A neighbour's extrapolation errs by the jump of the gradient
   // (~1 m/m here) times the distance from the face (>= 1e-7 × 1 mm = 1e-10 m): far above it.
   constexpr double kTolerance_m = 1e-15;
+  // The mesh of these points, cells (VTK type) and nodal values, written and read back.
+  auto meshOf = [&](const std::string& name, const std::vector<dvec3>& points, const std::vector<std::vector<int>>& cells,
+                    int type, const std::vector<dvec3>& values) {
+    std::vector<std::string> valueText;
+    for (const dvec3& v : values) valueText.push_back(text(v));
+    dir.write(name, vtu(points, cells, type, "displacement", 3, valueText));
+    MeshFieldOptions options;
+    options.path = dir.file(name);
+    return MeshField(options);
+  };
+  // The points whose interpolation differs from the truth by more than the tolerance.
+  auto wrongPoints = [](const std::string& mesh, const MeshField& field, const std::vector<dvec3>& probes,
+                        const std::vector<dvec3>& truth) {
+    const std::vector<dvec3> got = field.at(probes);
+    int wrong = 0;
+    double worst = 0;
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+      const double e = glm::length(got[k] - truth[k]);
+      worst = std::max(worst, e);
+      wrong += e > kTolerance_m;
+    }
+    MESSAGE(mesh << ": " << wrong << " of " << probes.size() << " beyond 1e-15 m, worst " << worst << " m");
+    return wrong;
+  };
   constexpr double h = 1e-3;  // cell size, metres
   const int n = 4;
 
@@ -523,12 +547,7 @@ TEST_CASE("field-load: a point near a cell's face is interpolated by the cell th
             }
             cells.push_back(tet);
           }
-    std::vector<std::string> valueText;
-    for (const dvec3& v : values) valueText.push_back(text(v));
-    dir.write("tets.vtu", vtu(points, cells, 10, "displacement", 3, valueText));
-    MeshFieldOptions options;
-    options.path = dir.file("tets.vtu");
-    const MeshField field(options);
+    const MeshField field = meshOf("tets.vtu", points, cells, 10, values);
     std::vector<dvec3> probes, truth;
     for (int s = 0; s < 20000; ++s) {
       const std::vector<int>& tet = cells[std::size_t(rng() % cells.size())];
@@ -546,16 +565,7 @@ TEST_CASE("field-load: a point near a cell's face is interpolated by the cell th
       probes.push_back(x);
       truth.push_back(f);
     }
-    const std::vector<dvec3> got = field.at(probes);
-    int wrong = 0;
-    double worst = 0;
-    for (std::size_t k = 0; k < probes.size(); ++k) {
-      const double e = glm::length(got[k] - truth[k]);
-      worst = std::max(worst, e);
-      wrong += e > kTolerance_m;
-    }
-    MESSAGE("tets: " << wrong << " of " << probes.size() << " beyond 1e-15 m, worst " << worst << " m");
-    CHECK(wrong == 0);
+    CHECK(wrongPoints("tets", field, probes, truth) == 0);
   }
 
   SUBCASE("quadrilaterals (rectangles)") {
@@ -571,12 +581,7 @@ TEST_CASE("field-load: a point near a cell's face is interpolated by the cell th
         const int k = j * (n + 1) + i;
         cells.push_back({k, k + 1, k + n + 2, k + n + 1});
       }
-    std::vector<std::string> valueText;
-    for (const dvec3& v : values) valueText.push_back(text(v));
-    dir.write("quads.vtu", vtu(points, cells, 9, "displacement", 3, valueText));
-    MeshFieldOptions options;
-    options.path = dir.file("quads.vtu");
-    const MeshField field(options);
+    const MeshField field = meshOf("quads.vtu", points, cells, 9, values);
     std::vector<dvec3> probes, truth;
     for (int s = 0; s < 20000; ++s) {
       const std::vector<int>& quad = cells[std::size_t(rng() % cells.size())];
@@ -597,15 +602,6 @@ TEST_CASE("field-load: a point near a cell's face is interpolated by the cell th
       probes.push_back(x);
       truth.push_back(f);
     }
-    const std::vector<dvec3> got = field.at(probes);
-    int wrong = 0;
-    double worst = 0;
-    for (std::size_t k = 0; k < probes.size(); ++k) {
-      const double e = glm::length(got[k] - truth[k]);
-      worst = std::max(worst, e);
-      wrong += e > kTolerance_m;
-    }
-    MESSAGE("quads: " << wrong << " of " << probes.size() << " beyond 1e-15 m, worst " << worst << " m");
-    CHECK(wrong == 0);
+    CHECK(wrongPoints("quads", field, probes, truth) == 0);
   }
 }

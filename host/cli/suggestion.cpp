@@ -10,10 +10,11 @@ std::string suggestion(CLI::App& app, int argc, char** argv) {
   if (argc < 2) return "";
   const std::string first = argv[1];
   std::vector<std::string> commands;
-  for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
   CLI::App* command = nullptr;
-  for (CLI::App* sub : app.get_subcommands({}))
+  for (CLI::App* sub : app.get_subcommands({})) {
+    commands.push_back(sub->get_name());
     if (sub->get_name() == first) command = sub;
+  }
   if (!command) {
     if (first.empty() || first[0] == '-') return "";
     std::string list;

@@ -4,7 +4,7 @@
 //
 // By default a warning is one line on stderr, "dicsynth: warning: <text>". While a WarningCapture
 // lives, warnings are collected by it instead: the Python module turns them into Python warnings
-// (dicsynth.Warning), which a notebook shows and `warnings` filters, where a line on the process's
+// (dicsynth.DicsynthWarning), which a notebook shows and `warnings` filters, where a line on the process's
 // stderr would be lost. Warnings may come from any thread; every capture alive when one is raised
 // receives it (two renders running at once in one process each see the other's warnings).
 #include <string>

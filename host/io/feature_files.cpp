@@ -31,12 +31,13 @@ void warnBackView(const PreparedScene& scene, std::size_t camera, int frame, con
       if (!f.visible()) continue;
       const dvec3 ray = telecentric ? dvec3(0, 0, 1)
                                     : cam.rotationCameraFromWorld * f.world_m + cam.translationCameraFromWorld;
-      if (glm::dot(ray, zCamera) < 0 && !said.exchange(true))
+      if (glm::dot(ray, zCamera) >= 0) continue;
+      if (!said.exchange(true))
         warn("camera " + cam.camera.name + ", frame " + std::to_string(frame) + ": target '" + target.name +
              "' is seen from its back: a printed target would show a blank back there, while the render draws "
              "its pattern mirrored and the feature files list its features as visible (turn the target or the "
              "camera)");
-      if (said) return;
+      return;
     }
   }
 }

@@ -162,6 +162,16 @@ py::dict cameraCalibration(const Camera& camera) {
   return d;
 }
 
+// The scene evaluated at `frame`, quietly (its prints were seen when the Scene was made): a define
+// only other frames read is no error here (render checks the defines over the frames it renders).
+Scene evaluate(const PyScene& scene, int frame) {
+  if (frame < 0) throw InputError("frame: frame numbers are >= 0, got " + std::to_string(frame));
+  SceneParams params{scene.defines, frame};
+  params.quiet = true;
+  params.requireDefinesRead = false;
+  return loadScene(scene.path, params);
+}
+
 class PyRenderer {
  public:
   PyRenderer(const std::string& backend, const std::string& precision, const std::string& device, long long seed,
@@ -189,14 +199,10 @@ class PyRenderer {
   // calibration files hold. The scene is evaluated and its cameras prepared (the same checks as a
   // render: a distortion that folds over is an InputError here), its textures left unread.
   py::dict calibration(const PyScene& scene, int frame) {
-    if (frame < 0) throw InputError("frame: frame numbers are >= 0, got " + std::to_string(frame));
-    SceneParams params{scene.defines, frame};
-    params.quiet = true;
-    params.requireDefinesRead = false;
     PrepareOptions options;
     options.downscale = downscale_;
     options.textureData = false;
-    const PreparedScene prepared = prepareScene(loadScene(scene.path, params), options);
+    const PreparedScene prepared = prepareScene(evaluate(scene, frame), options);
     py::dict cameras, rigs;
     for (const PreparedCamera& c : prepared.cameras) cameras[py::str(c.camera.name)] = cameraCalibration(c.camera);
     for (const PreparedRig& rig : prepared.rigs) {
@@ -274,12 +280,8 @@ class PyRenderer {
   // The objects' names at `frame`, in objectId order (objectId k names objects[k - 1]): the EXR
   // header's dicsynth:objects, as a list.
   std::vector<std::string> objects(const PyScene& scene, int frame) {
-    if (frame < 0) throw InputError("frame: frame numbers are >= 0, got " + std::to_string(frame));
-    SceneParams params{scene.defines, frame};
-    params.quiet = true;
-    params.requireDefinesRead = false;
     std::vector<std::string> names;
-    for (const Object& object : loadScene(scene.path, params).objects) names.push_back(object.name);
+    for (const Object& object : evaluate(scene, frame).objects) names.push_back(object.name);
     return names;
   }
 
@@ -325,11 +327,7 @@ PYBIND11_MODULE(dicsynth, m) {
                s.defines.emplace_back(name, defineText(value, name));
              }
              // Evaluated once now (frame 0), so that a scene error is raised here, with its FILE:LINE.
-             // A define only other frames read is checked by render, over the frames it renders.
-             SceneParams params{s.defines, 0};
-             params.quiet = true;
-             params.requireDefinesRead = false;
-             withWarnings([&] { return loadScene(path, params); });
+             withWarnings([&] { return evaluate(s, 0); });
              return s;
            }),
            py::arg("path"), py::arg("defines") = py::dict())

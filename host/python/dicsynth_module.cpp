@@ -26,7 +26,9 @@
 
 #include <algorithm>
 #include <map>
+#include <cmath>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <variant>
 #include <vector>
@@ -53,13 +55,21 @@ struct PyScene {
   std::vector<std::pair<std::string, std::string>> defines;  // as -D name=value
 };
 
-// A Python value as the text of a -D define (number, true/false, or string).
+// A Python value as the text of a -D define (number, true/false, or string). Numbers as numpy
+// gives them too (np.int64 through __index__, np.float32 through __float__); an int of any size
+// as its exact decimal text (Lua reads one beyond 64 bits as a float). The audit of the module
+// (2026-11-28) met pybind11's "Unable to cast" for 2**70 and a ValueError for np.int64.
 std::string defineText(const py::handle& value, const std::string& name) {
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::int_>(value)) return std::to_string(value.cast<long long>());
-  if (py::isinstance<py::float_>(value)) return exactNumber(value.cast<double>());
+  if (py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_")))
+    return value.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  throw InputError("defines['" + name + "']: a number, a bool or a str, got " + std::string(py::str(value.get_type())));
+  if (PyIndex_Check(value.ptr())) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
+  if (py::isinstance<py::float_>(value) || (!PyComplex_Check(value.ptr()) && py::hasattr(value, "__float__"))) {
+    const double v = py::float_(py::reinterpret_borrow<py::object>(value));
+    if (!std::isfinite(v)) throw InputError("defines['" + name + "']: " + shortestNumber(v) + " is not a finite number");
+    return exactNumber(v);
+  }
+  throw py::type_error("defines['" + name + "']: a number, a bool or a str, got " + std::string(py::str(value.get_type())));
 }
 
 // Owns `values` and hands its buffer to numpy: no copy.
@@ -174,16 +184,18 @@ Scene evaluate(const PyScene& scene, int frame) {
 
 class PyRenderer {
  public:
-  PyRenderer(const std::string& backend, const std::string& precision, const std::string& device, long long seed,
+  PyRenderer(const std::string& backend, const std::string& precision, const std::string& device, const py::int_& seedInt,
              int downscale, double maxErrorPx) {
     if (backend != "gpu" && backend != "cpu") throw InputError("backend must be \"gpu\" or \"cpu\", got \"" + backend + "\"");
     backend_ = backend;  // known from the start; precision and device once a render resolved them
     if (precision != "auto" && !parsePrecision(precision))
       throw InputError("precision must be \"auto\", \"fp32\", \"df64\" or \"fp64\", got \"" + precision + "\"");
     // A Python int of any size: the CLI's --seed range, said as a ValueError rather than pybind11's
-    // "incompatible constructor arguments" TypeError for a negative one.
-    if (seed < 0 || seed > 0xffffffffLL)
-      throw InputError("seed " + std::to_string(seed) + ": must be in 0..4294967295");
+    // "incompatible constructor arguments" TypeError for a negative one or one beyond 64 bits.
+    int overflow = 0;
+    const long long seed = PyLong_AsLongLongAndOverflow(seedInt.ptr(), &overflow);
+    if (overflow != 0 || seed < 0 || seed > 0xffffffffLL)
+      throw InputError("seed " + py::repr(seedInt).cast<std::string>() + ": must be in 0..4294967295");
     RenderArgs args;
     args.precision = precision;
     args.device = device;
@@ -252,6 +264,11 @@ class PyRenderer {
     std::vector<CameraResult> results;
     {
       py::gil_scoped_release release;
+      // One render at a time per Renderer: its session (device, queue, caches) is not shared
+      // between threads (two threads rendering with one GPU Renderer crashed in the driver, the
+      // module audit of 2026-11-28). Taken after the GIL is released, and given back before it is
+      // taken again, so that a waiting thread never holds the GIL.
+      const std::lock_guard<std::mutex> oneAtATime(renderMutex_);
       RenderedJob rendered = renderJob(*session_, job);
       std::unique_ptr<ReferenceFrame> referenceData;
       for (std::size_t fi = 0; fi < rendered.frames.size(); ++fi) {
@@ -291,6 +308,7 @@ class PyRenderer {
 
  private:
   std::unique_ptr<RenderSession> session_;
+  std::mutex renderMutex_;  // render(): one at a time
   int downscale_ = 1;
   std::string backend_, precision_, device_;
 };
@@ -300,6 +318,11 @@ class PyRenderer {
 PYBIND11_MODULE(dicsynth, m) {
   m.doc() = "dicsynth: synthetic images with exact ground truth for experimental mechanics";
   m.attr("__version__") = kVersion;
+  // pybind11 looks up numpy's C API in a function-local static on first use, importing numpy inside
+  // the static's guard; two threads making their first arrays at once deadlocked there (one holding
+  // the guard and waiting for the GIL, the other holding the GIL and waiting for the guard). Done
+  // once here, at import, with the GIL held and no other thread in the module.
+  (void)py::array_t<std::uint8_t>(0);
   setOptionSpelling(OptionSpelling::Python);  // messages name max_error_px, defines['x']: not the CLI's options
   static py::exception<InputError> inputError(m, "InputError", PyExc_ValueError);
   warningCategory = PyErr_NewExceptionWithDoc("dicsynth.DicsynthWarning",
@@ -319,8 +342,8 @@ PYBIND11_MODULE(dicsynth, m) {
 
   py::class_<PyScene>(m, "Scene", "A scene file and its defines (the CLI's -D name=value)")
       .def(py::init([](const py::object& pathLike, const py::dict& defines) {
-             // A str or any path-like object (pathlib.Path), as open() takes.
-             const std::string path = py::str(py::module_::import("os").attr("fspath")(pathLike));
+             // A str or any path-like object (pathlib.Path, bytes), as open() takes.
+             const std::string path = py::str(py::module_::import("os").attr("fsdecode")(pathLike));
              PyScene s{path, {}};
              for (const auto& [key, value] : defines) {
                const std::string name = py::str(key);
@@ -340,7 +363,7 @@ PYBIND11_MODULE(dicsynth, m) {
       .def("__repr__", [](const PyScene& s) { return "dicsynth.Scene('" + s.path + "')"; });
 
   py::class_<PyRenderer>(m, "Renderer", "The renderer, its device kept warm between renders")
-      .def(py::init<const std::string&, const std::string&, const std::string&, long long, int, double>(),
+      .def(py::init<const std::string&, const std::string&, const std::string&, const py::int_&, int, double>(),
            py::arg("backend") = "gpu", py::arg("precision") = "auto", py::arg("device") = "", py::arg("seed") = 1,
            py::arg("downscale") = 1, py::arg("max_error_px") = 1e-6)
       .def("render",

@@ -108,8 +108,22 @@ def test_layers_errors_and_a_warm_loop():
         dicsynth.Renderer(backend="vulkan")
     with pytest.raises(TypeError):
         renderer.render("not a scene")
-    with pytest.raises(dicsynth.InputError, match="a number, a bool or a str"):
+    with pytest.raises(TypeError, match="a number, a bool or a str"):
         dicsynth.Scene(os.path.join(SCENES, "rectangle.lua"), defines={"x": [1, 2]})
+    # The module audit of 2026-11-28: numpy numbers and ints of any size are numbers; a NaN is said
+    # as such; bytes paths are paths; a seed beyond 64 bits is a ValueError like any out of range.
+    rectangle = os.path.join(SCENES, "rectangle.lua")
+    for value, text in [(np.int64(3), "3"), (np.float32(0.5), "0.5"), (2**70, str(2**70)), (np.bool_(True), "true")]:
+        assert dicsynth.Scene(rectangle, defines={"x": value}).defines["x"] == text
+    for bad in [None, 1 + 2j, [1, [2]]]:
+        with pytest.raises(TypeError):
+            dicsynth.Scene(rectangle, defines={"x": bad})
+    with pytest.raises(dicsynth.InputError, match=re.escape("defines['x']: nan is not a finite number")):
+        dicsynth.Scene(rectangle, defines={"x": float("nan")})
+    assert dicsynth.Scene(os.fsencode(rectangle)).path == rectangle
+    for seed in [2**63, 2**64, -2**70]:
+        with pytest.raises(dicsynth.InputError, match="seed %d: must be in 0..4294967295" % seed):
+            dicsynth.Renderer(backend="cpu", seed=seed)
     # The audit of 2026-11-27: a define that only later frames read was refused at construction;
     # now render refuses one that none of the rendered frames reads. Paths may be path-like.
     with tempfile.NamedTemporaryFile("w", suffix=".lua", delete=False) as later:
@@ -260,3 +274,31 @@ def test_warnings_are_python_warnings(capfd):
             warnings.simplefilter("error", dicsynth.DicsynthWarning)
             with pytest.raises(dicsynth.DicsynthWarning, match="no pixel centre sees an object"):
                 renderer.render(scene, layers=["image"])
+
+
+def test_one_gpu_renderer_shared_by_threads_renders_one_at_a_time():
+    # Two threads rendering with one GPU Renderer crashed in the driver (the module audit of
+    # 2026-11-28): render now takes the Renderer for itself. Each result equals the serial one.
+    import threading
+    # A fresh Renderer: the threads' renders are its first (the crash needed no render before), and
+    # the module's first arrays (pybind11's numpy lookup, which deadlocked two first callers).
+    renderer = dicsynth.Renderer(backend="gpu", precision="fp64", downscale=16)
+    scene = dicsynth.Scene(os.path.join(SCENES, "rectangle.lua"))
+    results, errors = [], []
+
+    def work():
+        try:
+            results.append(next(iter(renderer.render(scene, spp=1, layers="image").values()))["image"])
+        except Exception as e:  # noqa: BLE001 - reported below
+            errors.append(e)
+
+    threads = [threading.Thread(target=work) for _ in range(3)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors
+    assert len(results) == 3
+    serial = next(iter(renderer.render(scene, spp=1, layers="image").values()))["image"]
+    for image in results:
+        np.testing.assert_array_equal(image, serial)

@@ -24,4 +24,13 @@ std::string defineName(const std::string& name) {
   return optionSpelling() == OptionSpelling::Cli ? "-D " + name : "defines['" + name + "']";
 }
 
+std::string optionSetting(const std::string& cliName, const std::string& word) {
+  return optionSpelling() == OptionSpelling::Cli ? cliName + " " + word : optionName(cliName) + "=\"" + word + "\"";
+}
+
+std::string firstFramesSetting(long long count) {
+  return optionSpelling() == OptionSpelling::Cli ? "--frames 0:" + std::to_string(count - 1)
+                                                  : "frames=range(" + std::to_string(count) + ")";
+}
+
 }  // namespace dicsynth

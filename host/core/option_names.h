@@ -19,4 +19,10 @@ std::string optionName(const std::string& cliName);
 // A define: "-D name" in the CLI, "defines['name']" in Python.
 std::string defineName(const std::string& name);
 
+// An option given a word value: "--backend cpu" in the CLI, "backend=\"cpu\"" in Python.
+std::string optionSetting(const std::string& cliName, const std::string& word);
+
+// The frames 0 .. count - 1: "--frames 0:<count - 1>" in the CLI, "frames=range(<count>)" in Python.
+std::string firstFramesSetting(long long count);
+
 }  // namespace dicsynth

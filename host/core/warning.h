@@ -1,32 +1,43 @@
 #pragma once
 // Warnings: what a run says about its input or its machine without stopping (a -D value that looks
-// like a decimal comma, a camera that sees nothing, a cache that could not be written).
+// like a decimal comma, a camera that sees nothing, a cache that could not be written). Notes: the
+// other lines a run says on stderr as it goes (a scene's print, a Nurbs.deform fit's report, the
+// precision `auto` chose).
 //
-// By default a warning is one line on stderr, "dicsynth: warning: <text>". While a WarningCapture
-// lives, warnings are collected by it instead: the Python module turns them into Python warnings
-// (dicsynth.DicsynthWarning), which a notebook shows and `warnings` filters, where a line on the process's
-// stderr would be lost. Warnings may come from any thread; every capture alive when one is raised
-// receives it (two renders running at once in one process each see the other's warnings).
+// By default a warning is one line on stderr, "dicsynth: warning: <text>", and a note the line
+// itself. While a WarningCapture lives, both are collected by it instead, in the order said: the
+// Python module turns warnings into Python warnings (dicsynth.DicsynthWarning), which a notebook
+// shows and `warnings` filters, and writes notes to sys.stderr, where lines on the process's stderr
+// would be lost. They may come from any thread; every capture alive when one is said receives it
+// (two renders running at once in one process each see the other's).
 #include <string>
 #include <vector>
 
 namespace dicsynth {
 
 void warn(const std::string& text);
+// `line` without its newline.
+void note(const std::string& line);
 
 class WarningCapture {
  public:
+  struct Message {
+    bool warning;  // false: a note
+    std::string text;
+  };
   WarningCapture();
   ~WarningCapture();
   WarningCapture(const WarningCapture&) = delete;
   WarningCapture& operator=(const WarningCapture&) = delete;
 
-  // The warnings raised since construction or the last take(), in the order raised.
+  // The warnings and notes said since construction or the last take, in the order said.
+  std::vector<Message> takeMessages();
+  // takeMessages()'s warnings, the notes dropped (for callers that judge warnings only).
   std::vector<std::string> take();
 
  private:
-  friend void warn(const std::string& text);
-  std::vector<std::string> texts_;  // guarded by the registry's mutex (warning.cpp)
+  friend void say(bool warning, const std::string& text);
+  std::vector<Message> messages_;  // guarded by the registry's mutex (warning.cpp)
 };
 
 }  // namespace dicsynth

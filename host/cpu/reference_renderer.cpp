@@ -22,6 +22,7 @@ void renderCamera(const PreparedScene& scene, std::size_t cameraIndex, const Ren
   const bool thinLens = cameras::cameraKindInfo(model.kind).samplesLens;
 
   parallelFor(std::size_t(pc.camera.height_px), [&](std::size_t y) {
+    stopIfAsked(options.stop);  // parallelFor rethrows it once every row started has ended
     for (std::size_t x = 0; x < width; ++x) {
       const std::size_t i = y * width + x;
       const dvec2 centre{double(x), double(y)};

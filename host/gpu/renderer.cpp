@@ -237,8 +237,9 @@ void bindFrameBuffers(FrameBuffers& b, BoundBuffer* bindings) {
 Error cutShortError(std::size_t count, const char* what, const std::string& first) {
   return Error("the Vulkan driver cut the shader's loops short on " + std::to_string(count) + " " + what + " (first: " +
                first + "): Mesa 22's lavapipe ends all loops of a batch of pixels "
-               "after 65535 iterations in total, so their results would be wrong. Render with "
-               "--backend cpu, on a GPU, or with Mesa 25's lavapipe (scripts/install-lavapipe.sh; `dicsynth devices` "
+               "after 65535 iterations in total, so their results would be wrong. Render with " +
+               optionSetting("--backend", "cpu") +
+               ", on a GPU, or with Mesa 25's lavapipe (scripts/install-lavapipe.sh; `dicsynth devices` "
                "says whether it is in use), "
                "which has no such limit; fewer samples per pixel or a NURBS surface with fewer folds "
                "also need fewer iterations");
@@ -317,6 +318,7 @@ void renderAll(Context& context, std::future<std::pair<SceneResidency, const Com
     CameraImage& image = result.cameras[ci];
     for (int y0 = 0; y0 < cam.height_px; y0 += tileSize) {
       for (int x0 = 0; x0 < cam.width_px; x0 += tileSize) {
+        stopIfAsked(options.stop);  // between tiles: no dispatch is in flight
         const int tw = std::min(tileSize, cam.width_px - x0), th = std::min(tileSize, cam.height_px - y0);
         typename Layout::GpuTileParams params{};
         params.tile = {x0, y0, tw, th};

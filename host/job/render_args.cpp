@@ -112,9 +112,12 @@ Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::R
   // Said when measured now (the run took seconds for it); from the cache the choice is silent, so
   // that logs of repeated runs stay quiet: the precision is in every output's metadata, the
   // render's lines on stdout and a sweep's manifest, and `dicsynth devices` shows the calibration.
-  if (!calibration.fromCache)
-    std::fprintf(stderr, "precision auto: %s (max error %g px; calibration measured on %s: %s)\n", toString(chosen),
-                 args.maxErrorPx, context.info().name.c_str(), describeCalibration(calibration).c_str());
+  if (!calibration.fromCache) {
+    char maxError[32];
+    std::snprintf(maxError, sizeof maxError, "%g", args.maxErrorPx);
+    note("precision auto: " + std::string(toString(chosen)) + " (max error " + maxError +
+         " px; calibration measured on " + context.info().name + ": " + describeCalibration(calibration) + ")");
+  }
   return chosen;
 }
 

@@ -21,6 +21,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/option_names.h"
 #include "core/phase_timer.h"
 #include "core/progress.h"
 #include "core/warning.h"
@@ -144,6 +145,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
         (!terminal || (fi % 64 == 63 && std::chrono::steady_clock::now() - checkStart > std::chrono::seconds(2))))
       bar.emplace("check", "frames", std::int64_t(job.frames.size()), terminal);
     if (bar) bar->update(std::int64_t(fi));
+    stopIfAsked(job.stop);
     const Scene scene = loadFrameScene(job, job.frames[fi], false);
     warnUnlit(scene, job.frames[fi]);
     unread.add(scene);
@@ -200,6 +202,7 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   options.geometry = job.layers.needsGeometry();
   options.radiance = job.layers.needsRadiance();
   options.precision = session.precision();  // resolved after the first frame is prepared (its errors first)
+  options.stop = job.stop;
   phaseDone("precision");
   // One frame: its tiles' progress; several: the frames' bar (runRenderJob) instead.
   if (!job.progressLabel.empty() && job.frames.size() == 1) options.progress = progressPrinter(job.progressLabel);
@@ -385,6 +388,13 @@ void createOutputDir(const std::string& dir) {
     throw InputError("-o " + dir + ": cannot create the output folder" + (ec ? ": " + ec.message() : ""));
 }
 
+RenderSession::RenderSession(RenderArgs args, std::string backend) : args_(std::move(args)), backend_(std::move(backend)) {
+  // Said, not refused: a script may pass one --device to every run whatever the backend.
+  if (!useGpu() && !args_.device.empty())
+    warn(optionName("--device") + " " + args_.device + " is not used: the CPU backend (" + optionSetting("--backend", "cpu") +
+         ") renders on the CPU, with no Vulkan device");
+}
+
 void RenderSession::startDevice() {
   if (!useGpu() || context_) return;
   gpu::ContextOptions co;
@@ -515,8 +525,10 @@ RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
   RenderedJob out;
   session.startDevice();
   out.calibrationPerFrame = checkFrames(session, job).calibrationPerFrame;
-  for (std::size_t fi = 0; fi < job.frames.size(); ++fi)
+  for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
+    stopIfAsked(job.stop);
     out.frames.push_back(renderFrame(session, job, loadFrameScene(job, job.frames[fi], true), job.frames[fi], out.summary));
+  }
   return out;
 }
 

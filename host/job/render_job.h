@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/interruption.h"
 #include "geometry/prepared_scene.h"
 #include "geometry/texture_cache.h"
 #include "gpu/context.h"
@@ -29,7 +30,8 @@ namespace dicsynth {
 // without error, so a scene error never pays for a device start), then reused.
 class RenderSession {
  public:
-  RenderSession(RenderArgs args, std::string backend) : args_(std::move(args)), backend_(std::move(backend)) {}
+  // Warns of a device named for the CPU backend, which uses none.
+  RenderSession(RenderArgs args, std::string backend);
   bool useGpu() const { return backend_ == "gpu"; }
   gpu::Context* context() { return context_.get(); }
   gpu::Renderer* renderer() { return renderer_.get(); }
@@ -75,6 +77,9 @@ struct RenderJob {
   std::string exrCompression = "zip";  // --exr-compression (io/outputs.h, kExrCompressions)
   LayerSet layers = LayerSet::all();   // --layers (model/layers.h)
   bool preview = false;           // --preview: PNGs of each EXR into <outputDir>/preview (io/preview.h)
+  // Set by another thread to stop renderJob early (the Python module's Ctrl-C), which then throws
+  // Interrupted: polled before each frame and by the render (RenderOptions::stop). Null in the CLI.
+  const StopFlag* stop = nullptr;
 };
 
 struct RenderJobResult {

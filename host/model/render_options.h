@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "core/interruption.h"
+
 namespace dicsynth {
 
 // GPU arithmetic (shaders/lib/real.glsl): fp32; df64 = float pairs (~45 bits) for the geometry,
@@ -54,6 +56,8 @@ struct RenderOptions {
   bool radiance = true;
   // Called from the rendering thread with the fraction of all cameras' pixels done, in [0, 1].
   std::function<void(double)> progress;
+  // Polled before every CPU row and GPU tile (core/interruption.h); null: the render runs to its end.
+  const StopFlag* stop = nullptr;
 };
 
 }  // namespace dicsynth

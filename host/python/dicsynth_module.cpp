@@ -13,8 +13,10 @@
 // "noise", "defects", "objectId" as themselves. Scalar channels are handed over without a copy;
 // the stacked groups are interleaved once.
 // Errors: dicsynth.InputError (a ValueError; scene errors carry FILE:LINE) for bad input,
-// RuntimeError for failures of the device or the machine. render() releases the GIL. Warnings (what
-// the CLI says on stderr, core/warning.h) are Python warnings of category dicsynth.DicsynthWarning.
+// RuntimeError for failures of the device or the machine. render() releases the GIL and runs on a
+// thread of its own, so that Ctrl-C stops it (interruptible below). Warnings (what the CLI says on
+// stderr, core/warning.h) are Python warnings of category dicsynth.DicsynthWarning; its other lines
+// (a scene's print, a fit's report) are written to sys.stderr.
 //
 //   r.calibration(scene, frame=1)   # {"cameras": {name: {...}}, "rigs": {name: {...}}}
 //
@@ -25,6 +27,12 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <optional>
+#include <thread>
+#include <limits>
 #include <map>
 #include <cmath>
 #include <memory>
@@ -36,6 +44,7 @@
 #include "job/render_job.h"
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/interruption.h"
 #include "core/option_names.h"
 #include "core/version.h"
 #include "core/warning.h"
@@ -51,9 +60,62 @@ using namespace dicsynth;
 namespace {
 
 struct PyScene {
-  std::string path;
+  std::string path;          // as given: in messages (FILE:LINE)
+  std::string absolutePath;  // read once the working directory changed (os.chdir)
+  std::string folder;        // the working directory when the Scene was made
   std::vector<std::pair<std::string, std::string>> defines;  // as -D name=value
+
+  // The path to read the scene from now: as given while the working directory is the Scene's, so
+  // that messages name the file as the user did; else the absolute one (an os.chdir between Scene()
+  // and render() made a relative path name another file, or none: the module audit of 2026-11-28).
+  std::string readPath() const {
+    std::error_code ignored;
+    return std::filesystem::current_path(ignored).string() == folder ? path : absolutePath;
+  }
 };
+
+// A Python int (or anything with __index__: numpy's ints) as an integer in [lo, hi]; beyond, an
+// InputError naming `what`. pybind11's own int conversion answers a number beyond 32 bits with
+// "incompatible function arguments" and the whole signature (the module audit).
+long long integerIn(const py::handle& value, long long lo, long long hi, const std::string& what) {
+  if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr()))
+    throw py::type_error(what + ": an int, got " + std::string(py::str(value.get_type())));
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+  if (!index) throw py::error_already_set();
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+  if (overflow != 0 || v < lo || v > hi)
+    throw InputError(what + " " + std::string(py::str(index)) + ": must be in " + std::to_string(lo) + ".." + std::to_string(hi));
+  return v;
+}
+
+// `frames` as render takes it: one int, or any iterable of ints (a list, a range, a numpy array),
+// with the CLI's --frames limits (job/render_args.h).
+std::vector<int> frameList(const py::handle& frames) {
+  if (py::isinstance<py::str>(frames) || py::isinstance<py::bytes>(frames) || py::isinstance<py::bool_>(frames))
+    throw py::type_error("frames: an int or an iterable of ints, got " + std::string(py::str(frames.get_type())));
+  // Iterables first: a numpy array has __index__ too, which fails for more than one element.
+  if (!py::hasattr(frames, "__iter__")) {
+    if (!PyIndex_Check(frames.ptr()))
+      throw py::type_error("frames: an int or an iterable of ints, got " + std::string(py::str(frames.get_type())));
+    return {int(integerIn(frames, 0, kMaxFrameNumber, "frames: frame number"))};
+  }
+  // A range's length is known before its frames are made: range(10**12) is refused at once.
+  if (py::hasattr(frames, "__len__")) {
+    const std::size_t count = py::len(frames);
+    if (count > std::size_t(kMaxFramesPerRun))
+      throw InputError("frames: " + std::to_string(count) + " frames, over the limit of " +
+                       std::to_string(kMaxFramesPerRun) + " per call: split them over several calls");
+  }
+  std::vector<int> out;
+  for (const py::handle frame : frames) {
+    if (out.size() == std::size_t(kMaxFramesPerRun))
+      throw InputError("frames: over the limit of " + std::to_string(kMaxFramesPerRun) +
+                       " frames per call: split them over several calls");
+    out.push_back(int(integerIn(frame, 0, kMaxFrameNumber, "frames: frame number")));
+  }
+  return out;
+}
 
 // A Python value as the text of a -D define (number, true/false, or string). Numbers as numpy
 // gives them too (np.int64 through __index__, np.float32 through __float__); an int of any size
@@ -119,11 +181,21 @@ py::dict cameraArrays(std::vector<ChannelValues>&& channels, std::vector<std::ui
 // The category of dicsynth's Python warnings, set when the module is imported.
 PyObject* warningCategory = nullptr;
 
-// Raises every warning `capture` holds as a Python warning. A warnings filter that turns them into
-// errors raises the first as an exception (error_already_set).
+// Says in Python what `capture` holds, in order: warnings as Python warnings, notes (a scene's
+// print, a fit's report) as lines on sys.stderr. A warnings filter that turns warnings into errors
+// raises the first as an exception (error_already_set).
 void raiseWarnings(WarningCapture& capture) {
-  for (const std::string& text : capture.take())
-    if (PyErr_WarnEx(warningCategory, text.c_str(), 1) < 0) throw py::error_already_set();
+  for (const WarningCapture::Message& m : capture.takeMessages()) {
+    if (m.warning) {
+      if (PyErr_WarnEx(warningCategory, m.text.c_str(), 1) < 0) throw py::error_already_set();
+    } else {
+      // As bytes decoded leniently: a scene may print any byte.
+      const py::str line = py::reinterpret_steal<py::str>(
+          PyUnicode_DecodeUTF8(m.text.data(), py::ssize_t(m.text.size()), "backslashreplace"));
+      if (!line) throw py::error_already_set();
+      py::module_::import("sys").attr("stderr").attr("write")(line + py::str("\n"));
+    }
+  }
 }
 
 // Calls `work` with the warnings it raises captured, then raises them in Python, also where `work`
@@ -172,14 +244,59 @@ py::dict cameraCalibration(const Camera& camera) {
   return d;
 }
 
-// The scene evaluated at `frame`, quietly (its prints were seen when the Scene was made): a define
-// only other frames read is no error here (render checks the defines over the frames it renders).
+// The scene evaluated at `frame`, quietly (a render says its prints and fit reports, as the CLI's
+// run does, frame by frame): a define only other frames read is no error here (render checks the
+// defines over the frames it renders).
 Scene evaluate(const PyScene& scene, int frame) {
-  if (frame < 0) throw InputError("frame: frame numbers are >= 0, got " + std::to_string(frame));
   SceneParams params{scene.defines, frame};
   params.quiet = true;
   params.requireDefinesRead = false;
-  return loadScene(scene.path, params);
+  return loadScene(scene.readPath(), params);
+}
+
+// Runs `work` on a thread of its own, the GIL released, while this thread asks Python every
+// 0.1 s whether a signal came (PyErr_CheckSignals runs Python's handlers, in the main thread only:
+// Ctrl-C's KeyboardInterrupt). On an exception from a handler, `stop` is set, the work ends at its
+// next check (core/interruption.h: a CPU row, a GPU tile, a frame; up to a tile's time on a GPU)
+// and the exception is raised here. The work's own exception is rethrown otherwise. Work run
+// inline could not be interrupted: Python raises KeyboardInterrupt only once the call returns.
+template <class Work>
+void interruptible(StopFlag& stop, Work&& work) {
+  std::mutex mutex;
+  std::condition_variable finished;
+  bool done = false;
+  std::exception_ptr failure;
+  std::optional<py::error_already_set> signalled;
+  {
+    py::gil_scoped_release release;
+    std::thread worker([&] {
+      try {
+        work();
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      const std::lock_guard<std::mutex> lock(mutex);
+      done = true;
+      finished.notify_one();
+    });
+    std::unique_lock<std::mutex> lock(mutex);
+    while (!finished.wait_for(lock, std::chrono::milliseconds(100), [&] { return done; })) {
+      if (signalled) continue;
+      lock.unlock();
+      {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) {
+          signalled.emplace();  // fetches the handler's exception
+          stop = true;
+        }
+      }
+      lock.lock();
+    }
+    lock.unlock();
+    worker.join();
+  }
+  if (signalled) throw *signalled;
+  if (failure) std::rethrow_exception(failure);
 }
 
 class PyRenderer {
@@ -239,21 +356,22 @@ class PyRenderer {
                   std::optional<int> referenceFrame) {
     if (frames.empty()) throw InputError("frames: at least one frame");
     for (std::size_t i = 0; i < frames.size(); ++i) {
-      if (frames[i] < 0) throw InputError("frames: frame numbers are >= 0, got " + std::to_string(frames[i]));
       if (std::find(frames.begin(), frames.begin() + std::ptrdiff_t(i), frames[i]) != frames.begin() + std::ptrdiff_t(i))
         throw InputError("frames: frame " + std::to_string(frames[i]) + " is listed twice");
     }
-    if (spp < 1 || spp > 65536) throw InputError("spp " + std::to_string(spp) + ": must be in 1..65536");
+    if (layers.empty()) throw InputError("layers: at least one layer (\"image\", \"all\", ...: docs/python.md)");
     std::string layerText;
     for (const std::string& l : layers) layerText += (layerText.empty() ? "" : ",") + l;
+    StopFlag stop{false};
     RenderJob job;
-    job.sceneFile = scene.path;
+    job.sceneFile = scene.readPath();
     job.defines = scene.defines;
     job.layers = LayerSet::parse(layerText);
     job.spp = spp;
     job.verbose = false;
     job.numbered = true;
     job.frames = referenceFirst(frames, referenceFrame, "reference_frame", "frames");
+    job.stop = &stop;
 
     struct CameraResult {
       std::string camera;
@@ -262,12 +380,10 @@ class PyRenderer {
       std::vector<std::uint16_t> digital;
     };
     std::vector<CameraResult> results;
-    {
-      py::gil_scoped_release release;
+    interruptible(stop, [&] {
       // One render at a time per Renderer: its session (device, queue, caches) is not shared
       // between threads (two threads rendering with one GPU Renderer crashed in the driver, the
-      // module audit of 2026-11-28). Taken after the GIL is released, and given back before it is
-      // taken again, so that a waiting thread never holds the GIL.
+      // module audit of 2026-11-28). Taken without the GIL, so that a waiting thread never holds it.
       const std::lock_guard<std::mutex> oneAtATime(renderMutex_);
       RenderedJob rendered = renderJob(*session_, job);
       std::unique_ptr<ReferenceFrame> referenceData;
@@ -275,6 +391,7 @@ class PyRenderer {
         RenderedFrame& frame = rendered.frames[fi];
         const PreparedScene& prepared = frameScene(job, frame, fi == 0, referenceData);
         for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
+          stopIfAsked(&stop);
           CameraFrame derived = deriveCamera(job, frame, prepared, c, *referenceData);
           const CameraImage& image = frame.result.cameras[c];
           results.push_back({prepared.cameras[c].camera.name, frame.frame, image.width_px, image.height_px,
@@ -286,7 +403,7 @@ class PyRenderer {
       backend_ = rendered.summary.backend;
       precision_ = rendered.summary.precision;
       device_ = rendered.summary.device;
-    }
+    });
     py::dict out;
     for (CameraResult& r : results)
       out[py::make_tuple(r.camera, r.frame)] =
@@ -343,8 +460,9 @@ PYBIND11_MODULE(dicsynth, m) {
   py::class_<PyScene>(m, "Scene", "A scene file and its defines (the CLI's -D name=value)")
       .def(py::init([](const py::object& pathLike, const py::dict& defines) {
              // A str or any path-like object (pathlib.Path, bytes), as open() takes.
-             const std::string path = py::str(py::module_::import("os").attr("fsdecode")(pathLike));
-             PyScene s{path, {}};
+             const py::module_ os = py::module_::import("os");
+             const std::string path = py::str(os.attr("fsdecode")(pathLike));
+             PyScene s{path, py::str(os.attr("path").attr("abspath")(path)), py::str(os.attr("getcwd")()), {}};
              for (const auto& [key, value] : defines) {
                const std::string name = py::str(key);
                s.defines.emplace_back(name, defineText(value, name));
@@ -360,20 +478,39 @@ PYBIND11_MODULE(dicsynth, m) {
         for (const auto& [k, v] : s.defines) d[py::str(k)] = v;
         return d;
       })
-      .def("__repr__", [](const PyScene& s) { return "dicsynth.Scene('" + s.path + "')"; });
+      .def("__repr__", [](const PyScene& s) { return "dicsynth.Scene('" + s.path + "')"; })
+      // Pickled as what it holds, not evaluated again when unpickled (ProcessPoolExecutor hands
+      // Scenes to worker processes): a relative path is read from the folder it was made in
+      // unless the worker's working directory is that folder too.
+      .def(py::pickle(
+          [](const PyScene& s) { return py::make_tuple(s.path, s.absolutePath, s.folder, s.defines); },
+          [](const py::tuple& t) {
+            if (t.size() != 4) throw py::value_error("dicsynth.Scene: not a pickled Scene");
+            return PyScene{t[0].cast<std::string>(), t[1].cast<std::string>(), t[2].cast<std::string>(),
+                           t[3].cast<std::vector<std::pair<std::string, std::string>>>()};
+          }));
 
   py::class_<PyRenderer>(m, "Renderer", "The renderer, its device kept warm between renders")
-      .def(py::init<const std::string&, const std::string&, const std::string&, const py::int_&, int, double>(),
+      .def(py::init([](const std::string& backend, const std::string& precision, const std::string& device,
+                       const py::int_& seed, const py::object& downscale, double maxErrorPx) {
+             const int scale = int(integerIn(downscale, 1, std::numeric_limits<int>::max(), "downscale"));
+             return withWarnings([&] { return std::make_unique<PyRenderer>(backend, precision, device, seed, scale, maxErrorPx); });
+           }),
            py::arg("backend") = "gpu", py::arg("precision") = "auto", py::arg("device") = "", py::arg("seed") = 1,
            py::arg("downscale") = 1, py::arg("max_error_px") = 1e-6)
       .def("render",
-           [](PyRenderer& r, const PyScene& scene, std::vector<int> frames, int spp,
-              const std::variant<std::string, std::vector<std::string>>& layers, std::optional<int> referenceFrame) {
+           [](PyRenderer& r, const PyScene& scene, const py::object& frames, const py::object& spp,
+              const std::variant<std::string, std::vector<std::string>>& layers, const py::object& referenceFrame) {
              // One layer may be given as a str ("image"), as the CLI's --layers image.
              const std::vector<std::string> names = std::holds_alternative<std::string>(layers)
                                                         ? std::vector<std::string>{std::get<std::string>(layers)}
                                                         : std::get<std::vector<std::string>>(layers);
-             return withWarnings([&] { return r.render(scene, std::move(frames), spp, names, referenceFrame); });
+             const std::optional<int> reference =
+                 referenceFrame.is_none() ? std::nullopt
+                                          : std::optional<int>(int(integerIn(referenceFrame, 0, kMaxFrameNumber, "reference_frame")));
+             const int samples = int(integerIn(spp, 1, 65536, "spp"));
+             std::vector<int> frameNumbers = frameList(frames);
+             return withWarnings([&] { return r.render(scene, std::move(frameNumbers), samples, names, reference); });
            },
            py::arg("scene"), py::arg("frames") = std::vector<int>{0},
            py::arg("spp") = 4, py::arg("layers") = std::vector<std::string>{"all"},
@@ -381,16 +518,18 @@ PYBIND11_MODULE(dicsynth, m) {
            "Renders the frames; returns {(camera, frame): {name: numpy array}} (module docstring)")
       .def(
           "calibration",
-          [](PyRenderer& r, const PyScene& scene, int frame) {
-            return withWarnings([&] { return r.calibration(scene, frame); });
+          [](PyRenderer& r, const PyScene& scene, const py::object& frame) {
+            const int f = int(integerIn(frame, 0, kMaxFrameNumber, "frame"));
+            return withWarnings([&] { return r.calibration(scene, f); });
           },
           py::arg("scene"), py::arg("frame") = 0,
           "The cameras' and rigs' calibration at that frame, after the downscale: "
           "{'cameras': {name: {...}}, 'rigs': {name: {...}}}, the calibration files' keys and values")
       .def(
           "objects",
-          [](PyRenderer& r, const PyScene& scene, int frame) {
-            return withWarnings([&] { return r.objects(scene, frame); });
+          [](PyRenderer& r, const PyScene& scene, const py::object& frame) {
+            const int f = int(integerIn(frame, 0, kMaxFrameNumber, "frame"));
+            return withWarnings([&] { return r.objects(scene, f); });
           },
           py::arg("scene"), py::arg("frame") = 0,
           "The objects' names at that frame in objectId order: objectId k is objects[k - 1] (0: background)")

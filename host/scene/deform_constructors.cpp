@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/exact_number.h"
+#include "core/warning.h"
 #include "io/mesh_field.h"
 #include "nurbs/nurbs_fit.h"
 #include "scene/constructors.h"
@@ -233,12 +234,13 @@ int nurbsDeform(lua_State* L) {
   }
   if (function) function->sceneFinished();  // from now on, only through callAfterRun
   const NurbsFitReport& report = deformation->report;
-  if (!LuaSandbox::of(L).quiet())
-    std::fprintf(stderr, "%s: Nurbs.deform: fit error %.3g m (tolerance %.3g m) on a %d x %d check grid, "
-               "%zu control points, %d refinements%s%s\n",
-               where.str().c_str(), report.maxError_m, tolerance, report.checkU, report.checkV,
-               report.controlPoints, report.refinements, deformation->fromCache ? ", reused from an earlier frame or sweep point" : "",
-               function ? (", " + std::to_string(function->calls()) + " field evaluations").c_str() : "");
+  if (!LuaSandbox::of(L).quiet()) {
+    char line[400];
+    std::snprintf(line, sizeof line, "Nurbs.deform: fit error %.3g m (tolerance %.3g m) on a %d x %d check grid, %zu control points, %d refinements",
+                  report.maxError_m, tolerance, report.checkU, report.checkV, report.controlPoints, report.refinements);
+    note(where.str() + ": " + line + (deformation->fromCache ? ", reused from an earlier frame or sweep point" : "") +
+         (function ? ", " + std::to_string(function->calls()) + " field evaluations" : ""));
+  }
   Shape shape;
   shape.where = where;
   shape.location_m = surface->location_m;

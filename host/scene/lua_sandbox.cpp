@@ -3,6 +3,7 @@
 #include "scene/lua_sandbox.h"
 
 #include "core/exact_number.h"
+#include "core/warning.h"
 
 #include <charconv>
 #include <chrono>
@@ -247,12 +248,10 @@ int LuaSandbox::print(lua_State* L) {
     }
     lua_pop(L, 1);
   }
-  luaL_addchar(&b, '\n');
   luaL_pushresult(&b);
   std::size_t length = 0;
   const char* text = lua_tolstring(L, -1, &length);
-  std::fwrite(text, 1, length, stderr);
-  std::fflush(stderr);
+  note(std::string(text, length));  // stderr's line; sys.stderr in Python (core/warning.h)
   return 0;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/option_names.h"
 #include "geometry/target_poses.h"
 #include "geometry/targets.h"
 #include "scene/constructors.h"
@@ -162,7 +163,7 @@ int poseListIndex(lua_State* L) {
     const lua_Integer count = lua_Integer(lua_rawlen(L, 1));
     throw ScriptError("Target.poses: there is no pose [" + std::to_string(lua_tointeger(L, 2)) +
                       "]: the list holds poses [1] to [" + std::to_string(count) +
-                      "] (with --frames 0:" + std::to_string(count - 1) + ", use poses[frame + 1])");
+                      "] (with " + firstFramesSetting(count) + ", use poses[frame + 1])");
   }
   lua_pushnil(L);
   return 1;

@@ -166,6 +166,19 @@ TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
   CHECK(oneLine(r.err));
 }
 
+TEST_CASE("cli: a --device given to the CPU backend is said to be unused, and the run goes on") {
+  // It was ignored without a word: a user who meant the GPU learnt nothing.
+  TempFolder dir;
+  const test::CliResult r = runCli("render " + kScenes + "rectangle.lua --backend cpu --device 1 --downscale 16 --spp 1 -o " +
+                                   dir.file("out"));
+  INFO(r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(r.err.find("dicsynth: warning: --device 1 is not used: the CPU backend (--backend cpu) renders on the CPU, "
+                   "with no Vulkan device") != std::string::npos);
+  const test::CliResult quiet = runCli("render " + kScenes + "rectangle.lua --backend cpu --downscale 16 --spp 1 -o " + dir.file("q"));
+  CHECK(quiet.err.find("--device") == std::string::npos);
+}
+
 TEST_CASE("cli: the EXR's bytes do not depend on the rows written per call (DICSYNTH_EXR_BAND_ROWS)") {
   // The knob lets a many-core machine measure wider bands (host/io/outputs.cpp, exrBandRows): the
   // file must be the same whatever it is, including bands that do not divide the height (150 rows)

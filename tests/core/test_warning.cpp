@@ -1,5 +1,6 @@
 // core/warning.h and core/env_count.h: a capture receives every warning raised while it lives, from
 // any thread, in order per thread, and nothing after it ends; two live captures both receive them;
+// notes come with the warnings, in order, and take() drops them;
 // a knob's bad value is a warning naming the variable and its range, and the fallback is used.
 #include <doctest/doctest.h>
 
@@ -42,6 +43,23 @@ TEST_CASE("warnings: a capture collects them from every thread, two captures bot
   }
   REQUIRE(outer.size() == 401);
   CHECK(outer.back() == "after the second capture");
+}
+
+TEST_CASE("notes: captured with the warnings in the order said; take() keeps the warnings only") {
+  WarningCapture capture;
+  note("scene.lua:3: hello");
+  warn("a warning");
+  note(std::string("a byte \0 inside", 15));  // a scene's print may hold any byte
+  const std::vector<WarningCapture::Message> said = capture.takeMessages();
+  REQUIRE(said.size() == 3);
+  CHECK((!said[0].warning && said[0].text == "scene.lua:3: hello"));
+  CHECK((said[1].warning && said[1].text == "a warning"));
+  CHECK((!said[2].warning && said[2].text == std::string("a byte \0 inside", 15)));
+  CHECK(capture.takeMessages().empty());
+  note("dropped");
+  warn("kept");
+  CHECK(capture.take() == std::vector<std::string>{"kept"});
+  CHECK(capture.takeMessages().empty());
 }
 
 TEST_CASE("warnings: a knob's value that is not a whole number in its range is said, and the fallback used") {

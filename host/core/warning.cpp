@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <mutex>
+#include <optional>
 #include <utility>
 
 namespace dicsynth {
@@ -12,7 +14,22 @@ namespace {
 struct Captures {
   std::mutex mutex;
   std::vector<WarningCapture*> live;
+  std::map<std::string, int> said;  // warnAtMost's counts with no capture alive
 };
+
+// Counts one more warning of a kind against `most`: the text to say, or none once `most` were said.
+std::optional<std::string> counted(int& count, int most, const std::string& text, const std::string& lastNote) {
+  if (count >= most) return std::nullopt;
+  ++count;
+  return count == most ? text + lastNote : text;
+}
+
+void writeLine(bool warning, const std::string& text) {
+  // One write of the whole line (a scene's print may hold any byte), flushed at once.
+  const std::string line = (warning ? "dicsynth: warning: " : "") + text + "\n";
+  std::fwrite(line.data(), 1, line.size(), stderr);
+  std::fflush(stderr);
+}
 
 Captures& captures() {
   static Captures c;
@@ -30,13 +47,25 @@ void say(bool warning, const std::string& text) {
       return;
     }
   }
-  // One write of the whole line (a scene's print may hold any byte), flushed at once.
-  const std::string line = (warning ? "dicsynth: warning: " : "") + text + "\n";
-  std::fwrite(line.data(), 1, line.size(), stderr);
-  std::fflush(stderr);
+  writeLine(warning, text);
 }
 
 void warn(const std::string& text) { say(true, text); }
+
+void warnAtMost(const std::string& kind, int most, const std::string& text, const std::string& lastNote) {
+  Captures& c = captures();
+  std::optional<std::string> line;
+  {
+    std::lock_guard<std::mutex> lock(c.mutex);
+    if (!c.live.empty()) {
+      for (WarningCapture* capture : c.live)
+        if (const auto said = counted(capture->said_[kind], most, text, lastNote)) capture->messages_.push_back({true, *said});
+      return;
+    }
+    line = counted(c.said[kind], most, text, lastNote);
+  }
+  if (line) writeLine(true, *line);
+}
 void note(const std::string& line) { say(false, line); }
 
 WarningCapture::WarningCapture() {

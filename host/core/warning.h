@@ -10,12 +10,17 @@
 // shows and `warnings` filters, and writes notes to sys.stderr, where lines on the process's stderr
 // would be lost. They may come from any thread; every capture alive when one is said receives it
 // (two renders running at once in one process each see the other's).
+#include <map>
 #include <string>
 #include <vector>
 
 namespace dicsynth {
 
 void warn(const std::string& text);
+// warn(text), unless warnings of `kind` were said `most` times already: per process, or per capture
+// while one lives (a Python call: each call may say them again). The last one said ends with
+// `lastNote` (" (further ... not reported)"). For warnings a long run would repeat for every frame.
+void warnAtMost(const std::string& kind, int most, const std::string& text, const std::string& lastNote = "");
 // `line` without its newline.
 void note(const std::string& line);
 
@@ -37,7 +42,10 @@ class WarningCapture {
 
  private:
   friend void say(bool warning, const std::string& text);
-  std::vector<Message> messages_;  // guarded by the registry's mutex (warning.cpp)
+  friend void warnAtMost(const std::string& kind, int most, const std::string& text, const std::string& lastNote);
+  // Guarded by the registry's mutex (warning.cpp).
+  std::vector<Message> messages_;
+  std::map<std::string, int> said_;  // warnAtMost's counts while this capture lives
 };
 
 }  // namespace dicsynth

@@ -1,6 +1,5 @@
 #include "io/feature_files.h"
 
-#include <atomic>
 #include <cmath>
 #include <sstream>
 #include <variant>
@@ -17,12 +16,11 @@ namespace {
 
 // A target drawn on both sides is seen from its back too, mirrored, and its features stay visible;
 // a printed one would show a blank back, and a detector labels the mirrored pattern as a front view
-// with a false pose (the calibration audit of 2026-11-28). Said, once per process. The back faces
+// with a false pose (the calibration audit of 2026-11-28). Said once per run (per process in the
+// CLI, per call in Python: core/warning.h). The back faces
 // +z of the target frame: a ray meets it when it travels against z (ray · z < 0); the rays are the
 // chief rays from the camera centre to the visible features, or the axis of a telecentric camera.
 void warnBackView(const PreparedScene& scene, std::size_t camera, int frame, const std::vector<TargetTruth>& targets) {
-  static std::atomic<bool> said{false};
-  if (said) return;
   const PreparedCamera& cam = scene.cameras[camera];
   const bool telecentric = std::holds_alternative<cameras::Orthographic>(cam.camera.model);
   for (const TargetTruth& target : targets) {
@@ -32,11 +30,11 @@ void warnBackView(const PreparedScene& scene, std::size_t camera, int frame, con
       const dvec3 ray = telecentric ? dvec3(0, 0, 1)
                                     : cam.rotationCameraFromWorld * f.world_m + cam.translationCameraFromWorld;
       if (glm::dot(ray, zCamera) >= 0) continue;
-      if (!said.exchange(true))
-        warn("camera " + cam.camera.name + ", frame " + std::to_string(frame) + ": target '" + target.name +
-             "' is seen from its back: a printed target would show a blank back there, while the render draws "
-             "its pattern mirrored and the feature files list its features as visible (turn the target or the "
-             "camera)");
+      warnAtMost("target seen from its back", 1,
+                 "camera " + cam.camera.name + ", frame " + std::to_string(frame) + ": target '" + target.name +
+                     "' is seen from its back: a printed target would show a blank back there, while the render "
+                     "draws its pattern mirrored and the feature files list its features as visible (turn the "
+                     "target or the camera)");
       return;
     }
   }

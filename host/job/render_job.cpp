@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -69,15 +68,16 @@ Scene loadFrameScene(const RenderJob& job, int frame, bool again) {
 
 // A lit object (any shader but Shader.Constant) in a frame without lights is black: nearly always a
 // forgotten light (the docs walk of 2026-11-28 rendered a tube snippet all black without a word).
-// Said, not refused (a black object is a valid image), once per process like the empty image.
+// Said, not refused (a black object is a valid image), once per run (per process in the CLI, per
+// call in Python: core/warning.h).
 void warnUnlit(const Scene& scene, int frame) {
-  static std::atomic<bool> said{false};
-  if (!scene.lights.empty() || said) return;
+  if (!scene.lights.empty()) return;
   for (const Object& object : scene.objects)
-    if (const reflectance::KindInfo& shader = reflectance::kindInfo(object.shader.model); shader.lit && !said.exchange(true)) {
-      warn(object.where.str() + ": object '" + object.name + "' has Shader." + shader.name +
-           ", which needs a light, and frame " +
-           std::to_string(frame) + " has none: it renders black (add a Light, or use Shader.Constant)");
+    if (const reflectance::KindInfo& shader = reflectance::kindInfo(object.shader.model); shader.lit) {
+      warnAtMost("lit object without lights", 1,
+                 object.where.str() + ": object '" + object.name + "' has Shader." + shader.name +
+                     ", which needs a light, and frame " + std::to_string(frame) +
+                     " has none: it renders black (add a Light, or use Shader.Constant)");
       return;
     }
 }
@@ -325,19 +325,15 @@ CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, co
   CameraFrame out;
   // An image of background only is nearly always a mistake (a camera turned away, an object behind
   // it or out of view): said, not refused (every pixel centre is traced on both backends).
-  // At most kEmptyImageWarnings per process: a long run whose object leaves the view printed it for
-  // every frame (a million lines in a sweep audit of 2026-11-27).
-  constexpr int kEmptyImageWarnings = 10;
-  static std::atomic<int> emptyImages{0};
+  // At most 10 per run (per process in the CLI, per call in Python): a long run whose object leaves
+  // the view printed it for every frame (a million lines in a sweep audit of 2026-11-27).
   const std::vector<std::uint32_t>& objectId = rendered.result.cameras[c].objectId;
-  if (std::none_of(objectId.begin(), objectId.end(), [](std::uint32_t id) { return id != 0; })) {
-    const int n = ++emptyImages;
-    if (n <= kEmptyImageWarnings)
-      warn("camera " + cam.name + ", frame " + std::to_string(rendered.frame) +
-           ": no pixel centre sees an object (the image is all background): check the camera's pose and the "
-           "objects' locations" +
-           (n == kEmptyImageWarnings ? " (further images of background only are not reported)" : ""));
-  }
+  if (std::none_of(objectId.begin(), objectId.end(), [](std::uint32_t id) { return id != 0; }))
+    warnAtMost("image of background only", 10,
+               "camera " + cam.name + ", frame " + std::to_string(rendered.frame) +
+                   ": no pixel centre sees an object (the image is all background): check the camera's pose and the "
+                   "objects' locations",
+               " (further images of background only are not reported)");
   out.truth = deriveTruth(reference, rendered.frame, scene, rendered.result, c, job.layers, rendered.visibility);
   phaseDone("truth");
   if (!out.truth.disparityCamera.empty() && out.truth.disparityVisibleCount == 0)

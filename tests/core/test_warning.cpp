@@ -62,6 +62,26 @@ TEST_CASE("notes: captured with the warnings in the order said; take() keeps the
   CHECK(capture.takeMessages().empty());
 }
 
+TEST_CASE("warnAtMost: n of a kind per capture, each capture its own count, the last with its note") {
+  // Python's calls each make a capture: a warning said "once" in the process was said in the first
+  // call only, and a later call with the same mistake was silent.
+  for (int call = 0; call < 2; ++call) {
+    WarningCapture capture;
+    for (int i = 0; i < 5; ++i) warnAtMost("kind a", 3, "a" + std::to_string(i), " (no more)");
+    warnAtMost("kind b", 1, "b");
+    warnAtMost("kind b", 1, "b again");
+    CHECK(capture.take() == std::vector<std::string>{"a0", "a1", "a2 (no more)", "b"});
+  }
+  WarningCapture outer;
+  warnAtMost("kind c", 1, "c");
+  {
+    WarningCapture inner;  // alive with outer: each counts for itself
+    warnAtMost("kind c", 1, "c in both");
+    CHECK(inner.take() == std::vector<std::string>{"c in both"});
+  }
+  CHECK(outer.take() == std::vector<std::string>{"c"});
+}
+
 TEST_CASE("warnings: a knob's value that is not a whole number in its range is said, and the fallback used") {
   struct Case {
     const char* value;

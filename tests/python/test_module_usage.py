@@ -163,6 +163,16 @@ def test_arguments_out_of_range_name_the_argument(tmp_path):
     assert sorted(renderer.render(scene, frames=(f for f in [2, 0]), spp=1, layers="image")) == [("camera", 0), ("camera", 2)]
 
 
+def test_each_call_may_warn_again(tmp_path):
+    # Warnings said once per process in the CLI (a lit object without lights, a target seen from its
+    # back; the empty image at most 10 times) were said in a Python session's first call only.
+    scene = dicsynth.Scene(write(tmp_path, "unlit.lua", PLANE.replace("Shader.Constant { color = 0.5 }", "Shader.Lambert {}")))
+    renderer = dicsynth.Renderer(backend="cpu", downscale=8)
+    for _ in range(2):
+        with pytest.warns(dicsynth.DicsynthWarning, match="which needs a light, and frame 0 has none"):
+            renderer.render(scene, spp=1, layers="image")
+
+
 def test_messages_name_python_arguments_not_cli_options(tmp_path):
     # A pose list's error named `--frames 0:N`; a device given to the CPU backend was ignored unsaid.
     path = write(tmp_path, "poses.lua", PLANE + "local spec = { squares = {10, 7}; squareSize = 0.002 }\n"

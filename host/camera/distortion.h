@@ -10,8 +10,10 @@
 // (a division by 1, additions of 0), so a Brown model gives bit-identical results either way.
 // OpenCV's 14-coefficient tilted-sensor model (τx, τy) is not offered.
 // distort() maps ideal → distorted. Ray generation needs the inverse (distorted pixel → ideal ray),
-// which has no closed form: undistort() runs Newton's method with the analytic Jacobian.
-// shaders/lib/camera.glsl implements the same iteration, with the same start and stopping rule.
+// which has no closed form: undistort() runs Newton's method with the analytic Jacobian, and where
+// that fails, the same Newton along a path from the image centre (undistortContinued).
+// shaders/lib/camera.glsl implements the same iterations, with the same starts and stopping rule.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -77,25 +79,94 @@ constexpr Real undistortTolerance() {
   return std::is_same_v<Real, float> ? Real(1e-6) : Real(1e-14);
 }
 inline constexpr int kUndistortMaxIterations = 20;
+// undistortContinued's path: its longest step in s, its shortest (halved from the longest where
+// Newton fails), and its most steps.
+inline constexpr int kUndistortPathSteps = 16;        // longest step 1/16
+inline constexpr int kUndistortPathFinest = 1024;     // shortest step 1/1024
+inline constexpr int kUndistortPathMaxStages = 64;
 
-// Ideal (undistorted) normalized coordinates whose distortion is `target`. Start: the target itself
-// (exact when there is no distortion). Returns NaN when Newton does not converge within
-// kUndistortMaxIterations or the Jacobian is singular (distortion not invertible there).
+// Whether p lies where a lens images the right way round: the radial scale ρ = N/D positive with
+// N, D > 0 (no pole between the centre and p along a path that keeps them so). A root with ρ < 0
+// is an image point reflected through the centre: det J is positive there too (both of a radial
+// map's eigenvalues, ρ and d(rρ)/dr, negative), so Newton's own test does not tell it (the
+// randomized test of tests/camera/test_distortion_inverse_path.cpp found such roots).
 template <class Real>
-glm::vec<2, Real> undistort(const DistortionCoefficients<Real>& c, glm::vec<2, Real> target) {
-  glm::vec<2, Real> p = target;
+bool radialScalePositive(const DistortionCoefficients<Real>& c, glm::vec<2, Real> p) {
+  const Real r2 = p.x * p.x + p.y * p.y;
+  return 1 + r2 * (c.k1 + r2 * (c.k2 + r2 * c.k3)) > 0 && 1 + r2 * (c.k4 + r2 * (c.k5 + r2 * c.k6)) > 0;
+}
+
+// Newton's method on distort(p) = target from `start`: true, with the root in `p`, once a step is
+// below undistortTolerance within kUndistortMaxIterations and the root's radial scale is positive;
+// false where it does not converge, the Jacobian is not positive (no inverse there) or the root
+// is a reflected one (radialScalePositive).
+template <class Real>
+bool undistortNewton(const DistortionCoefficients<Real>& c, glm::vec<2, Real> target, glm::vec<2, Real> start,
+                     glm::vec<2, Real>& p) {
+  p = start;
   for (int i = 0; i < kUndistortMaxIterations; ++i) {
     const glm::vec<2, Real> f = distort(c, p) - target;
     const glm::mat<2, 2, Real> J = distortJacobian(c, p);
     const Real det = J[0][0] * J[1][1] - J[1][0] * J[0][1];
-    if (!(det > 0)) break;  // fold or singular Jacobian: not invertible here
+    if (!(det > 0)) return false;  // fold or singular Jacobian: not invertible here
     // Δ = -J⁻¹ f with J⁻¹ = [[J11, -J01], [-J10, J00]] / det (row/column per glm's m[col][row]).
     const glm::vec<2, Real> step{(J[1][1] * f.x - J[1][0] * f.y) / det,
                                  (-J[0][1] * f.x + J[0][0] * f.y) / det};
     p -= step;
     if (std::abs(step.x) <= undistortTolerance<Real>() && std::abs(step.y) <= undistortTolerance<Real>())
-      return p;
+      return radialScalePositive(c, p);
   }
+  return false;
+}
+
+// The inverse where Newton from the target fails though the distortion does not fold: a start
+// beyond a pole of the rational denominator (1 + k4 r² + …) or beyond the radial fold, where
+// det J ≤ 0, or a first step that overshoots (the camera audit of 2026-11-28: Rational k4 = −4.2
+// alone, whose r'' = r/(1 − 4.2 r²) is increasing up to its pole, refused at the image corner).
+// The physical root is the one joined to the image centre: distort(0) = 0 (every term of distort
+// has a factor x', y' or r²), and while det J > 0 along the way the implicit function theorem
+// continues the root of distort(p) = s·target from s = 0 to s = 1. So Newton solves it for s
+// growing by steps of 1/16, each from the last root (an error O(|Δs·target|²) at the start); where
+// a step fails (a nearly flat stretch, where a small Δs moves the root far) the step is halved, down
+// to 1/1024, and doubled again after a success. Every s is a dyadic fraction, exact in float and
+// double. A step counts as failed too where its root q is not joined to the last one p: Newton near
+// a fold can jump over it to a root beyond, so det J and the radial scale must stay positive at
+// p + (q − p)·j/4, j = 1, 2, 3 (the randomized test found such jumps without this). False where the
+// path meets a fold or a pole (the step shrinks below 1/1024) or needs more than
+// kUndistortPathMaxStages steps. shaders/lib/camera.glsl runs the same steps.
+template <class Real>
+bool undistortContinued(const DistortionCoefficients<Real>& c, glm::vec<2, Real> target, glm::vec<2, Real>& p) {
+  p = glm::vec<2, Real>(0);
+  Real s = 0, ds = Real(1) / Real(kUndistortPathSteps);
+  for (int stage = 0; stage < kUndistortPathMaxStages; ++stage) {
+    const Real next = std::min(s + ds, Real(1));
+    glm::vec<2, Real> q;
+    bool joined = undistortNewton(c, target * next, p, q);
+    for (int j = 1; j <= 3 && joined; ++j) {
+      const glm::vec<2, Real> between = p + (q - p) * (Real(j) / Real(4));
+      const glm::mat<2, 2, Real> J = distortJacobian(c, between);
+      joined = J[0][0] * J[1][1] - J[1][0] * J[0][1] > 0 && radialScalePositive(c, between);
+    }
+    if (joined) {
+      p = q;
+      s = next;
+      if (s == Real(1)) return true;
+      ds = std::min(ds * 2, Real(1) / Real(kUndistortPathSteps));
+    } else {
+      ds /= 2;
+      if (ds < Real(1) / Real(kUndistortPathFinest)) return false;
+    }
+  }
+  return false;
+}
+
+// Ideal (undistorted) normalized coordinates whose distortion is `target`. Start: the target itself
+// (exact when there is no distortion); where Newton fails from there, undistortContinued. Returns
+// NaN where both fail (the distortion folds over or reaches a pole between the centre and here).
+template <class Real>
+glm::vec<2, Real> undistort(const DistortionCoefficients<Real>& c, glm::vec<2, Real> target) {
+  glm::vec<2, Real> p;
+  if (undistortNewton(c, target, target, p) || undistortContinued(c, target, p)) return p;
   return glm::vec<2, Real>(std::numeric_limits<Real>::quiet_NaN());
 }
 
@@ -105,7 +176,8 @@ glm::vec<2, Real> undistort(const DistortionCoefficients<Real>& c, glm::vec<2, R
 // iterations of the N targets interleave: one target's steps wait on its divisions, N independent
 // ones keep the floating-point units busy (a distortion field of 1.92 M pixels on one thread: 0.117
 // s one by one, 0.077 s eight at a time; bench/RESULTS.md, "Truth without copies"). A target that
-// has converged or failed keeps its answer while the others go on.
+// has converged or failed keeps its answer while the others go on; a failed one then goes through
+// undistortContinued alone.
 template <int N, class Real>
 void undistortLockstep(const DistortionCoefficients<Real>& c, const glm::vec<2, Real>* target,
                        glm::vec<2, Real>* result) {
@@ -133,8 +205,13 @@ void undistortLockstep(const DistortionCoefficients<Real>& c, const glm::vec<2, 
     }
     if (!any) break;
   }
-  for (int l = 0; l < N; ++l)
-    result[l] = converged[l] ? p[l] : glm::vec<2, Real>(std::numeric_limits<Real>::quiet_NaN());
+  for (int l = 0; l < N; ++l) {
+    glm::vec<2, Real> q;
+    // undistortNewton's answer, its radial-scale test included; then undistort()'s fallback.
+    result[l] = converged[l] && radialScalePositive(c, p[l]) ? p[l]
+                : undistortContinued(c, target[l], q)        ? q  // rare: one by one, as undistort()
+                                                             : glm::vec<2, Real>(std::numeric_limits<Real>::quiet_NaN());
+  }
 }
 
 }  // namespace dicsynth

@@ -1,13 +1,17 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <sstream>
+#include <vector>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/option_names.h"
 #include "core/exact_number.h"
+#include "core/parallel.h"
 #include "files/image_io.h"
 #include "geometry/homography.h"
 #include "geometry/prepared_scene.h"
@@ -35,30 +39,79 @@ Camera downscaled(Camera c, int k) {
   return c;
 }
 
-// The sensitive area of the image reaches half a pixel beyond the outermost pixel centres; every
-// sample position there must invert (Newton converges) and round-trip to far below 1e-9 px.
+// The sensitive area of the image reaches half a pixel beyond the outermost pixel centres. Every
+// sample position there must invert to the ideal point a lens images there: the root joined to the
+// image centre (camera/distortion.h, undistortContinued), round-tripping to far below 1e-9 px. The
+// renderer's inversion, Newton from the distorted point (the samples' on the GPU from their pixel
+// centre's root), must land on that root: Newton can converge to another one, beyond a fold or on
+// the branch where ρ < 0 (det J > 0 there too), and that pixel would then see along a wrong ray
+// without a word (a randomized test of 40,000 targets on strong models found 150; none on typical
+// ones). Checked on the border and on an 8 px grid inside; a model refused here is either folded
+// between the centre and the image's edge or has a second root that Newton reaches from the image.
+// Each camera model is checked once per process (the frames of a run usually share it).
 void checkDistortionInvertible(const PreparedCamera& pc) {
   const auto& m = pc.model;
   if (!m.distorted) return;
   const double w = pc.camera.width_px, h = pc.camera.height_px;
-  auto check = [&](double x, double y) {
-    const dvec2 target{(x - m.cx) / m.fx, (y - m.cy) / m.fy};
-    const dvec2 ideal = undistort(m.brown, target);
-    const dvec2 back = distort(m.brown, ideal);
-    const double err_px = std::max(std::abs(back.x - target.x) * m.fx, std::abs(back.y - target.y) * m.fy);
-    if (!(err_px < 1e-9)) {
-      std::ostringstream msg;
-      msg << (pc.camera.distortion.kind == DistortionKind::Rational ? "Distortion.Rational" : "Distortion.Brown")
-          << " of camera '" << pc.camera.name
-          << "' cannot be inverted at image position (" << x << ", " << y
-          << ") px: the distortion folds over inside the image (check the coefficients)";
-      throw InputError(pc.camera.where, msg.str());
+  using Key = std::array<double, 18>;
+  const Key key{m.brown.k1, m.brown.k2, m.brown.k3, m.brown.p1, m.brown.p2, m.brown.k4, m.brown.k5, m.brown.k6,
+                m.brown.s1, m.brown.s2, m.brown.s3, m.brown.s4, m.fx, m.fy, m.cx, m.cy, w, h};
+  static std::mutex mutex;
+  static std::vector<Key> accepted;  // the last kRemembered models that passed
+  constexpr std::size_t kRemembered = 16;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (std::find(accepted.begin(), accepted.end(), key) != accepted.end()) return;
+  }
+  // Why the inversion fails at `target`, or "" where it does not.
+  auto failure = [&m](dvec2 target) -> std::string {
+    dvec2 principal, newton;
+    if (!undistortContinued(m.brown, target, principal))
+      return "between the image centre and there the distortion folds over or reaches a pole of its denominator";
+    // Two roots agree to the stopping step's rounding (1e-14 normalized, ~1e-11 px): 1e-9 px apart
+    // is another root.
+    if (undistortNewton(m.brown, target, target, newton) &&
+        std::max(std::abs(newton.x - principal.x) * m.fx, std::abs(newton.y - principal.y) * m.fy) > 1e-9) {
+      std::ostringstream why;
+      why << "besides the ideal point joined to the image centre, (" << principal.x << ", " << principal.y
+          << "), the point (" << newton.x << ", " << newton.y
+          << ") beyond a fold maps there too, and the inversion from the image reaches it";
+      return why.str();
     }
+    const dvec2 back = distort(m.brown, undistort(m.brown, target));
+    const double err_px = std::max(std::abs(back.x - target.x) * m.fx, std::abs(back.y - target.y) * m.fy);
+    return err_px < 1e-9 ? "" : "the inverse does not round-trip to 1e-9 px";
   };
-  for (double x = -0.5; x <= w - 0.5; x += 1) { check(x, -0.5); check(x, h - 0.5); }
-  for (double y = -0.5; y <= h - 0.5; y += 1) { check(-0.5, y); check(w - 0.5, y); }
+  std::vector<dvec2> points;  // image positions (px): the border, then the grid
+  for (double x = -0.5; x <= w - 0.5; x += 1) points.insert(points.end(), {{x, -0.5}, {x, h - 0.5}});
+  for (double y = -0.5; y <= h - 0.5; y += 1) points.insert(points.end(), {{-0.5, y}, {w - 0.5, y}});
   for (double y = 0; y < h; y += 8)
-    for (double x = 0; x < w; x += 8) check(x, y);
+    for (double x = 0; x < w; x += 8) points.push_back({x, y});
+  // On all cores (Figure 1's camera, 1600 x 1200: 35,000 points, ~45 ms on one); the first point
+  // that fails in the order above is the one named, whichever thread finds it.
+  constexpr std::size_t kBlock = 512;
+  std::vector<std::size_t> firstFailed((points.size() + kBlock - 1) / kBlock, points.size());
+  std::vector<std::string> why(firstFailed.size());
+  parallelForBlocks(points.size(), kBlock, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      std::string text = failure({(points[i].x - m.cx) / m.fx, (points[i].y - m.cy) / m.fy});
+      if (text.empty()) continue;
+      firstFailed[begin / kBlock] = i;
+      why[begin / kBlock] = std::move(text);
+      return;
+    }
+  });
+  for (std::size_t b = 0; b < firstFailed.size(); ++b) {
+    if (firstFailed[b] == points.size()) continue;
+    std::ostringstream msg;
+    msg << (pc.camera.distortion.kind == DistortionKind::Rational ? "Distortion.Rational" : "Distortion.Brown")
+        << " of camera '" << pc.camera.name << "' cannot be inverted at image position (" << points[firstFailed[b]].x
+        << ", " << points[firstFailed[b]].y << ") px: " << why[b] << " (check the coefficients)";
+    throw InputError(pc.camera.where, msg.str());
+  }
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (accepted.size() == kRemembered) accepted.erase(accepted.begin());
+  accepted.push_back(key);
 }
 
 PreparedCamera prepareCamera(const Camera& sceneCamera, int downscale) {

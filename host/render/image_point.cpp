@@ -13,8 +13,8 @@ ImagePoint projectToImage(const PreparedCamera& camera, dvec3 world_m) {
   if (!p.inFront) return p;
   p.pixel_px = projectToPixel(m, world_m);
   if (m.distorted) {
-    // The round trip through the inverse tells a fold-back (prepare.cpp makes sure the inverse is
-    // unique over the image itself).
+    // The round trip through the inverse tells a fold-back: undistort() returns the root joined to
+    // the image centre (prepare.cpp checks that it exists on the image's border and an 8 px grid).
     const dvec2 distorted{(p.pixel_px.x - m.cx) / m.fx, (p.pixel_px.y - m.cy) / m.fy};
     const dvec2 ideal = normalizedFromCamera(m, pc);
     p.folded = !(glm::length(undistort(m.brown, distorted) - ideal) <= 1e-9 * (1 + glm::length(ideal)));

@@ -45,6 +45,10 @@ const real DS_UNDISTORT_TOLERANCE = 1e-14LF;
 const real DS_UNDISTORT_TOLERANCE = 1e-6;
 #endif
 const int DS_UNDISTORT_MAX_ITERATIONS = 20;
+// ds_undistort_continued's path (kUndistortPath* in host/camera/distortion.h).
+const int DS_UNDISTORT_PATH_STEPS = 16;
+const int DS_UNDISTORT_PATH_FINEST = 1024;
+const int DS_UNDISTORT_PATH_MAX_STAGES = 64;
 
 // Jacobian of ds_distort at p (derivation in host/camera/distortion.h). Brown's is symmetric; the
 // thin-prism terms make it not, so all four entries are returned:
@@ -71,6 +75,14 @@ real4 ds_distort_jacobian(Brown c, real2 p) {
   return j;
 }
 
+// The radial scale's numerator and denominator both positive at p (radialScalePositive in
+// host/camera/distortion.h: a root with ρ < 0 is a reflected image point, det J > 0 there too).
+bool ds_radial_scale_positive(Brown c, real2 p) {
+  const real r2 = p.x * p.x + p.y * p.y;
+  const bool denominator = !HAS_RATIONAL_DISTORTION || 1.0 + r2 * (c.k4 + r2 * (c.k5 + r2 * c.k6)) > 0.0;
+  return 1.0 + r2 * (c.k1 + r2 * (c.k2 + r2 * c.k3)) > 0.0 && denominator;
+}
+
 // Newton step −J⁻¹ f (general 2×2 inverse); false when det J ≤ 0 there (no inverse).
 bool ds_undistort_step(Brown c, real2 p, real2 f, out real2 step) {
   const real4 j = ds_distort_jacobian(c, p);
@@ -79,15 +91,49 @@ bool ds_undistort_step(Brown c, real2 p, real2 f, out real2 step) {
   return det > 0.0;
 }
 
-// Newton's method on distort(p) = target in `real`, from `start`. False when it does not converge or
-// the Jacobian is not positive (no inverse there).
+// Newton's method on distort(p) = target in `real`, from `start`. False when it does not converge,
+// the Jacobian is not positive (no inverse there) or the root's radial scale is not.
 bool ds_undistort(Brown c, real2 target, real2 start, out real2 p) {
   p = start;
   for (int i = 0; i < DS_UNDISTORT_MAX_ITERATIONS; ++i) {
     real2 step;
     if (!ds_undistort_step(c, p, ds_distort(c, p) - target, step)) return false;
     p -= step;
-    if (abs(step.x) <= DS_UNDISTORT_TOLERANCE && abs(step.y) <= DS_UNDISTORT_TOLERANCE) return true;
+    if (abs(step.x) <= DS_UNDISTORT_TOLERANCE && abs(step.y) <= DS_UNDISTORT_TOLERANCE)
+      return ds_radial_scale_positive(c, p);
+  }
+  return false;
+}
+
+// The inverse where Newton from its start fails though the distortion does not fold (beyond a pole
+// of the rational denominator, beyond the radial fold, an overshooting step): Newton along the path
+// s·target from the image centre (distort(0) = 0), s growing by 1/16, each step from the last root,
+// a failed step halved down to 1/1024 and doubled again after a success; a step whose root is not
+// joined to the last (det J or the radial scale not positive at a quarter, half, three quarters of
+// the way: a jump over a fold) fails too. The physical root is the one this path reaches; the
+// derivation is undistortContinued's in host/camera/distortion.h, whose steps these are. False
+// where the path meets a fold or a pole.
+bool ds_undistort_continued(Brown c, real2 target, out real2 p) {
+  p = real2(0.0);
+  real s = 0.0, ds = 1.0 / real(DS_UNDISTORT_PATH_STEPS);
+  for (int stage = 0; stage < DS_UNDISTORT_PATH_MAX_STAGES; ++stage) {
+    const real next = min(s + ds, real(1.0));
+    real2 q;
+    bool joined = ds_undistort(c, target * next, p, q);
+    for (int j = 1; j <= 3 && joined; ++j) {
+      const real2 between = p + (q - p) * (real(j) / 4.0);
+      const real4 jb = ds_distort_jacobian(c, between);
+      joined = jb.x * jb.y - jb.z * jb.w > 0.0 && ds_radial_scale_positive(c, between);
+    }
+    if (joined) {
+      p = q;
+      s = next;
+      if (s == 1.0) return true;
+      ds = min(ds * 2.0, 1.0 / real(DS_UNDISTORT_PATH_STEPS));
+    } else {
+      ds *= 0.5;
+      if (ds < 1.0 / real(DS_UNDISTORT_PATH_FINEST)) return false;
+    }
   }
   return false;
 }
@@ -159,7 +205,8 @@ bool ds_camera_ray(GpuCamera cam, hreal2 pixel, bool distorted, real2 lens, bool
                             ? start.ideal + real2(j.y * dt.x - j.z * dt.y, -j.w * dt.x + j.x * dt.y) / det
                             : target;
     real2 ideal;
-    const bool converged = ds_undistort(c, target, guess, ideal);
+    // The path from the centre only where Newton fails from the guess (rare: strong distortions).
+    const bool converged = ds_undistort(c, target, guess, ideal) || ds_undistort_continued(c, target, ideal);
     if (!warm) start = UndistortStart(converged, target, ideal, ds_distort_jacobian(c, ideal));
     if (!converged) return false;
 #if defined(DS_DF64)

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "camera/distortion.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
@@ -177,6 +178,48 @@ TEST_CASE("cpu-vs-gpu: the randomized campaign's cases within the bounds that no
       if (std::string(c.name) == "overexposed" || std::string(c.name) == "lamp near the surface")
         CHECK(d.maxRadianceDiff > tol.radiance);  // the fixed part alone did not cover them
       if (std::string(c.name) == "defocused silhouette") CHECK(d.radianceOutliers > 0);  // all by the silhouette
+    }
+  }
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("cpu-vs-gpu: distortions whose corners Newton from the pixel cannot invert agree in every precision") {
+  // The camera audit of 2026-11-28's two reproductions, refused before as "folds over inside the
+  // image" though neither folds there: Rational k4 = -4.2 alone (r'' = r/(1 - 4.2 r²) increases up
+  // to its pole at r = 0.488, the corner's root is at 0.305) and Brown {6, -20} (increasing up to
+  // its fold at r = 0.474, the corner's root at 0.349). Newton from the corner starts beyond the
+  // pole or fold and fails; the path from the centre (camera/distortion.h, and its GLSL twin) finds
+  // the root on both backends. fx = 500 px: the sensitive area's corner is at r'' = 0.5.
+  test::TempFolder dir;
+  gpu::Renderer renderer(test::gpuContext());
+  const char* distortions[] = {"Distortion.Rational { radial = {0, 0, 0, -4.2, 0, 0} }",
+                               "Distortion.Brown { radial = {6, -20, 0} }"};
+  for (const char* distortion : distortions) {
+    INFO(distortion);
+    const std::string path = dir.file("path.lua");
+    test::writeBytes(path, std::string("camera = Camera.Pinhole { resolution = {400, 300}; pixelSize = {1e-5, 1e-5}; focalLength = 0.005;\n"
+                                       "  distortion = ") + distortion + " }\n"
+                                       "plate = Object.Simple { shape = Shape.Rectangle { size = {4, 3}; location = {0, 0, 1} };\n"
+                                       "  shader = Shader.Constant { color = 1 }; texture = Texture.Speckle { radius = 0.01; seed = 3 } }\n");
+    SceneParams params;
+    params.quiet = true;
+    const PreparedScene scene = prepareScene(loadScene(path, params), {4});  // 100 x 75 px, fx = 125 px
+    const auto& m = scene.cameras[0].model;
+    const dvec2 corner{(-0.5 - m.cx) / m.fx, (-0.5 - m.cy) / m.fy};
+    glm::dvec2 newton;
+    REQUIRE_FALSE(undistortNewton(m.brown, corner, corner, newton));  // the case the path is for
+    RenderOptions options;
+    options.samplesPerPixel = 2;
+    const RenderResult reference = cpu::render(scene, options);
+    for (Precision precision : kPrecisions) {
+      INFO(toString(precision));
+      options.precision = precision;
+      const Tolerances tol = tolerancesFor(precision);
+      for (const CameraDifference& d : compareResults(scene, reference, renderer.render(scene, options), tol)) {
+        CHECK(withinTolerance(d, tol));
+        CHECK(d.wrongNearestHits() == 0);
+        CHECK(d.objectIdMismatches == 0);  // every pixel centre sees the plate on both: none lost to a failed inversion
+      }
     }
   }
   test::expectNoValidationMessages();

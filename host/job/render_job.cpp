@@ -262,9 +262,11 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
       std::printf("camera %s: no layer of --layers %s exists for it: nothing written\n", cam.name.c_str(),
                   job.layers.text().c_str());
     else if (job.verbose)
-      std::printf("%s: %dx%d, %d spp, %s %s on %s, %.2f s\n", written.c_str(),
-                  cam.width_px, cam.height_px, options.samplesPerPixel, result.backend.c_str(),
-                  result.precision.c_str(), result.device.c_str(), result.renderSeconds);
+      // Without a radiance layer no sample is traced: "N spp" would claim work not done.
+      std::printf("%s: %dx%d, %s, %s %s on %s, %.2f s\n", written.c_str(), cam.width_px, cam.height_px,
+                  options.radiance ? (std::to_string(options.samplesPerPixel) + " spp").c_str()
+                                   : "no radiance traced (ground truth only)",
+                  result.backend.c_str(), result.precision.c_str(), result.device.c_str(), result.renderSeconds);
   }
 }
 

@@ -166,6 +166,19 @@ TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
   CHECK(oneLine(r.err));
 }
 
+TEST_CASE("cli: the line of a written camera says its spp only where radiance was traced") {
+  // "2 spp" was said for --layers P, where no sample ray is traced (model/layers.h).
+  TempFolder dir;
+  const std::string args = "render " + kScenes + "rectangle.lua --backend cpu --downscale 16 --spp 2 -o ";
+  const test::CliResult truthOnly = runCli(args + dir.file("p") + " --layers P");
+  INFO(truthOnly.out);
+  CHECK(truthOnly.exitCode == 0);
+  CHECK(truthOnly.out.find(", no radiance traced (ground truth only), cpu fp64 on") != std::string::npos);
+  CHECK(truthOnly.out.find("spp") == std::string::npos);
+  const test::CliResult image = runCli(args + dir.file("i") + " --layers image,P");
+  CHECK(image.out.find(", 2 spp, cpu fp64 on") != std::string::npos);
+}
+
 TEST_CASE("cli: a --device given to the CPU backend is said to be unused, and the run goes on") {
   // It was ignored without a word: a user who meant the GPU learnt nothing.
   TempFolder dir;

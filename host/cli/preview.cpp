@@ -70,7 +70,7 @@ int runPreview(const PreviewOptions& options) {
 void addPreviewCommand(CLI::App& root, RunFn& run) {
   auto options = std::make_shared<PreviewOptions>();
   auto* sub = root.add_subcommand("preview", "PNG pictures of the ground-truth layers of EXR files");
-  sub->add_option("files", options->files, "EXR files (dicsynth's, or any: each float channel is shown)")->required();
+  sub->add_option("files", options->files, "EXR files (dicsynth's, or any: each float channel is shown); a sensor TIFF is shown in DN")->required();
   sub->add_option("-o,--output", options->outputDir, "Folder for the PNGs (default: preview/ beside the first file)");
   sub->add_option("--width", options->width, "Largest width of a picture's image part, px (every k-th pixel shown)")
       ->capture_default_str();

@@ -151,3 +151,37 @@ TEST_CASE("preview: any EXR shows what it can and says what it skips, wide image
   CHECK(half.exitCode == 2);
   CHECK(!std::filesystem::exists(dir.file("p3")));
 }
+
+TEST_CASE("preview: a sensor TIFF is drawn as its digital numbers, not as radiance") {
+  // Its gray channel is named Y, as the EXR's radiance, and was drawn as "radiance" on a 0..1 bar.
+  test::TempFolder dir;
+  const test::CliResult r = test::runCli("render " + std::string(DS_SOURCE_DIR) +
+                                         "/scenes/rectangle.lua --backend cpu --downscale 16 --spp 1 --layers image -o " + dir.file("out"));
+  REQUIRE(r.exitCode == 0);
+  const test::CliResult p = test::runCli("preview " + dir.file("out/camera.tif") + " -o " + dir.file("pictures"));
+  INFO(p.out << p.err);
+  REQUIRE(p.exitCode == 0);
+  CHECK(!std::filesystem::exists(dir.file("pictures/camera.radiance.png")));
+  const Png png = readPng(dir.file("pictures/camera.image.png"));
+  // The TIFF read by OpenImageIO as its own integers; the picture is gray from 0 to the largest DN.
+  auto in = OIIO::ImageInput::open(dir.file("out/camera.tif"));
+  REQUIRE(in);
+  const int w = in->spec().width, h = in->spec().height;
+  std::vector<unsigned char> dn(std::size_t(w) * std::size_t(h));
+  REQUIRE(in->spec().format == OIIO::TypeDesc::UINT8);
+  REQUIRE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT8, dn.data()));
+  const int top = *std::max_element(dn.begin(), dn.end());
+  REQUIRE(top > 0);
+  int checked = 0;
+  for (int y = 0; y < h; y += 3)
+    for (int x = 0; x < w; x += 3) {
+      // gray u = DN / top, written as an 8-bit sRGB value: its luminance order and ends are the test.
+      const unsigned char* c = png.at(x, 30 + y);
+      CHECK(c[0] == c[1]);
+      CHECK(c[1] == c[2]);
+      if (dn[std::size_t(y) * std::size_t(w) + std::size_t(x)] == top) CHECK(c[0] == 255);
+      if (dn[std::size_t(y) * std::size_t(w) + std::size_t(x)] == 0) CHECK(c[0] == 0);
+      ++checked;
+    }
+  CHECK(checked > 100);
+}

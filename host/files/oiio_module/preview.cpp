@@ -31,6 +31,7 @@ struct View {
   std::vector<std::string> channels;  // 1: the value; 2 or 3: the vector's length
   Map map;
   std::string unit;
+  double scale = 1;  // the file's value times this is shown (an integer image's fractions back to DN)
 };
 
 // The dicsynth layers shown (docs/outputs.md: channels and units), in this order.
@@ -131,7 +132,21 @@ bool preview(const PreviewRequest& request, PreviewResult& result, std::string& 
   // The views this file can show: the known layers present, then any other channel as itself.
   std::vector<View> views;
   std::set<std::string> used;
-  for (const View& v : knownViews()) {
+  // An integer image (a sensor TIFF, a PNG): its digital numbers, channel by channel. OpenImageIO
+  // hands integers over as fractions of the type's range; they are scaled back to DN (a 10-bit
+  // sensor in 16-bit samples shows 0…1023). It was drawn as "radiance 0…1" before (its gray
+  // channel is named Y, as the EXR's radiance).
+  const OIIO::TypeDesc::BASETYPE base = OIIO::TypeDesc::BASETYPE(exr.nativespec().format.basetype);  // spec(): FLOAT as read
+  const bool integer = base == OIIO::TypeDesc::UINT8 || base == OIIO::TypeDesc::UINT16 || base == OIIO::TypeDesc::UINT32;
+  if (integer) {
+    const double top = base == OIIO::TypeDesc::UINT8 ? 255.0 : base == OIIO::TypeDesc::UINT16 ? 65535.0 : 4294967295.0;
+    for (int c = 0; c < spec.nchannels; ++c) {
+      const std::string& name = spec.channelnames[size_t(c)];
+      views.push_back({spec.nchannels == 1 ? "image" : "image." + name, {name}, Map::Gray, "DN", top});
+      used.insert(name);
+    }
+  }
+  for (const View& v : integer ? std::vector<View>{} : knownViews()) {  // an integer image holds no EXR layer
     bool present = true;
     for (const std::string& c : v.channels) present = present && index.count(c);
     if (!present) continue;
@@ -163,7 +178,7 @@ bool preview(const PreviewRequest& request, PreviewResult& result, std::string& 
       for (int x = 0; x < w; ++x) {
         double v = 0;
         if (view.channels.size() == 1) {
-          v = exr.getchannel(x * k, y * k, 0, index[view.channels[0]]);
+          v = exr.getchannel(x * k, y * k, 0, index[view.channels[0]]) * view.scale;
         } else {
           for (const std::string& c : view.channels) {
             const double e = exr.getchannel(x * k, y * k, 0, index[c]);

@@ -475,7 +475,8 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   // restriction ~2n ε of the patch's extent; 64 ε of both, with |P| from the root's bounds.
   const real3 extent = max(abs(real3(nurbsNodes[rootNode].boundsMin.xyz)), abs(real3(nurbsNodes[rootNode].boundsMax.xyz)));
   const real3 ao = abs(o);
-  const real pad = 64.0 * DS_NURBS_EPSILON * (max(max(extent.x, extent.y), extent.z) + max(max(ao.x, ao.y), ao.z) + scale);
+  const real originMax = max(max(ao.x, ao.y), ao.z);  // |o|∞, in both allowances below
+  const real pad = 64.0 * DS_NURBS_EPSILON * (max(max(extent.x, extent.y), extent.z) + originMax + scale);
   // The slab test's rounding: b − o in `real` errs by ~ε (|b| + |o|), and o and d carry the
   // transform's ~4 ε |o|. The boxes' stored margin (gpu/pack.cpp: 64 ε of the surface size) covers
   // the |b| part; the ray's part grows with its origin's distance, and for a small surface seen from
@@ -483,7 +484,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
   // 30°, lost 9 (curved) to 32 (flat) of its pixels in df64 to boxes the ray was computed to miss
   // (bench/RESULTS.md, "BVH boxes widened by the ray's rounding"). So the boxes are widened by
   // 64 ε |o| too.
-  const real boxPad = 64.0 * DS_NURBS_EPSILON * max(max(ao.x, ao.y), ao.z);
+  const real boxPad = 64.0 * DS_NURBS_EPSILON * originMax;
   // A shadow ray's origin is its hit point rounded into the ray frame: it lies within `pad` of the
   // surface, on either side, so the surface's own root there can lie up to pad / cos along the ray.
   // The patch-parameter identity (sameRoot, below) misses it where that exceeds sameRoot of the

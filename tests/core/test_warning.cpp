@@ -45,7 +45,7 @@ TEST_CASE("warnings: a capture collects them from every thread, two captures bot
   CHECK(outer.back() == "after the second capture");
 }
 
-TEST_CASE("notes: captured with the warnings in the order said; take() keeps the warnings only") {
+TEST_CASE("notes: captured with the warnings in the order said, take() keeps the warnings only") {
   WarningCapture capture;
   note("scene.lua:3: hello");
   warn("a warning");

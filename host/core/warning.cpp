@@ -66,6 +66,7 @@ void warnAtMost(const std::string& kind, int most, const std::string& text, cons
   }
   if (line) writeLine(true, *line);
 }
+
 void note(const std::string& line) { say(false, line); }
 
 WarningCapture::WarningCapture() {

@@ -28,16 +28,16 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <filesystem>
-#include <optional>
-#include <thread>
 #include <limits>
 #include <map>
-#include <cmath>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <thread>
 #include <variant>
 #include <vector>
 
@@ -193,7 +193,8 @@ void raiseWarnings(WarningCapture& capture) {
       const py::str line = py::reinterpret_steal<py::str>(
           PyUnicode_DecodeUTF8(m.text.data(), py::ssize_t(m.text.size()), "backslashreplace"));
       if (!line) throw py::error_already_set();
-      py::module_::import("sys").attr("stderr").attr("write")(line + py::str("\n"));
+      const py::object stderrFile = py::module_::import("sys").attr("stderr");
+      if (!stderrFile.is_none()) stderrFile.attr("write")(line + py::str("\n"));  // None under pythonw
     }
   }
 }

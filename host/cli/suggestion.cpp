@@ -1,5 +1,6 @@
 #include "cli/suggestion.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "core/closest_name.h"
@@ -31,9 +32,7 @@ std::string suggestion(CLI::App& app, int argc, char** argv) {
     std::string word = argv[i];
     if (word.rfind("--", 0) != 0 || word.size() == 2) continue;
     word = word.substr(0, word.find('='));
-    bool known = false;
-    for (const std::string& o : options) known = known || o == word;
-    if (known) continue;
+    if (std::find(options.begin(), options.end(), word) != options.end()) continue;
     if (const auto best = closestName(word, options)) return " (did you mean " + *best + " for " + word + "?)";
     return "";
   }

@@ -70,7 +70,8 @@ void checkDistortionInvertible(const PreparedCamera& pc) {
       return "between the image centre and there the distortion folds over or reaches a pole of its denominator";
     // Two roots agree to the stopping step's rounding (1e-14 normalized, ~1e-11 px): 1e-9 px apart
     // is another root.
-    if (undistortNewton(m.brown, target, target, newton) &&
+    const bool newtonConverged = undistortNewton(m.brown, target, target, newton);
+    if (newtonConverged &&
         std::max(std::abs(newton.x - principal.x) * m.fx, std::abs(newton.y - principal.y) * m.fy) > 1e-9) {
       std::ostringstream why;
       why << "besides the ideal point joined to the image centre, (" << principal.x << ", " << principal.y
@@ -78,7 +79,8 @@ void checkDistortionInvertible(const PreparedCamera& pc) {
           << ") beyond a fold maps there too, and the inversion from the image reaches it";
       return why.str();
     }
-    const dvec2 back = distort(m.brown, undistort(m.brown, target));
+    // undistort()'s answer, from the two roots at hand: Newton's where it converged, else the path's.
+    const dvec2 back = distort(m.brown, newtonConverged ? newton : principal);
     const double err_px = std::max(std::abs(back.x - target.x) * m.fx, std::abs(back.y - target.y) * m.fy);
     return err_px < 1e-9 ? "" : "the inverse does not round-trip to 1e-9 px";
   };
@@ -87,8 +89,9 @@ void checkDistortionInvertible(const PreparedCamera& pc) {
   for (double y = -0.5; y <= h - 0.5; y += 1) points.insert(points.end(), {{-0.5, y}, {w - 0.5, y}});
   for (double y = 0; y < h; y += 8)
     for (double x = 0; x < w; x += 8) points.push_back({x, y});
-  // On all cores (Figure 1's camera, 1600 x 1200: 35,000 points, ~45 ms on one); the first point
-  // that fails in the order above is the one named, whichever thread finds it.
+  // On all cores (Figure 1's camera, 1600 x 1200: 35,000 points; its prepare took 0.068 s against
+  // 0.034 s without distortion on 2 cores, medians of 5 interleaved runs, 2026-11-28); the first
+  // point that fails in the order above is the one named, whichever thread finds it.
   constexpr std::size_t kBlock = 512;
   std::vector<std::size_t> firstFailed((points.size() + kBlock - 1) / kBlock, points.size());
   std::vector<std::string> why(firstFailed.size());

@@ -89,6 +89,9 @@ long long integerIn(const py::handle& value, long long lo, long long hi, const s
   return v;
 }
 
+// A frame number (frames' items, frame, reference_frame): the CLI's --frames range.
+int frameNumber(const py::handle& value, const std::string& what) { return int(integerIn(value, 0, kMaxFrameNumber, what)); }
+
 // `frames` as render takes it: one int, or any iterable of ints (a list, a range, a numpy array),
 // with the CLI's --frames limits (job/render_args.h).
 std::vector<int> frameList(const py::handle& frames) {
@@ -98,7 +101,7 @@ std::vector<int> frameList(const py::handle& frames) {
   if (!py::hasattr(frames, "__iter__")) {
     if (!PyIndex_Check(frames.ptr()))
       throw py::type_error("frames: an int or an iterable of ints, got " + std::string(py::str(frames.get_type())));
-    return {int(integerIn(frames, 0, kMaxFrameNumber, "frames: frame number"))};
+    return {frameNumber(frames, "frames: frame number")};
   }
   // A range's length is known before its frames are made: range(10**12) is refused at once.
   if (py::hasattr(frames, "__len__")) {
@@ -112,7 +115,7 @@ std::vector<int> frameList(const py::handle& frames) {
     if (out.size() == std::size_t(kMaxFramesPerRun))
       throw InputError("frames: over the limit of " + std::to_string(kMaxFramesPerRun) +
                        " frames per call: split them over several calls");
-    out.push_back(int(integerIn(frame, 0, kMaxFrameNumber, "frames: frame number")));
+    out.push_back(frameNumber(frame, "frames: frame number"));
   }
   return out;
 }
@@ -508,7 +511,7 @@ PYBIND11_MODULE(dicsynth, m) {
                                                         : std::get<std::vector<std::string>>(layers);
              const std::optional<int> reference =
                  referenceFrame.is_none() ? std::nullopt
-                                          : std::optional<int>(int(integerIn(referenceFrame, 0, kMaxFrameNumber, "reference_frame")));
+                                          : std::optional<int>(frameNumber(referenceFrame, "reference_frame"));
              const int samples = int(integerIn(spp, 1, 65536, "spp"));
              std::vector<int> frameNumbers = frameList(frames);
              return withWarnings([&] { return r.render(scene, std::move(frameNumbers), samples, names, reference); });
@@ -520,7 +523,7 @@ PYBIND11_MODULE(dicsynth, m) {
       .def(
           "calibration",
           [](PyRenderer& r, const PyScene& scene, const py::object& frame) {
-            const int f = int(integerIn(frame, 0, kMaxFrameNumber, "frame"));
+            const int f = frameNumber(frame, "frame");
             return withWarnings([&] { return r.calibration(scene, f); });
           },
           py::arg("scene"), py::arg("frame") = 0,
@@ -529,7 +532,7 @@ PYBIND11_MODULE(dicsynth, m) {
       .def(
           "objects",
           [](PyRenderer& r, const PyScene& scene, const py::object& frame) {
-            const int f = int(integerIn(frame, 0, kMaxFrameNumber, "frame"));
+            const int f = frameNumber(frame, "frame");
             return withWarnings([&] { return r.objects(scene, f); });
           },
           py::arg("scene"), py::arg("frame") = 0,

@@ -113,13 +113,26 @@ phases_step() {
   done
 }
 sweep_step() {
-  # The default writes several points at once on many cores (sweepWriters); one writer for comparison.
+  # The default writes several points at once on many cores (job/output_writers.h); one writer for comparison.
   echo "== default layers, one writer"
-  DICSYNTH_SWEEP_WRITERS=1 bench/bench_sweep.sh "$BUILD" 50 4 100
+  DICSYNTH_WRITERS=1 bench/bench_sweep.sh "$BUILD" 50 4 100
   echo "== default layers"
   bench/bench_sweep.sh "$BUILD" 50 4 100
   echo "== --layers image"
   EXTRA_OPTS="--layers image" bench/bench_sweep.sh "$BUILD" 50 4 100
+  # A render's frames are written by the same rule: 20 frames of Figure 1 at 800x600, 4 spp,
+  # one writer against the default, alternated.
+  local round writers start
+  for round in 1 2 3; do
+    for writers in 1 default; do
+      start=$(date +%s.%N)
+      if [ "$writers" = 1 ]; then export DICSYNTH_WRITERS=1; else unset DICSYNTH_WRITERS; fi
+      "$DS" render scenes/figure1.lua -o /tmp/gpu-checks-frames --downscale 2 --spp 4 --precision fp32 \
+        --frames 0:19 >/dev/null
+      unset DICSYNTH_WRITERS
+      echo "render --frames 0:19, writers $writers: $(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }') s"
+    done
+  done
 }
 long_step() { DICSYNTH_NURBS_RANDOM_SCENES=140 "$CHECKS" -tc="nurbs-random: GPU*"; }
 export -f env_step compare_step sweep_step phases_step long_step

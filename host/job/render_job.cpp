@@ -12,7 +12,9 @@
 #include <filesystem>
 #include <future>
 #include <limits>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <utility>
@@ -33,6 +35,7 @@
 #include "io/feature_files.h"
 #include "io/outputs.h"
 #include "io/preview.h"
+#include "job/output_writers.h"
 #include "nurbs/nurbs_basis.h"
 #include "reflectance/registry.h"
 #include "scene/scene.h"
@@ -232,13 +235,16 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
 }
 
 // Writes one frame's files. `reference` is created from the first frame written (moved from it).
-void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool calibrationPerFrame,
-                std::unique_ptr<ReferenceFrame>& reference) {
+// Returns the lines that name the files written (job.verbose), for the caller to print: frames
+// written at once print them in frame order.
+std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool calibrationPerFrame,
+                       std::unique_ptr<ReferenceFrame>& reference) {
   const int frame = rendered.frame;
   const RenderResult& result = rendered.result;
   const RenderOptions& options = rendered.options;
   const PreparedScene& scene = frameScene(job, rendered, first, reference);
   const OutputInfo info = frameInfo(job, rendered, scene);
+  std::string lines;
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
   if (first || calibrationPerFrame)
     writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "", job.verbose);
@@ -259,15 +265,18 @@ void writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first, bool 
     const std::string written =
         files.image + (files.image.empty() || files.groundTruth.empty() ? "" : ", ") + files.groundTruth;
     if (job.verbose && written.empty())
-      std::printf("camera %s: no layer of --layers %s exists for it: nothing written\n", cam.name.c_str(),
-                  job.layers.text().c_str());
-    else if (job.verbose)
+      lines += "camera " + cam.name + ": no layer of --layers " + job.layers.text() + " exists for it: nothing written\n";
+    else if (job.verbose) {
+      char timing[64];
+      std::snprintf(timing, sizeof timing, "%.2f s", result.renderSeconds);
       // Without a radiance layer no sample is traced: "N spp" would claim work not done.
-      std::printf("%s: %dx%d, %s, %s %s on %s, %.2f s\n", written.c_str(), cam.width_px, cam.height_px,
-                  options.radiance ? (std::to_string(options.samplesPerPixel) + " spp").c_str()
-                                   : "no radiance traced (ground truth only)",
-                  result.backend.c_str(), result.precision.c_str(), result.device.c_str(), result.renderSeconds);
+      lines += written + ": " + std::to_string(cam.width_px) + "x" + std::to_string(cam.height_px) + ", " +
+               (options.radiance ? std::to_string(options.samplesPerPixel) + " spp"
+                                 : std::string("no radiance traced (ground truth only)")) +
+               ", " + result.backend + " " + result.precision + " on " + result.device + ", " + timing + "\n";
+    }
   }
+  return lines;
 }
 
 // The nearest folder at or above the absolute `path` that exists: a run creates those below it.
@@ -486,15 +495,29 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   session.startDevice();
   phaseDone("device");
   // Calibration files: once and unnumbered when every frame has the same cameras, else per frame.
-  const bool calibrationPerFrame = checkFrames(session, job).calibrationPerFrame;
+  const FramesChecked checked = checkFrames(session, job);
+  const bool calibrationPerFrame = checked.calibrationPerFrame;
   phaseDone("scenes");
   RenderJobResult summary;
   std::unique_ptr<ReferenceFrame> reference;
-  // Frame i is derived and written on a worker thread while frame i + 1 renders, as a sweep writes
-  // its points: at most one frame waits to be written. The frames are written in order, so the
-  // reference frame (the first) is written, and its ReferenceFrame built, before any other.
-  WorkerPool writer(1);
-  auto finishWriting = [&] { writer.waitAll(); };  // rethrows the writer's error
+  // Frames are derived and written on worker threads while the next frame renders, as a sweep
+  // writes its points: at most outputWriters() frames wait to be written (one on this 2-core
+  // machine, several on many cores, where writing sets the pace of a GPU render). The reference
+  // frame (the first) is written, and its ReferenceFrame built, before any other frame's writing
+  // starts; the others only read it. Each frame's lines are printed in frame order.
+  WorkerPool writers(outputWriters(checked.maxPixelsPerFrame * kBytesPerPixelInFlight));
+  auto finishWriting = [&] { writers.waitAll(); };  // rethrows a writer's error
+  std::mutex linesMutex;
+  std::map<std::size_t, std::string> pending;  // lines of frames written before an earlier frame's
+  std::size_t nextLines = 0;                    // the frame whose lines are printed next
+  auto printInOrder = [&](std::size_t fi, std::string lines) {
+    std::lock_guard lock(linesMutex);
+    pending.emplace(fi, std::move(lines));
+    for (auto it = pending.find(nextLines); it != pending.end(); it = pending.find(++nextLines)) {
+      std::fputs(it->second.c_str(), stdout);
+      pending.erase(it);
+    }
+  };
   std::optional<ProgressBar> bar;
   if (!job.progressLabel.empty() && job.frames.size() > 1) bar.emplace("render", "frames", std::int64_t(job.frames.size()), stderrIsTerminal());
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
@@ -507,9 +530,19 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
       finishWriting();  // the previous frame still completes (its own error, if any, wins)
       throw;
     }
-    finishWriting();
-    writer.start([&job, &reference, rendered, first = fi == 0, calibrationPerFrame] {
-      writeFrame(job, *rendered, first, calibrationPerFrame, reference);
+    if (fi == 1)
+      finishWriting();  // the reference frame's, before a frame that reads it
+    else
+      writers.waitForFree();
+    writers.start([&job, &reference, &printInOrder, rendered, fi, calibrationPerFrame] {
+      std::string lines;
+      try {
+        lines = writeFrame(job, *rendered, fi == 0, calibrationPerFrame, reference);
+      } catch (...) {
+        printInOrder(fi, "");  // the later frames' lines still come
+        throw;
+      }
+      printInOrder(fi, std::move(lines));
     });
   }
   finishWriting();
@@ -533,7 +566,7 @@ RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
 void writeRenderedJob(RenderedJob rendered, const RenderJob& job) {
   std::unique_ptr<ReferenceFrame> reference;
   for (std::size_t fi = 0; fi < rendered.frames.size(); ++fi)
-    writeFrame(job, rendered.frames[fi], fi == 0, rendered.calibrationPerFrame, reference);
+    std::fputs(writeFrame(job, rendered.frames[fi], fi == 0, rendered.calibrationPerFrame, reference).c_str(), stdout);
 }
 
 }  // namespace dicsynth

@@ -15,14 +15,12 @@
 #include <vector>
 
 #include "core/atomic_file.h"
-#include "core/env_count.h"
 #include "core/error.h"
 #include "core/exact_number.h"
-#include "core/parallel.h"
 #include "core/progress.h"
 #include "core/warning.h"
 #include "core/worker_pool.h"
-#include "files/image_limits.h"
+#include "job/output_writers.h"
 #include "job/render_job.h"
 #include "shared/rng.h"
 #include "sweep/manifest.h"
@@ -152,23 +150,6 @@ class Progress {
   ProgressBar bar_;
 };
 
-// How many points are written at once. Writing a point (its ground truth derived on the host, the
-// sensor model, the EXR compressed by OpenEXR, whose calls keep at most 4 cores busy with the
-// default 64-row bands) takes longer than rendering it on a GPU: on an NVIDIA H200 machine (16
-// cores) a point of Figure 1 at 800x600 took 0.127 s with one writer, of which 0.015 s rendering
-// (bench/RESULTS.md, "GPU machines"): the writer set the pace. Writers in parallel put the other
-// cores to work. One writer per 4 hardware threads (1 below 8 threads: on 2 cores rendering and
-// writing already fill the machine), at most 8, and no more than the available memory holds beside
-// the point rendering: each writer holds one point's frames until written (`pointBytes`: the first
-// point's, at render_job.h's kBytesPerPixelInFlight). DICSYNTH_SWEEP_WRITERS overrides it (for
-// measuring).
-unsigned sweepWriters(std::uint64_t pointBytes) {
-  long writers = std::clamp(long(hardwareThreads() / 4), 1L, 8L);
-  if (const auto available = availableMemoryBytes(); available && pointBytes > 0)
-    writers = std::clamp(long(*available / pointBytes) - 1, 1L, writers);
-  return unsigned(envCount("DICSYNTH_SWEEP_WRITERS", writers, 1, 64));
-}
-
 }  // namespace
 
 void runSweep(const SweepRun& cmd) {
@@ -292,9 +273,9 @@ void runSweep(const SweepRun& cmd) {
   std::int64_t replaced = 0;  // finished points of other inputs, rendered again
   const std::string host = hostName();
   // The files of a point are written (sensor, truth, files, record) on a worker thread while the
-  // main thread evaluates, prepares and renders the next: at most sweepWriters() points wait to be
+  // main thread evaluates, prepares and renders the next: at most outputWriters() points wait to be
   // written, so memory does not grow with the number of points.
-  WorkerPool writers(sweepWriters(firstPointBytes));
+  WorkerPool writers(outputWriters(firstPointBytes));
   // Counts the points written since the last call; `all`: waits for every one, else for a free writer.
   // Rethrows a writer's error.
   auto collectWritten = [&](bool all) {

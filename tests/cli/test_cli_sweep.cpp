@@ -136,7 +136,7 @@ TEST_CASE("cli: sweep --reference-frame measures motion from that frame, as rend
   CHECK(!std::filesystem::exists(dir.file("bad")));
 }
 
-TEST_CASE("cli: sweep writes several points at once with the same files (DICSYNTH_SWEEP_WRITERS)") {
+TEST_CASE("cli: sweep writes several points at once with the same files (DICSYNTH_WRITERS)") {
   // Many-core machines write up to 8 points at once (host/sweep/sweep_runner.cpp, sweepWriters;
   // 1 below 8 hardware threads, so the suite's 2-core runs would not see it without the knob):
   // every file of every point and the manifest must be those of one writer, and a value that is
@@ -144,9 +144,9 @@ TEST_CASE("cli: sweep writes several points at once with the same files (DICSYNT
   TempFolder dir;
   const std::string scene = dir.write("scene.lua", kScene);
   auto sweepWith = [&](const char* writers) {
-    setenv("DICSYNTH_SWEEP_WRITERS", writers, 1);  // inherited by the child
+    setenv("DICSYNTH_WRITERS", writers, 1);  // inherited by the child
     const test::CliResult r = runCli("sweep " + scene + " -o " + dir.file(std::string("out_") + writers) + kFast);
-    unsetenv("DICSYNTH_SWEEP_WRITERS");
+    unsetenv("DICSYNTH_WRITERS");
     return r;
   };
   const test::CliResult one = sweepWith("1");
@@ -157,7 +157,7 @@ TEST_CASE("cli: sweep writes several points at once with the same files (DICSYNT
     const test::CliResult r = sweepWith(writers);
     INFO(r.err);
     REQUIRE(r.exitCode == 0);
-    CHECK((r.err.find("DICSYNTH_SWEEP_WRITERS=many is not a whole number from 1 to 64") != std::string::npos) ==
+    CHECK((r.err.find("DICSYNTH_WRITERS=many is not a whole number from 1 to 64") != std::string::npos) ==
           (std::string(writers) == "many"));
     CHECK(r.out.find("rendered 6, already complete 0") != std::string::npos);
     for (int i = 0; i < 6; ++i) {
@@ -359,7 +359,7 @@ TEST_CASE("cli: sweep on a full disk stops with a clean error and resumes afterw
   // One writer, and four at once (a many-core machine's default, sweepWriters): each point is
   // complete or absent whichever writer hit the full disk.
   for (const char* writers : {"1", "4"}) {
-    INFO("DICSYNTH_SWEEP_WRITERS=" << writers);
+    INFO("DICSYNTH_WRITERS=" << writers);
     const std::string mnt = dir.file(std::string("mnt") + writers);
     std::filesystem::create_directories(mnt);
     // One point's files need about 12 KiB here (page-granular on tmpfs: 5 files + record); 40 KiB
@@ -372,9 +372,9 @@ TEST_CASE("cli: sweep on a full disk stops with a clean error and resumes afterw
       std::string path;
       ~Unmount() { ::umount(path.c_str()); }
     } unmount{mnt};
-    setenv("DICSYNTH_SWEEP_WRITERS", writers, 1);  // inherited by the child
+    setenv("DICSYNTH_WRITERS", writers, 1);  // inherited by the child
     const test::CliResult full = runCli("sweep " + scene + " -o " + mnt + "/out" + kFast);
-    unsetenv("DICSYNTH_SWEEP_WRITERS");
+    unsetenv("DICSYNTH_WRITERS");
     INFO(full.err);
     CHECK(full.exitCode == 3);
     // One line naming the file that could not be written (the writer's own wording).

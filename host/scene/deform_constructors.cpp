@@ -238,8 +238,12 @@ int nurbsDeform(lua_State* L) {
     char line[400];
     std::snprintf(line, sizeof line, "Nurbs.deform: fit error %.3g m (tolerance %.3g m) on a %d x %d check grid, %zu control points, %d refinements",
                   report.maxError_m, tolerance, report.checkU, report.checkV, report.controlPoints, report.refinements);
+    // A reused fit's evaluations are the reuse check's own (docs/nurbs.md: its check grid), not a
+    // refit's: said so, lest a user take a reused fit for a fresh one.
     note(where.str() + ": " + line + (deformation->fromCache ? ", reused from an earlier frame or sweep point" : "") +
-         (function ? ", " + std::to_string(function->calls()) + " field evaluations" : ""));
+         (function ? ", " + std::to_string(function->calls()) + " field evaluations" +
+                         (deformation->fromCache ? " to check it" : "")
+                   : ""));
   }
   Shape shape;
   shape.where = where;

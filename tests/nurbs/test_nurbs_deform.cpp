@@ -204,6 +204,9 @@ TEST_CASE("nurbs-deform: the scene constructor fits, reports on stderr, and refu
   };
   CHECK(countOf("Nurbs.deform: fit error") == 3);
   CHECK(countOf("reused from an earlier frame or sweep point") == 1);  // frame 1 reuses frame 0's fit; frame 2 refits
+  // The reused fit's field evaluations are the reuse check's, said so; a fresh fit's are not.
+  CHECK(countOf("field evaluations to check it") == 1);
+  CHECK(countOf("field evaluations") == 3);
   // The EXR headers say the same: a run evaluates each frame twice (to check, then to render), and
   // the second evaluation's memory hit is the frame's own fit, not a reused one (the 2026-11-27
   // audit found every frame's header saying "reused").

@@ -51,13 +51,13 @@ std::string outputStem(const std::string& camera, bool numbered, int frame) {
   return camera + buf;
 }
 
-// Writes the calibration files (io/calibration_files.h) of a frame, with `suffix` ("" or "_0003").
-void writeCalibration(const std::string& dir, const PreparedScene& prepared, const std::string& suffix,
-                      bool verbose) {
+// Writes the calibration files (io/calibration_files.h) of a frame, with `suffix` ("" or "_0003");
+// returns the line naming them.
+std::string writeCalibration(const std::string& dir, const PreparedScene& prepared, const std::string& suffix) {
   std::string list;
   for (const std::string& path : writeCalibrationFiles(dir, calibrationFiles(prepared, suffix)))
     list += (list.empty() ? "" : ", ") + path;
-  if (verbose) std::printf("calibration: %s\n", list.c_str());
+  return "calibration: " + list + "\n";
 }
 
 // `again`: the frame was evaluated by checkFrames already, whose prints the user saw.
@@ -246,8 +246,10 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
   const OutputInfo info = frameInfo(job, rendered, scene);
   std::string lines;
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
-  if (first || calibrationPerFrame)
-    writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "", job.verbose);
+  if (first || calibrationPerFrame) {
+    const std::string line = writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "");
+    if (job.verbose) lines += line;
+  }
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
     const Camera& cam = scene.cameras[c].camera;
     const CameraImage& image = result.cameras[c];

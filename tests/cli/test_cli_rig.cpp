@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 
 #include "run_cli.h"
@@ -69,6 +70,36 @@ TEST_CASE("cli: moving cameras get calibration files per frame") {
                                                         "rig_0002.dice.xml", "rig_0002.yml",
                                                         "rig_0003.dice.xml", "rig_0003.yml"});
   CHECK(test::readBytes(dir.file("out/rig_0002.yml")) != test::readBytes(dir.file("out/rig_0003.yml")));
+  // Written by four writers at once (a many-core machine's default, job/output_writers.h): the
+  // files of one writer, and each frame's calibration line before its images', frames in order.
+  auto renderWith = [&](const char* writers) {
+    setenv("DICSYNTH_WRITERS", writers, 1);  // inherited by the child
+    const test::CliResult w = runCli("render " + scene + " -o " + dir.file(std::string("writers") + writers) +
+                                     " --frames 0:4 --spp 1 --backend cpu -D moving=true");
+    unsetenv("DICSYNTH_WRITERS");
+    return w;
+  };
+  REQUIRE(renderWith("1").exitCode == 0);
+  const test::CliResult four = renderWith("4");
+  INFO(four.err);
+  REQUIRE(four.exitCode == 0);
+  std::size_t at = 0;
+  for (int frame = 0; frame <= 4; ++frame) {
+    const std::size_t calibration =
+        four.out.find("calibration: " + dir.file("writers4/rig.left_000") + std::to_string(frame) + ".yml");
+    const std::size_t image = four.out.find(dir.file("writers4/rig.left_000") + std::to_string(frame) + ".tif");
+    CHECK(calibration != std::string::npos);
+    CHECK(image != std::string::npos);
+    CHECK((calibration >= at && image > calibration));
+    at = image == std::string::npos ? at : image;
+  }
+  std::size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir.file("writers1"))) {
+    INFO(e.path().filename().string());
+    CHECK(test::readBytes(e.path().string()) == test::readBytes(dir.file("writers4/" + e.path().filename().string())));
+    ++files;
+  }
+  CHECK(files == 5 * 8);  // per frame: 4 calibration files, 2 TIFFs, 2 EXRs
 }
 
 TEST_CASE("cli: a rig error in one frame stops the run before any file, a failed write leaves none") {

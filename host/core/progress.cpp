@@ -21,10 +21,10 @@ double ProgressBar::elapsedSeconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
-void ProgressBar::update(std::int64_t done, const std::string& extra) {
+void ProgressBar::update(std::int64_t done, const std::string& extra, std::int64_t instant) {
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double rate = elapsed > 0 ? double(done) / elapsed : 0;
+  const double rate = elapsed > 0 ? double(std::max<std::int64_t>(done - instant, 0)) / elapsed : 0;
   const bool finished = done >= total_;
   std::string tail = std::to_string(done) + "/" + std::to_string(total_) + " " + unit_;
   char numbers[96];

@@ -16,8 +16,10 @@ class ProgressBar {
   static constexpr double kQuietSeconds = 10;
   // `unit`: what is counted, plural ("frames", "points"). `terminal`: stderr is a terminal.
   ProgressBar(std::string label, std::string unit, std::int64_t total, bool terminal);
-  // `done` of the total are finished; `extra` is appended (e.g. "12.3 img/s").
-  void update(std::int64_t done, const std::string& extra = "");
+  // `done` of the total are finished; `extra` is appended (e.g. "12.3 img/s"). `instant` of the
+  // `done` took no work (a resumed sweep's points already complete): the rate and the ETA count
+  // the others only (a resumed sweep's ETA was half the time left: sweep audit, 2026-11-28).
+  void update(std::int64_t done, const std::string& extra = "", std::int64_t instant = 0);
   double elapsedSeconds() const;  // since construction
 
  private:

@@ -160,7 +160,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     else if (calibration != firstCalibration) out.calibrationPerFrame = true;
   }
   if (bar) bar->update(std::int64_t(job.frames.size()));
-  unread.check(job.sceneFile, job.sweepParameters);
+  if (job.requireDefinesRead) unread.check(job.sceneFile, job.sweepParameters);
   checkLayersProducible(job.layers, sources);
   // A frame is written while the next renders: two frames' worth.
   const std::uint64_t need = 2 * out.maxPixelsPerFrame * kBytesPerPixelInFlight;

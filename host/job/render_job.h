@@ -70,6 +70,9 @@ struct RenderJob {
   bool numbered = false;          // --frames given: files carry _<frame>
   std::vector<std::pair<std::string, std::string>> defines;  // -D (and a sweep point's values)
   std::vector<std::string> sweepParameters;                  // which defines come from a sweep
+  // Refuse a define that no frame reads. A sweep checks its first point only: a later point may
+  // leave a parameter unread (a branch of the scene), which the first point read.
+  bool requireDefinesRead = true;
   std::optional<std::uint32_t> seed;                         // overrides --seed (sweep --seed-per-point)
   std::optional<int> spp;                                    // overrides --spp (the Python module)
   bool verbose = true;            // print one line per written camera and the calibration files

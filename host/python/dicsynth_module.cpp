@@ -52,6 +52,7 @@
 #include "io/calibration_files.h"
 #include "io/opencv_camera.h"
 #include "io/outputs.h"
+#include "scene/define_value.h"
 #include "scene/scene.h"
 
 namespace py = pybind11;
@@ -132,7 +133,7 @@ std::string defineText(const py::handle& value, const std::string& name) {
   if (py::isinstance<py::float_>(value) || (!PyComplex_Check(value.ptr()) && py::hasattr(value, "__float__"))) {
     const double v = py::float_(py::reinterpret_borrow<py::object>(value));
     if (!std::isfinite(v)) throw InputError("defines['" + name + "']: " + shortestNumber(v) + " is not a finite number");
-    return exactNumber(v);
+    return defineNumberText(v);  // a float beyond 2^53 stays a float, as -D's 1e16 (scene/define_value.h)
   }
   throw py::type_error("defines['" + name + "']: a number, a bool or a str, got " + std::string(py::str(value.get_type())));
 }

@@ -23,6 +23,7 @@
 
 #include "core/option_names.h"
 #include "scene/constructors.h"
+#include "scene/define_value.h"
 #include "scene/lua_sandbox.h"
 #include "scene/lua_values.h"
 #include "scene/scene.h"
@@ -111,14 +112,6 @@ int readDefine(lua_State* L) {
   return 1;
 }
 
-void pushDefineValue(lua_State* L, const std::string& value) {
-  if (lua_stringtonumber(L, value.c_str()) == value.size() + 1) return;  // whole text a number
-  if (value == "true" || value == "false")
-    lua_pushboolean(L, value == "true");
-  else
-    lua_pushlstring(L, value.data(), value.size());
-}
-
 // Checks the defines and installs _G's metatable. Runs before the scene (limits not enforced).
 void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::string>>& defines) {
   lua_newtable(L);  // name → value
@@ -144,7 +137,7 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
     const bool twice = !lua_isnil(L, -1);
     lua_pop(L, 1);
     if (twice) throw InputError(option + "defined twice");
-    pushDefineValue(L, value);
+    if (!pushDefineValue(L, value)) throw InputError(option + "'" + value + "' is a number that is not finite");
     lua_setfield(L, values, name.c_str());
   }
   lua_newtable(L);  // names read
@@ -240,9 +233,11 @@ void checkRigCamerasNotGlobals(const RigGlobal& rig,
 // objects and lights leave the scene: as file names (<camera>_<frame>.exr, <rig>.yml, written in
 // the output folder: a '/' or a leading '.' would write beside it, over "." or "..", or as one of
 // the run's hidden temporary files), as entries of comma-separated lists (the EXR header's
-// dicsynth:objects) and as CSV fields (a target's features). So a name is refused, before any
-// work, when it is empty, begins with '.', or holds '/', ',', '"' or a control character. Returns
-// what is wrong, or "" for a good name.
+// dicsynth:objects), as CSV fields (a target's features) and in the sweep manifest's
+// space-separated file list (a camera "left cam" split into two paths that do not exist: sweep
+// audit of 2026-11-28). So a name is refused, before any work, when it is empty, begins with '.',
+// or holds '/', ',', '"', a space or a control character. Returns what is wrong, or "" for a
+// good name.
 std::string nameProblem(const std::string& name) {
   if (name.empty()) return "is empty";
   if (name[0] == '.') return "begins with '.'";
@@ -250,6 +245,7 @@ std::string nameProblem(const std::string& name) {
     const auto u = static_cast<unsigned char>(c);
     if (u < 0x20 || u == 0x7f) return "holds a control character";
     if (c == '/' || c == ',' || c == '"') return std::string("holds '") + c + "'";
+    if (c == ' ') return "holds a space";
   }
   return "";
 }

@@ -4,9 +4,9 @@
 #include <set>
 #include <string>
 
-#include "core/exact_number.h"
 #include "core/json.h"
 #include "scene/constructors.h"
+#include "scene/define_value.h"
 #include "scene/lua_values.h"
 #include "scene/sweep_declaration.h"
 
@@ -14,7 +14,7 @@ namespace dicsynth {
 
 std::string SweepValue::defineText() const {
   switch (kind) {
-    case Kind::Number: return exactNumber(number);
+    case Kind::Number: return defineNumberText(number);
     case Kind::Boolean: return boolean ? "true" : "false";
     case Kind::String: return text;
   }
@@ -23,7 +23,8 @@ std::string SweepValue::defineText() const {
 
 std::string SweepValue::json() const {
   switch (kind) {
-    case Kind::Number: return json::number(number);
+    // −0 as "-0.0": JSON readers take "-0" for the integer 0 (Python's json does), losing the sign.
+    case Kind::Number: return number == 0 && std::signbit(number) ? "-0.0" : json::number(number);
     case Kind::Boolean: return json::boolean(boolean);
     case Kind::String: return json::quote(text);
   }
@@ -68,6 +69,10 @@ SweepValue readValue(lua_State* L, int index, const std::string& function, const
     case LUA_TNUMBER:
       v.number = lua_tonumber(L, index);
       if (!std::isfinite(v.number)) fail(function, what + " must be finite, got " + formatNumber(v.number));
+      // Held as a double: an integer beyond 2^53 would reach the scene rounded (scene/define_value.h).
+      if (lua_isinteger(L, index) && !integerExactInDouble(lua_tointeger(L, index)))
+        fail(function, what + " = " + std::to_string(lua_tointeger(L, index)) +
+                           ": a sweep holds its numbers as doubles, exact for integers up to 2^53 (pass a larger integer with -D)");
       return v;
     case LUA_TBOOLEAN:
       v.kind = SweepValue::Kind::Boolean;
@@ -76,8 +81,19 @@ SweepValue readValue(lua_State* L, int index, const std::string& function, const
     case LUA_TSTRING: {
       std::size_t length = 0;
       const char* s = lua_tolstring(L, index, &length);
-      v.kind = SweepValue::Kind::String;
       v.text.assign(s, length);
+      // A string that reads as a number arrives as that number (scene/define_value.h): it is held,
+      // keyed and written in the manifest as the number, not as the text ("0x10" and 16 are one point).
+      if (const auto n = readDefineNumber(v.text)) {
+        if (!std::isfinite(n->value)) fail(function, what + " = '" + v.text + "' is a number that is not finite");
+        if (n->integerLiteral && !integerExactInDouble(n->integer))
+          fail(function, what + " = '" + v.text +
+                             "': a sweep holds its numbers as doubles, exact for integers up to 2^53 (pass a larger integer with -D)");
+        v.number = n->value;
+        v.text.clear();
+        return v;
+      }
+      v.kind = SweepValue::Kind::String;
       return v;
     }
     default:
@@ -191,6 +207,10 @@ int random(lua_State* L) {
       if (!(r.lo < r.hi))
         fail("random", what + " = {" + formatNumber(r.lo) + ", " + formatNumber(r.hi) +
                            "} is an empty range (lo must be < hi)");
+      // lo + (hi − lo)·u with hi − lo infinite gives every point the same value (sweep audit).
+      if (!std::isfinite(r.hi - r.lo))
+        fail("random", what + " = {" + formatNumber(r.lo) + ", " + formatNumber(r.hi) +
+                           "}: hi - lo overflows a double, a range this wide cannot be drawn uniformly");
       d.ranges.push_back(r);
     }
   });

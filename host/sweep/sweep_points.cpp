@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/json.h"
+#include "scene/define_value.h"
 #include "scene/scene.h"
 #include "shared/rng.h"
 
@@ -19,15 +20,21 @@ bool isIdentifier(const std::string& name) {
   return std::all_of(name.begin(), name.end(), [&](char c) { return letter(c) || (c >= '0' && c <= '9'); });
 }
 
-std::optional<double> parseNumber(const std::string& text) {
-  double v = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
-  return v;
+// A number of --sweep as Lua reads it, with -D's rule (scene/define_value.h): nullopt for text
+// that is no number; a number the sweep cannot hold exactly (not finite, an integer beyond 2^53)
+// is refused, `option` naming the entry.
+std::optional<double> parseNumber(const std::string& text, const std::string& option) {
+  const auto n = readDefineNumber(text);
+  if (!n) return std::nullopt;
+  if (!std::isfinite(n->value)) throw InputError(option + "'" + text + "' is a number that is not finite");
+  if (n->integerLiteral && !integerExactInDouble(n->integer))
+    throw InputError(option + "'" + text + "': a sweep holds its numbers as doubles, exact for integers up to 2^53 " +
+                     "(pass a larger integer with -D)");
+  return n->value;
 }
 
-SweepValue parseValue(const std::string& text) {
-  if (auto n = parseNumber(text)) return SweepValue::ofNumber(*n);
+SweepValue parseValue(const std::string& text, const std::string& option) {
+  if (auto n = parseNumber(text, option)) return SweepValue::ofNumber(*n);
   if (text == "true" || text == "false") return {SweepValue::Kind::Boolean, 0, text == "true", {}};
   return {SweepValue::Kind::String, 0, false, text};
 }
@@ -81,18 +88,25 @@ SweepDeclaration parseSweepOptions(const SweepOptions& options) {
     const std::string name = entry.substr(0, eq), spec = entry.substr(eq + 1);
     const auto colons = split(spec, ':');
     if (d.kind == SweepDeclaration::Kind::Random) {
-      const auto lo = colons.size() == 2 ? parseNumber(colons[0]) : std::nullopt;
-      const auto hi = colons.size() == 2 ? parseNumber(colons[1]) : std::nullopt;
+      const auto lo = colons.size() == 2 ? parseNumber(colons[0], option) : std::nullopt;
+      const auto hi = colons.size() == 2 ? parseNumber(colons[1], option) : std::nullopt;
       if (!lo || !hi) throw InputError(option + "with --random, expected NAME=LO:HI (numbers)");
       if (!(*lo < *hi)) throw InputError(option + "empty range (LO must be < HI)");
+      // lo + (hi − lo)·u with hi − lo infinite gave every point the same value (the sweep audit:
+      // -1e308:1e308, five points of 9.9999999999999981e+307).
+      if (!std::isfinite(*hi - *lo))
+        throw InputError(option + "HI - LO overflows a double: a range this wide cannot be drawn uniformly");
       d.ranges.push_back({name, *lo, *hi});
       continue;
     }
     SweepAxis axis{name, {}};
     if (colons.size() == 3) {
-      const auto a = parseNumber(colons[0]), b = parseNumber(colons[1]);
+      const auto a = parseNumber(colons[0], option), b = parseNumber(colons[1], option);
       long long n = 0;
       const auto r = std::from_chars(colons[2].data(), colons[2].data() + colons[2].size(), n);
+      const auto count = readDefineNumber(colons[2]);  // "1e20": too many, not "no integer"
+      if (a && b && count && count->value > double(kMaxSweepPoints) && count->value == std::floor(count->value))
+        throw InputError(option + "N is more than " + std::to_string(kMaxSweepPoints));
       if (!a || !b || r.ec != std::errc() || r.ptr != colons[2].data() + colons[2].size())
         throw InputError(option + "expected A:B:N (numbers A, B and an integer N)");
       if (n < 1) throw InputError(option + "N = " + std::to_string(n) + " gives an empty range (N must be >= 1)");
@@ -103,7 +117,7 @@ SweepDeclaration parseSweepOptions(const SweepOptions& options) {
     } else if (colons.size() == 1) {
       for (const std::string& v : split(spec, ',')) {
         if (v.empty()) throw InputError(option + "empty value in the list (write V1,V2,...)");
-        axis.values.push_back(parseValue(v));
+        axis.values.push_back(parseValue(v, option));
       }
     } else {
       throw InputError(option + "expected A:B:N or V1,V2,... (LO:HI needs --random COUNT)");

@@ -21,7 +21,9 @@
 #include "core/warning.h"
 #include "core/worker_pool.h"
 #include "job/output_writers.h"
+#include "scene/define_value.h"
 #include "job/render_job.h"
+#include "model/layers.h"
 #include "shared/rng.h"
 #include "sweep/manifest.h"
 #include "sweep/point_record.h"
@@ -135,15 +137,16 @@ std::string keyDifference(const std::string& recorded, const KeyFields& now) {
   return out;
 }
 
-// Progress (core/progress.h): the points done of this shard, and the images written per second.
+// Progress (core/progress.h): the points done of this shard, and the images (cameras × frames)
+// rendered per second; the points/s and the ETA count the points rendered, not those skipped.
 class Progress {
  public:
   Progress(std::int64_t total, bool terminal) : bar_("sweep", "points", total, terminal) {}
-  void update(std::int64_t done, std::int64_t /*rendered*/, std::int64_t images) {
+  void update(std::int64_t done, std::int64_t skipped, std::int64_t images) {
     const double elapsed = bar_.elapsedSeconds();
     char rate[48];
     std::snprintf(rate, sizeof rate, "%.2f img/s", elapsed > 0 ? double(images) / elapsed : 0.0);
-    bar_.update(done, rate);
+    bar_.update(done, rate, skipped);
   }
 
  private:
@@ -176,8 +179,22 @@ void runSweep(const SweepRun& cmd) {
   // The key of a point: everything that determines its files. The scene enters by its content
   // (CRC-32), so editing the scene invalidates finished points; assets it loads do not enter.
   const std::string sceneText = readWholeFile(cmd.args.scenePath);
+  // -D values and --frames as the scene receives them, not as typed: -D gain=0.50 after gain=0.5,
+  // the -D options in another order, --frames 00:1 or the default --reference-frame given did
+  // render every point again and made --merge-only refuse (sweep audit, 2026-11-28). Canonical
+  // forms are the usual spellings, so keys of earlier sweeps stay the same.
+  std::vector<std::pair<std::string, std::string>> sortedDefines = defines;
+  std::sort(sortedDefines.begin(), sortedDefines.end());
   std::string definesText;
-  for (const auto& [n, v] : defines) definesText += n + "=" + v + " ";
+  for (const auto& [n, v] : sortedDefines) definesText += n + "=" + canonicalDefineText(v) + " ";
+  std::string framesText;
+  if (numbered) {
+    const std::vector<int> given = parseFrames(cmd.frames);
+    framesText = given.size() == 1 ? std::to_string(given[0])
+                                   : std::to_string(given.front()) + ":" + std::to_string(given.back());
+    if (cmd.referenceFrame && *cmd.referenceFrame != given.front())
+      framesText += " reference " + std::to_string(*cmd.referenceFrame);
+  }  // without --frames, frame 0 is the only frame and the reference
   const KeyFields commonFields = {
       {"scene_crc32", std::to_string(sweep::crc32Of(sceneText))},
       {"spp", std::to_string(cmd.args.spp)},
@@ -185,8 +202,9 @@ void runSweep(const SweepRun& cmd) {
       {"max_error_px", exactNumber(cmd.args.maxErrorPx)},
       {"downscale", std::to_string(cmd.args.downscale)},
       {"backend", cmd.backend},
-      // The reference frame only when given: the keys of sweeps made before the option stay the same.
-      {"frames", cmd.frames + (cmd.referenceFrame ? " reference " + std::to_string(*cmd.referenceFrame) : "")},
+      // The reference frame only when it is not the first: the keys of sweeps made before the
+      // option stay the same.
+      {"frames", framesText},
       {"defines", definesText},
       {"exr_compression", cmd.exrCompression},
       {"layers", layers.text()}};
@@ -215,6 +233,7 @@ void runSweep(const SweepRun& cmd) {
   {
     // Every frame of the first point: a parameter may be read in some frames only.
     UnreadDefines unread;
+    LayerSources sources;  // a layer the first point cannot produce is refused before the folder is made
     for (const int frame : frames) {
       SceneParams first{pointDefines(defines, plan.point(0)), frame};
       first.sweepParameters = plan.names;
@@ -222,9 +241,11 @@ void runSweep(const SweepRun& cmd) {
       first.requireDefinesRead = false;
       const Scene scene = loadScene(cmd.args.scenePath, first);
       unread.add(scene);
+      sources.add(scene);
       firstPointBytes += framePixels(scene, cmd.args.downscale) * kBytesPerPixelInFlight;
     }
     unread.check(cmd.args.scenePath, plan.names);
+    checkLayersProducible(layers, sources);
   }
   createOutputDir(cmd.outputDir);  // writable: checkOutputWritable created a file where it goes
   // A killed run's partial manifests (.manifest.csv.tmp<pid>_<n>.csv): the points' own are removed
@@ -281,8 +302,7 @@ void runSweep(const SweepRun& cmd) {
   auto collectWritten = [&](bool all) {
     for (std::size_t n = all ? writers.waitAll() : writers.waitForFree(); n > 0; --n) {
       ++rendered;
-      images += std::int64_t(frames.size());
-      progress.update(++done, rendered, images);
+      progress.update(++done, skipped + busy, images);
     }
   };
   for (std::int64_t index = shard.index; index < plan.count; index += shard.count) {
@@ -292,14 +312,14 @@ void runSweep(const SweepRun& cmd) {
     auto lock = std::make_shared<sweep::FileLock>((lockDir / (pointFolderName(p.index) + ".lock")).string(), false);
     if (!lock->acquired()) {
       ++busy;
-      progress.update(++done, rendered, images);
+      progress.update(++done, skipped + busy, images);
       continue;
     }
     const std::string key = keyOf(p);
     const auto recorded = sweep::readPointRecord(folder);
     if (recorded && recorded->index == p.index && sweep::pointFilesIntact(folder, *recorded, key, true, assets)) {
       ++skipped;
-      progress.update(++done, rendered, images);
+      progress.update(++done, skipped + busy, images);
       continue;
     }
     // A finished point made with other inputs is rendered again (its files replaced): said once, with
@@ -319,17 +339,29 @@ void runSweep(const SweepRun& cmd) {
     job->numbered = numbered;
     job->defines = pointDefines(defines, p);
     job->sweepParameters = plan.names;
+    job->requireDefinesRead = false;  // checked at the first point, before work
     job->seed = seedOf(p);
     job->verbose = false;
     job->exrCompression = cmd.exrCompression;
     job->layers = layers;
     RenderedJob result;
     try {
-      result = renderJob(session, *job);
+      try {
+        result = renderJob(session, *job);
+      } catch (const InputError& e) {
+        // Only the first point is evaluated before work: a later point's scene error stops the run
+        // here, the points before it complete. The message names the point (the sweep audit met a
+        // bare "scene.lua:2: negative shift" after two points were written).
+        std::string values;
+        for (const auto& [name, value] : p.values) values += (values.empty() ? "" : ", ") + name + "=" + value.defineText();
+        throw InputError(std::string(e.what()) + " (sweep point " + pointFolderName(p.index) + ": " + values +
+                         "; the points rendered before it are complete, and a rerun resumes after the fix)");
+      }
     } catch (...) {
       collectWritten(true);  // the points being written still complete (a writer's error, if any, wins)
       throw;
     }
+    for (const RenderedFrame& f : result.frames) images += std::int64_t(f.result.cameras.size());
     collectWritten(false);
     // Not complete: the point starts from an empty folder (a killed run may have left part of it).
     std::error_code ec;

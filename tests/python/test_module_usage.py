@@ -187,3 +187,17 @@ def test_messages_name_python_arguments_not_cli_options(tmp_path):
         dicsynth.Renderer(backend="cpu", device="0")
     assert [str(w.message) for w in said] == ['device 0 is not used: the CPU backend (backend="cpu") renders on the CPU, '
                                               'with no Vulkan device']
+
+
+def test_defines_arrive_as_cli_and_sweep_values_do(tmp_path):
+    """Python's defines follow -D's and the sweep's rule (scene/define_value.h): 3.0 is the Lua
+    integer 3 (as the sweep gives it; "tex_" .. size named another file before), a float beyond
+    2^53 stays a float, an int keeps its exact value, -0.0 its sign."""
+    scene = write(str(tmp_path), "types.lua",
+                  "camera = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+                  "assert(math.type(n) == kind, tostring(n) .. ' is ' .. tostring(math.type(n)))\n"
+                  "assert('v' .. tostring(n) == want, tostring(n))\n")
+    for value, kind, want in [(3.0, "integer", "3"), (np.float32(2.0), "integer", "2"), (0.5, "float", "0.5"),
+                              (1e16, "float", "1e+16"), (2**53 + 1, "integer", "9007199254740993"),
+                              (-0.0, "float", "-0.0")]:
+        dicsynth.Scene(scene, defines={"n": value, "kind": kind, "want": "v" + want})

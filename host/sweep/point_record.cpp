@@ -166,25 +166,30 @@ std::optional<PointRecord> readPointRecord(const std::string& folder) {
 }
 
 bool pointFilesIntact(const std::string& folder, const PointRecord& record, const std::string& key,
-                      bool verifyChecksums, AssetChecksums& assets) {
-  if (record.key != key) return false;
+                      bool verifyChecksums, AssetChecksums& assets, std::string* why) {
+  auto fail = [why](std::string reason) {
+    if (why) *why = std::move(reason);
+    return false;
+  };
+  if (record.key != key) return fail("it was rendered with other inputs");
   for (const PointFile& a : record.assets) {
     try {
       const PointFile now = assets.of(a.name);
-      if (now.bytes != a.bytes || now.crc32 != a.crc32) return false;
+      if (now.bytes != a.bytes || now.crc32 != a.crc32) return fail("the texture " + a.name + " changed since");
     } catch (const Error&) {
-      return false;  // gone or unreadable: the point cannot be as it was
+      return fail("the texture " + a.name + " cannot be read now");  // the point cannot be as it was
     }
   }
   for (const PointFile& f : record.files) {
     const fs::path path = fs::path(folder) / f.name;
     std::error_code ec;
-    if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) != f.bytes || ec) return false;
+    if (!fs::is_regular_file(path, ec)) return fail("its file " + f.name + " is missing");
+    if (fs::file_size(path, ec) != f.bytes || ec) return fail("its file " + f.name + " has another size than recorded");
     if (verifyChecksums) {
       try {
-        if (fileCrc32(path) != f.crc32) return false;
+        if (fileCrc32(path) != f.crc32) return fail("its file " + f.name + " has another CRC-32 than recorded");
       } catch (const Error&) {
-        return false;
+        return fail("its file " + f.name + " cannot be read");
       }
     }
   }

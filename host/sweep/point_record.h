@@ -76,8 +76,9 @@ std::optional<PointRecord> readPointRecord(const std::string& folder);
 
 // True when `record` has `key`, each of its files exists with the recorded size (and, when
 // verifyChecksums, the recorded CRC-32), and each of its assets still has the recorded size and
-// CRC-32 (always compared: `assets` computes each file's once).
+// CRC-32 (always compared: `assets` computes each file's once). `why`, when given, receives what
+// is not as recorded where it returns false (for the user: a texture changed, a file damaged).
 bool pointFilesIntact(const std::string& folder, const PointRecord& record, const std::string& key,
-                      bool verifyChecksums, AssetChecksums& assets);
+                      bool verifyChecksums, AssetChecksums& assets, std::string* why = nullptr);
 
 }  // namespace dicsynth::sweep

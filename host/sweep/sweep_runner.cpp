@@ -292,6 +292,7 @@ void runSweep(const SweepRun& cmd) {
   Progress progress(mine, stderrIsTerminal());
   std::int64_t done = 0, rendered = 0, skipped = 0, busy = 0, images = 0;
   std::int64_t replaced = 0;  // finished points of other inputs, rendered again
+  std::int64_t damaged = 0;   // finished points whose textures or files changed, rendered again
   const std::string host = hostName();
   // The files of a point are written (sensor, truth, files, record) on a worker thread while the
   // main thread evaluates, prepares and renders the next: at most outputWriters() points wait to be
@@ -317,11 +318,17 @@ void runSweep(const SweepRun& cmd) {
     }
     const std::string key = keyOf(p);
     const auto recorded = sweep::readPointRecord(folder);
-    if (recorded && recorded->index == p.index && sweep::pointFilesIntact(folder, *recorded, key, true, assets)) {
+    std::string why;
+    if (recorded && recorded->index == p.index && sweep::pointFilesIntact(folder, *recorded, key, true, assets, &why)) {
       ++skipped;
       progress.update(++done, skipped + busy, images);
       continue;
     }
+    // A finished point whose texture changed or whose files were damaged is rendered again: said
+    // once (the sweep audit met points re-rendered without a word after a texture was edited).
+    if (recorded && recorded->index == p.index && recorded->key == key && damaged++ == 0)
+      warn(pointFolderName(p.index) + " is rendered again: " + why +
+           " (as is every finished point whose textures or files are not as recorded)");
     // A finished point made with other inputs is rendered again (its files replaced): said once, with
     // what differs, since a forgotten option would otherwise replace a whole sweep unnoticed.
     if (recorded && recorded->index == p.index && recorded->key != key && replaced++ == 0) {

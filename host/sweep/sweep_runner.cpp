@@ -167,7 +167,8 @@ void runSweep(const SweepRun& cmd) {
   const Shard shard = resolveShard(cmd.shard);
 
   if (cmd.list) {
-    for (std::int64_t i = 0; i < plan.count; ++i) {
+    // This shard's points (--shard or Slurm's variables), as the run would render them.
+    for (std::int64_t i = shard.index; i < plan.count; i += shard.count) {
       const SweepPoint p = plan.point(i);
       std::printf("%lld %s", (long long)p.index, pointFolderName(p.index).c_str());
       for (const auto& [name, value] : p.values) std::printf(" %s=%s", name.c_str(), value.defineText().c_str());

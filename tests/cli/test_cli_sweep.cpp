@@ -332,6 +332,11 @@ TEST_CASE("cli: sweep shards write one folder safely and merge to the single-pro
   CHECK(std::filesystem::exists(dir.file("array/point_00001/point.json")));
   CHECK(std::filesystem::exists(dir.file("array/point_00004/point.json")));
   CHECK_FALSE(std::filesystem::exists(dir.file("array/point_00000")));
+  // --list lists the shard's points, as the run renders them (it listed all: sweep audit).
+  const test::CliResult listed = runCli("sweep " + scene + " -o " + dir.file("unused") + " --list --shard 1/3");
+  CHECK(listed.out ==
+        "1 point_00001 gray=0.25 shift=0.02\n"
+        "4 point_00004 gray=0.75 shift=0.02\n");
 }
 
 TEST_CASE("cli: sweep bad input: one line, exit code 2") {

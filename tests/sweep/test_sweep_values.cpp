@@ -229,19 +229,19 @@ TEST_CASE("cli: a sweep's key reads -D and --frames as the scene does") {
 TEST_CASE("cli: sweep refusals before work leave nothing, a later point's error names the point") {
   TempFolder dir;
   // A layer the scene cannot produce: exit 2 and no folder (its .locks stayed).
-  const std::string plain = dir.write(
-      "plain.lua",
-      "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
-      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {shift, 0, 0.5} } }\n");
+  // An 8 x 6 camera assigned to `camera` (a global's spelling) looking at a plate at x = `x`.
+  auto plateScene = [&](const std::string& file, const std::string& camera, const std::string& x) {
+    return dir.write(file, camera + " = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+                                    "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {" +
+                               x + ", 0, 0.5} } }\n");
+  };
+  const std::string plain = plateScene("plain.lua", "cam", "shift");
   const test::CliResult layers = runCli("sweep " + plain + " -o " + dir.file("layers") + " --backend cpu --layers disparity --sweep shift=0,0.001");
   CHECK(layers.exitCode == 2);
   CHECK(layers.err.find("disparity") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.file("layers")));
   // A camera whose name holds a space: the manifest's space-separated file list could not name its files.
-  const std::string spaced = dir.write(
-      "spaced.lua",
-      "_G['left cam'] = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
-      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {0, 0, 0.5} } }\n");
+  const std::string spaced = plateScene("spaced.lua", "_G['left cam']", "0");
   const test::CliResult space = runCli("render " + spaced + " -o " + dir.file("spaced") + " --backend cpu");
   CHECK(space.exitCode == 2);
   CHECK(space.err.find(spaced + ":1: the camera name 'left cam' holds a space") != std::string::npos);

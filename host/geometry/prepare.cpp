@@ -165,7 +165,10 @@ void checkTargetInFront(const PreparedObject& o, const Object& so, const std::ve
 }
 
 // A point that the homography sends to infinity cannot see (or light) the object.
+// An affine map keeps w = 1: it has no singular plane (a light 1e12 m away was refused for an
+// untransformed plate, its relative test failing on the coordinates' size: radiometry audit).
 void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, const std::string& what) {
+  if (isAffine(o.worldFromObject)) return;
   const dvec4 a = o.objectFromWorld * dvec4(p, 1);
   if (!(std::abs(a.w) > 1e-12 * (std::abs(a.x) + std::abs(a.y) + std::abs(a.z))))
     throw InputError(so.where, "the transform of object '" + so.name + "' sends " + what +

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "cpu/reference_renderer.h"
@@ -205,6 +206,36 @@ TEST_CASE("shading: an ambient light adds exactly rho times its radiance, unshad
   for (std::size_t i = 0; i < with.cameras[0].radiance.size(); ++i)
     worst = std::max(worst, std::abs(with.cameras[0].radiance[i] - without.cameras[0].radiance[i] - expected));
   CHECK(worst <= 1e-15);  // a few ulps of radiances below 1
+}
+
+TEST_CASE("shading: a point light 1e12 m away lights an untransformed plate as the closed form says") {
+  // A far point light stands in for a directional one. It was refused up to here with a message
+  // about a homography's singular plane on the plate's line (the radiometry audit of 2026-11-28:
+  // prepare's relative test of w = 1 against the coordinates' size). Closed form per sample at
+  // (x, y, 0.3) lit from (0, 0, −D): ρ·t/π · I cosθ / r², cosθ = (0.3 + D)/r.
+  TempFolder dir;
+  for (const double distance : {5e11, 1e12}) {
+    INFO(distance);
+    const double intensity = distance * distance;
+    char light[128];
+    std::snprintf(light, sizeof light, "sun = Light.Point { position = {0, 0, %.17g}; intensity = %.17g }\n", -distance,
+                  intensity);
+    const std::string path = dir.write("scene.lua", plateScene("Shader.Lambert { color = 1 }", light));
+    RenderOptions options;
+    options.samplesPerPixel = 1;
+    const RenderResult r = cpu::render(prepareScene(loadScene(path, {})), options);
+    // Every sample is within 0.15 m of the axis: r² = (0.3 + D)²(1 + ~1e-25), so the radiance is
+    // 0.8/π · D²/(0.3 + D)² to double's rounding, at every pixel.
+    const double expected = 0.8 / M_PI * intensity / ((0.3 + distance) * (0.3 + distance));
+    double worst = 0;
+    for (const double y : r.cameras[0].radiance) worst = std::max(worst, std::abs(y / expected - 1));
+    CHECK(worst <= 1e-14);  // a few ulps: r², r and the products of the shading formula
+  }
+  // Farther is refused at the light's own line.
+  TempFolder far;
+  checkBodyError(far, "sun = Light.Point { position = {0, -2e12, 0}; intensity = 1 }\n", 2,
+                 "Light.Point: 'position' must be within 1e12 m of the origin (a nearer light with intensity scaled by "
+                 "distance² gives the same light), got 2e+12");
 }
 
 TEST_CASE("shading: several lights add linearly, for every shader") {

@@ -34,6 +34,13 @@ std::optional<DefineNumber> readDefineNumber(const std::string& text) {
   return n;
 }
 
+std::string sweepNumberProblem(const DefineNumber& n) {
+  if (!std::isfinite(n.value)) return " is a number that is not finite";
+  if (n.integerLiteral && (n.integer > kExactInteger || n.integer < -kExactInteger))
+    return ": a sweep holds its numbers as doubles, exact for integers up to 2^53 (pass a larger integer with -D)";
+  return "";
+}
+
 bool arrivesAsInteger(double v) {
   return std::isfinite(v) && v == std::floor(v) && std::abs(v) <= kExactIntegerLimit && !(v == 0 && std::signbit(v));
 }

@@ -19,16 +19,19 @@ struct lua_State;
 namespace dicsynth {
 
 // 2^53: every integer up to it is a double; above it a double is not every integer.
-inline constexpr double kExactIntegerLimit = 9007199254740992.0;
-
-// An integer a sweep holds exactly (|i| <= 2^53).
-inline bool integerExactInDouble(long long i) { return i <= (1LL << 53) && i >= -(1LL << 53); }
+inline constexpr long long kExactInteger = 1LL << 53;
+inline constexpr double kExactIntegerLimit = double(kExactInteger);
 
 struct DefineNumber {
   double value = 0;
   bool integerLiteral = false;  // Lua read an integer (its exact value is `integer`)
   long long integer = 0;
 };
+
+// Why a sweep, which holds its numbers as doubles, cannot hold `n` exactly, worded to follow the
+// value in a message (" is a number that is not finite", ": a sweep holds ..."); "" where it can.
+// --sweep values and the scene's declaration refuse by it alike.
+std::string sweepNumberProblem(const DefineNumber& n);
 
 // The number Lua reads in `text` (lua_stringtonumber), if the whole text is one.
 std::optional<DefineNumber> readDefineNumber(const std::string& text);

@@ -70,9 +70,11 @@ SweepValue readValue(lua_State* L, int index, const std::string& function, const
       v.number = lua_tonumber(L, index);
       if (!std::isfinite(v.number)) fail(function, what + " must be finite, got " + formatNumber(v.number));
       // Held as a double: an integer beyond 2^53 would reach the scene rounded (scene/define_value.h).
-      if (lua_isinteger(L, index) && !integerExactInDouble(lua_tointeger(L, index)))
-        fail(function, what + " = " + std::to_string(lua_tointeger(L, index)) +
-                           ": a sweep holds its numbers as doubles, exact for integers up to 2^53 (pass a larger integer with -D)");
+      if (lua_isinteger(L, index)) {
+        const long long integer = lua_tointeger(L, index);
+        if (const std::string problem = sweepNumberProblem({v.number, true, integer}); !problem.empty())
+          fail(function, what + " = " + std::to_string(integer) + problem);
+      }
       return v;
     case LUA_TBOOLEAN:
       v.kind = SweepValue::Kind::Boolean;
@@ -85,10 +87,8 @@ SweepValue readValue(lua_State* L, int index, const std::string& function, const
       // A string that reads as a number arrives as that number (scene/define_value.h): it is held,
       // keyed and written in the manifest as the number, not as the text ("0x10" and 16 are one point).
       if (const auto n = readDefineNumber(v.text)) {
-        if (!std::isfinite(n->value)) fail(function, what + " = '" + v.text + "' is a number that is not finite");
-        if (n->integerLiteral && !integerExactInDouble(n->integer))
-          fail(function, what + " = '" + v.text +
-                             "': a sweep holds its numbers as doubles, exact for integers up to 2^53 (pass a larger integer with -D)");
+        if (const std::string problem = sweepNumberProblem(*n); !problem.empty())
+          fail(function, what + " = '" + v.text + "'" + problem);
         v.number = n->value;
         v.text.clear();
         return v;

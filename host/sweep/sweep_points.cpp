@@ -26,10 +26,8 @@ bool isIdentifier(const std::string& name) {
 std::optional<double> parseNumber(const std::string& text, const std::string& option) {
   const auto n = readDefineNumber(text);
   if (!n) return std::nullopt;
-  if (!std::isfinite(n->value)) throw InputError(option + "'" + text + "' is a number that is not finite");
-  if (n->integerLiteral && !integerExactInDouble(n->integer))
-    throw InputError(option + "'" + text + "': a sweep holds its numbers as doubles, exact for integers up to 2^53 " +
-                     "(pass a larger integer with -D)");
+  if (const std::string problem = sweepNumberProblem(*n); !problem.empty())
+    throw InputError(option + "'" + text + "'" + problem);
   return n->value;
 }
 

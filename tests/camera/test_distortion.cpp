@@ -138,18 +138,9 @@ TEST_CASE("distortion: float Newton converges to float accuracy") {
 }
 
 TEST_CASE("distortion: a distortion that folds inside the image is refused") {
-  Scene scene;
-  scene.file = "fold.lua";
-  Camera cam;
-  cam.name = "camera1";
-  cam.where = {"fold.lua", 3};
-  cam.width_px = 1600;
-  cam.height_px = 1200;
-  cam.principalPoint_px = {799.5, 599.5};
-  cam.model = cameras::Pinhole{.focalLength_m = 0.012};
-  cam.pixelSize_m = {4.4e-6, 4.4e-6};
-  cam.distortion = {DistortionKind::Brown, -4.0, 0, 0, 0, 0};  // ρ r = r − 4 r³ folds at r = 0.289
-  scene.cameras.push_back(cam);
+  // ρ r = r − 4 r³ folds at r = 0.289.
+  Scene scene = test::distortedCameraScene({"fold.lua", 3}, "camera1", 1600, 1200, 0.012, 4.4e-6,
+                                           {DistortionKind::Brown, -4.0, 0, 0, 0, 0});
   try {
     prepareScene(scene);
     FAIL("expected an InputError");

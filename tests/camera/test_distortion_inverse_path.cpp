@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "camera/distortion.h"
+#include "distortion_test_util.h"
 #include "geometry/prepared_scene.h"
 
 using namespace dicsynth;
@@ -183,21 +184,11 @@ TEST_CASE("distortion inverse: a camera prepare accepts inverts every image poin
     const Branch branch(m);
     const double cornerRadius = 0.2 + 0.8 * unit(rng);
     const double f_px = std::hypot(32.0, 24.0) / cornerRadius;
-    Scene scene;
-    scene.file = "random.lua";
-    Camera cam;
-    cam.name = "camera";
-    cam.where = {"random.lua", 1};
-    cam.width_px = 64;
-    cam.height_px = 48;
-    cam.principalPoint_px = {31.5, 23.5};
-    cam.pixelSize_m = {1e-5, 1e-5};
-    cam.model = cameras::Pinhole{.focalLength_m = f_px * 1e-5};
-    cam.distortion = {model % 2 == 1 ? DistortionKind::Rational : DistortionKind::Brown, c.k1, c.k2, c.k3, 0, 0};
-    cam.distortion.k4 = c.k4;
-    cam.distortion.k5 = c.k5;
-    cam.distortion.k6 = c.k6;
-    scene.cameras.push_back(cam);
+    Distortion distortion{model % 2 == 1 ? DistortionKind::Rational : DistortionKind::Brown, c.k1, c.k2, c.k3, 0, 0};
+    distortion.k4 = c.k4;
+    distortion.k5 = c.k5;
+    distortion.k6 = c.k6;
+    const Scene scene = test::distortedCameraScene({"random.lua", 1}, "camera", 64, 48, f_px * 1e-5, 1e-5, distortion);
     auto position = [&](double x, double y) { return glm::dvec2{(x - 31.5) / f_px, (y - 23.5) / f_px}; };
     bool isRefused = false;
     try {

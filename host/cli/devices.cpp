@@ -140,6 +140,7 @@ void printJson(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
         Json::Value p(Json::objectValue);
         p["precision"] = toString(m.precision);
         p["available"] = m.available;
+        p["unavailable"] = m.unavailable;  // why not ("" when available)
         p["mrays_per_s"] = json::value(m.mraysPerSecond);
         p["max_error_px"] = json::value(m.maxErrorPx);
         precisions.append(p);

@@ -2,7 +2,8 @@
 // `--precision auto`: which GPU precision is fastest on this device while its measured geometric
 // error stays under a bound (`--max-error-px`, default 1e-6 px). A short calibration renders one
 // small fixed scene (a curved NURBS plate and a sphere, 128 × 96 px, 2 spp) in every precision the
-// device offers (fp32; df64 if its self-test passes; fp64 if it has shaderFloat64), measures speed
+// device offers (fp32; fp64 if it has shaderFloat64; df64 if its self-test passes, and on a CPU
+// device only when fp64 is not admitted: df64NotMeasured), measures speed
 // and geometric error against the CPU reference (render/geometric_error.h), admits a precision
 // only within its own `compare` tolerances there (calibrationExcess), and caches the result per
 // device, driver and renderer build in the cache folder. The error measured there stands for
@@ -19,13 +20,14 @@ namespace dicsynth {
 namespace gpu {
 class Context;
 class Renderer;
+struct DeviceInfo;
 }  // namespace gpu
 struct PreparedScene;
 
 struct PrecisionMeasurement {
   Precision precision = Precision::Fp32;
   bool available = false;
-  std::string unavailable;   // why not (no shaderFloat64, df64 self-test failed, over its tolerances)
+  std::string unavailable;   // why not (no shaderFloat64, df64 self-test failed, over its tolerances, not measured)
   double mraysPerSecond = 0; // camera rays of the calibration scene per second (best of 2 runs)
   double maxErrorPx = 0;     // geometric error against the CPU reference, px
 };
@@ -36,6 +38,10 @@ struct PrecisionCalibration {
   std::string cachePath;  // "" without a cache folder
   double seconds = 0;     // wall time of the calibration (that of the original run when cached)
 };
+
+// Why the calibration skips df64 on this device, "" when it measures it: on a CPU device whose
+// native fp64 is admitted (fp64: its measurement), df64 cannot be faster.
+std::string df64NotMeasured(const gpu::DeviceInfo& device, const PrecisionMeasurement& fp64);
 
 // Why a precision's render of the calibration scene is not admitted, "" when it is: it must stay
 // within that precision's own tolerances against the CPU reference (render/compare.h, what

@@ -1,5 +1,6 @@
-// --precision auto: the calibration measures every precision the device offers, is cached per
-// device, and the choice is the fastest precision under the error bound.
+// --precision auto: the calibration measures every precision the device offers (df64 on a CPU
+// device only when native fp64 is not admitted), is cached per device, and the choice is the
+// fastest precision under the error bound.
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -25,6 +26,27 @@ TEST_CASE("calibration: choosePrecision takes the fastest mode under the bound")
   c.modes[2].available = false;  // no shaderFloat64
   CHECK((choosePrecision(c, 1e-6) == Precision::Df64));  // (( )): no doctest decomposition of an enum
   CHECK_THROWS_AS(choosePrecision(c, 1e-12), InputError);
+}
+
+TEST_CASE("calibration: df64 is skipped on a CPU device whose native fp64 is admitted, and only there") {
+  PrecisionMeasurement fp64{Precision::Fp64, true, "", 5.7, 3e-14};
+  gpu::DeviceInfo cpu, gpuDevice;
+  cpu.type = "CPU";
+  CHECK(df64NotMeasured(cpu, fp64) == "not measured: slower than native fp64 on a CPU device");
+  for (const char* type : {"discrete GPU", "integrated GPU", "virtual GPU", "other"}) {
+    gpuDevice.type = type;
+    CHECK(df64NotMeasured(gpuDevice, fp64).empty());
+  }
+  // No shaderFloat64, or fp64 over its tolerances: df64 is the only precision left for 1e-6 px.
+  fp64.available = false;
+  CHECK(df64NotMeasured(cpu, fp64).empty());
+  PrecisionCalibration c;
+  c.modes = {{Precision::Fp32, true, "", 9.0, 2e-5}, {Precision::Df64, false, df64NotMeasured(cpu, {Precision::Fp64, true, "", 5.7, 3e-14}), 0, 0},
+             {Precision::Fp64, true, "", 5.7, 3e-14}};
+  CHECK(describeCalibration(c) ==
+        "fp32 9 Mrays/s, error 2e-05 px, df64 not measured: slower than native fp64 on a CPU device, fp64 5.7 Mrays/s, "
+        "error 3e-14 px");
+  CHECK((choosePrecision(c, 1e-6) == Precision::Fp64));  // (( )): no doctest decomposition of an enum
 }
 
 TEST_CASE("calibration: a precision over its own tolerances is not admitted") {
@@ -70,6 +92,12 @@ TEST_CASE("calibration: measured on the device, cached, and read back") {
   REQUIRE(first.modes.size() == 3);
   CHECK_FALSE(first.fromCache);
   REQUIRE(std::filesystem::exists(first.cachePath));
+  // lavapipe is a CPU device with shaderFloat64: df64 is not measured there once fp64 is admitted.
+  if (context.info().type == "CPU" && first.modes[2].available) {
+    CHECK_FALSE(first.modes[1].available);
+    CHECK(first.modes[1].unavailable == df64NotMeasured(context.info(), first.modes[2]));
+    CHECK(first.modes[1].mraysPerSecond == 0);
+  }
   for (const PrecisionMeasurement& m : first.modes) {
     if (!m.available) continue;
     CHECK(m.mraysPerSecond > 0);
@@ -82,6 +110,7 @@ TEST_CASE("calibration: measured on the device, cached, and read back") {
   for (std::size_t k = 0; k < 3; ++k) {
     CHECK(second.modes[k].mraysPerSecond == first.modes[k].mraysPerSecond);  // 17 digits: exact
     CHECK(second.modes[k].maxErrorPx == first.modes[k].maxErrorPx);
+    CHECK(second.modes[k].unavailable == first.modes[k].unavailable);
   }
   // Now `auto` is known from the cache, as resolvePrecision will choose; not when no precision
   // meets the bound (resolvePrecision then says why).

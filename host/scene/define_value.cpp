@@ -47,8 +47,11 @@ bool arrivesAsInteger(double v) {
 
 std::string defineNumberText(double v) {
   if (arrivesAsInteger(v)) return std::to_string(static_cast<long long>(v));
-  std::string text = exactNumber(v);
-  // "10000000000000000" or "-0" would read as integers: a float is written with a point.
+  // The shortest text that reads back as v ("0.1", not %.17g's "0.10000000000000001"): exact, and
+  // the spelling people type, so a -D key of an earlier sweep, which held the text as typed, stays
+  // the same for it, and the manifest and --list read as the values were given.
+  std::string text = shortestNumber(v);
+  // "-0" would read as an integer: a float is written with a point or an exponent.
   if (std::isfinite(v) && text.find_first_of(".e") == std::string::npos) text += ".0";
   return text;
 }

@@ -39,8 +39,9 @@ std::optional<DefineNumber> readDefineNumber(const std::string& text);
 // Whether a number arrives as a Lua integer (integral, |v| <= 2^53, not −0).
 bool arrivesAsInteger(double v);
 
-// The text of a number that arrives as `v` itself: "3" for an integral value, a float's exact
-// digits otherwise, written so that Lua reads a float ("1e+16", "-0.0", "0.10000000000000001").
+// The text of a number that arrives as `v` itself: "3" for an integral value, otherwise the
+// shortest text that reads back as the same double, written so that Lua reads a float ("1e+16",
+// "-0.0", "0.1").
 std::string defineNumberText(double v);
 
 // The usual spelling of the value `text` stands for: "0.5" for "0.50", "16" for "0x10" or "16.0",

@@ -47,7 +47,7 @@ struct SweepValue {
   std::string text;
 
   static SweepValue ofNumber(double v) { return {Kind::Number, v, false, {}}; }
-  // The text a -D define would carry to give the scene this value (numbers exact, %.17g).
+  // The text a -D define would carry to give the scene this value (numbers exact, shortest).
   std::string defineText() const;
   std::string json() const;  // 0.01, true, "abc"
   bool operator==(const SweepValue&) const = default;

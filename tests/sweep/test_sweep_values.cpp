@@ -94,6 +94,16 @@ TEST_CASE("define values: one rule for what -D, sweeps and Python hand the scene
   CHECK(canonicalDefineText("9007199254740993") == "9007199254740993");
   CHECK(canonicalDefineText("abc") == "abc");
   CHECK(canonicalDefineText("true") == "true");
+  // The shortest text that reads back exactly: what people type, so the -D key of a sweep made
+  // before canonical keys (which held the text as typed) stays the same for it; %.17g gave
+  // "0.10000000000000001" and rendered such a sweep again.
+  CHECK(canonicalDefineText("0.1") == "0.1");
+  CHECK(canonicalDefineText("2.5e-3") == "0.0025");
+  CHECK(canonicalDefineText("1e-7") == "1e-07");
+  CHECK(defineNumberText(0.1) == "0.1");
+  CHECK(defineNumberText(1e16) == "1e+16");
+  CHECK(defineNumberText(9007199254740994.0) == "9007199254740994.0");  // a float: Lua must not read an integer
+  CHECK(defineNumberText(-0.0) == "-0.0");
 
   // Round trip of a sweep's numbers (doubles) through their text: the scene gets the double
   // itself, bit for bit, as an integer exactly where the rule says. Random bit patterns (every

@@ -15,7 +15,8 @@
 //   dicsynth:R, dicsynth:t            x_cam = R·x_world + t (R row-major, t in metres)
 //   dicsynth:image_size               w h
 //   dicsynth:bits_per_pixel, :exposure, :fill_factor
-//   dicsynth:reference_frame, :disparity_camera   with the derived layers
+//   dicsynth:reference_frame          in every file render writes
+//   dicsynth:disparity_camera         rig cameras, with disparity
 //   dicsynth:sensor                   the sensor model's resolved parameters, with its layers
 //   dicsynth:deformation:<object>     a Nurbs.deform surface: its field and fit (describeDeformation)
 // Plus OpenEXR's standard worldToCamera (float 4x4, Imath row-vector convention, camera frame

@@ -463,7 +463,7 @@ PYBIND11_MODULE(dicsynth, m) {
   });
 
   py::class_<PyScene>(m, "Scene", "A scene file and its defines (the CLI's -D name=value)")
-      .def(py::init([](const py::object& pathLike, const py::dict& defines) {
+      .def(py::init([](const py::object& pathLike, const py::dict& defines, const py::object& frame) {
              // A str or any path-like object (pathlib.Path, bytes), as open() takes.
              const py::module_ os = py::module_::import("os");
              const std::string path = py::str(os.attr("fsdecode")(pathLike));
@@ -472,11 +472,14 @@ PYBIND11_MODULE(dicsynth, m) {
                const std::string name = py::str(key);
                s.defines.emplace_back(name, defineText(value, name));
              }
-             // Evaluated once now (frame 0), so that a scene error is raised here, with its FILE:LINE.
-             withWarnings([&] { return evaluate(s, 0); });
+             // Evaluated once now, so that a scene error is raised here, with its FILE:LINE; at
+             // `frame` (default 0), for a scene whose frames start later (a pose list read as
+             // poses[frame], Lua's lists counting from 1), which the CLI renders with --frames 1:N.
+             const int checked = frameNumber(frame, "frame");
+             withWarnings([&] { return evaluate(s, checked); });
              return s;
            }),
-           py::arg("path"), py::arg("defines") = py::dict())
+           py::arg("path"), py::arg("defines") = py::dict(), py::arg("frame") = 0)
       .def_readonly("path", &PyScene::path)
       .def_property_readonly("defines", [](const PyScene& s) {
         py::dict d;

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/parallel.h"
+#include "core/warning.h"
 #include "geometry/material_point.h"
 #include "nurbs/nurbs.h"
 #include "render/image_point.h"
@@ -227,8 +228,23 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
   // Motion: follow each reference pixel's material point into this frame.
   const ReferenceFrame::View* view = reference.view(camera.camera.name);
   const bool flow = layers.has(Layer::Flow);
-  if ((flow || layers.has(Layer::Disp) || layers.has(Layer::FieldError)) && view && view->width_px == image.width_px &&
-      view->height_px == image.height_px) {
+  const bool motion = flow || layers.has(Layer::Disp) || layers.has(Layer::FieldError);
+  const bool sameSize = view && view->width_px == image.width_px && view->height_px == image.height_px;
+  if (motion && !sameSize) {
+    // The motion layers are stored at the reference frame's pixels, in this frame's image: without
+    // a reference image of the same size they have no place. Said, not silent: the file lacked
+    // them without a word (the motion audit of 2026-11-28).
+    const std::string why =
+        view ? "is " + std::to_string(image.width_px) + "x" + std::to_string(image.height_px) + " px, " +
+                   std::to_string(view->width_px) + "x" + std::to_string(view->height_px) + " in the reference frame " +
+                   std::to_string(reference.frame())
+             : "is not in the reference frame " + std::to_string(reference.frame());
+    warnAtMost("motion layers without reference", 10,
+               "camera '" + camera.camera.name + "' " + why + ": frame " + std::to_string(frame) +
+                   " has no disp, flow or fieldError for it (they are stored at the reference frame's pixels)",
+               " (further cameras without motion layers not reported)");
+  }
+  if (motion && sameSize) {
     const std::size_t n = image.pixelCount();
     // The three arrays filled side by side: ~44 bytes per pixel first touched here, 0.028 s on one
     // thread for 1600 × 1200 (bench/RESULTS.md, "Truth without copies"). Small images in line.

@@ -79,3 +79,37 @@ TEST_CASE("cli: a rig whose cameras share no view warns and writes an empty disp
   // fx = 0.016 / 2e-4 = 80 px: disparity −fx·b/Z = −400 px, far outside the 20-px-wide image.
   for (float x : exr.floats.at("disparity.X")) CHECK(std::abs(x + 400) < 1e-4);
 }
+
+TEST_CASE("cli: a camera without a reference image of its size gets no motion layers, and the run says so") {
+  // disp and flow are stored at the reference frame's pixels: a camera that doubles its resolution
+  // in frame 1, or one that only frame 1 has, has no place for them. The file lacked them without
+  // a word (the motion audit of 2026-11-28); now a warning names the camera, its sizes and frames.
+  TempFolder dir;
+  const std::string scene = dir.write("resize.lua",
+      "local w = frame == 0 and 40 or 80\n"
+      "cam = Camera.Pinhole { resolution = {w, w * 3 // 4}; focalLength = 0.016; pixelSize = {8e-3 / w, 8e-3 / w} }\n"
+      "if frame == 1 then late = Camera.Pinhole { resolution = {40, 30}; focalLength = 0.016; pixelSize = {2e-4, 2e-4} } end\n"
+      "obj = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {frame * 1e-3, 0, 0.4} } }\n");
+  const test::CliResult r = runCli("render " + scene + " -o " + dir.file("out") + " --frames 0:1 --spp 1 --backend cpu");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.err.find("warning: camera 'cam' is 80x60 px, 40x30 in the reference frame 0: frame 1 has no disp, flow "
+                   "or fieldError for it") != std::string::npos);
+  CHECK(r.err.find("warning: camera 'late' is not in the reference frame 0: frame 1 has no disp") != std::string::npos);
+  CHECK(r.err.find("frame 0 has no") == std::string::npos);
+  CHECK(test::readExr(dir.file("out/cam_0000.exr")).floats.count("disp.X") == 1);
+  for (const char* file : {"out/cam_0001.exr", "out/late_0001.exr"}) {
+    CAPTURE(file);
+    const test::ExrContents exr = test::readExr(dir.file(file));
+    CHECK(exr.floats.count("disp.X") == 0);
+    CHECK(exr.floats.count("flow.X") == 0);
+    CHECK(exr.floats.count("P.X") == 1);
+  }
+  // Asked for by name: nothing to write for those images, still said why.
+  const test::CliResult named =
+      runCli("render " + scene + " -o " + dir.file("named") + " --frames 0:1 --spp 1 --backend cpu --layers disp,flow");
+  INFO(named.err);
+  REQUIRE(named.exitCode == 0);
+  CHECK(named.out.find("camera cam: no layer of --layers disp,flow exists for it: nothing written") != std::string::npos);
+  CHECK(named.err.find("warning: camera 'cam' is 80x60 px") != std::string::npos);
+}

@@ -137,6 +137,22 @@ def test_layers_errors_and_a_warm_loop():
             renderer.render(grown, frames=[0], layers=["mask"])
     finally:
         os.unlink(later.name)
+    # A scene whose frames start at 1 (a pose list read as poses[frame], Lua's lists counting from
+    # 1): Scene checks the frame it is given. It checked frame 0 only, an error the CLI's
+    # --frames 1:2 never meets (the motion audit of 2026-11-28).
+    with tempfile.NamedTemporaryFile("w", suffix=".lua", delete=False) as onebased:
+        onebased.write("local z = ({1.0, 1.2})[frame]\n"
+                       "cam = Camera.Pinhole { resolution = {160, 120}; focalLength = 0.012; pixelSize = {2e-5, 2e-5} }\n"
+                       "ball = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, z} } }\n")
+    try:
+        with pytest.raises(dicsynth.InputError, match=":3: Shape.Sphere: 'location'"):
+            dicsynth.Scene(onebased.name)
+        poses = dicsynth.Scene(onebased.name, frame=1)
+        assert sorted(renderer.render(poses, frames=[1, 2], layers=["mask"]).keys()) == [("cam", 1), ("cam", 2)]
+        with pytest.raises(dicsynth.InputError, match="frame -1: must be in 0.."):
+            dicsynth.Scene(onebased.name, frame=-1)
+    finally:
+        os.unlink(onebased.name)
     # Messages name the arguments as Python spells them, not as the CLI's options (the audit of
     # 2026-11-27 found "--downscale must be >= 1" and "-D growth" in Python's errors).
     for make, message in [(lambda: dicsynth.Renderer(backend="cpu", downscale=0), "downscale 0: must be in 1..2147483647"),

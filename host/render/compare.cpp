@@ -296,6 +296,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
             in.normalSlope = pixelSlopes.normal;
             in.epsilon = 0x1p-24;  // lib/real.glsl: shading runs in float in fp32 and df64
             in.k = tol.k;
+            in.scale = tol.scale;
             in.reflectanceMax = reflectances[obj];
             in.cameraCentre = model.centre;
             boundRadiance += lightingRadianceBound(scene, scene.objects[obj], in) * cam.exposure;
@@ -362,6 +363,7 @@ Tolerances scaledTolerances(const Tolerances& t, double factor) {
   s.uv *= factor;
   s.k *= factor;
   s.outlierFraction *= factor;
+  s.scale *= factor;
   return s;
 }
 

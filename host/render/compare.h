@@ -70,6 +70,10 @@ struct Tolerances {
   // pixels (fp32: shadow edges, box edges, uv seams); edge pixels are explained (see
   // CameraDifference). 0: no outlier anywhere, edge or not.
   double outlierFraction;
+  // --tolerance-scale (scaledTolerances): 1 for the derived bounds. The fields above carry it; this
+  // is for the terms counted in fixed roundings rather than k (the lights' inputs,
+  // render/shading_tolerance.h).
+  double scale = 1;
 };
 
 Tolerances tolerancesFor(Precision gpuPrecision);

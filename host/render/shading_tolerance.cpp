@@ -25,9 +25,12 @@ double lightingRadianceBound(const PreparedScene& scene, const PreparedObject& o
     if (l.kind == LightKind::Ambient) continue;
     const dvec3 toLight = l.position_m - in.position;
     const double r2 = glm::dot(toLight, toLight), r = std::sqrt(r2);
-    // δx of the header: the vector to the light as the float shading has it.
-    const double inputError =
-        in.positionBound_m + 2 * in.epsilon * (pointToCamera + glm::length(l.position_m - in.cameraCentre) + r);
+    // δx of the header: the vector to the light as the float shading has it. The 2 roundings are
+    // scaled by --tolerance-scale as k is (δP is already): unscaled, a strict check of a lit scene
+    // kept this term whole and passed differences 1e5 times its printed tolerance (the compare
+    // audit of 2026-11-28).
+    const double inputError = in.positionBound_m + 2 * in.scale * in.epsilon *
+                                                       (pointToCamera + glm::length(l.position_m - in.cameraCentre) + r);
     const double directionError = own + inputError / r;
     double perLight = diffuseMax * (3 * inputError / r + in.normalSlope * in.positionBound_m);
     if (model.specular) perLight += lobe.maxValue * lobe.slope * (4 * normalError + 3 * directionError);

@@ -41,6 +41,7 @@ struct ShadingErrorInputs {
   double k = 0;                // roundoff steps allowed per quantity (compare.cpp's k)
   double reflectanceMax = 1;   // largest albedo × texture of the object (reflectanceMax below)
   dvec3 cameraCentre{0};       // C: the GPU's coordinates are relative to it (gpu/pack.h)
+  double scale = 1;            // --tolerance-scale: multiplies the inputs' fixed roundings as k does the rest
 };
 
 // Largest diffuse reflectance albedo × texture of o (scans a file texture: compute once per object).

@@ -119,6 +119,22 @@ TEST_CASE("cli: compare reports a difference over a tightened tolerance as a JUn
   CHECK(runCli("compare " + kScenes + "triangle.lua" + kFast + " --precision fp32").exitCode == 0);
 }
 
+TEST_CASE("cli: --tolerance-scale tightens the lights' share of the radiance tolerance too") {
+  // triangle.lua is lit by a point light; df64 shades in float (lib/real.glsl), ~1e-7 of full scale
+  // off the double reference on any device. Scaled by 1e-6 the tolerance is ~1e-12: every lit
+  // pixel is over it. The lights' input roundings were left unscaled (~1e-6 of full scale here),
+  // and 0 pixels were counted over (the compare audit of 2026-11-28).
+  const test::CliResult r =
+      runCli("compare " + kScenes + "triangle.lua" + kFast + " --precision df64 --tolerance-scale 1e-6 --json");
+  INFO(r.out << r.err);
+  CHECK(r.exitCode == 1);
+  const auto result = json::parse(r.out);
+  REQUIRE(result.has_value());
+  const Json::Value& camera = (*result)["cameras"]["camera"];
+  CHECK(camera["max_radiance_diff"].asDouble() > 1e-9);
+  CHECK(camera["radiance_outliers"].asUInt64() > 100);
+}
+
 TEST_CASE("cli: compare reports a broken scene as a JUnit error and goes on, exit 2") {
   TempFolder dir;
   copyScenes(dir);

@@ -38,7 +38,7 @@ std::string tempName(const std::filesystem::path& finalPath, unsigned long long 
 
 }  // namespace
 
-std::size_t removeStaleTemporaries(const std::string& dir) {
+std::size_t removeStaleTemporaries(const std::string& dir, std::chrono::seconds minAge) {
   std::size_t removed = 0;
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
@@ -54,7 +54,10 @@ std::size_t removeStaleTemporaries(const std::string& dir) {
       if (counterEnd == pidEnd + 1) continue;
       const pid_t pid = static_cast<pid_t>(std::stol(name.substr(i, pidEnd - i)));
       const bool gone = ::kill(pid, 0) != 0 && errno == ESRCH;
-      if (gone && entry.is_regular_file(ec) && std::filesystem::remove(entry.path(), ec)) ++removed;
+      const auto modified = entry.last_write_time(ec);
+      const bool old = minAge.count() == 0 ||
+                       (!ec && std::filesystem::file_time_type::clock::now() - modified > minAge);
+      if (gone && old && entry.is_regular_file(ec) && std::filesystem::remove(entry.path(), ec)) ++removed;
       break;
     }
   }

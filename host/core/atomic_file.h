@@ -1,5 +1,6 @@
 #pragma once
 // Write-then-rename: a file appears under its final name complete or not at all.
+#include <chrono>
 #include <cstddef>
 #include <cstdio>
 #include <string>
@@ -31,9 +32,15 @@ class AtomicFile {
 };
 
 // Removes from `dir` (not below) the temporary files of AtomicFiles whose process is gone (a run
-// killed while writing): ".<name>.tmp<pid>_<n><.ext>" with no live process <pid> on this machine.
-// Returns how many were removed; errors are ignored (another run may clean at the same time).
-std::size_t removeStaleTemporaries(const std::string& dir);
+// killed while writing): ".<name>.tmp<pid>_<n><.ext>" with no live process <pid> on this machine,
+// and, when minAge > 0, not modified for minAge. Returns how many were removed; errors are ignored
+// (another run may clean at the same time).
+std::size_t removeStaleTemporaries(const std::string& dir, std::chrono::seconds minAge = std::chrono::seconds(0));
+
+// minAge for folders that processes on other machines may write too (a cache folder in a home
+// shared by cluster nodes), where a process not on this machine is not a process gone: a writer
+// there keeps its temporary's modification time fresh; an hour untouched is a killed run's.
+inline constexpr std::chrono::seconds kCacheTemporaryAge{3600};
 
 // Writes `file`'s temporary file piece by piece, for text too large to build in memory first (a
 // sweep's manifest grows with its points). Commit the AtomicFile after close().

@@ -2,17 +2,16 @@
 // File textures prepared once per process: a sweep renders the same texture at every point, and
 // reading plus B-spline prefiltering a 4096×2048 texture costs about a second on this machine
 // (bench/RESULTS.md, "Sweeps"). An entry is keyed by the path and the interpolation (the prefiltered
-// coefficients depend on the kernel) and checked against the file's size and modification time, so a
-// texture edited during a run is read again. Optionally backed by a TextureDiskCache, which keeps
+// coefficients depend on the kernel) and checked against the file's stamp (core/file_stamp.h), so a
+// texture edited during a run or between a Renderer's renders is read again. Optionally backed by a TextureDiskCache, which keeps
 // large prepared textures across processes.
-#include <cstdint>
-#include <filesystem>
 #include <map>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
 
+#include "core/file_stamp.h"
 #include "geometry/prepared_scene.h"
 #include "geometry/texture_disk_cache.h"
 
@@ -27,14 +26,14 @@ class TextureCache {
   // The prepared texture of `path` with `interpolation` when cached and the file is unchanged. It
   // shares the cached coefficient array (PreparedTexture::coefficients): nothing is copied.
   std::optional<PreparedTexture> find(const std::string& path, Interpolation interpolation) const {
-    const auto stamp = stampOf(path);
+    const auto stamp = fileStamp(path);
     std::lock_guard lock(mutex_);
     const auto it = entries_.find({path, interpolation});
     if (!stamp || it == entries_.end() || it->second.stamp != *stamp) return std::nullopt;
     return it->second.texture;
   }
   void insert(const PreparedTexture& texture) {
-    const auto stamp = stampOf(texture.path);
+    const auto stamp = fileStamp(texture.path);
     if (!stamp) return;
     std::lock_guard lock(mutex_);
     entries_[{texture.path, texture.interpolation}] = {*stamp, texture};
@@ -45,23 +44,10 @@ class TextureCache {
   }
 
  private:
-  struct Stamp {
-    std::uintmax_t bytes = 0;
-    std::filesystem::file_time_type modified;
-    bool operator==(const Stamp&) const = default;
-  };
   struct Entry {
-    Stamp stamp;
+    FileStamp stamp;
     PreparedTexture texture;
   };
-  static std::optional<Stamp> stampOf(const std::string& path) {
-    std::error_code ec;
-    Stamp s{std::filesystem::file_size(path, ec), {}};
-    if (ec) return std::nullopt;
-    s.modified = std::filesystem::last_write_time(path, ec);
-    if (ec) return std::nullopt;
-    return s;
-  }
   TextureDiskCache disk_{"", 0};  // none unless given
   mutable std::mutex mutex_;  // a sweep prepares on a worker thread
   std::map<std::pair<std::string, Interpolation>, Entry> entries_;

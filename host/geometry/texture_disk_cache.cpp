@@ -16,6 +16,7 @@
 
 #include "core/atomic_file.h"
 #include "core/cache_dir.h"
+#include "core/cache_file.h"
 #include "core/env_count.h"
 #include "core/error.h"
 #include "core/hex.h"
@@ -124,8 +125,15 @@ std::optional<PreparedTexture> TextureDiskCache::find(const std::string& digest,
                                                       Interpolation interpolation) const {
   if (!enabled() || digest.empty()) return std::nullopt;
   const std::string file = fileFor(digest, interpolation);
-  File in(std::fopen(file.c_str(), "rb"));
-  if (!in) return std::nullopt;
+  // A regular file no larger than the folder may hold (core/cache_file.h: a FIFO there waited
+  // forever, the cache audit of 2026-11-28).
+  const std::optional<CacheFileHandle> handle = openCacheFile(file, limitBytes_);
+  if (!handle) return std::nullopt;
+  File in(::fdopen(handle->fd, "rb"));
+  if (!in) {
+    ::close(handle->fd);
+    return std::nullopt;
+  }
   FileHeader h{};
   if (std::fread(&h, sizeof h, 1, in.get()) != 1 || std::memcmp(h.magic, kMagic, sizeof kMagic) != 0 ||
       h.format != kFormat || h.byteOrder != kByteOrder || h.interpolation != std::uint32_t(interpolation) ||
@@ -133,7 +141,7 @@ std::optional<PreparedTexture> TextureDiskCache::find(const std::string& digest,
       h.count != std::uint64_t(h.width) * h.height)
     return std::nullopt;
   std::error_code ec;
-  if (fs::file_size(file, ec) != sizeof h + h.count * sizeof(double) || ec) return std::nullopt;
+  if (handle->bytes != sizeof h + h.count * sizeof(double)) return std::nullopt;
   auto values = std::make_shared<std::vector<double>>(h.count);
   if (std::fread(values->data(), sizeof(double), h.count, in.get()) != h.count || adlerOf(*values) != h.adler)
     return std::nullopt;
@@ -149,6 +157,9 @@ std::optional<PreparedTexture> TextureDiskCache::find(const std::string& digest,
 
 void TextureDiskCache::store(const std::string& digest, const PreparedTexture& texture) const noexcept {
   if (!enabled() || digest.empty() || texture.values().size() < kMinTexels) return;
+  // A texture larger than the whole limit is not kept: trimming keeps the file just written, and
+  // the folder held 67 MB under a 10 MiB limit (the cache audit of 2026-11-28).
+  if (sizeof(FileHeader) + texture.values().size() * sizeof(double) > limitBytes_) return;
   const std::string file = fileFor(digest, texture.interpolation);
   try {
     std::error_code ec;
@@ -185,7 +196,10 @@ void TextureDiskCache::store(const std::string& digest, const PreparedTexture& t
 }
 
 void TextureDiskCache::trim(const std::string& keep) const {
-  removeStaleTemporaries(folder_);
+  // Other processes' temporaries are theirs until renamed, even when their process is not on this
+  // machine (a cache folder in a home shared by cluster nodes): only those untouched for an hour
+  // are a killed run's.
+  removeStaleTemporaries(folder_, kCacheTemporaryAge);
   struct Entry {
     fs::file_time_type used;
     std::uint64_t bytes;
@@ -195,7 +209,10 @@ void TextureDiskCache::trim(const std::string& keep) const {
   std::uint64_t total = 0;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(folder_, ec)) {
-    if (e.path().extension() != ".bin" || !e.is_regular_file(ec)) continue;
+    // Not the temporaries (".<name>.tmp<pid>_<n>.bin", core/atomic_file.h) that other processes are
+    // writing: trimming removed them and their rename failed (4 of 30 concurrent runs).
+    if (e.path().extension() != ".bin" || e.path().filename().string().front() == '.' || !e.is_regular_file(ec))
+      continue;
     const std::uint64_t bytes = e.file_size(ec);
     const fs::file_time_type used = e.last_write_time(ec);
     if (ec) continue;

@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <system_error>
 
 #include "core/atomic_file.h"
@@ -154,12 +156,12 @@ std::string serialize(const Df64SelfTest& t, const std::string& key) {
   };
   d["dekker"] = ops(t.dekker);
   d["fma"] = ops(t.fma);
-  return json::write(d);
+  return checkedRecordText(d);
 }
 
 // The cached self-test, or false when the file is absent, damaged or for another key.
 bool readCache(const std::string& path, const std::string& key, Df64SelfTest& t) {
-  const auto d = json::readFile(path);
+  const auto d = readCheckedRecord(path);
   if (!d || json::countMember(*d, "dicsynth_df64_selftest") != std::uint64_t(kCacheVersion) ||
       json::stringMember(*d, "key") != key)
     return false;
@@ -194,13 +196,22 @@ bool readCache(const std::string& path, const std::string& key, Df64SelfTest& t)
   return true;
 }
 
-void writeCache(const std::string& path, const std::string& text) {
+bool writeCache(const std::string& path, const std::string& text) {
   try {
     writeCacheFile(path, text);
+    return true;
   } catch (const std::exception& e) {
     warn(std::string("df64 self-test result not cached: ") + e.what());
+    return false;
   }
 }
+
+// Self-tests measured in this process that no cache file keeps (none, or one that cannot be
+// written), by cache file and key: a run asks several times (the calibration, each df64 render), and with a
+// read-only cache folder measured and warned each time (3 times a run, the cache audit of
+// 2026-11-28).
+std::mutex gUncachedMutex;
+std::map<std::string, Df64SelfTest> gUncached;
 
 }  // namespace
 
@@ -223,9 +234,16 @@ Df64SelfTest runDf64SelfTest(Context& context) {
     cached.cachePath = path;
     return cached;
   }
+  {
+    std::lock_guard lock(gUncachedMutex);
+    if (const auto it = gUncached.find(path + "\n" + key); it != gUncached.end()) return it->second;
+  }
   Df64SelfTest t = measureSelfTest(context);
   t.cachePath = path;
-  if (!path.empty()) writeCache(path, serialize(t, key));
+  if (path.empty() || !writeCache(path, serialize(t, key))) {
+    std::lock_guard lock(gUncachedMutex);
+    gUncached[path + "\n" + key] = t;
+  }
   return t;
 }
 

@@ -6,11 +6,10 @@
 
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <system_error>
 #include <utility>
 
+#include "core/cache_file.h"
 #include "core/error.h"
 #include "core/hex.h"
 #include "core/warning.h"
@@ -23,10 +22,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The largest pipeline cache file read: lavapipe's stays at its 32-byte header, a GPU driver's holds
+// a few MB of machine code for dicsynth's pipelines.
+constexpr std::uint64_t kMaxPipelineCacheBytes = std::uint64_t(1) << 30;
+
+// The file's bytes; none for anything but a regular file (core/cache_file.h).
 std::vector<uint8_t> readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  const std::optional<std::string> text = readCacheFile(path, kMaxPipelineCacheBytes);
+  if (!text) return {};
+  return std::vector<uint8_t>(text->begin(), text->end());
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <mutex>
 #include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -96,12 +98,12 @@ std::string serialize(const PrecisionCalibration& c, const std::string& key) {
     modes.append(mode);
   }
   d["modes"] = modes;
-  return json::write(d);
+  return gpu::checkedRecordText(d);
 }
 
 // The cached calibration, or false when the file is absent, damaged or for another key.
 bool readCache(const std::string& path, const std::string& key, PrecisionCalibration& c) {
-  const auto d = json::readFile(path);
+  const auto d = gpu::readCheckedRecord(path);
   if (!d || json::countMember(*d, "dicsynth_precision_calibration") != std::uint64_t(kCacheVersion) ||
       json::stringMember(*d, "key") != key)
     return false;
@@ -220,14 +222,31 @@ std::optional<PrecisionCalibration> cachedCalibration(gpu::Context& context) {
 PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& renderer) {
   if (std::optional<PrecisionCalibration> cached = cachedCalibration(context)) return *cached;
   const std::string path = gpu::deviceCachePath(context, "precision-calibration"), key = cacheKey();
+  // Calibrations measured in this process that no cache file keeps (no cache folder, or one that
+  // cannot be written), by file, device and build: each Renderer of a Python process measured again.
+  static std::mutex uncachedMutex;
+  static std::map<std::string, PrecisionCalibration> uncached;
+  char driver[16];
+  std::snprintf(driver, sizeof driver, "%08x", context.info().driverVersion);
+  const std::string memo = path + "\n" + context.info().pipelineCacheUUID + " " + driver + "\n" + key;
+  {
+    std::lock_guard lock(uncachedMutex);
+    if (const auto it = uncached.find(memo); it != uncached.end()) return it->second;
+  }
   PrecisionCalibration c = measure(context, renderer);
   c.cachePath = path;
+  bool cached = false;
   if (!path.empty()) {
     try {
       gpu::writeCacheFile(path, serialize(c, key));
+      cached = true;
     } catch (const std::exception& e) {
       warn(std::string("precision calibration not cached: ") + e.what());
     }
+  }
+  if (!cached) {
+    std::lock_guard lock(uncachedMutex);
+    uncached[memo] = c;
   }
   return c;
 }

@@ -6,7 +6,9 @@
 #include <libdeflate.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "core/atomic_file.h"
@@ -47,19 +49,17 @@ std::uint32_t crc32Of(std::string_view bytes) {
 
 PointFile AssetChecksums::of(const std::string& path) {
   const fs::path absolute = fs::absolute(path).lexically_normal();
-  std::error_code ec;
-  const std::uintmax_t bytes = fs::file_size(absolute, ec);
-  const fs::file_time_type modified = ec ? fs::file_time_type{} : fs::last_write_time(absolute, ec);
-  if (ec) throw Error("cannot read '" + absolute.string() + "': " + ec.message());
+  const std::optional<FileStamp> stamp = fileStamp(absolute.string());
+  if (!stamp) throw Error("cannot read '" + absolute.string() + "': " + std::strerror(errno));
+  const auto bytes = std::uintmax_t(stamp->bytes);
   {
     std::lock_guard lock(mutex_);
-    if (auto it = entries_.find(absolute.string());
-        it != entries_.end() && it->second.bytes == bytes && it->second.modified == modified)
+    if (auto it = entries_.find(absolute.string()); it != entries_.end() && it->second.stamp == *stamp)
       return {absolute.string(), bytes, it->second.crc32};
   }
   const std::uint32_t crc = fileCrc32(absolute);
   std::lock_guard lock(mutex_);
-  entries_[absolute.string()] = {bytes, modified, crc};
+  entries_[absolute.string()] = {*stamp, crc};
   return {absolute.string(), bytes, crc};
 }
 

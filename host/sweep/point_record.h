@@ -16,6 +16,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/file_stamp.h"
+
 namespace dicsynth::sweep {
 
 struct PointFile {
@@ -37,7 +39,7 @@ struct PointRecord {
   std::vector<PointFile> assets; // files the scene loaded, by absolute path, sorted by name
 };
 
-// CRC-32s of input files, each computed once per process while its size and modification time stay
+// CRC-32s of input files, each computed once per process while its stamp (core/file_stamp.h) stays
 // the same: every point of a sweep records and checks the same textures (Figure 1's is 32 MB).
 class AssetChecksums {
  public:
@@ -48,8 +50,7 @@ class AssetChecksums {
 
  private:
   struct Entry {
-    std::uintmax_t bytes = 0;
-    std::filesystem::file_time_type modified;
+    FileStamp stamp;
     std::uint32_t crc32 = 0;
   };
   std::mutex mutex_;  // the sweep's writer thread and its main thread both ask

@@ -14,7 +14,9 @@
 
 #include "core/error.h"
 #include "core/json.h"
+#include "core/warning.h"
 #include "gpu/context.h"
+#include "gpu/device_cache.h"
 #include "gpu/df64.h"
 #include "gpu/df64_cases.h"
 #include "gpu_test_context.h"
@@ -198,6 +200,26 @@ TEST_CASE("df64: host split and join") {
   CHECK(gpu::splitDf64(-0x1p200).hi == -INFINITY);
 }
 
+TEST_CASE("df64: a self-test that cannot be cached is measured once a process, and said once") {
+  // A cache folder that cannot be written (here: a file stands where it goes): the calibration and
+  // each df64 render asked again, measured again and warned again (3 times a run, the cache audit
+  // of 2026-11-28).
+  test::TempFolder folder;
+  const std::string blocked = folder.write("blocked", "not a folder");
+  gpu::ContextOptions o;
+  o.cacheDir = blocked + "/cache";
+  gpu::Context ctx(o);
+  WarningCapture warnings;
+  const gpu::Df64SelfTest first = gpu::runDf64SelfTest(ctx);
+  const gpu::Df64SelfTest second = gpu::runDf64SelfTest(ctx);
+  CHECK(first.passed);
+  CHECK_FALSE(second.fromCache);
+  CHECK(second.seconds == first.seconds);  // the same measurement, not a second one
+  const std::vector<std::string> said = warnings.take();
+  REQUIRE(said.size() == 1);
+  CHECK(said[0].rfind("df64 self-test result not cached: ", 0) == 0);
+}
+
 TEST_CASE("df64: the self-test is cached per device and ignores a damaged cache file") {
   test::TempFolder folder;
   gpu::Context ctx(optionsWithCache(folder));
@@ -241,8 +263,11 @@ TEST_CASE("df64: the self-test is cached per device and ignores a damaged cache 
   const std::string valid = test::readBytes(first.cachePath);
   const auto document = json::parse(valid);
   REQUIRE(document);
-  // The entry of the Dekker variant's operation `name`, edited by `edit`, as cache text.
-  auto edited = [&document](const std::string& name, const std::function<void(Json::Value&)>& edit) {
+  // The entry of the Dekker variant's operation `name`, edited by `edit`, as cache text: with its
+  // checksum made again (the record dicsynth would write with those values) or the old one kept
+  // (a file changed on disk).
+  auto edited = [&document](const std::string& name, const std::function<void(Json::Value&)>& edit,
+                            bool checksumAgain = true) {
     Json::Value d = *document;
     bool found = false;
     for (Json::Value& op : d["dekker"])
@@ -251,15 +276,20 @@ TEST_CASE("df64: the self-test is cached per device and ignores a damaged cache 
         found = true;
       }
     REQUIRE(found);
-    return json::write(d);
+    return checksumAgain ? gpu::checkedRecordText(d) : json::write(d);
   };
-  // Damaged: garbage, truncated, a number that is no number, a missing member. Each is ignored and
-  // rewritten.
+  // Damaged: garbage, truncated, a number that is no number, a missing member, a changed digit
+  // under the old checksum (the cache audit: one byte, e-15 to e-13, made --precision df64 blame
+  // the device), no checksum. Each is ignored and rewritten.
   const std::string badNumber = edited("mul", [](Json::Value& op) { op["max_rel_error"] = "0x1pZZ"; });
   const std::string missing = edited("mul", [](Json::Value& op) { op.removeMember("inputs"); });
   const std::string noBound = edited("div", [](Json::Value& op) { op.removeMember("bound"); });
-  for (const std::string& damaged :
-       {std::string("not a cache\n"), valid.substr(0, valid.size() / 2), badNumber, missing, noBound}) {
+  const std::string changedDigit =
+      edited("div", [](Json::Value& op) { op["max_rel_error"] = op["max_rel_error"].asDouble() * 100; }, false);
+  Json::Value unchecked = *document;
+  unchecked.removeMember("checksum");
+  for (const std::string& damaged : {std::string("not a cache\n"), valid.substr(0, valid.size() / 2), badNumber,
+                                     missing, noBound, changedDigit, json::write(unchecked)}) {
     test::writeBytes(first.cachePath, damaged);
     const gpu::Df64SelfTest remeasured = gpu::runDf64SelfTest(ctx);
     CHECK_FALSE(remeasured.fromCache);

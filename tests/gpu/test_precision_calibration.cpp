@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "core/warning.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
@@ -126,6 +127,26 @@ TEST_CASE("calibration: measured on the device, cached, and read back") {
   CHECK_FALSE(cachedCalibration(context).has_value());
   CHECK_FALSE(calibratePrecisions(context, renderer).fromCache);
   CHECK(context.validationMessages().empty());
+}
+
+TEST_CASE("calibration: one that cannot be cached is measured once a process, and said once") {
+  // A cache folder that cannot be written (a file stands where it goes): each Renderer of a Python
+  // process measured again (the cache audit of 2026-11-28).
+  test::TempFolder dir;
+  const std::string blocked = dir.write("blocked", "not a folder");
+  gpu::ContextOptions options;
+  options.cacheDir = blocked + "/cache";
+  gpu::Context context(options);
+  gpu::Renderer renderer(context), another(context);
+  WarningCapture warnings;
+  const PrecisionCalibration first = calibratePrecisions(context, renderer);
+  const PrecisionCalibration second = calibratePrecisions(context, another);
+  CHECK_FALSE(second.fromCache);
+  CHECK(second.seconds == first.seconds);  // the same measurement
+  CHECK(describeCalibration(second) == describeCalibration(first));
+  const std::vector<std::string> said = warnings.take();
+  REQUIRE(said.size() == 1);
+  CHECK(said[0].rfind("precision calibration not cached: ", 0) == 0);
 }
 
 TEST_CASE("calibration: render --precision auto refuses an unreachable bound") {

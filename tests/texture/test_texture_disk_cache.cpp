@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 #include <zlib.h>
 
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -211,6 +212,13 @@ TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays un
   CHECK(disk.find(TextureDiskCache::contentDigest(b), b, Interpolation::Cubic));
   CHECK_FALSE(disk.find(TextureDiskCache::contentDigest(a), a, Interpolation::Cubic));
 
+  // A texture larger than the whole limit is not kept (the file just written survived trimming: a
+  // 67 MB file in a 10 MiB folder, the cache audit of 2026-11-28).
+  const TextureDiskCache tiny(dir.path().string() + "/tiny", fileBytes - 1);
+  TextureCache tinyCache(tiny);
+  prepared(sceneWith(dir, a), &tinyCache);
+  CHECK(cacheFiles(tiny).empty());
+
   // Concurrent writers of one key (two processes preparing the same texture) leave one valid file.
   const TextureDiskCache shared(dir.path().string() + "/shared", kLimit);
   const PreparedTexture texture = *disk.find(TextureDiskCache::contentDigest(b), b, Interpolation::Cubic);
@@ -221,6 +229,21 @@ TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays un
   CHECK(cacheFiles(shared).size() == 1);
   REQUIRE(shared.find(digest, b, Interpolation::Cubic));
   CHECK(shared.find(digest, b, Interpolation::Cubic)->values() == texture.values());
+
+  // Another process's temporary (".<name>.tmp<pid>_<n>.bin", being written) is not trimmed, even
+  // when its process is not on this machine (a folder shared by cluster nodes: pid 999999999 is no
+  // process here); an hour-old one of a process gone is a killed run's and goes. Trimming took the
+  // former for an entry and removed it under its writer (4 of 30 concurrent runs).
+  const std::string fresh = disk.folder() + "/." + files[0].filename().string() + ".tmp999999999_0.bin";
+  const std::string stale = disk.folder() + "/." + files[0].filename().string() + ".tmp999999999_1.bin";
+  for (const std::string& t : {fresh, stale}) std::ofstream(t) << std::string(fileBytes, 'x');
+  fs::last_write_time(stale, fs::file_time_type::clock::now() - std::chrono::hours(2));
+  TextureCache again(disk);               // a fresh process: not prepared in memory
+  prepared(sceneWith(dir, a), &again);  // stores a, trims (b goes: one file fits)
+  CHECK(fs::exists(fresh));
+  CHECK_FALSE(fs::exists(stale));
+  CHECK(disk.find(TextureDiskCache::contentDigest(a), a, Interpolation::Cubic));
+  fs::remove(fresh);
 
   // A cache folder that cannot be created (a file stands in its way): preparing still works.
   std::ofstream(dir.path().string() + "/blocked") << "not a folder";

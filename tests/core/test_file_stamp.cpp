@@ -1,0 +1,77 @@
+// core/file_stamp.h and the caches keyed by it (geometry/texture_cache.h, sweep/point_record.h's
+// AssetChecksums): a file rewritten in place with its size and modification time kept, as
+// `cp -p`, `rsync -t` or `touch -r` leave it, is a changed file. The cache audit of 2026-11-28 saw
+// a Python Renderer render the old texture after such an edit.
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "core/file_stamp.h"
+#include "geometry/texture_cache.h"
+#include "sweep/point_record.h"
+#include "temp_folder.h"
+
+using namespace dicsynth;
+
+namespace {
+
+void writeBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::in | std::ios::out);  // in place: same inode
+  if (!out) out.open(path, std::ios::binary);
+  out << bytes;
+}
+
+// Rewrites `path` in place with other bytes of the same length and puts its modification time
+// back. The kernel's file clock ticks every few ms: wait past a tick so the rewrite is a later one.
+void rewriteKeepingTime(const std::string& path, const std::string& bytes) {
+  const auto modified = std::filesystem::last_write_time(path);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  writeBytes(path, bytes);
+  std::filesystem::last_write_time(path, modified);
+  REQUIRE(std::filesystem::last_write_time(path) == modified);
+}
+
+}  // namespace
+
+TEST_CASE("file stamp: a rewrite that keeps size and modification time is a change, a read is not") {
+  test::TempFolder dir;
+  const std::string path = dir.file("texture.bin");
+  writeBytes(path, "AAAA");
+  const auto before = fileStamp(path);
+  REQUIRE(before.has_value());
+  CHECK(before->bytes == 4);
+  { std::ifstream in(path); std::string s; in >> s; }
+  CHECK(fileStamp(path) == before);  // reading changes nothing
+  rewriteKeepingTime(path, "BBBB");
+  const auto after = fileStamp(path);
+  REQUIRE(after.has_value());
+  CHECK(after->bytes == before->bytes);
+  CHECK(after->modified_ns == before->modified_ns);
+  CHECK(after != before);  // the status-change time moved
+  // Replaced by another file (a rename over it): another inode.
+  writeBytes(dir.file("other.bin"), "CCCC");
+  std::filesystem::rename(dir.file("other.bin"), path);
+  CHECK(fileStamp(path) != after);
+  CHECK_FALSE(fileStamp(dir.file("missing.bin")).has_value());
+}
+
+TEST_CASE("file stamp: the texture cache and the sweep's checksums see a rewrite that keeps the time") {
+  test::TempFolder dir;
+  const std::string path = dir.file("texture.tif");
+  writeBytes(path, "AAAA");
+  TextureCache cache;
+  PreparedTexture texture;
+  texture.path = path;
+  cache.insert(texture);
+  CHECK(cache.find(path, Interpolation::Cubic).has_value());
+  sweep::AssetChecksums checksums;
+  const std::uint32_t crcA = checksums.of(path).crc32;
+  CHECK(checksums.of(path).crc32 == crcA);
+  rewriteKeepingTime(path, "BBBB");
+  CHECK_FALSE(cache.find(path, Interpolation::Cubic).has_value());  // found the old texture before
+  CHECK(checksums.of(path).crc32 != crcA);                         // recorded the old CRC before
+  CHECK(checksums.of(path).crc32 == sweep::crc32Of("BBBB"));
+}

@@ -43,8 +43,8 @@ struct ItemOutcome {
   int exitCode = kExitOk;
 };
 
-std::string toJson(const CompareItem& item, const RenderResult& cpu, const RenderResult& gpu, int spp,
-                   const Tolerances& t, const std::vector<CameraDifference>& diffs, bool pass) {
+// What names an item in its JSON object: the scene, and a sweep point's index and parameters.
+Json::Value itemJson(const CompareItem& item) {
   Json::Value o(Json::objectValue);
   o["scene"] = item.scenePath;
   if (item.point) {
@@ -54,6 +54,12 @@ std::string toJson(const CompareItem& item, const RenderResult& cpu, const Rende
       parameters[name] = json::parse(value).value_or(Json::Value(value));
     o["parameters"] = parameters;
   }
+  return o;
+}
+
+std::string toJson(const CompareItem& item, const RenderResult& cpu, const RenderResult& gpu, int spp,
+                   const Tolerances& t, const std::vector<CameraDifference>& diffs, bool pass) {
+  Json::Value o = itemJson(item);
   o["precision"] = gpu.precision;
   o["device"] = gpu.device;
   o["spp"] = spp;
@@ -184,7 +190,8 @@ ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool
            {"tolerance_scale", format("%g", cmd.toleranceScale)}};
   if (item.point) {
     props.push_back({"point", std::to_string(item.point->index)});
-    for (const auto& [name, value] : item.point->parameters) props.push_back({"parameter." + name, value});
+    // As the label spells them (0.013, not JSON's 0.012999999999999999: the compare audit).
+    for (const auto& [name, value] : item.point->texts) props.push_back({"parameter." + name, value});
   }
   const double seconds = secondsSince(t0) / double(std::max<std::size_t>(1, diffs.size()));
   for (const auto& d : diffs) {
@@ -201,10 +208,23 @@ ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool
   return out;
 }
 
-// An item that could not be rendered: its error on stderr (as main.cpp prints it) and as one JUnit
-// error case, so CI shows it instead of a silently missing scene.
-ItemOutcome erroredItem(const CompareItem& item, const std::string& message, bool inputError) {
-  std::fprintf(stderr, "%s%s\n", inputError ? "" : "dicsynth: error: ", message.c_str());
+// An item that could not be rendered: its error on stderr (as main.cpp prints it; of several items,
+// named by the item unless the message names its file already: "-D off: the scene never reads
+// 'off'" did not say which scene, the compare audit), with --json also as the item's JSON object
+// (one per item, as documented: an error printed none), and as one JUnit error case, so CI shows
+// it instead of a silently missing scene.
+ItemOutcome erroredItem(const CompareCommand& cmd, const CompareItem& item, bool several, const std::string& message,
+                        bool inputError) {
+  const std::string named =
+      several && message.rfind(item.scenePath, 0) != 0 ? item.label + ": " + message : message;
+  std::fprintf(stderr, "%s%s\n", inputError ? "" : "dicsynth: error: ", named.c_str());
+  if (cmd.json) {
+    Json::Value o = itemJson(item);
+    o["error"] = message;
+    o["pass"] = false;
+    std::fputs(json::write(o, false).c_str(), stdout);  // one line, its newline included
+    std::fflush(stdout);
+  }
   ItemOutcome out;
   out.exitCode = inputError ? kExitBadInput : kExitFailure;
   out.suite.name = item.label;
@@ -223,6 +243,9 @@ int runCompare(const CompareCommand& cmd) {
   if (!(cmd.toleranceScale > 0 && cmd.toleranceScale <= 1))
     throw InputError(format("--tolerance-scale %g: expected a factor in (0, 1] (tolerances may only be tightened)",
                             cmd.toleranceScale));
+  // The frame numbers render takes (job/render_args.h): compare accepted -5 and 1e9.
+  if (cmd.frame < 0 || cmd.frame > kMaxFrameNumber)
+    throw InputError(format("--frame %d: expected a frame number in 0..%lld", cmd.frame, kMaxFrameNumber));
   const RenderOptions base = renderOptions(cmd.args, cmd.frame);
   const auto defines = parseDefines(cmd.args.defines);
   const std::vector<CompareItem> items = compareItems(cmd.args.scenePath, defines, cmd.sweep);
@@ -250,9 +273,9 @@ int runCompare(const CompareCommand& cmd) {
     try {
       outcome = compareItem(cmd, item, items.size() > 1, options, context, renderer, textures);
     } catch (const InputError& e) {
-      outcome = erroredItem(item, e.what(), true);
+      outcome = erroredItem(cmd, item, items.size() > 1, e.what(), true);
     } catch (const std::exception& e) {
-      outcome = erroredItem(item, e.what(), false);
+      outcome = erroredItem(cmd, item, items.size() > 1, e.what(), false);
     }
     for (const auto& c : outcome.suite.cases) {
       passed += c.outcome == junit::Outcome::Passed;

@@ -31,6 +31,7 @@ std::vector<CompareItem> compareItems(const std::string& path,
       std::string values;
       for (const auto& [name, value] : p.values) {
         point.parameters.push_back({name, value.json()});
+        point.texts.push_back({name, value.defineText()});
         values += (values.empty() ? "" : " ") + name + "=" + value.defineText();
       }
       const std::string folder = pointFolderName(p.index);

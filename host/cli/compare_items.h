@@ -16,6 +16,7 @@ namespace dicsynth::cli {
 struct ComparePoint {
   std::int64_t index = 0;
   std::vector<std::pair<std::string, std::string>> parameters;  // name → value as JSON (sorted by name)
+  std::vector<std::pair<std::string, std::string>> texts;       // name → value as -D would give it
 };
 
 struct CompareItem {

@@ -154,6 +154,26 @@ TEST_CASE("cli: compare reports a broken scene as a JUnit error and goes on, exi
   CHECK(cases[1].outcome == "error");
   CHECK(cases[1].message + "\n" == r.err);
   CHECK(cases[2].outcome == "pass");  // the scene after the broken one was still compared
+
+  // With --json, one object per scene, the broken one's with its error (it printed none: the
+  // compare audit of 2026-11-28); an error without the scene's file:line is named by its scene.
+  const test::CliResult json =
+      runCli("compare " + dir.file("scenes") + kFast + " --precision fp64 --json -D never=1");
+  INFO(json.out << json.err);
+  CHECK(json.exitCode == 2);
+  std::istringstream lines(json.out);
+  std::vector<Json::Value> objects;
+  for (std::string line; std::getline(lines, line);)
+    if (const auto o = json::parse(line)) objects.push_back(*o);
+  REQUIRE(objects.size() == 3);
+  for (const Json::Value& o : objects) {
+    CHECK(o["pass"].asBool() == false);
+    CHECK(o["error"].isString());
+  }
+  CHECK(objects[1]["scene"].asString() == dir.file("scenes/broken.lua"));
+  CHECK(objects[2]["error"].asString() == "-D never: the scene never reads 'never'");
+  CHECK(json.err.find(dir.file("scenes/triangle.lua") + ": -D never: the scene never reads 'never'\n") !=
+        std::string::npos);
 }
 
 TEST_CASE("cli: compare's bad options give one line, exit code 2 and no report") {
@@ -166,6 +186,9 @@ TEST_CASE("cli: compare's bad options give one line, exit code 2 and no report")
            {scene + " --tolerance-scale 0", "--tolerance-scale 0"},
            {dir.file("empty"), dir.file("empty") + ": no *.lua scene"},
            {scene + " --junit " + dir.file("missing/report.xml"), "--junit " + dir.file("missing/report.xml")},
+           // render's frame numbers (compare took -5 and 1e9)
+           {scene + " --frame -5", "--frame -5: expected a frame number in 0..999999999"},
+           {scene + " --frame 1000000000", "--frame 1000000000"},
        }) {
     const test::CliResult r = runCli("compare " + args + kFast);
     INFO(args << "\n" << r.err);
@@ -208,6 +231,10 @@ TEST_CASE("cli: compare over a sweep has a JUnit case per point and camera") {
     }
     CHECK(points == 3);
   }
+  // The JUnit properties spell the values as the labels do (0.013; JSON's 0.012999999999999999 before).
+  r = runCli("compare " + scene + kFast + " --precision fp64 --sweep shift=0.013 --junit " + report);
+  CHECK(r.exitCode == 0);
+  CHECK(test::readBytes(report).find("name=\"parameter.shift\" value=\"0.013\"") != std::string::npos);
   // A parameter the scene never reads: every point is an error case naming it.
   r = runCli("compare " + scene + kFast + " --precision fp64 --sweep nonsense=1,2 --junit " + report);
   CHECK(r.exitCode == 2);

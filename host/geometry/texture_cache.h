@@ -3,8 +3,8 @@
 // reading plus B-spline prefiltering a 4096×2048 texture costs about a second on this machine
 // (bench/RESULTS.md, "Sweeps"). An entry is keyed by the path and the interpolation (the prefiltered
 // coefficients depend on the kernel) and checked against the file's stamp (core/file_stamp.h), so a
-// texture edited during a run or between a Renderer's renders is read again. Optionally backed by a TextureDiskCache, which keeps
-// large prepared textures across processes.
+// texture edited during a run or between a Renderer's renders is read again. Optionally backed by
+// a TextureDiskCache, which keeps large prepared textures across processes.
 #include <map>
 #include <mutex>
 #include <optional>

@@ -29,8 +29,8 @@ double lightingRadianceBound(const PreparedScene& scene, const PreparedObject& o
     // scaled by --tolerance-scale as k is (δP is already): unscaled, a strict check of a lit scene
     // kept this term whole and passed differences 1e5 times its printed tolerance (the compare
     // audit of 2026-11-28).
-    const double inputError = in.positionBound_m + 2 * in.scale * in.epsilon *
-                                                       (pointToCamera + glm::length(l.position_m - in.cameraCentre) + r);
+    const double lightToCamera = glm::length(l.position_m - in.cameraCentre);
+    const double inputError = in.positionBound_m + 2 * in.scale * in.epsilon * (pointToCamera + lightToCamera + r);
     const double directionError = own + inputError / r;
     double perLight = diffuseMax * (3 * inputError / r + in.normalSlope * in.positionBound_m);
     if (model.specular) perLight += lobe.maxValue * lobe.slope * (4 * normalError + 3 * directionError);

@@ -3,7 +3,10 @@
 // automatic choice), validation layers on. Each test ends with expectNoValidationMessages().
 #include <doctest/doctest.h>
 
+#include <string>
+
 #include "gpu/context.h"
+#include "temp_folder.h"
 
 namespace dicsynth::test {
 
@@ -18,6 +21,14 @@ inline gpu::Context& gpuContext() {
 
 // The shared context's device is a CPU (lavapipe, as in CI).
 inline bool cpuDevice() { return gpuContext().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+
+// Options of a context whose cache folder cannot be made (a file in `folder` stands where it goes):
+// every cache write fails, as in a read-only home.
+inline gpu::ContextOptions unwritableCacheOptions(const TempFolder& folder) {
+  gpu::ContextOptions o;
+  o.cacheDir = folder.write("blocked", "not a folder") + "/cache";
+  return o;
+}
 
 inline void expectNoValidationMessages() {
   const auto messages = gpuContext().validationMessages();

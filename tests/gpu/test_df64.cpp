@@ -205,10 +205,7 @@ TEST_CASE("df64: a self-test that cannot be cached is measured once a process, a
   // each df64 render asked again, measured again and warned again (3 times a run, the cache audit
   // of 2026-11-28).
   test::TempFolder folder;
-  const std::string blocked = folder.write("blocked", "not a folder");
-  gpu::ContextOptions o;
-  o.cacheDir = blocked + "/cache";
-  gpu::Context ctx(o);
+  gpu::Context ctx(test::unwritableCacheOptions(folder));
   WarningCapture warnings;
   const gpu::Df64SelfTest first = gpu::runDf64SelfTest(ctx);
   const gpu::Df64SelfTest second = gpu::runDf64SelfTest(ctx);

@@ -10,6 +10,7 @@
 #include "geometry/prepared_scene.h"
 #include "gpu/context.h"
 #include "gpu/renderer.h"
+#include "gpu_test_context.h"
 #include "job/render_args.h"
 #include "render/precision_calibration.h"
 #include "run_cli.h"
@@ -133,10 +134,7 @@ TEST_CASE("calibration: one that cannot be cached is measured once a process, an
   // A cache folder that cannot be written (a file stands where it goes): each Renderer of a Python
   // process measured again (the cache audit of 2026-11-28).
   test::TempFolder dir;
-  const std::string blocked = dir.write("blocked", "not a folder");
-  gpu::ContextOptions options;
-  options.cacheDir = blocked + "/cache";
-  gpu::Context context(options);
+  gpu::Context context(test::unwritableCacheOptions(dir));
   gpu::Renderer renderer(context), another(context);
   WarningCapture warnings;
   const PrecisionCalibration first = calibratePrecisions(context, renderer);

@@ -412,26 +412,27 @@ void RenderSession::startDevice() {
   renderer_ = std::make_unique<gpu::Renderer>(*context_);
 }
 
-VisibilityTracer RenderSession::visibilityTracer() {
-  if (!useGpu() || !renderer_) return {};
-  if (visibility_) return *visibility_;  // decided once per session, as the precision is
-  visibility_.emplace();
+VisibilityTracer gpuVisibilityTracer(gpu::Context& context, gpu::Renderer& renderer) {
   Precision p = Precision::Fp64;
-  if (!context_->info().shaderFloat64) {
+  if (!context.info().shaderFloat64) {
     try {
-      gpu::requireDf64(*context_);
+      gpu::requireDf64(context);
       p = Precision::Df64;
     } catch (const InputError&) {
-      return *visibility_;  // the device's df64 fails its self-test: the CPU reference traces them
+      return {};  // the device's df64 fails its self-test: the CPU reference traces them
     }
   }
   // render() and reachesFirst() may overlap (the writer thread derives frame i while frame i + 1
   // renders): the renderer keeps separate buffers for the two.
-  *visibility_ = [renderer = renderer_.get(), p](const PreparedScene& scene, std::size_t camera,
-                                                 std::span<const dvec3> points, std::span<const int> objects,
-                                                 double tolerance) {
+  return [renderer = &renderer, p](const PreparedScene& scene, std::size_t camera, std::span<const dvec3> points,
+                                   std::span<const int> objects, double tolerance) {
     return renderer->reachesFirst(scene, p, camera, points, objects, tolerance);
   };
+}
+
+VisibilityTracer RenderSession::visibilityTracer() {
+  if (!useGpu() || !renderer_) return {};
+  if (!visibility_) visibility_ = gpuVisibilityTracer(*context_, *renderer_);  // once per session, as the precision
   return *visibility_;
 }
 

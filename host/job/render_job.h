@@ -26,6 +26,10 @@
 
 namespace dicsynth {
 
+// The GPU's tracer of the masks' visibility (RenderSession::visibilityTracer says in which precision
+// and why); empty when the device can do neither fp64 nor df64 (the CPU reference traces them).
+VisibilityTracer gpuVisibilityTracer(gpu::Context& context, gpu::Renderer& renderer);
+
 // What outlives one job: the device is created lazily by the first job (after its scenes loaded
 // without error, so a scene error never pays for a device start), then reused.
 class RenderSession {

@@ -347,7 +347,33 @@ double allowedOutliers(const Tolerances& t, std::size_t pixels) {
   }
 }
 
+void compareVisibility(const PreparedScene& scene, const RenderResult& reference, std::size_t camera,
+                       const VisibilityTracer& tracer, CameraDifference& d) {
+  if (!tracer) return;
+  std::size_t towards = camera;
+  for (const PreparedRig& rig : scene.rigs) {
+    if (rig.left == int(camera)) towards = std::size_t(rig.right);
+    if (rig.right == int(camera)) towards = std::size_t(rig.left);
+  }
+  const CameraImage& image = reference.cameras[camera];
+  std::vector<dvec3> points;
+  std::vector<int> objects;
+  for (std::size_t i = 0; i < image.pixelCount(); ++i)
+    if (image.objectId[i] != 0) {
+      points.push_back(image.position_m[i]);
+      objects.push_back(int(image.objectId[i]) - 1);
+    }
+  d.visibilityCamera = scene.cameras[towards].camera.name;
+  d.visibilityPoints = points.size();
+  if (points.empty()) return;
+  const std::vector<std::uint8_t> gpu = tracer(scene, towards, points, objects, kVisibilityTolerance);
+  const std::vector<std::uint8_t> cpu = reachesFirstCpu(scene, towards, points, objects, kVisibilityTolerance);
+  DS_CHECK(gpu.size() == cpu.size(), "visibility tracer answered the wrong number of points");
+  for (std::size_t k = 0; k < cpu.size(); ++k) d.visibilityMismatches += gpu[k] != cpu[k] ? 1 : 0;
+}
+
 bool withinTolerance(const CameraDifference& d, const Tolerances& t) {
+  if (d.visibilityMismatches > 0) return false;
   const double allowed = allowedOutliers(t, d.pixels);
   if (t.outlierFraction == 0)
     return d.radianceOutliers == 0 && d.geometryOutliers == 0 && d.objectIdMismatches == 0;
@@ -395,6 +421,11 @@ std::string describeExcess(const CameraDifference& d, const Tolerances& t) {
     separator();
     o << "object ids: " << objects << " pixel-centre rays hit a different object" << where << " (allowed "
       << allowed << " px)";
+  }
+  if (d.visibilityMismatches > 0) {
+    separator();
+    o << "visibility: " << d.visibilityMismatches << " of " << d.visibilityPoints << " points seen from "
+      << d.visibilityCamera << " answered otherwise than by the CPU reference (allowed 0)";
   }
   return o.str();
 }

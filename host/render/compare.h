@@ -10,6 +10,7 @@
 #include "model/layers.h"
 #include "model/render_options.h"
 #include "model/render_result.h"
+#include "render/visibility.h"
 
 namespace dicsynth {
 
@@ -48,6 +49,12 @@ struct CameraDifference {
   std::size_t wrongNearestHits() const {
     return wrongMiss + wrongExtraHit + wrongOtherObject + wrongFartherRoot + wrongNearerRoot;
   }
+  // The visibility behind flow.mask and disparity.mask (render/visibility.h), where compareVisibility
+  // measured it: the reference's pixel-centre hits traced towards `visibilityCamera` by the GPU's
+  // query and by the CPU reference; the answers that differ. The query runs in fp64 (df64 without
+  // it) whatever the render's precision, so none may differ.
+  std::string visibilityCamera;
+  std::size_t visibilityPoints = 0, visibilityMismatches = 0;
 };
 
 // Tolerances of one precision (values and derivations in compare.cpp, summarized in docs/precision.md).
@@ -91,6 +98,14 @@ double positionBound(const Tolerances& tolerances, double cosTheta, double D_m, 
 // reference and test must come from the same PreparedScene and RenderOptions.
 std::vector<CameraDifference> compareResults(const PreparedScene& scene, const RenderResult& reference,
                                              const RenderResult& test, const Tolerances& tolerances);
+
+// Measures `d`'s visibility check for camera `camera` of `reference` (a render of `scene`, with
+// geometry): every pixel-centre hit traced towards the camera whose masks ask for it (a stereo rig's
+// other camera for disparity.mask, else the camera itself, as flow.mask does) by `tracer` (the GPU's
+// query, job/render_job.h gpuVisibilityTracer) and by the CPU reference, in double. Nothing is done
+// without a tracer (the CPU reference would be compared with itself).
+void compareVisibility(const PreparedScene& scene, const RenderResult& reference, std::size_t camera,
+                       const VisibilityTracer& tracer, CameraDifference& d);
 
 // Off-edge outliers allowed in an image of `pixels` (0 where outlierFraction is 0).
 double allowedOutliers(const Tolerances& t, std::size_t pixels);

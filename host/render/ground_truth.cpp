@@ -20,9 +20,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const dvec2 kNaN2{kNaN, kNaN};
 
-// The ray towards a visible point first meets the point's own object within this fraction of the
-// distance (header comment of ground_truth.h).
-constexpr double kVisibilityTolerance = 1e-6;
 
 // Rows in parallel: one pixel's work is a few traced rays at most.
 template <class Body>

@@ -16,6 +16,10 @@
 
 namespace dicsynth {
 
+// The ray towards a visible point first meets the point's own object within this fraction of the
+// distance (docs/outputs.md, "Visibility").
+inline constexpr double kVisibilityTolerance = 1e-6;
+
 // 1 where points_m[i] is reached first on objects[i] (an index into scene.objects), else 0.
 using VisibilityTracer = std::function<std::vector<std::uint8_t>(
     const PreparedScene& scene, std::size_t camera, std::span<const dvec3> points_m, std::span<const int> objects,

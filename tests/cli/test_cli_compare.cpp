@@ -133,6 +133,11 @@ TEST_CASE("cli: --tolerance-scale tightens the lights' share of the radiance tol
   const Json::Value& camera = (*result)["cameras"]["camera"];
   CHECK(camera["max_radiance_diff"].asDouble() > 1e-9);
   CHECK(camera["radiance_outliers"].asUInt64() > 100);
+  // The masks' visibility is traced by the GPU's query and the CPU reference, and compared: the
+  // camera's own hits towards itself (no rig), every answer the same.
+  CHECK(camera["visibility"]["camera"].asString() == "camera");
+  CHECK(camera["visibility"]["points"].asUInt64() > 100);
+  CHECK(camera["visibility"]["mismatches"].asUInt64() == 0);
 }
 
 TEST_CASE("cli: compare reports a broken scene as a JUnit error and goes on, exit 2") {

@@ -41,9 +41,9 @@ double best(const std::function<double()>& run) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   bench::BenchArgs args{16, 2, repeat, ""};
-  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  bench::parseBenchArgs(argc, argv, args);
   const int spp = args.spp, downscale = args.downscale;
   repeat = args.repeat;
   const std::string dir = std::string(DS_SOURCE_DIR) + "/scenes/";
@@ -91,4 +91,8 @@ int main(int argc, char** argv) {
     }
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return dicsynth::bench::guarded([&] { return run(argc, argv); });
 }

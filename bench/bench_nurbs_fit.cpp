@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "scene/scene.h"
 
 using namespace dicsynth;
@@ -36,10 +37,13 @@ const Deformation& deformationOf(const Scene& scene) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  int repeat = 3;
-  for (int i = 1; i + 1 < argc; ++i)
-    if (!std::strcmp(argv[i], "--repeat")) repeat = std::max(1, std::atoi(argv[++i]));
+static int run(int argc, char** argv) {
+  int repeat = 3;  // --repeat R, its only option
+  for (int i = 1; i < argc; i += 2) {
+    if (std::strcmp(argv[i], "--repeat") != 0) throw InputError(std::string("unknown option ") + argv[i]);
+    if (i + 1 >= argc) throw InputError("--repeat needs a value");
+    repeat = bench::positiveCount("--repeat", argv[i + 1]);
+  }
   std::printf("| scene (field) | tolerance | fit error | control points | refinements | frame 1: load + fit | frame 2: reuse |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   struct Case {
@@ -80,4 +84,8 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return dicsynth::bench::guarded([&] { return run(argc, argv); });
 }

@@ -8,12 +8,12 @@
 # Usage: bench/bench_nurbs_search.sh OLD_BUILD_DIR NEW_BUILD_DIR [RUNS]   (RUNS default 3)
 # PRECISIONS="df64" and BENCH_SCENES="dogbone" restrict the table (default: all three of each).
 set -eu
-OLD=$(cd "$1" && pwd)/dicsynth
-NEW=$(cd "$2" && pwd)/dicsynth
-RUNS=${3:-3}
-SPP=4
 HERE=$(cd "$(dirname "$0")" && pwd)
 . "$HERE/common.sh"
+OLD=$(binary_of "${1:-}")
+NEW=$(binary_of "${2:-}")
+RUNS=$(count RUNS "${3:-3}")
+SPP=4
 # Render seconds of one run, and its pixel count into $OUT/pixels.
 render() {
   DICSYNTH_TIMINGS=1 "$1" render "$SCENES/$2.lua" -o "$OUT/o" --spp $SPP --downscale 2 --precision "$3" \
@@ -25,8 +25,8 @@ echo "| scene | precision | old s | new s | new / old | new Mrays/s |"
 echo "|---|---|---|---|---|---|"
 for scene in ${BENCH_SCENES:-figure1 nurbs_plate dogbone}; do
   for p in ${PRECISIONS:-fp32 df64 fp64}; do
-    render "$OLD" $scene $p >/dev/null
-    render "$NEW" $scene $p >/dev/null
+    check "$OLD" render "$SCENES/$scene.lua" -o "$OUT/o" --spp $SPP --downscale 2 --precision "$p"
+    check "$NEW" render "$SCENES/$scene.lua" -o "$OUT/o" --spp $SPP --downscale 2 --precision "$p"
     : >"$OUT/old"
     : >"$OUT/new"
     for r in $(seq "$RUNS"); do

@@ -13,20 +13,16 @@
 # plus the fixed overhead: `render --spp 1 --downscale 25` (64×48) run twice, the second timed.
 # Usage: bench/bench_process.sh [BUILD_DIR] [RUNS] [SPP]   (defaults: build 3 16)
 set -eu
-BUILD=${1:-build}
-RUNS=${2:-3}
-SPP=${3:-16}
 HERE=$(cd "$(dirname "$0")" && pwd)
-SCENES=$(cd "$HERE/../scenes" && pwd)
-BIN=$(cd "$BUILD" && pwd)/dicsynth
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
+. "$HERE/common.sh"
+BIN=$(binary_of "${1:-build}")
+RUNS=$(count RUNS "${2:-3}")
+SPP=$(count SPP "${3:-16}")
 CORES=$(nproc)
 now() { date +%s.%N; }
 # Wall seconds of one command (its output discarded).
 timed() { t0=$(now); "$@" >/dev/null 2>&1; t1=$(now); awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f\n", b - a }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
-median() { sort -g | awk '{ v[NR] = $1 } END { m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; printf "%.3f", m }'; }
 
 POV=""
 if command -v povray >/dev/null 2>&1; then
@@ -40,10 +36,12 @@ GPU="$BIN render $SCENES/figure1.lua --precision fp32 --spp $SPP"
 AUTO="$BIN render $SCENES/figure1.lua --spp $SPP"  # no --precision: auto
 CPU="$BIN render $SCENES/figure1.lua --backend cpu --spp $SPP"
 # Warm-up: driver shader cache, page cache of the texture, the precision calibration of `auto`
-# (measured once per device and build, then cached) and its choice (not timed).
-$GPU -o "$OUT/warm" --layers image >/dev/null 2>&1
-chosen=$($AUTO -o "$OUT/warm-auto" --layers image --downscale 25 2>&1 >/dev/null |
-         sed -n 's/^precision auto: \([a-z0-9]*\).*/\1/p' | head -n 1)
+# (measured once per device and build, then cached) and its choice (not timed), read from the line
+# on stdout ("..., gpu fp64 on ..."): stderr names it only when the calibration is measured.
+check $GPU -o "$OUT/warm" --layers image
+check $AUTO -o "$OUT/warm-auto" --layers image --downscale 25
+chosen=$(sed -n 's/.*, gpu \([a-z0-9]*\) on .*/\1/p' "$OUT/check.log" | head -n 1)
+check $CPU -o "$OUT/warm-cpu" --layers image --downscale 25
 for r in $(seq "$RUNS"); do
   timed $GPU -o "$OUT/g" >> "$OUT/gpu"
   timed $GPU -o "$OUT/gi" --layers image >> "$OUT/gpu-img"

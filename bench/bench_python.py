@@ -12,6 +12,7 @@ import argparse
 import os
 import statistics
 import subprocess
+import sys
 import tempfile
 import time
 
@@ -19,7 +20,11 @@ import dicsynth
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENE = os.path.join(ROOT, "bench", "tiny_sweep.lua")
-BINARY = os.path.join(ROOT, "build", "dicsynth")
+# The CLI of the build whose module was imported (PYTHONPATH=build2 times build2 against build2:
+# it always took build/, the bench audit of 2026-11-28).
+BINARY = os.path.join(os.path.dirname(os.path.abspath(dicsynth.__file__)), "dicsynth")
+if not os.access(BINARY, os.X_OK):
+    sys.exit("no dicsynth binary beside the module %s (PYTHONPATH must name a build folder)" % dicsynth.__file__)
 
 
 def processes(n, backend):

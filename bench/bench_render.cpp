@@ -37,9 +37,9 @@ double cameraRays(const PreparedScene& s, int spp) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   bench::BenchArgs args{16, 1, 1, std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua"};
-  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  bench::parseBenchArgs(argc, argv, args);
   const std::string& scenePath = args.scenePath;
   const int spp = args.spp, downscale = args.downscale, repeat = args.repeat;
   const PreparedScene scene = prepareScene(loadScene(scenePath, {}), {downscale});
@@ -96,4 +96,8 @@ int main(int argc, char** argv) {
   std::printf("\nspecialization (fp32): all features compiled in %.2f s, scene's features only %.2f s (%.2fx)\n",
               t32general, t32, t32general / t32);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return dicsynth::bench::guarded([&] { return run(argc, argv); });
 }

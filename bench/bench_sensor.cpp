@@ -29,9 +29,9 @@ double seconds(std::chrono::steady_clock::time_point since) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   bench::BenchArgs args{4, 2, 5, std::string(DS_SOURCE_DIR) + "/scenes/figure1.lua"};
-  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  bench::parseBenchArgs(argc, argv, args);
   const std::string& scenePath = args.scenePath;
   const int spp = args.spp, downscale = args.downscale, repeat = args.repeat;
   const PreparedScene scene = prepareScene(loadScene(scenePath, {}), {downscale});
@@ -97,4 +97,8 @@ int main(int argc, char** argv) {
     m.defects->deadFraction = m.defects->hotFraction = m.defects->stuckFraction = 1e-3;
   });
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return dicsynth::bench::guarded([&] { return run(argc, argv); });
 }

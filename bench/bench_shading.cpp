@@ -36,9 +36,9 @@ Scene figure1With(reflectance::Model model) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   bench::BenchArgs args{16, 1, 1, ""};
-  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  bench::parseBenchArgs(argc, argv, args);
   const int spp = args.spp, downscale = args.downscale, repeat = args.repeat;
   const PreparedScene lambert = prepareScene(figure1With(reflectance::Lambert{}), {downscale});
   const PreparedScene phong = prepareScene(figure1With(reflectance::Phong{{0.2, 40}}), {downscale});  // a clear coat
@@ -68,4 +68,8 @@ int main(int argc, char** argv) {
                 best[1] / best[0], best[2], best[2] / best[0], best[3], best[3] / best[0]);
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return dicsynth::bench::guarded([&] { return run(argc, argv); });
 }

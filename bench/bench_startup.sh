@@ -6,16 +6,16 @@
 # new / old from the same rounds; then the phases of one more run of each (DICSYNTH_TIMINGS=1).
 # Usage: bench/bench_startup.sh OLD_BUILD_DIR NEW_BUILD_DIR [RUNS]   (RUNS default 7)
 set -eu
-OLD=$(cd "$1" && pwd)/dicsynth
-NEW=$(cd "$2" && pwd)/dicsynth
-RUNS=${3:-7}
 HERE=$(cd "$(dirname "$0")" && pwd)
 . "$HERE/common.sh"
+OLD=$(binary_of "${1:-}")
+NEW=$(binary_of "${2:-}")
+RUNS=$(count RUNS "${3:-7}")
 now() { date +%s.%N; }
 run() { "$1" render "$SCENES/figure1.lua" -o "$OUT/o" --precision fp32 --spp 1 --downscale 25 >/dev/null 2>&1; }
 timed() { t0=$(now); run "$1"; t1=$(now); awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f\n", b - a }'; }
-run "$OLD"
-run "$NEW"
+check "$OLD" render "$SCENES/figure1.lua" -o "$OUT/o" --precision fp32 --spp 1 --downscale 25
+check "$NEW" render "$SCENES/figure1.lua" -o "$OUT/o" --precision fp32 --spp 1 --downscale 25
 : >"$OUT/old"
 : >"$OUT/new"
 for r in $(seq "$RUNS"); do

@@ -10,20 +10,24 @@
 #     scene: no growth per point.
 # Usage: bench/bench_sweep.sh [BUILD_DIR] [POINTS] [PROCS] [MANY]   (defaults: build 50 10 1000)
 # EXTRA_OPTS="..." adds options to both the sweep and the render processes (e.g. --exr-compression rle);
-# DICSYNTH_SWEEP_WRITERS=N sets how many points the sweep writes at once (default: 1 below 8
-# hardware threads, else one per 4, at most 8).
+# DICSYNTH_WRITERS=N sets how many points the sweep writes at once (default: 1 below 8
+# hardware threads, else one per 4, at most 8). POINTS >= 2 (the steady state is measured over the
+# points after the first); PROCS above POINTS is taken as POINTS.
 set -eu
-BUILD=${1:-build}
-POINTS=${2:-50}
-PROCS=${3:-10}
-MANY=${4:-1000}
 HERE=$(cd "$(dirname "$0")" && pwd)
-BIN=$(cd "$BUILD" && pwd)/dicsynth
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
+. "$HERE/common.sh"
+BIN=$(binary_of "${1:-build}")
+POINTS=$(count POINTS "${2:-50}" 2)
+PROCS=$(count PROCS "${3:-10}")
+MANY=$(count MANY "${4:-1000}")
+if [ "$PROCS" -gt "$POINTS" ]; then
+  echo "PROCS $PROCS is more than POINTS $POINTS: $POINTS render processes" >&2
+  PROCS=$POINTS
+fi
 OPTS="--downscale 2 --spp 4 --precision fp32 ${EXTRA_OPTS:-}"
 now() { date +%s.%N; }
 
+check "$BIN" render "$HERE/figure1_sweep.lua" -o "$OUT/warm" $OPTS  # options and scene work
 # 1. One sweep process.
 t0=$(now)
 "$BIN" sweep "$HERE/figure1_sweep.lua" -o "$OUT/sweep" $OPTS --sweep angle=30:40:$POINTS >/dev/null
@@ -50,7 +54,7 @@ t4=$(now)
 "$BIN" sweep "$HERE/figure1_sweep.lua" -o "$OUT/sweep" $OPTS --sweep angle=30:40:$POINTS >/dev/null  # all complete: skips
 t5=$(now)
 
-echo "sweep writers: ${DICSYNTH_SWEEP_WRITERS:-the default} on $(nproc) hardware threads"
+echo "sweep writers: ${DICSYNTH_WRITERS:-the default} on $(nproc) hardware threads"
 awk -v ts="$t0" -v te="$t1" -v rs="$t2" -v re="$t3" -v ss="$t4" -v se="$t5" -v fs="$t8" -v fe="$t9" -v n="$POINTS" -v p="$PROCS" -v gpu="$gpu" 'BEGIN {
   sweep = (te - ts) / n; render = (re - rs) / p; rerun = se - ss; first = fe - fs
   steady = ((te - ts) - first) / (n - 1)

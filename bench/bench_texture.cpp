@@ -20,9 +20,9 @@
 
 using namespace dicsynth;
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   bench::BenchArgs args{4, 1, 3, ""};
-  if (!bench::parseBenchArgs(argc, argv, args)) return 2;
+  bench::parseBenchArgs(argc, argv, args);
   const int spp = args.spp, downscale = args.downscale, repeat = args.repeat;
   const std::string path = std::string(DS_SOURCE_DIR) + "/scenes/analytic_speckle.lua";
   gpu::Context context;
@@ -61,4 +61,8 @@ int main(int argc, char** argv) {
   std::printf("\nquintic / cubic: CPU %.2f, GPU fp32 %.2f, GPU fp64 %.2f\n", seconds[2][0] / seconds[1][0],
               seconds[2][1] / seconds[1][1], seconds[2][2] / seconds[1][2]);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return dicsynth::bench::guarded([&] { return run(argc, argv); });
 }

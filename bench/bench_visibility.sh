@@ -8,12 +8,12 @@
 # Usage: bench/bench_visibility.sh OLD_BUILD_DIR NEW_BUILD_DIR [RUNS] (RUNS default 3;
 # PRECISION=fp64 by default).
 set -eu
-OLD=$(cd "$1" && pwd)/dicsynth
-NEW=$(cd "$2" && pwd)/dicsynth
-RUNS=${3:-3}
-P=${PRECISION:-fp64}
 HERE=$(cd "$(dirname "$0")" && pwd)
 . "$HERE/common.sh"
+OLD=$(binary_of "${1:-}")
+NEW=$(binary_of "${2:-}")
+RUNS=$(count RUNS "${3:-3}")
+P=${PRECISION:-fp64}
 # "wall truth" seconds of one run.
 run() {
   bin=$1
@@ -29,9 +29,9 @@ echo "|---|---|---|---|---|---|"
 for case in dogbone stereo_plate; do
   if [ $case = dogbone ]; then args="$SCENES/dogbone.lua --frames 0:1"; else args="$SCENES/stereo_plate.lua"; fi
   # shellcheck disable=SC2086
-  run "$OLD" $args >/dev/null
+  check "$OLD" render $args --spp 1 --precision "$P" -o "$OUT/o"
   # shellcheck disable=SC2086
-  run "$NEW" $args >/dev/null
+  check "$NEW" render $args --spp 1 --precision "$P" -o "$OUT/o"
   : >"$OUT/old"
   : >"$OUT/new"
   for r in $(seq "$RUNS"); do

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu/context.h"
@@ -37,7 +38,7 @@ std::vector<uint32_t> readSpirv(const char* path) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   using namespace dicsynth::gpu;
   ContextOptions options;
   const char* spirvFile = nullptr;
@@ -87,4 +88,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return dicsynth::bench::guarded([&] { return run(argc, argv); });
 }

@@ -27,7 +27,8 @@ struct GeometricError {
   std::size_t pixels = 0;     // all pixels
   std::size_t compared = 0;   // same object hit on both sides (errors below are over these)
   std::size_t wrongHits = 0;
-  double maxPx = 0, rmsPx = 0;                  // geometric error (px)
+  double maxPx = 0;                             // geometric error (px), over the compared pixels
+  double rmsPx = 0;  // its RMS over the compared pixels whose material-point error is measured (stride)
   double maxReprojectionPx = 0, maxMaterialPx = 0;
   double maxUv = 0;                             // max(|Δu|, |Δv|), modulo 1
   double maxPosition_m = 0, maxPositionPx = 0;

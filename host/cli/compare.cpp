@@ -50,10 +50,7 @@ Json::Value itemJson(const CompareItem& item) {
   o["scene"] = item.scenePath;
   if (item.point) {
     o["point"] = Json::Int64(item.point->index);
-    Json::Value parameters(Json::objectValue);
-    for (const auto& [name, value] : item.point->parameters)
-      parameters[name] = json::parse(value).value_or(Json::Value(value));
-    o["parameters"] = parameters;
+    o["parameters"] = json::parse(parametersJson(*item.point)).value_or(Json::Value(Json::objectValue));
   }
   return o;
 }
@@ -175,14 +172,13 @@ ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool
   const RenderResult cpu = cpu::render(prepared, options);
   options.progress = progressPrinter(prefix + "gpu " + std::string(toString(options.precision)));
   const RenderResult gpu = renderer.render(prepared, options);
-  failOnValidationMessages(context);
 
   const Tolerances tol = scaledTolerances(tolerancesFor(options.precision), cmd.toleranceScale);
   auto diffs = compareResults(prepared, cpu, gpu, tol);
   // The masks' visibility, which a GPU render traces on the GPU (the compare audit of 2026-11-28:
   // compare judged it nowhere).
   for (std::size_t c = 0; c < diffs.size(); ++c) compareVisibility(prepared, cpu, c, visibility, diffs[c]);
-  failOnValidationMessages(context);
+  failOnValidationMessages(context);  // of the render and of the visibility queries
   bool pass = true;
   for (const auto& d : diffs) pass &= withinTolerance(d, tol);
   out.exitCode = pass ? kExitOk : kExitCompareFailed;
@@ -207,7 +203,7 @@ ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool
   if (item.point) {
     props.push_back({"point", std::to_string(item.point->index)});
     // As the label spells them (0.013, not JSON's 0.012999999999999999: the compare audit).
-    for (const auto& [name, value] : item.point->texts) props.push_back({"parameter." + name, value});
+    for (const auto& [name, value] : item.point->values) props.push_back({"parameter." + name, value.defineText()});
   }
   const double seconds = secondsSince(t0) / double(std::max<std::size_t>(1, diffs.size()));
   for (const auto& d : diffs) {

@@ -27,16 +27,12 @@ std::vector<CompareItem> compareItems(const std::string& path,
     std::vector<CompareItem> items;
     for (std::int64_t i = 0; i < plan.count; ++i) {
       const SweepPoint p = plan.point(i);
-      ComparePoint point{p.index, {}};
       std::string values;
-      for (const auto& [name, value] : p.values) {
-        point.parameters.push_back({name, value.json()});
-        point.texts.push_back({name, value.defineText()});
+      for (const auto& [name, value] : p.values)
         values += (values.empty() ? "" : " ") + name + "=" + value.defineText();
-      }
       const std::string folder = pointFolderName(p.index);
       items.push_back({path + " " + folder + " (" + values + ")", stem + "." + folder, path, pointDefines(defines, p),
-                       point, plan.names});
+                       p, plan.names});
     }
     return items;
   }

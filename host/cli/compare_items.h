@@ -13,18 +13,12 @@
 
 namespace dicsynth::cli {
 
-struct ComparePoint {
-  std::int64_t index = 0;
-  std::vector<std::pair<std::string, std::string>> parameters;  // name → value as JSON (sorted by name)
-  std::vector<std::pair<std::string, std::string>> texts;       // name → value as -D would give it
-};
-
 struct CompareItem {
   std::string label;      // console and JUnit suite name: the scene path (and the point)
   std::string classname;  // JUnit classname: the scene's file stem (and ".point_NNNNN")
   std::string scenePath;
   std::vector<std::pair<std::string, std::string>> defines;  // -D defines (and the point's values)
-  std::optional<ComparePoint> point;
+  std::optional<SweepPoint> point;  // a sweep's point: its index and values
   std::vector<std::string> sweepParameters;  // which defines are the point's (named so in scene errors)
 };
 

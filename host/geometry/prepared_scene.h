@@ -126,6 +126,16 @@ struct PrepareOptions {
   bool textureData = true;
 };
 
+// The camera a stereo rig pairs with camera `camera` (an index into scene.cameras): the one whose
+// view `disparity` measures. -1 when the camera is in no rig.
+inline int rigPartner(const PreparedScene& scene, std::size_t camera) {
+  for (const PreparedRig& rig : scene.rigs) {
+    if (rig.left == int(camera)) return rig.right;
+    if (rig.right == int(camera)) return rig.left;
+  }
+  return -1;
+}
+
 // Throws InputError (with the scene's file:line) for what only shows up now: unreadable textures,
 // distortion that cannot be inverted over the image, a camera or light on an object's plane at
 // infinity, a calibration target wholly behind a camera (none of its features in front of it).

@@ -14,13 +14,16 @@
 
 namespace dicsynth::gpu {
 
+std::string deviceKey(const Context& context) {
+  char version[16];
+  std::snprintf(version, sizeof version, "%08x", context.properties().driverVersion);
+  return context.info().pipelineCacheUUID + "-" + version;
+}
+
 std::string deviceCachePath(const Context& context, const std::string& stem) {
   const std::string folder = resolveCacheDir(context.options().cacheDir);
   if (folder.empty()) return "";
-  char version[16];
-  std::snprintf(version, sizeof version, "%08x", context.properties().driverVersion);
-  return (std::filesystem::path(folder) / (stem + "-" + context.info().pipelineCacheUUID + "-" + version + ".txt"))
-      .string();
+  return (std::filesystem::path(folder) / (stem + "-" + deviceKey(context) + ".txt")).string();
 }
 
 namespace {

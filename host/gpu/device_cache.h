@@ -2,6 +2,8 @@
 // Small per-device records in the cache folder (ContextOptions::cacheDir, see resolveCacheDir):
 // the df64 self-test, the precision calibration. One file per device and driver version; written
 // atomically so a crash never leaves half a record, and a reader ignores what it cannot parse.
+#include <map>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -12,9 +14,38 @@ namespace dicsynth::gpu {
 
 class Context;
 
-// <folder>/<stem>-<pipelineCacheUUID>-<driverVersion, 8 hex digits>.txt; "" when there is no
-// cache folder.
+// What tells devices and drivers apart: "<pipelineCacheUUID>-<driverVersion, 8 hex digits>".
+std::string deviceKey(const Context& context);
+
+// <folder>/<stem>-<deviceKey>.txt; "" when there is no cache folder.
 std::string deviceCachePath(const Context& context, const std::string& stem);
+
+// Records measured in this process that no cache file keeps (no cache folder, or one that cannot be
+// written), by cache file, device and record key: a run asks for one several times (the
+// calibration and each df64 render for the df64 self-test, each Renderer of a Python process for
+// the calibration), and with a read-only cache folder each ask measured and warned again (the
+// cache audit of 2026-11-28).
+template <class Record>
+class UncachedRecords {
+ public:
+  std::optional<Record> find(const Context& context, const std::string& path, const std::string& key) const {
+    std::lock_guard lock(mutex_);
+    const auto it = records_.find(memoKey(context, path, key));
+    if (it == records_.end()) return std::nullopt;
+    return it->second;
+  }
+  void keep(const Context& context, const std::string& path, const std::string& key, const Record& record) {
+    std::lock_guard lock(mutex_);
+    records_[memoKey(context, path, key)] = record;
+  }
+
+ private:
+  static std::string memoKey(const Context& context, const std::string& path, const std::string& key) {
+    return path + "\n" + deviceKey(context) + "\n" + key;
+  }
+  mutable std::mutex mutex_;
+  std::map<std::string, Record> records_;
+};
 
 // Writes `text` to `path` through a temporary file in the same folder (created if needed) and a
 // rename. Throws Error on failure.

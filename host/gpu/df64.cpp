@@ -9,8 +9,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
-#include <map>
-#include <mutex>
 #include <system_error>
 
 #include "core/atomic_file.h"
@@ -206,12 +204,7 @@ bool writeCache(const std::string& path, const std::string& text) {
   }
 }
 
-// Self-tests measured in this process that no cache file keeps (none, or one that cannot be
-// written), by cache file and key: a run asks several times (the calibration, each df64 render), and with a
-// read-only cache folder measured and warned each time (3 times a run, the cache audit of
-// 2026-11-28).
-std::mutex gUncachedMutex;
-std::map<std::string, Df64SelfTest> gUncached;
+UncachedRecords<Df64SelfTest> gUncached;  // measured once a process where no file keeps them
 
 }  // namespace
 
@@ -234,16 +227,10 @@ Df64SelfTest runDf64SelfTest(Context& context) {
     cached.cachePath = path;
     return cached;
   }
-  {
-    std::lock_guard lock(gUncachedMutex);
-    if (const auto it = gUncached.find(path + "\n" + key); it != gUncached.end()) return it->second;
-  }
+  if (std::optional<Df64SelfTest> measured = gUncached.find(context, path, key)) return *measured;
   Df64SelfTest t = measureSelfTest(context);
   t.cachePath = path;
-  if (path.empty() || !writeCache(path, serialize(t, key))) {
-    std::lock_guard lock(gUncachedMutex);
-    gUncached[path + "\n" + key] = t;
-  }
+  if (path.empty() || !writeCache(path, serialize(t, key))) gUncached.keep(context, path, key, t);
   return t;
 }
 

@@ -350,11 +350,8 @@ double allowedOutliers(const Tolerances& t, std::size_t pixels) {
 void compareVisibility(const PreparedScene& scene, const RenderResult& reference, std::size_t camera,
                        const VisibilityTracer& tracer, CameraDifference& d) {
   if (!tracer) return;
-  std::size_t towards = camera;
-  for (const PreparedRig& rig : scene.rigs) {
-    if (rig.left == int(camera)) towards = std::size_t(rig.right);
-    if (rig.right == int(camera)) towards = std::size_t(rig.left);
-  }
+  const int partner = rigPartner(scene, camera);
+  const std::size_t towards = partner >= 0 ? std::size_t(partner) : camera;
   const CameraImage& image = reference.cameras[camera];
   std::vector<dvec3> points;
   std::vector<int> objects;

@@ -287,11 +287,7 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
   }
 
   // Disparity: this pixel's material point seen by the rig's other camera.
-  int other = -1;
-  for (const PreparedRig& rig : scene.rigs) {
-    if (rig.left == int(cameraIndex)) other = rig.right;
-    if (rig.right == int(cameraIndex)) other = rig.left;
-  }
+  const int other = rigPartner(scene, cameraIndex);
   if (other >= 0 && layers.has(Layer::Disparity)) {
     DS_CHECK(image.hasGeometry(), "disparity of a render without geometry (RenderOptions::geometry)");
     const PreparedCamera& otherCamera = scene.cameras[std::size_t(other)];

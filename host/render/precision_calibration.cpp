@@ -5,8 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <map>
-#include <mutex>
 #include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -222,17 +220,8 @@ std::optional<PrecisionCalibration> cachedCalibration(gpu::Context& context) {
 PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& renderer) {
   if (std::optional<PrecisionCalibration> cached = cachedCalibration(context)) return *cached;
   const std::string path = gpu::deviceCachePath(context, "precision-calibration"), key = cacheKey();
-  // Calibrations measured in this process that no cache file keeps (no cache folder, or one that
-  // cannot be written), by file, device and build: each Renderer of a Python process measured again.
-  static std::mutex uncachedMutex;
-  static std::map<std::string, PrecisionCalibration> uncached;
-  char driver[16];
-  std::snprintf(driver, sizeof driver, "%08x", context.info().driverVersion);
-  const std::string memo = path + "\n" + context.info().pipelineCacheUUID + " " + driver + "\n" + key;
-  {
-    std::lock_guard lock(uncachedMutex);
-    if (const auto it = uncached.find(memo); it != uncached.end()) return it->second;
-  }
+  static gpu::UncachedRecords<PrecisionCalibration> uncached;  // measured once a process where no file keeps them
+  if (std::optional<PrecisionCalibration> measured = uncached.find(context, path, key)) return *measured;
   PrecisionCalibration c = measure(context, renderer);
   c.cachePath = path;
   bool cached = false;
@@ -244,10 +233,7 @@ PrecisionCalibration calibratePrecisions(gpu::Context& context, gpu::Renderer& r
       warn(std::string("precision calibration not cached: ") + e.what());
     }
   }
-  if (!cached) {
-    std::lock_guard lock(uncachedMutex);
-    uncached[memo] = c;
-  }
+  if (!cached) uncached.keep(context, path, key, c);
   return c;
 }
 

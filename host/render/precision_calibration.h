@@ -28,7 +28,7 @@ struct PrecisionMeasurement {
   Precision precision = Precision::Fp32;
   bool available = false;
   std::string unavailable;   // why not (no shaderFloat64, df64 self-test failed, over its tolerances, not measured)
-  double mraysPerSecond = 0; // camera rays of the calibration scene per second (best of 2 runs)
+  double mraysPerSecond = 0; // camera rays of the calibration scene per second (best of 5 interleaved renders)
   double maxErrorPx = 0;     // geometric error against the CPU reference, px
 };
 

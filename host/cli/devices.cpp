@@ -141,8 +141,9 @@ void printJson(const std::vector<gpu::DeviceInfo>& devices, const std::vector<Df
         p["precision"] = toString(m.precision);
         p["available"] = m.available;
         p["unavailable"] = m.unavailable;  // why not ("" when available)
-        p["mrays_per_s"] = json::value(m.mraysPerSecond);
-        p["max_error_px"] = json::value(m.maxErrorPx);
+        // null for a precision not measured: 0.0 read as "exact" (the preview audit of 2026-11-28).
+        p["mrays_per_s"] = m.available ? json::value(m.mraysPerSecond) : Json::Value(Json::nullValue);
+        p["max_error_px"] = m.available ? json::value(m.maxErrorPx) : Json::Value(Json::nullValue);
         precisions.append(p);
       }
     o["selected"] = d.index == selected;

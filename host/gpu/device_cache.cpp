@@ -14,10 +14,15 @@
 
 namespace dicsynth::gpu {
 
+std::string deviceKey(const std::string& pipelineCacheUUID, uint32_t driverVersion, const std::string& driver) {
+  char version[32];
+  std::snprintf(version, sizeof version, "%08x-%08x", driverVersion,
+                unsigned(libdeflate_crc32(0, driver.data(), driver.size())));
+  return pipelineCacheUUID + "-" + version;
+}
+
 std::string deviceKey(const Context& context) {
-  char version[16];
-  std::snprintf(version, sizeof version, "%08x", context.properties().driverVersion);
-  return context.info().pipelineCacheUUID + "-" + version;
+  return deviceKey(context.info().pipelineCacheUUID, context.properties().driverVersion, context.info().driver);
 }
 
 std::string deviceCachePath(const Context& context, const std::string& stem) {

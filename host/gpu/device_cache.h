@@ -2,6 +2,7 @@
 // Small per-device records in the cache folder (ContextOptions::cacheDir, see resolveCacheDir):
 // the df64 self-test, the precision calibration. One file per device and driver version; written
 // atomically so a crash never leaves half a record, and a reader ignores what it cannot parse.
+#include <cstdint>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -14,8 +15,13 @@ namespace dicsynth::gpu {
 
 class Context;
 
-// What tells devices and drivers apart: "<pipelineCacheUUID>-<driverVersion, 8 hex digits>".
+// What tells devices and drivers apart: "<pipelineCacheUUID>-<driverVersion, 8 hex digits>-<CRC-32
+// of the driver's name and info, 8 hex digits>". The driver text is part of it because Mesa 22.3's
+// lavapipe reports the UUID "val-%s" (its format string) and version 1 in every release: an update
+// of it would have kept the df64 self-test and the calibration of the release before (the preview
+// audit of 2026-11-28).
 std::string deviceKey(const Context& context);
+std::string deviceKey(const std::string& pipelineCacheUUID, uint32_t driverVersion, const std::string& driver);
 
 // <folder>/<stem>-<deviceKey>.txt; "" when there is no cache folder.
 std::string deviceCachePath(const Context& context, const std::string& stem);

@@ -1,7 +1,10 @@
 #include "io/preview.h"
 
 #include <cstdio>
+#include <exception>
+#include <string_view>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "files/oiio_module/oiio_module.h"
 #include "files/oiio_reader.h"
@@ -19,11 +22,25 @@ PreviewFiles previewExr(const std::string& exrPath, const std::string& outputDir
   request.maxWidth = maxWidth;
   // Debian's fonts-dejavu-core (scripts/install-deps.sh); OpenImageIO searches its own otherwise.
   request.fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  // A picture that cannot be written (a full disk: Error, exit 3) stops the preview with that error.
+  std::exception_ptr writeFailure;
+  request.write = [&writeFailure](const std::string& path, const std::vector<unsigned char>& png) {
+    try {
+      AtomicFile file(path);
+      writeText(file, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+      file.commit();
+      return true;
+    } catch (...) {
+      writeFailure = std::current_exception();
+      return false;
+    }
+  };
   PreviewResult result;
   std::string error;
   if (!preview(&request, &result, &error)) {
     // Nothing half-done: this file's pictures written before the failure go too.
     for (const std::string& png : result.written) std::remove(png.c_str());
+    if (writeFailure) std::rethrow_exception(writeFailure);
     throw InputError(error);
   }
   return {std::move(result.written), std::move(result.skipped)};

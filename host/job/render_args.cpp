@@ -116,7 +116,8 @@ Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::R
     char maxError[32];
     std::snprintf(maxError, sizeof maxError, "%g", args.maxErrorPx);
     note("precision auto: " + std::string(toString(chosen)) + " (max error " + maxError +
-         " px; calibration measured on " + context.info().name + ": " + describeCalibration(calibration) + ")");
+         " px; calibration measured on " + context.info().name + ", " + context.info().driver + ": " +
+         describeCalibration(calibration) + ")");
   }
   return chosen;
 }

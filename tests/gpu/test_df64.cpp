@@ -330,6 +330,23 @@ TEST_CASE("df64: the self-test is cached per device and ignores a damaged cache 
   checkNoValidationMessages(ctx);
 }
 
+TEST_CASE("device cache: the key tells driver releases apart that report one UUID and version") {
+  // Mesa 22.3.6's lavapipe reports the pipeline-cache UUID "val-%s" (76616c2d2573...) and driver
+  // version 1 in every release; only its driverInfo ("Mesa 22.3.6 (LLVM 15.0.6)") names the
+  // release. A 22.3.7 must not read 22.3.6's self-test and calibration.
+  const std::string uuid = "76616c2d257300000000000000000000";
+  const std::string a = gpu::deviceKey(uuid, 1, "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)");
+  const std::string b = gpu::deviceKey(uuid, 1, "llvmpipe Mesa 22.3.7 (LLVM 15.0.6)");
+  CHECK(a != b);
+  CHECK(a.rfind(uuid + "-00000001-", 0) == 0);
+  CHECK(a.size() == uuid.size() + 18);  // "-" 8 hex digits "-" 8 hex digits
+  CHECK(gpu::deviceKey(uuid, 2, "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)") != a);
+  CHECK(gpu::deviceKey(uuid, 1, "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)") == a);  // stable: the cache is found again
+  // The Context's key is this function of its own device's values.
+  gpu::Context ctx(gpu::ContextOptions{});
+  CHECK(gpu::deviceKey(ctx) == gpu::deviceKey(ctx.info().pipelineCacheUUID, ctx.properties().driverVersion, ctx.info().driver));
+}
+
 TEST_CASE("df64: the self-test fails a library with a broken split constant") {
   // df64_probe_bad_split.comp: Dekker's split by 4096 instead of 4097, wrong only for operands
   // within 2^-12 above a power of two. The hard cases ((1 + 2^-12)², …) catch it in every

@@ -7,7 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -184,4 +188,105 @@ TEST_CASE("preview: a sensor TIFF is drawn as its digital numbers, not as radian
       ++checked;
     }
   CHECK(checked > 100);
+}
+
+namespace {
+
+// A PNG's text chunk (the preview writes "dicsynth:range" and "Description").
+std::string pngText(const std::string& path, const std::string& name) {
+  auto in = OIIO::ImageInput::open(path);
+  REQUIRE_MESSAGE(in, path);
+  return in->spec().get_string_attribute(name);
+}
+
+// "LO HI" of a picture's dicsynth:range.
+std::pair<double, double> pngRange(const std::string& path) {
+  const std::string text = pngText(path, "dicsynth:range");
+  std::pair<double, double> r{NAN, NAN};
+  REQUIRE_MESSAGE(std::sscanf(text.c_str(), "%lf %lf", &r.first, &r.second) == 2, path << ": '" << text << "'");
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("preview: integer layers read as their integers, the range of every pixel, tiny and odd files (the 2026-11-28 audit)") {
+  test::TempFolder dir;
+  // objectId and defects are uint32 channels. OpenImageIO hands them over as fractions of 2^32 − 1:
+  // the bar read "0 … 2.328e-10" for ids 0..1, and a file of only integer channels was drawn as a
+  // sensor image named "image".
+  {
+    const int w = 40, h = 20;
+    std::vector<uint32_t> ids;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) ids.insert(ids.end(), {uint32_t(x % 4), uint32_t(y == 3 && x == 5 ? 3 : 0)});
+    auto out = OIIO::ImageOutput::create(dir.file("ids.exr"));
+    REQUIRE(out);
+    OIIO::ImageSpec spec(w, h, 2, OIIO::TypeDesc::UINT32);
+    spec.channelnames = {"objectId", "defects"};
+    REQUIRE(out->open(dir.file("ids.exr"), spec));
+    REQUIRE(out->write_image(OIIO::TypeDesc::UINT32, ids.data()));
+    REQUIRE(out->close());
+    const test::CliResult r = test::runCli("preview " + dir.file("ids.exr") + " -o " + dir.file("ids"));
+    INFO(r.out << r.err);
+    REQUIRE(r.exitCode == 0);
+    CHECK(!std::filesystem::exists(dir.file("ids/ids.image.objectId.png")));
+    CHECK(pngRange(dir.file("ids/ids.objectId.png")) == std::pair<double, double>(0, 3));
+    CHECK(pngRange(dir.file("ids/ids.defects.png")) == std::pair<double, double>(0, 3));
+  }
+  // A wide image shows every 3rd pixel; its range is the file's: a hot pixel in column 1, not
+  // shown, was missing from the labels ("1 … 1").
+  {
+    const int w = 1700, h = 12;
+    std::vector<float> values(std::size_t(w) * h, 1.0f);
+    values[std::size_t(5) * w + 1] = 1000.0f;
+    writeExr(dir.file("wide.exr"), w, h, {"temperature"}, values);
+    const test::CliResult r = test::runCli("preview " + dir.file("wide.exr") + " -o " + dir.file("wide"));
+    INFO(r.out << r.err);
+    REQUIRE(r.exitCode == 0);
+    CHECK(pngRange(dir.file("wide/wide.temperature.png")) == std::pair<double, double>(1, 1000));
+    CHECK(pngText(dir.file("wide/wide.temperature.png"), "ImageDescription").find("pixel step 3") != std::string::npos);
+  }
+  // 1 and 2 px high (OpenImageIO's render_text aborted the process: labels outside the canvas), a
+  // constant field (said in the title), a channel name holding '/' (it made a path into a folder that
+  // did not exist, and the file failed), and a vector length beyond float's range (drawn as NaN gray
+  // with a finite label).
+  for (const int h : {1, 2}) {
+    const std::string name = "thin" + std::to_string(h);
+    const int w = 40;
+    std::vector<float> values;
+    for (int i = 0; i < w * h; ++i) values.insert(values.end(), {0.25f, float(i), 3e38f, 3e38f, 3e38f});
+    writeExr(dir.file(name + ".exr"), w, h, {"Z", "a/b", "disp.X", "disp.Y", "disp.Z"}, values);
+    const test::CliResult r = test::runCli("preview " + dir.file(name + ".exr") + " -o " + dir.file(name));
+    INFO(r.out << r.err);
+    REQUIRE(r.exitCode == 0);
+    const std::string depth = dir.file(name + "/" + name + ".depth.png");
+    const Png png = readPng(depth);
+    CHECK(png.height == 30 + 60);  // the title band and the colour bar's least height
+    CHECK(pngRange(depth) == std::pair<double, double>(0.25, 0.25));
+    CHECK(pngText(depth, "ImageDescription").find("constant") != std::string::npos);
+    CHECK(pngRange(dir.file(name + "/" + name + ".a_b.png")).second == w * h - 1);
+    const std::string disp = dir.file(name + "/" + name + ".disp.png");
+    CHECK(pngRange(disp).second == doctest::Approx(std::sqrt(3.0) * double(3e38f)).epsilon(1e-12));
+    CHECK(!near(readPng(disp).at(0, 30), 128, 128, 128, 2));  // a finite length, not the NaN gray
+  }
+}
+
+TEST_CASE("preview: a picture that cannot be written completely is an error, and nothing is left (exit 3)") {
+  // OpenImageIO's own PNG writing reported nothing on a full disk: 0-byte pictures and exit 0. A
+  // file-size limit (SIGXFSZ ignored, so write fails with EFBIG) stands in for the full disk.
+  test::TempFolder dir;
+  const int w = 400, h = 300;
+  std::vector<float> values(std::size_t(w) * h);
+  std::uint32_t state = 1;
+  for (float& v : values) v = float((state = state * 1664525u + 1013904223u) >> 8);  // noise: a large PNG
+  writeExr(dir.file("noise.exr"), w, h, {"temperature"}, values);
+  const std::string command = "sh -c 'trap \"\" XFSZ; ulimit -f 64; exec " + std::string(DS_BINARY) + " preview " +
+                              dir.file("noise.exr") + " -o " + dir.file("pv") + "' >" + dir.file("out") + " 2>" +
+                              dir.file("err");
+  const int status = std::system(command.c_str());
+  REQUIRE(WIFEXITED(status));
+  INFO(test::readBytes(dir.file("err")));
+  CHECK(WEXITSTATUS(status) == 3);
+  CHECK(test::readBytes(dir.file("err")).find("noise.temperature.png") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("pv")));  // the folder it made, empty again, is gone
 }

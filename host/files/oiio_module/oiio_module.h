@@ -1,6 +1,7 @@
 #pragma once
 // The interface of libdicsynth_oiio.so (files/oiio_reader.h, io/preview.h load it): C-named functions,
 // built by the same compiler and standard library as their callers, so they may take C++ objects.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct PreviewRequest {
   std::string stem;       // PNG names: <stem>.<layer>.png
   int maxWidth = 800;     // the picture's image part is at most this wide (px), decimated by an integer
   std::string fontPath;   // TrueType font for the labels; "" or missing: OpenImageIO's own search
+  // Writes one picture's PNG bytes to `path` completely (or not at all) and returns true; false
+  // stops the preview, the caller keeping why. The module encodes, the caller writes: its files are
+  // checked for a full disk and removed on a signal as every file of a run (core/atomic_file.h).
+  std::function<bool(const std::string& path, const std::vector<unsigned char>& png)> write;
 };
 struct PreviewResult {
   std::vector<std::string> written;  // paths of the PNGs

@@ -23,6 +23,10 @@ std::optional<std::string> closestName(std::string_view word, const std::vector<
   std::optional<std::string> best;
   std::size_t bestDistance = 3;
   for (const std::string& candidate : candidates) {
+    // The distance is at least the difference in length: a word far longer than every candidate
+    // costs nothing (a 100 MB key of a scene took gigabytes of table: the sandbox audit of 2026-11-28).
+    const std::size_t lengthGap = word.size() > candidate.size() ? word.size() - candidate.size() : candidate.size() - word.size();
+    if (lengthGap >= bestDistance) continue;
     const std::size_t distance = editDistance(word, candidate);
     if (distance < bestDistance && distance < word.size()) {
       best = candidate;

@@ -69,6 +69,20 @@ Scene loadFrameScene(const RenderJob& job, int frame, bool again) {
   return loadScene(job.sceneFile, params);
 }
 
+// A frame's scene evaluated again to be rendered must fit what checkFrames measured: the memory
+// was checked from those pixels. A scene that is not the same each time (iterating pairs(), whose
+// order differs between evaluations, or written to tell them apart) rendered a 60000 x 60000
+// camera it had not shown the check and ended in std::bad_alloc (the sandbox audit of 2026-11-28).
+Scene loadFrameSceneAgain(RenderSession& session, const RenderJob& job, int frame, std::uint64_t checkedPixels) {
+  Scene scene = loadFrameScene(job, frame, true);
+  if (const std::uint64_t pixels = framePixels(scene, session.args().downscale); pixels > checkedPixels)
+    throw InputError(job.sceneFile + ": frame " + std::to_string(frame) + " has " + std::to_string(pixels) +
+                     " pixels (all cameras) when evaluated to be rendered, against " + std::to_string(checkedPixels) +
+                     " when checked before any work: a scene must give the same result each time it is evaluated "
+                     "(the order of pairs() differs between evaluations)");
+  return scene;
+}
+
 // A lit object (any shader but Shader.Constant) in a frame without lights is black: nearly always a
 // forgotten light (the docs walk of 2026-11-28 rendered a tube snippet all black without a word).
 // Said, not refused (a black object is a valid image), once per run (per process in the CLI, per
@@ -527,7 +541,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
     if (bar && fi > 0) bar->update(std::int64_t(fi));
     std::shared_ptr<RenderedFrame> rendered;
     try {
-      const Scene scene = loadFrameScene(job, job.frames[fi], true);
+      const Scene scene = loadFrameSceneAgain(session, job, job.frames[fi], checked.maxPixelsPerFrame);
       rendered = std::make_shared<RenderedFrame>(renderFrame(session, job, scene, job.frames[fi], summary));
     } catch (...) {
       finishWriting();  // the previous frame still completes (its own error, if any, wins)
@@ -558,10 +572,12 @@ RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
   renderOptions(session.args(), 0);
   RenderedJob out;
   session.startDevice();
-  out.calibrationPerFrame = checkFrames(session, job).calibrationPerFrame;
+  const FramesChecked checked = checkFrames(session, job);
+  out.calibrationPerFrame = checked.calibrationPerFrame;
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
     stopIfAsked(job.stop);
-    out.frames.push_back(renderFrame(session, job, loadFrameScene(job, job.frames[fi], true), job.frames[fi], out.summary));
+    out.frames.push_back(renderFrame(session, job, loadFrameSceneAgain(session, job, job.frames[fi], checked.maxPixelsPerFrame),
+                                     job.frames[fi], out.summary));
   }
   return out;
 }

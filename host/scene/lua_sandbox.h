@@ -17,13 +17,19 @@
 //    message handler is not called for those, so the allocator records the line itself; exact up
 //    to Lua 5.4.4, approximate on later versions, see allocate());
 //  - time: the count hook also compares the wall-clock time since the run started with the limit,
-//    which bounds loops of calls that are one instruction each but long (string.rep, string.format,
-//    table.concat; each is also bounded by the memory limit, which caps its result);
+//    which bounds loops of calls that are one instruction each but long (string.format,
+//    table.concat: each also bounded by the memory limit, which caps its result); the clock is
+//    read again when a run or call ends, so a long last call cannot pass unseen;
+//  - library loops in C that allocate nothing are bounded: string.rep of an empty string and
+//    separator returns "" at once, table.move visits, and table.insert/remove shift, at most
+//    maxMemoryBytes / 8 elements (more than a table within the limit holds);
 //  - pattern work: string.find, match, gmatch and gsub are wrapped: a pattern with q quantifiers
-//    (* + - ?) can take ~n^(q+1) steps on a subject of n characters (n^q when anchored with ^),
-//    inside one C call that no hook interrupts, so a call whose bound exceeds kMaxPatternWork is
-//    refused with an error at its line. A plain find (4th argument true) is linear and never
-//    refused.
+//    (* + - ?, and each %b and back-reference %1..%9) can take ~n^(q+1) steps on a subject of n
+//    characters (n^q when anchored with ^, which gmatch does not do), inside one C call that no
+//    hook interrupts, so a call whose bound exceeds kMaxPatternWork is refused with an error at
+//    its line. A plain find (4th argument true) is linear and never refused;
+//  - xpcall's handler is not called once a limit is exceeded (the limit raises inside the hook,
+//    where Lua runs the handler with hooks off).
 // Both are sticky: once exceeded, the hook raises at every instruction, so a scene's pcall cannot
 // swallow the error and carry on, and the load fails even if the scene caught the error.
 //
@@ -33,12 +39,14 @@
 // they make cannot raise), uses raw table access only (no metamethods, so no scene code runs),
 // reports problems by throwing, and the Lua error is raised after every C++ object is gone.
 #include <cstddef>
+#include <cstring>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 
 #include "core/error.h"
 
@@ -60,6 +68,39 @@ inline constexpr const char* kChunkToken = "<scene>";
 inline constexpr int kHookInterval = 1000;  // VM instructions between two count-hook calls
 inline constexpr std::int64_t kRandomSeed = 20240101;
 inline constexpr double kMaxPatternWork = 1e9;  // steps (see the header comment): ~1 s at most
+
+// `text` with its control characters escaped, so that it stays one line that cannot move a
+// terminal's cursor: "\n", "\r", other C0 controls and DEL as "\xHH" (tab kept), NEL, LINE and
+// PARAGRAPH SEPARATOR (U+0085, U+2028, U+2029) as "\u{85}", ... Pieces go to append(ptr, length).
+template <class Append>
+void escapeControlsTo(std::string_view text, Append&& append) {
+  static const char* const kHex = "0123456789ABCDEF";
+  std::size_t plain = 0;  // start of the run of characters copied as they are
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    const auto next = [&](std::size_t k) { return i + k < text.size() ? static_cast<unsigned char>(text[i + k]) : 0; };
+    char escaped[12] = {};
+    std::size_t used = 0;  // bytes of the input the escape stands for
+    if (c == '\n') {
+      std::memcpy(escaped, "\\n", 2), used = 1;
+    } else if (c == '\r') {
+      std::memcpy(escaped, "\\r", 2), used = 1;
+    } else if ((c < 0x20 && c != '\t') || c == 0x7f) {
+      escaped[0] = '\\', escaped[1] = 'x', escaped[2] = kHex[c >> 4], escaped[3] = kHex[c & 15], used = 1;
+    } else if (c == 0xC2 && next(1) == 0x85) {
+      std::memcpy(escaped, "\\u{85}", 6), used = 2;
+    } else if (c == 0xE2 && next(1) == 0x80 && (next(2) == 0xA8 || next(2) == 0xA9)) {
+      std::memcpy(escaped, next(2) == 0xA8 ? "\\u{2028}" : "\\u{2029}", 8), used = 3;
+    }
+    if (used == 0) continue;
+    append(text.data() + plain, i - plain);
+    append(escaped, std::strlen(escaped));
+    i += used - 1;
+    plain = i + 1;
+  }
+  append(text.data() + plain, text.size() - plain);
+}
+std::string escapeControls(std::string_view text);
 
 // Shortest text that reads back as the same double ("0.1", "-3", "inf", "nan"), for messages.
 std::string formatNumber(double value);
@@ -145,8 +186,16 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   static int print(lua_State* L);
   static int setmetatableNoGc(lua_State* L);
   static int boundedPattern(lua_State* L);
+  static int guardedHandler(lua_State* L);
+  static int guardedXpcall(lua_State* L);
+  static int boundedRep(lua_State* L);
+  static int boundedMove(lua_State* L);
+  static int boundedShift(lua_State* L);
+  std::int64_t maxTableSpan() const;
   void startClock();
   double elapsedSeconds() const;
+  bool clockExceeded();    // records Limit::Time when the run's time is up; whether a limit was exceeded
+  void checkClockAtEnd();  // throws the time limit's InputError when clockExceeded() finds it now
 
   void openLibraries();
   void recordLimit(Limit which, int line);
@@ -170,7 +219,7 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   int exceededLine_ = 0;
   const char* budget_ = nullptr;          // OwnInstructionBudget's `what` while one is alive
   const char* exceededBudget_ = nullptr;  // budget_ when the instruction limit was exceeded
-  int lastHookLine_ = 0;  // for Lua versions where the allocator cannot read the line
+  int lastHookLine_ = 0;  // line at the last count hook (the allocator's on newer Lua; the clock's at the end)
 };
 
 }  // namespace dicsynth::scene

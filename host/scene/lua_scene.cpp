@@ -11,6 +11,8 @@
 // Defines (-D name=value) are not globals: _G's metatable serves them through __index and records
 // each read, so that a define the scene never reads (a typo) is an error. A value is a number when
 // Lua reads the whole text as one, true/false as booleans, otherwise a string.
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -65,13 +67,24 @@ std::string readSceneFile(const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr)
     throw InputError(path + ": cannot read the scene file: " + std::strerror(errno));
+  // The file opened is checked again, and read to the limit at most: the path checked above may
+  // name another file by now (a link swapped to /dev/zero, a file still growing), which was read
+  // without end (the sandbox audit of 2026-11-28).
+  struct stat opened {};
+  if (::fstat(::fileno(file), &opened) != 0 || !S_ISREG(opened.st_mode)) {
+    std::fclose(file);
+    throw InputError(path + ": cannot read the scene file: not a regular file");
+  }
   std::string text;
   char buffer[1 << 16];
   std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, n);
+  while (text.size() <= kMaxSceneFileBytes && (n = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, n);
   const bool failed = std::ferror(file) != 0;
   std::fclose(file);
   if (failed) throw InputError(path + ": cannot read the scene file: read error");
+  if (text.size() > kMaxSceneFileBytes)
+    throw InputError(path + ": cannot read the scene file: more than " + std::to_string(kMaxSceneFileBytes) +
+                     " bytes, over the limit (16 MiB)");
   return text;
 }
 

@@ -117,7 +117,11 @@ Params::Params(lua_State* L, std::string constructor, const std::vector<const ch
 
   std::sort(unknown.begin(), unknown.end());
   std::string message = unknown.size() == 1 ? "unknown key " : "unknown keys ";
-  for (std::size_t i = 0; i < unknown.size(); ++i) message += (i ? ", '" : "'") + unknown[i] + "'";
+  // A key is shown up to 64 bytes: a scene's 10 MB key made a 10 MB message line.
+  const auto shown = [](const std::string& key) {
+    return key.size() <= 64 ? key : key.substr(0, 48) + "... (" + std::to_string(key.size()) + " bytes)";
+  };
+  for (std::size_t i = 0; i < unknown.size(); ++i) message += (i ? ", '" : "'") + shown(unknown[i]) + "'";
   // Suggest the closest valid key for a single typo.
   if (unknown.size() == 1)
     if (const auto best = closestName(unknown[0], std::vector<std::string>(keys.begin(), keys.end())))

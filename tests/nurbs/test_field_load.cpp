@@ -250,6 +250,13 @@ TEST_CASE("field-load: unreadable, malformed and unsuitable meshes, and points o
   dir.write("lines.vtu", vtu(corners, {{0, 1}, {1, 2}}, 3, "displacement", 3, {"0 0 0", "0 0 0", "0 0 0", "0 0 0"}));
   dir.write("broken.vtu", "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\"");
   dir.write("mesh.stl", "solid x\nendsolid x\n");
+  // A cell naming a point past the last one: VTK's cell locator read beyond the points and the
+  // process died of SIGSEGV (the sandbox audit of 2026-11-28), in both formats.
+  dir.write("badid.vtu", vtu(corners, {{0, 1, 2, 99999999}}, 9, "displacement", 3, {"0 0 0", "0 0 0", "0 0 0", "0 0 0"}));
+  dir.write("badid.vtk",
+            "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n"
+            "-0.06 -0.04 0 0.06 -0.04 0 0 0.04 0\nCELLS 1 4\n3 0 1 999999\nCELL_TYPES 1\n5\n"
+            "POINT_DATA 3\nVECTORS displacement float\n0 0 0 0 0 0 0 0 0\n");
   const std::string head =
       "cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n"
       "ref = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n";
@@ -266,6 +273,8 @@ TEST_CASE("field-load: unreadable, malformed and unsuitable meshes, and points o
       {"Field.load { fileName = 'good.vtu'; scale = 0 }", ":3: Field.load: 'scale'"},
       {"Field.load { fileName = 'good.vtu'; colour = 1 }", ":3: Field.load: unknown key 'colour'"},
       {"Field.load { fileName = 'small.vtu' }", "small.vtu: "},
+      {"Field.load { fileName = 'badid.vtu' }", "badid.vtu: cell 0 names point 99999999, but the mesh has 4 points (0..3)"},
+      {"Field.load { fileName = 'badid.vtk' }", "badid.vtk: cell 0 names point 999999, but the mesh has 3 points (0..2)"},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const std::string scene = dir.write("bad" + std::to_string(k) + ".lua",

@@ -392,3 +392,133 @@ TEST_CASE("scene: print writes FILE:LINE: to stderr") {
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(text == path + ":3: hello\t42\tnil\n");
 }
+
+// The sandbox audit of 2026-11-28: ways around the limits, each closed here.
+TEST_CASE("scene: an xpcall handler cannot run past the limits, and xpcall still works") {
+  TempFolder dir;
+  SceneParams params;
+  params.maxInstructions = 1000000;
+  // The limit raises inside the count hook and Lua calls the handler before unwinding, with hooks
+  // off: this handler looped for ever (also in a Nurbs.deform displacement).
+  checkError(dir, "xpcall(function() while true do end end, function(e) while true do end end)\n", 1,
+             "scene exceeded the instruction limit (1000000 instructions)", params);
+  const std::string plate = std::string(kCameraLine) + "plate = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n";
+  checkError(dir, plate + "w = Nurbs.deform { surface = plate; displacement = function(x, y, z)\n"
+                          "  xpcall(function() while true do end end, function(e) while true do end end) end }\n", 4,
+             "scene exceeded the instruction limit (1000000 instructions in one call of the Nurbs.deform displacement)", params);
+  // As the library's: results, the handler's value, extra arguments, a yield inside a coroutine.
+  const std::string ok = dir.write("xpcall.lua", std::string(kCameraLine) +
+      "local a, b = xpcall(function(x, y) return x + y end, error, 1, 2)\nassert(a == true and b == 3)\n"
+      "local c, d = xpcall(function() error('x', 0) end, function(e) return 'handled ' .. e end)\n"
+      "assert(c == false and d == 'handled x')\n"
+      "local co = coroutine.wrap(function()\n"
+      "  return select(2, xpcall(function() coroutine.yield(1) return 2 end, function(e) return e end)) end)\n"
+      "assert(co() == 1 and co() == 2)\n"
+      "assert(not pcall(xpcall, function() end, 42))  -- the handler must be a function\n");
+  CHECK_NOTHROW(loadScene(ok, params));
+}
+
+TEST_CASE("scene: library loops that run in C without allocating are bounded") {
+  TempFolder dir;
+  // string.rep of an empty string looped 2^63 times; table.move over nils and table.insert/remove
+  // on a __len claiming 2^63 elements looped without end, in C, where no hook fires.
+  const std::string rep = dir.write("rep.lua", std::string(kCameraLine) +
+      "assert(string.rep('', math.maxinteger) == '' and ('ab'):rep(3, ',') == 'ab,ab,ab' and ('x'):rep(0) == '')\n");
+  CHECK_NOTHROW(loadScene(rep, {}));
+  checkErrors(dir, {
+      {"local t = table.move({}, 1, math.maxinteger - 1, 1, {})\n", 1,
+       "table.move: 9223372036854775806 elements from 1 to 9223372036854775806, more than a table within the memory "
+       "limit holds (33554432)"},
+      {"x = 1\ntable.insert(setmetatable({}, {__len = function() return math.maxinteger - 1 end}), 1, 0)\n", 2,
+       "table.insert: the table's __len says 9223372036854775806 elements, more than a table within the memory limit "
+       "holds (33554432)"},
+      {"table.remove(setmetatable({}, {__len = function() return math.maxinteger end}), 1)\n", 1,
+       "table.remove: the table's __len says 9223372036854775807 elements, more than a table within the memory limit "
+       "holds (33554432)"},
+  });
+  // Oracle: the library itself on plain tables. The same operations through a __len (the path
+  // done by the sandbox) give the same tables and results, and a __len that answers 3 once and 2^63
+  // after is asked once.
+  const std::string same = dir.write("same.lua", std::string(kCameraLine) +
+      "local function ops(t)\n"
+      "  local out = {}\n"
+      "  table.insert(t, 'a') table.insert(t, 1, 'b') table.insert(t, 2, 'c') table.insert(t, #t + 1, 'd')\n"
+      "  out[#out + 1] = table.remove(t, 1) out[#out + 1] = table.remove(t) out[#out + 1] = table.remove(t, #t + 1)\n"
+      "  out[#out + 1] = tostring(table.remove({}))\n"
+      "  for i = 1, 6 do out[#out + 1] = tostring(rawget(t, i)) end\n"
+      "  out[#out + 1] = tostring(select(1, pcall(table.insert, t, 9, 'x')))\n"
+      "  out[#out + 1] = tostring(select(1, pcall(table.insert, t, 1, 2, 3)))\n"
+      "  return table.concat(out, ' ')\n"
+      "end\n"
+      "local plain = ops({})\n"
+      "local viaLen = ops(setmetatable({}, {__len = function(t) return rawlen(t) end}))\n"
+      "assert(plain == viaLen, plain .. ' | ' .. viaLen)\n"
+      "local asked = 0\n"
+      "local tricky = setmetatable({1, 2, 3}, {__len = function() asked = asked + 1 return asked == 1 and 3 or math.maxinteger end})\n"
+      "assert(table.remove(tricky, 1) == 1 and asked == 1 and rawget(tricky, 1) == 2 and rawget(tricky, 3) == nil)\n"
+      "local moved = table.move({1, 2, 3}, 1, 3, 2)\n"
+      "assert(table.concat(moved, ',') == '1,1,2,3')\n");
+  CHECK_NOTHROW(loadScene(same, {}));
+}
+
+TEST_CASE("scene: %b, back-references and gmatch's unanchored ^ count in the pattern-work bound") {
+  TempFolder dir;
+  // Each took minutes to hours inside one C call: %b scans the rest of the subject from every start,
+  // %1 compares up to a capture's length, and gmatch treats a leading ^ as a character.
+  checkErrors(dir, {
+      {"local r = string.find(string.rep('(', 100000), '%b()')\n", 1,
+       "string.find: a pattern with 1 quantifiers (* + - ?, %b, %1..%9) on a subject of 100000 characters may take "
+       "~10000200001.0 steps, over the limit of 1000000000.0 (split the subject, anchor the pattern with ^, or use fewer "
+       "quantifiers)"},
+      {"local r = string.find(string.rep('a', 100000), '^(a*)%1x')\n", 1,
+       "string.find: a pattern with 2 quantifiers (* + - ?, %b, %1..%9) on a subject of 100000 characters may take "
+       "~10000200001.0 steps, over the limit of 1000000000.0 (split the subject, anchor the pattern with ^, or use fewer "
+       "quantifiers)"},
+      {"for m in string.gmatch(string.rep('^', 3000), '^.*.*x') do end\n", 1,
+       "string.gmatch: a pattern with 2 quantifiers (* + - ?, %b, %1..%9) on a subject of 3000 characters may take "
+       "~27027009001.0 steps, over the limit of 1000000000.0 (split the subject, anchor the pattern with ^, or use fewer "
+       "quantifiers)"},
+  });
+  const std::string small = dir.write("small.lua", std::string(kCameraLine) +
+      "assert(('a(b)c'):find('%b()') == 2 and ('xx'):match('^(x)%1$') == 'x' and select(2, ('^a^a'):gsub('%^a', '')) == 2)\n");
+  CHECK_NOTHROW(loadScene(small, {}));
+}
+
+TEST_CASE("scene: the time limit holds at the end of a scene whose last call was long") {
+  // A pattern within its bound (~31,000^2 / 2 steps, 0.3 s or more) and nothing after it: no count
+  // hook fired, and a 5 s limit let a 49.7 s scene pass. 0.05 s against at least 0.3 s of work: no
+  // machine is fast enough to pass.
+  TempFolder dir;
+  SceneParams params;
+  params.maxSeconds = 0.05;
+  const std::string path = dir.write("late.lua", std::string(kCameraLine) + "local r = string.find(string.rep('a', 31000), '.-b')\n");
+  const std::string message = loadError(path, params);
+  CHECK(message.rfind(path + ":", 0) == 0);
+  CHECK(message.find("scene exceeded the time limit (0.05 s of evaluation, found when it ended;") != std::string::npos);
+}
+
+TEST_CASE("scene: a Nurbs.deform displacement runs under the memory limit") {
+  // The fit runs in a constructor, whose C++ body allocates unlimited: a displacement keeping 100 MB
+  // strings grew to 5.7 GB.
+  TempFolder dir;
+  SceneParams params;
+  params.maxMemoryBytes = 16 << 20;
+  params.quiet = true;
+  checkMemoryError(dir, std::string(kCameraLine) + "plate = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\nkeep = {}\n"
+                        "w = Nurbs.deform { surface = plate; displacement = function(x, y, z)\n"
+                        "  keep[#keep + 1] = string.rep('x', 4000000 + #keep)\n  return 0, 0, 0 end }\n", 5,
+                   "scene exceeded the memory limit (16 MiB)", params);
+}
+
+TEST_CASE("scene: control characters in errors and prints are escaped, a NUL keeps what follows, parser limits name their line") {
+  TempFolder dir;
+  checkErrors(dir, {
+      {"x = 1\nerror('a\\27[2K\\rb\\0c\\vd\\u{2028}e\\u{85}f', 0)\n", 2, "a\\x1B[2K\\rb\\x00c\\x0Bd\\u{2028}e\\u{85}f"},
+  });
+  // 300 nested parentheses on line 3: the parser's C stack overflow carries no position; it named
+  // line 1.
+  const std::string deep = dir.write("deep.lua", std::string(kCameraLine) + "x = 1\nlocal y = " + std::string(300, '(') + "1" +
+                                                  std::string(300, ')') + "\n");
+  const std::string message = loadError(deep, {});
+  CHECK(message.rfind(deep + ":3: ", 0) == 0);
+}

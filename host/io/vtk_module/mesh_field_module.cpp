@@ -238,6 +238,22 @@ MeshFieldHandle* open(const char* path, const char* arrayName, int step, MeshFie
     *error = "the mesh has no cells (" + std::to_string(info->points) + " points)";
     return nullptr;
   }
+  // Every cell's point ids within the points: VTK's readers keep an id past the last point, and
+  // its cell locator then read beyond the points and crashed the process (SIGSEGV; the sandbox
+  // audit of 2026-11-28 met it with a .vtk and a .vtu).
+  {
+    auto ids = vtkSmartPointer<vtkIdList>::New();
+    const vtkIdType points = mesh.GetNumberOfPoints();
+    for (vtkIdType c = 0; c < mesh.GetNumberOfCells(); ++c) {
+      mesh.GetCellPoints(c, ids);
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+        if (const vtkIdType id = ids->GetId(k); id < 0 || id >= points) {
+          *error = "cell " + std::to_string(c) + " names point " + std::to_string(id) + ", but the mesh has " +
+                   std::to_string(points) + " points (0.." + std::to_string(points - 1) + ")";
+          return nullptr;
+        }
+    }
+  }
   mesh.GetBounds(info->bounds);
 
   std::map<int, std::size_t> kinds;
@@ -262,6 +278,11 @@ MeshFieldHandle* open(const char* path, const char* arrayName, int step, MeshFie
       if (const char* n = pointData->GetArrayName(k)) names += std::string(names.empty() ? "" : ", ") + "'" + n + "'";
     *error = "no point array '" + std::string(arrayName) + "'" +
              (names.empty() ? ": the file has no point arrays" : "; its point arrays are " + names);
+    return nullptr;
+  }
+  if (field->array->GetNumberOfTuples() != mesh.GetNumberOfPoints()) {
+    *error = "point array '" + std::string(arrayName) + "' has " + std::to_string(field->array->GetNumberOfTuples()) +
+             " values for " + std::to_string(mesh.GetNumberOfPoints()) + " points";
     return nullptr;
   }
   const int components = field->array->GetNumberOfComponents();

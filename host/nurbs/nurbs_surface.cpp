@@ -3,6 +3,8 @@
 // prepends "file:line: Shape.Nurbs: ".
 #include "nurbs/nurbs_surface.h"
 
+#include <algorithm>
+
 #include <charconv>
 #include <cmath>
 #include <string>
@@ -130,7 +132,15 @@ void validateNurbs(const NurbsSurface& s) {
     const std::string entry = "weights[" + std::to_string(k + 1) + "]";
     if (!std::isfinite(w)) fail(entry + " must be finite, got " + number(w));
     if (!(w > 0)) fail(entry + " must be > 0, got " + number(w));
+    if (w < kMinNurbsWeight || w > kMaxNurbsWeight)
+      fail(entry + " = " + number(w) + " is outside " + number(kMinNurbsWeight) + ".." + number(kMaxNurbsWeight) +
+           ": scale all weights by one factor (the surface does not change)");
   }
+  const auto [low, high] = std::minmax_element(s.weights.begin(), s.weights.end());
+  if (*high > kMaxNurbsWeightRatio * *low)
+    fail("the weights range from " + number(*low) + " (weights[" + std::to_string(low - s.weights.begin() + 1) + "]) to " +
+         number(*high) + " (weights[" + std::to_string(high - s.weights.begin() + 1) + "]), a ratio over the limit of " +
+         number(kMaxNurbsWeightRatio) + ": add control points (knots) where the surface bends sharply instead");
 }
 
 }  // namespace dicsynth

@@ -29,6 +29,16 @@ inline constexpr std::size_t kMaxNurbsControlPoints = 1u << 20;  // 1 Mi points 
 // weights do not number countU × countV, or there are more than kMaxNurbsControlPoints points.
 // "Inside" is strictly inside the knot domain. Messages name entries by 1-based indices, as the
 // scene writes them: knotsU[5], controlPoints[7], weights[3].
+// The weights' range: each in kMinNurbsWeight..kMaxNurbsWeight, the largest at most
+// kMaxNurbsWeightRatio times the smallest. Only ratios shape a rational surface, so any CAD
+// surface scales into the range; beyond the ratio the renderers' root searches were not found
+// reliable: the NURBS audit of 2026-11-28 rendered a biquadratic patch whose centre weight was
+// 1e4 times the others' with every hit, at 1e5 the CPU reference lost 5.6 % of them (1e6: 42 %),
+// and weights of 1e±300 broke every path (squared in the derivatives). 1e3 keeps a factor 10
+// below the first loss; the circle's weights (1/√2) and every specimen's are far inside.
+inline constexpr double kMaxNurbsWeightRatio = 1e3;
+inline constexpr double kMinNurbsWeight = 1e-6, kMaxNurbsWeight = 1e6;
+
 void validateNurbs(const NurbsSurface& surface);
 
 // The part of validateNurbs that needs neither control points nor weights (degrees, counts, the

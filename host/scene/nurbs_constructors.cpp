@@ -81,7 +81,8 @@ Piegl & Tiller) given by its control net. The control points are relative to `lo
   knotsV        | {t1, t2, ...}       | required  | the same along v: countV = #knotsV - q - 1
   controlPoints | {{x, y, z}, ...}, m | required  | countU × countV points, row-major: entry
                 |                     |           | i countV + j + 1 is P_ij (i along u, j along v)
-  weights       | {w1, w2, ...}       | all 1     | one per control point, same order; > 0
+  weights       | {w1, w2, ...}       | all 1     | one per control point, same order; in 1e-6..1e6,
+                |                     |           | the largest at most 1000 × the smallest
   location      | {x, y, z}, m        | {0, 0, 0} | origin of the control points' frame
 
 Rules (one-line errors name the entry: knotsU[5], controlPoints[7], weights[3], counted from 1):

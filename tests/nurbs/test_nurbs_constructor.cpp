@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 
+#include "exr_test_util.h"
 #include "nurbs_cox_de_boor.h"
+#include "run_cli.h"
 #include "scene/scene.h"
 #include "scene_test_util.h"
 
@@ -161,6 +163,14 @@ TEST_CASE("scene: Shape.Nurbs errors name the line and what is wrong") {
                  "Shape.Nurbs: weights[3] must be > 0, got 0");
   checkBodyError(dir, bilinear("weights = {1, 1, 1, -2}"), 2,
                  "Shape.Nurbs: weights[4] must be > 0, got -2");
+  // The weights' range (nurbs/nurbs_surface.h: kMaxNurbsWeightRatio and its measurement).
+  checkBodyError(dir, bilinear("weights = {1, 1, 1, 2e6}"), 2,
+                 "Shape.Nurbs: weights[4] = 2e+06 is outside 1e-06..1e+06: scale all weights by one factor "
+                 "(the surface does not change)");
+  checkBodyError(dir, bilinear("weights = {1, 2000, 1, 1}"), 2,
+                 "Shape.Nurbs: the weights range from 1 (weights[1]) to 2000 (weights[2]), a ratio over the limit "
+                 "of 1000: add control points (knots) where the surface bends sharply instead");
+  CHECK_NOTHROW(loadBody(dir, bilinear("weights = {1, 1000, 1, 1}")));
   checkBodyError(dir, bilinear("location = {0, 0}"), 2,
                  "Shape.Nurbs: 'location' must be {x, y, z} (3 numbers), got 2 values");
   // Inside a function, the line of the call.
@@ -222,4 +232,39 @@ TEST_CASE("scene: Shape.Nurbs with 10^6 control points is read quickly, over the
                  "Shape.Nurbs: countU × countV = 1025 × 1024 = 1049600 control points exceed the "
                  "limit of 1048576");
   CHECK(secondsSince(start) < 10.0);
+}
+
+TEST_CASE("scene: at the weight ratio limit the CPU reference still finds every hit (the NURBS audit's patch)") {
+  // A biquadratic patch with straight edges: its image is the base square whatever the weights (a
+  // positive weight moves points inside the patch, never its edges), so the pixel centres it covers
+  // are the same at every weight. At a centre weight of 1e5 the CPU reference lost 5.6 % of them;
+  // at the limit's 1e3 (and its inverse) it must lose none against weight 1.
+  TempFolder dir;
+  const auto maskAt = [&](const std::string& weight) {
+    const std::string scene = dir.write("w.lua",
+        "camera = Camera.Pinhole { resolution = {161, 121}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} }\n"
+        "local P, W = {}, {}\n"
+        "for i = 0, 2 do for j = 0, 2 do\n"
+        "  P[#P + 1] = {-0.03 + 0.03 * i, -0.03 + 0.03 * j, (i == 1 and j == 1) and -0.02 or 0}\n"
+        "  W[#W + 1] = (i == 1 and j == 1) and " + weight + " or 1 end end\n"
+        "obj = Object.Simple { shape = Shape.Nurbs { degree = {2, 2}; knotsU = {0, 0, 0, 1, 1, 1}; knotsV = {0, 0, 0, 1, 1, 1};\n"
+        "  controlPoints = P; weights = W; location = {0, 0, 0.4} }; shader = Shader.Constant { color = 0.9 };\n"
+        "  transform = rotate_y(degrees(30)) }\n");
+    const std::string out = dir.file("out_" + weight);
+    const test::CliResult r = test::runCli("render " + scene + " -o " + out + " --backend cpu --spp 1 --layers mask");
+    INFO(r.err);
+    REQUIRE(r.exitCode == 0);
+    return test::readExr(out + "/camera.exr").floats.at("mask");
+  };
+  const std::vector<float> reference = maskAt("1");
+  std::size_t hits = 0;
+  for (float m : reference) hits += m > 0;
+  CHECK(hits > 10000);  // the audit counted 12,422
+  for (const std::string weight : {"1000", "0.001"}) {
+    const std::vector<float> mask = maskAt(weight);
+    REQUIRE(mask.size() == reference.size());
+    std::size_t differing = 0;
+    for (std::size_t k = 0; k < mask.size(); ++k) differing += (mask[k] > 0) != (reference[k] > 0);
+    CHECK_MESSAGE(differing == 0, "centre weight " << weight);
+  }
 }

@@ -142,6 +142,14 @@ int packNurbs(const PreparedNurbs& n, int degree, PackedScene<Layout>& p) {
                node.subPatchCount, 0};
     p.nurbsNodes.push_back(g);
   }
+  // A surface without area has no patches (geometry/nurbs_bvh.cpp) and so no tree: its root is one
+  // empty leaf, which the traversal skips (shaders/lib/nurbs.glsl), a box at the origin (the
+  // traversal's rounding pad scales with the root's extent: 0 here).
+  if (n.nodes.empty()) {
+    typename Layout::GpuNurbsNode g{};
+    g.links = {-1, subOffset, 0, 0};
+    p.nurbsNodes.push_back(g);
+  }
   std::vector<BezierPatch> elevated;
   elevated.reserve(n.patches.size());
   for (const BezierPatch& original : n.patches) {

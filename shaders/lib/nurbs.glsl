@@ -565,6 +565,7 @@ bool ds_search_nurbs(int object, real3 o, real3 d, hreal3 oh, hreal3 dh, real sM
         stack[top++] = leftFirst ? left : right;
         continue;
       }
+      if (links.z == 0) continue;  // the one empty leaf of a surface without area (host/gpu/pack.cpp)
       k = links.y;
       kEnd = links.y + links.z;
       mode = DS_NURBS_MODE_SUBPATCH;

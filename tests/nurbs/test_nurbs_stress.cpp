@@ -16,6 +16,8 @@
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
 #include "nurbs_test_util.h"
+#include "scene/scene.h"
+#include "temp_folder.h"
 #include "render/compare.h"
 #include "render/geometric_error.h"
 
@@ -235,6 +237,34 @@ TEST_CASE("nurbs-stress: zero-area surfaces (a point, a line) prepare and render
   for (const NurbsSurface& s : {point, line}) {
     const PreparedScene scene =
         prepareScene(sceneOf(stressCamera({0, 0, 0}, {0, 0, 0.5}), {nurbsObject("flat", s, {0, 0, 0.5})}));
+    const RenderResult reference = cpu::render(scene, groundTruthOnly(Precision::Fp64));
+    gpu::Renderer renderer(gpuContext());
+    for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
+      const RenderResult gpu = renderer.render(scene, groundTruthOnly(p));
+      std::size_t hits = 0;
+      for (std::size_t i = 0; i < gpu.cameras[0].pixelCount(); ++i)
+        hits += gpu.cameras[0].objectId[i] != 0 || reference.cameras[0].objectId[i] != 0;
+      CHECK(hits == 0);
+    }
+  }
+  expectNoValidationMessages();
+}
+
+TEST_CASE("nurbs-stress: a surface without area on pixel-centre rays is hit by none of them, quickly") {
+  // The NURBS audit of 2026-11-28: collapsed to a point on pixel (20, 15)'s ray, the GPU fp64 render
+  // did not finish in 300 s and the CPU reported a hit; on a line through pixel row 15, fp64 took
+  // 208 s and the CPU reported 39 hits. Such patches are now left out on both renderers. The
+  // camera's principal point is the image centre, so pixel (20, 15)'s centre ray is the optical
+  // axis and row 15's the plane y = 0.
+  test::TempFolder dir;
+  const std::string head =
+      "camera = Camera.Pinhole { resolution = {41, 31}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} }\n"
+      "obj = Object.Simple { shape = Shape.Nurbs { degree = {1, 1}; knotsU = {0,0,1,1}; knotsV = {0,0,1,1};\n"
+      "  location = {0, 0, 0.4}; controlPoints = ";
+  const std::string tail = " }; shader = Shader.Constant { color = 0.9 } }\n";
+  for (const std::string points : {"{{0,0,0},{0,0,0},{0,0,0},{0,0,0}}", "{{-0.01,0,0},{-0.005,0,0},{0.005,0,0},{0.01,0,0}}"}) {
+    INFO(points);
+    const PreparedScene scene = prepareScene(loadScene(dir.write("flat.lua", head + points + tail), {}));
     const RenderResult reference = cpu::render(scene, groundTruthOnly(Precision::Fp64));
     gpu::Renderer renderer(gpuContext());
     for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {

@@ -64,7 +64,7 @@ void addBenchCommand(CLI::App& root, RunFn& run) {
   auto cmd = std::make_shared<BenchCommand>();
   CLI::App* sub = root.add_subcommand(
       "bench", "Run time versus error: CPU reference and every GPU precision on three scenes (CSV + SVG plot)");
-  sub->add_option("-o,--out", cmd->outputDir, "Output folder for bench.csv and bench.svg")->capture_default_str();
+  sub->add_option("-o,--output,--out", cmd->outputDir, "Output folder for bench.csv and bench.svg")->capture_default_str();
   sub->add_option("--scenes", cmd->scenesDir, "Folder holding figure1.lua, nurbs_plate.lua, dogbone.lua")
       ->capture_default_str();
   sub->add_flag("--json", cmd->json, "Print the rows as a JSON array instead of a table");

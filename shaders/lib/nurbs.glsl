@@ -823,6 +823,12 @@ void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hr
   if ((seams & 5) != 0 && h_lt(h_x(uv), zero)) uv = h2(h_add(h_x(uv), one), h_y(uv));
   if ((seams & 10) != 0 && h_gt(h_y(uv), one)) uv = h2(h_x(uv), h_sub(h_y(uv), one));
   if ((seams & 10) != 0 && h_lt(h_y(uv), zero)) uv = h2(h_x(uv), h_add(h_y(uv), one));
+  // Within [0, 1]² as the CPU reference's (host/geometry/nurbs_intersect.cpp clamps): a root on an
+  // edge came out up to 2e-14 outside in df64, 1.9e-15 in fp64 (the NURBS audit of 2026-11-28).
+  if (h_lt(h_x(uv), zero)) uv = h2(zero, h_y(uv));
+  if (h_gt(h_x(uv), one)) uv = h2(one, h_y(uv));
+  if (h_lt(h_y(uv), zero)) uv = h2(h_x(uv), zero);
+  if (h_gt(h_y(uv), one)) uv = h2(h_x(uv), one);
 }
 
 #endif

@@ -277,3 +277,31 @@ TEST_CASE("nurbs-stress: a surface without area on pixel-centre rays is hit by n
   }
   expectNoValidationMessages();
 }
+
+TEST_CASE("nurbs-stress: (u, v) stays in [0, 1]² on every renderer where an edge runs through pixel centres") {
+  // The NURBS audit of 2026-11-28: a planar patch whose u = 1 edge collapses to a point on the
+  // optical axis, its edges through pixel centres, had uv down to -1.9e-15 on 85 pixels in fp64
+  // and -2e-14 in df64; the CPU clamps, the GPU did not (docs/outputs.md: uv in [0, 1]²).
+  test::TempFolder dir;
+  const PreparedScene scene = prepareScene(loadScene(dir.write("triangle.lua",
+      "camera = Camera.Pinhole { resolution = {161, 121}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} }\n"
+      "obj = Object.Simple { shape = Shape.Nurbs { degree = {1, 1}; knotsU = {0,0,1,1}; knotsV = {0,0,1,1};\n"
+      "  controlPoints = {{-0.03,-0.03,0},{-0.03,0.03,0},{0,0,0},{0,0,0}}; location = {0, 0, 0.4} };\n"
+      "  shader = Shader.Constant { color = 0.9 } }\n"), {}));
+  gpu::Renderer renderer(gpuContext());
+  std::vector<RenderResult> results = {cpu::render(scene, groundTruthOnly(Precision::Fp64))};
+  for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) results.push_back(renderer.render(scene, groundTruthOnly(p)));
+  for (const RenderResult& result : results) {
+    const CameraImage& image = result.cameras[0];
+    std::size_t hits = 0, outside = 0;
+    for (std::size_t i = 0; i < image.pixelCount(); ++i) {
+      if (image.objectId[i] == 0) continue;
+      ++hits;
+      const dvec2 uv = image.uv[i];
+      outside += !(uv.x >= 0 && uv.x <= 1 && uv.y >= 0 && uv.y <= 1);
+    }
+    CHECK(hits > 3000);  // the triangle's 3,721 pixel centres
+    CHECK(outside == 0);
+  }
+  expectNoValidationMessages();
+}

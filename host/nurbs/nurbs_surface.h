@@ -4,6 +4,8 @@
 // knotsU[countU]] × [knotsV[degreeV], knotsV[countV]] normalized to the unit square; textures are
 // glued on (u, v). Conventions follow "The NURBS Book" (Piegl & Tiller): a knot vector has
 // count + degree + 1 entries.
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/math.h"
@@ -21,6 +23,9 @@ struct NurbsSurface {
 
 inline constexpr int kMaxNurbsDegree = 5;
 inline constexpr std::size_t kMaxNurbsControlPoints = 1u << 20;  // 1 Mi points (see validateNurbs)
+// All the surfaces one scene evaluation makes, kept or not: 4 of the largest (~40 bytes a point
+// with its weight: 160 MB), within the Lua memory limit's order of size.
+inline constexpr std::uint64_t kMaxSceneNurbsControlPoints = 4 * std::uint64_t(kMaxNurbsControlPoints);
 
 // Throws InputError("<what is wrong>") without a location (the caller prepends file:line) when:
 // a degree is outside 1..kMaxNurbsDegree, a count is below degree + 1, the knot vectors have the

@@ -115,6 +115,8 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   LuaSandbox& operator=(const LuaSandbox&) = delete;
 
   lua_State* state() const { return L_; }
+  // The NURBS control points the scene's constructors made so far, `n` more included.
+  std::uint64_t addNurbsControlPoints(std::uint64_t n) { return nurbsControlPoints_ += n; }
   bool quiet() const { return limits_.quiet; }  // SandboxLimits::quiet: constructors report nothing either
   const std::string& scenePath() const { return scenePath_; }          // as given by the user
   // What determines this evaluation's values: the scene's path and text, the frame and the defines
@@ -219,6 +221,7 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   int exceededLine_ = 0;
   const char* budget_ = nullptr;          // OwnInstructionBudget's `what` while one is alive
   const char* exceededBudget_ = nullptr;  // budget_ when the instruction limit was exceeded
+  std::uint64_t nurbsControlPoints_ = 0;  // addNurbsControlPoints
   int lastHookLine_ = 0;  // line at the last count hook (the allocator's on newer Lua; the clock's at the end)
 };
 

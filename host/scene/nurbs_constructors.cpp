@@ -23,6 +23,13 @@ namespace dicsynth::scene {
 namespace {
 
 Shape nurbsShape(lua_State* L, const Params& p, NurbsSurface surface) {
+  // The scene's NURBS data lives in C++, beyond the Lua memory limit: a loop keeping plates of a
+  // million control points each reached 4.9 GB (the sandbox audit of 2026-11-28). Every surface a
+  // constructor makes counts, kept or not.
+  const std::uint64_t total = LuaSandbox::of(L).addNurbsControlPoints(surface.controlPoints.size());
+  if (total > kMaxSceneNurbsControlPoints)
+    p.fail("the scene's NURBS surfaces have " + std::to_string(total) + " control points in all (surfaces kept or not), " +
+           "over the limit of " + std::to_string(kMaxSceneNurbsControlPoints) + " per scene");
   Shape shape;
   shape.where = LuaSandbox::of(L).here(L);
   shape.location_m = p.vec3("location").value_or(dvec3(0));

@@ -268,3 +268,14 @@ TEST_CASE("scene: at the weight ratio limit the CPU reference still finds every 
     CHECK_MESSAGE(differing == 0, "centre weight " << weight);
   }
 }
+
+TEST_CASE("scene: the NURBS control points of all a scene's surfaces, kept or not, are limited") {
+  // Their data live in C++, beyond the Lua memory limit: plates of ~10^6 points kept in a table
+  // reached 4.9 GB (the sandbox audit of 2026-11-28). 4 · 2^20 points per scene; each plate here
+  // has (1000 + 3)^2 = 1,006,009, so the fifth passes the limit.
+  TempFolder dir;
+  checkBodyError(dir, "keep = {}\nfor i = 1, 10 do\n  keep[i] = Nurbs.plate { size = {0.1, 0.05}; spans = {1000, 1000} }\nend\n", 4,
+                 "Nurbs.plate: the scene's NURBS surfaces have 5030045 control points in all (surfaces kept or not), over the "
+                 "limit of 4194304 per scene");
+  CHECK_NOTHROW(loadBody(dir, "keep = {}\nfor i = 1, 1000 do\n  keep[i] = Nurbs.plate { size = {0.1, 0.05} }\nend\n"));
+}

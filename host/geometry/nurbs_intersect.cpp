@@ -16,6 +16,10 @@ constexpr double kAcceptMargin = 1e-9;      // patch parameters
 constexpr double kSameUV = 1e-9;
 constexpr double kSamePoint = 1e-9;         // of the surface's size
 constexpr double kTangentSameUV = 1e-6;
+// A hit's normal where the derivatives' cross product vanishes (accept(); the GPU's fp64 uses the
+// same values, shaders/lib/nurbs.glsl).
+constexpr double kDegenerateNormal = 1e-8;  // |Su × Sv| below this of max(|Su|², |Sv|²)
+constexpr double kNormalStep = 1e-6;        // patch parameters towards its centre
 constexpr int kMaxNewtonIterations = 64;    // a double root halves the error per step: 2^-20 → √ε in ~10
 
 // The ray and its frame (header, step 1).
@@ -296,6 +300,20 @@ class Search {
     const SurfacePoint<double> sp = evaluateBezier(patch_->points.data(), p_, q_, ab.x, ab.y);
     hit.point = sp.point;
     hit.normal = glm::cross(sp.du / span.x, sp.dv / span.y);
+    // At a pole or a collapsed corner one derivative vanishes and the cross product is rounding
+    // alone: the NURBS audit of 2026-11-28 met normals 46° off at a sphere's pole and NaN at a
+    // triangle patch's apex. Where the cross product is below kDegenerateNormal of the larger
+    // derivative squared (a parameter distance of ~1e-8 from a pole, where the direct normal errs
+    // by ~1e-16 / 1e-8 rad), the normal is taken kNormalStep towards the patch's centre instead:
+    // the surface is continuous there, and the step errs by the step times the normal's turning
+    // per unit parameter (1.6e-6 rad on a sphere's 90° patch). Patch-local derivatives, as the
+    // GPU's (shaders/lib/nurbs.glsl), so that both take the same branch.
+    if (const double larger = std::max(glm::dot(sp.du, sp.du), glm::dot(sp.dv, sp.dv));
+        !(glm::length(glm::cross(sp.du, sp.dv)) > kDegenerateNormal * larger)) {
+      const dvec2 inward = ab + kNormalStep * (dvec2(0.5) - ab);
+      const SurfacePoint<double> near = evaluateBezier(patch_->points.data(), p_, q_, inward.x, inward.y);
+      hit.normal = glm::cross(near.du / span.x, near.dv / span.y);
+    }
     hit.s = ray_.s0 + glm::dot((sp.point - ray_.anchor) - ray_.anchorError, ray_.d) / ray_.dLength2;
     if (!(hit.s > sMin_ && hit.s < sBest_)) return;
     if (!nearest_) {

@@ -802,7 +802,24 @@ void ds_nurbs_attributes(ShapeHit found, hreal3 o, hreal3 d, out hreal s, out hr
   real4 S, Sa, Sb;
   ds_patch_eval(cp, found.param, S, Sa, Sb);
   // Cartesian derivatives ∝ w Sa.xyz − Sa.w S.xyz (quotient rule; the common 1/w² drops out).
-  normal = cross(S.w * Sa.xyz - Sa.w * S.xyz, S.w * Sb.xyz - Sb.w * S.xyz);
+  const real3 da = S.w * Sa.xyz - Sa.w * S.xyz, db = S.w * Sb.xyz - Sb.w * S.xyz;
+  normal = cross(da, db);
+  // At a pole or a collapsed corner one derivative vanishes and the cross product is rounding
+  // alone (a sphere's pole 79° off in fp64, 90° in fp32, NaN at a triangle patch's apex: the NURBS
+  // audit of 2026-11-28): there the normal is taken a step towards the patch's centre, as on the
+  // CPU (host/geometry/nurbs_intersect.cpp, accept(), with fp64's values); in float the threshold
+  // and the step are 1e-3 (the direct normal errs by ~6e-8 / 1e-3 rad at the threshold, the step
+  // by 1e-3 times the normal's turning per unit parameter).
+#if defined(DS_FP64)
+  const real degenerate = 1e-8, normalStep = 1e-6;
+#else
+  const real degenerate = 1e-3, normalStep = 1e-3;
+#endif
+  if (!(length(normal) > degenerate * max(dot(da, da), dot(db, db)))) {
+    real4 S2, Sa2, Sb2;
+    ds_patch_eval(cp, found.param + normalStep * (real2(0.5) - found.param), S2, Sa2, Sb2);
+    normal = cross(S2.w * Sa2.xyz - Sa2.w * S2.xyz, S2.w * Sb2.xyz - Sb2.w * S2.xyz);
+  }
 #if defined(DS_DF64)
   const hreal2 ab = found.refined;  // ds_search_nurbs refined it
   const hreal4 Sh = ds_patch_eval_h(patchIndex, ab);

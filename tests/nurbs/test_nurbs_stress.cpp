@@ -7,6 +7,7 @@
 // Each case prints its counts.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -302,6 +303,58 @@ TEST_CASE("nurbs-stress: (u, v) stays in [0, 1]² on every renderer where an edg
     }
     CHECK(hits > 3000);  // the triangle's 3,721 pixel centres
     CHECK(outside == 0);
+  }
+  expectNoValidationMessages();
+}
+
+TEST_CASE("nurbs-stress: the normal at a sphere's pole and a triangle patch's apex is the surface's, on every renderer") {
+  // The NURBS audit of 2026-11-28: where one derivative vanishes (a pole, a collapsed corner) the
+  // cross product of the derivatives is rounding alone: a NURBS sphere's pole facing the camera had
+  // its normal 46.6° off on the CPU, 79.4° in fp64, 90° in fp32, and a triangle patch's apex NaN.
+  // Oracle: a sphere's normal is (P − C) / R, the plane's is −z. Bounds: the fallback's step times
+  // the normal's turning per unit parameter (π/2 on the sphere's patches): 1e-6 · π/2 = 1.6e-6 rad
+  // on the CPU and in fp64, 1e-3 · π/2 = 1.6e-3 rad where the normal is computed in float (fp32,
+  // df64); everywhere else the direct normal is far within these.
+  test::TempFolder dir;
+  const std::string sphere =
+      "camera = Camera.Pinhole { resolution = {161, 121}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} }\n"
+      "local R, s = 0.03, 1 / math.sqrt(2)\n"
+      "local c = {{1,0},{1,1},{0,1},{-1,1},{-1,0},{-1,-1},{0,-1},{1,-1},{1,0}}\n"
+      "local wu, wv = {1,s,1,s,1,s,1,s,1}, {1,s,1,s,1}\n"
+      "local prof = {{0,-R},{R,-R},{R,0},{R,R},{0,R}}\n"
+      "local P, W = {}, {}\n"
+      "for i = 1, 9 do for j = 1, 5 do\n"
+      "  P[#P+1] = {c[i][1]*prof[j][1], prof[j][2], c[i][2]*prof[j][1]}; W[#W+1] = wu[i]*wv[j] end end\n"
+      "ball = Object.Simple { shape = Shape.Nurbs { degree = {2, 2}; knotsU = {0,0,0,.25,.25,.5,.5,.75,.75,1,1,1};\n"
+      "  knotsV = {0,0,0,.5,.5,1,1,1}; controlPoints = P; weights = W; location = {0, 0, 0.4} };\n"
+      "  shader = Shader.Constant { color = 0.9 }; transform = rotate_x(degrees(90)) }\n";
+  const std::string triangle =
+      "camera = Camera.Pinhole { resolution = {161, 121}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} }\n"
+      "obj = Object.Simple { shape = Shape.Nurbs { degree = {1, 1}; knotsU = {0,0,1,1}; knotsV = {0,0,1,1};\n"
+      "  controlPoints = {{-0.03,-0.03,0},{-0.03,0.03,0},{0,0,0},{0,0,0}}; location = {0, 0, 0.4} };\n"
+      "  shader = Shader.Constant { color = 0.9 } }\n";
+  gpu::Renderer renderer(gpuContext());
+  for (const bool isSphere : {true, false}) {
+    const PreparedScene scene = prepareScene(loadScene(dir.write("s.lua", isSphere ? sphere : triangle), {}));
+    for (const int which : {-1, 0, 1, 2}) {  // the CPU, then fp64, df64, fp32
+      const Precision p = which == 1 ? Precision::Df64 : which == 2 ? Precision::Fp32 : Precision::Fp64;
+      const CameraImage image = which < 0 ? cpu::render(scene, groundTruthOnly(p)).cameras[0]
+                                          : renderer.render(scene, groundTruthOnly(p)).cameras[0];
+      const double bound = p == Precision::Fp64 ? 2e-6 : 2e-3;  // rad, from the derivation above
+      std::size_t hits = 0, bad = 0;
+      double worst = 0;
+      for (std::size_t i = 0; i < image.pixelCount(); ++i) {
+        if (image.objectId[i] == 0) continue;
+        ++hits;
+        const dvec3 truth = isSphere ? glm::normalize(image.position_m[i] - dvec3(0, 0, 0.4)) : dvec3(0, 0, -1);
+        const double angle = std::acos(std::clamp(glm::dot(glm::normalize(image.normal[i]), truth), -1.0, 1.0));
+        worst = std::max(worst, std::isnan(angle) ? 10.0 : angle);
+        bad += !(angle <= bound);
+      }
+      INFO((isSphere ? "sphere " : "triangle ") << which << ": worst " << worst << " rad");
+      CHECK(hits > 3000);
+      CHECK(bad == 0);
+    }
   }
   expectNoValidationMessages();
 }

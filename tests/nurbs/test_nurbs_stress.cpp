@@ -228,6 +228,31 @@ TEST_CASE("nurbs-stress: tiny deformations (a control point moved by 1e-9 m)") {
   expectNoValidationMessages();
 }
 
+namespace {
+
+// No pixel of `scene` is a hit on the CPU reference or on the GPU in any precision.
+void checkNoHitsAnywhere(const PreparedScene& scene) {
+  const RenderResult reference = cpu::render(scene, groundTruthOnly(Precision::Fp64));
+  gpu::Renderer renderer(gpuContext());
+  for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
+    const RenderResult gpu = renderer.render(scene, groundTruthOnly(p));
+    std::size_t hits = 0;
+    for (std::size_t i = 0; i < gpu.cameras[0].pixelCount(); ++i)
+      hits += gpu.cameras[0].objectId[i] != 0 || reference.cameras[0].objectId[i] != 0;
+    CHECK(hits == 0);
+  }
+}
+
+// A planar bilinear patch whose u = 1 edge collapses to a point on the optical axis of a 161 × 121
+// camera (pixel (80, 60)'s centre ray), its edges through pixel centres.
+const char* const kTriangleScene =
+    "camera = Camera.Pinhole { resolution = {161, 121}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} }\n"
+    "obj = Object.Simple { shape = Shape.Nurbs { degree = {1, 1}; knotsU = {0,0,1,1}; knotsV = {0,0,1,1};\n"
+    "  controlPoints = {{-0.03,-0.03,0},{-0.03,0.03,0},{0,0,0},{0,0,0}}; location = {0, 0, 0.4} };\n"
+    "  shader = Shader.Constant { color = 0.9 } }\n";
+
+}  // namespace
+
 TEST_CASE("nurbs-stress: zero-area surfaces (a point, a line) prepare and render as nothing") {
   // Bad input that validation cannot refuse (the numbers are valid): every control point equal,
   // or all of them on one line. Documented behaviour: the surface has no area, so no ray hits it;
@@ -235,19 +260,8 @@ TEST_CASE("nurbs-stress: zero-area surfaces (a point, a line) prepare and render
   NurbsSurface point = plateSurface(0.1, 0.1, 2), line = point;
   for (dvec3& p : point.controlPoints) p = dvec3(0.01, 0.02, 0);
   for (dvec3& p : line.controlPoints) p = dvec3(p.x, 0, 0);
-  for (const NurbsSurface& s : {point, line}) {
-    const PreparedScene scene =
-        prepareScene(sceneOf(stressCamera({0, 0, 0}, {0, 0, 0.5}), {nurbsObject("flat", s, {0, 0, 0.5})}));
-    const RenderResult reference = cpu::render(scene, groundTruthOnly(Precision::Fp64));
-    gpu::Renderer renderer(gpuContext());
-    for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
-      const RenderResult gpu = renderer.render(scene, groundTruthOnly(p));
-      std::size_t hits = 0;
-      for (std::size_t i = 0; i < gpu.cameras[0].pixelCount(); ++i)
-        hits += gpu.cameras[0].objectId[i] != 0 || reference.cameras[0].objectId[i] != 0;
-      CHECK(hits == 0);
-    }
-  }
+  for (const NurbsSurface& s : {point, line})
+    checkNoHitsAnywhere(prepareScene(sceneOf(stressCamera({0, 0, 0}, {0, 0, 0.5}), {nurbsObject("flat", s, {0, 0, 0.5})})));
   expectNoValidationMessages();
 }
 
@@ -265,16 +279,7 @@ TEST_CASE("nurbs-stress: a surface without area on pixel-centre rays is hit by n
   const std::string tail = " }; shader = Shader.Constant { color = 0.9 } }\n";
   for (const std::string points : {"{{0,0,0},{0,0,0},{0,0,0},{0,0,0}}", "{{-0.01,0,0},{-0.005,0,0},{0.005,0,0},{0.01,0,0}}"}) {
     INFO(points);
-    const PreparedScene scene = prepareScene(loadScene(dir.write("flat.lua", head + points + tail), {}));
-    const RenderResult reference = cpu::render(scene, groundTruthOnly(Precision::Fp64));
-    gpu::Renderer renderer(gpuContext());
-    for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
-      const RenderResult gpu = renderer.render(scene, groundTruthOnly(p));
-      std::size_t hits = 0;
-      for (std::size_t i = 0; i < gpu.cameras[0].pixelCount(); ++i)
-        hits += gpu.cameras[0].objectId[i] != 0 || reference.cameras[0].objectId[i] != 0;
-      CHECK(hits == 0);
-    }
+    checkNoHitsAnywhere(prepareScene(loadScene(dir.write("flat.lua", head + points + tail), {})));
   }
   expectNoValidationMessages();
 }
@@ -284,11 +289,7 @@ TEST_CASE("nurbs-stress: (u, v) stays in [0, 1]² on every renderer where an edg
   // optical axis, its edges through pixel centres, had uv down to -1.9e-15 on 85 pixels in fp64
   // and -2e-14 in df64; the CPU clamps, the GPU did not (docs/outputs.md: uv in [0, 1]²).
   test::TempFolder dir;
-  const PreparedScene scene = prepareScene(loadScene(dir.write("triangle.lua",
-      "camera = Camera.Pinhole { resolution = {161, 121}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} }\n"
-      "obj = Object.Simple { shape = Shape.Nurbs { degree = {1, 1}; knotsU = {0,0,1,1}; knotsV = {0,0,1,1};\n"
-      "  controlPoints = {{-0.03,-0.03,0},{-0.03,0.03,0},{0,0,0},{0,0,0}}; location = {0, 0, 0.4} };\n"
-      "  shader = Shader.Constant { color = 0.9 } }\n"), {}));
+  const PreparedScene scene = prepareScene(loadScene(dir.write("triangle.lua", kTriangleScene), {}));
   gpu::Renderer renderer(gpuContext());
   std::vector<RenderResult> results = {cpu::render(scene, groundTruthOnly(Precision::Fp64))};
   for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) results.push_back(renderer.render(scene, groundTruthOnly(p)));
@@ -328,11 +329,7 @@ TEST_CASE("nurbs-stress: the normal at a sphere's pole and a triangle patch's ap
       "ball = Object.Simple { shape = Shape.Nurbs { degree = {2, 2}; knotsU = {0,0,0,.25,.25,.5,.5,.75,.75,1,1,1};\n"
       "  knotsV = {0,0,0,.5,.5,1,1,1}; controlPoints = P; weights = W; location = {0, 0, 0.4} };\n"
       "  shader = Shader.Constant { color = 0.9 }; transform = rotate_x(degrees(90)) }\n";
-  const std::string triangle =
-      "camera = Camera.Pinhole { resolution = {161, 121}; focalLength = 0.016; pixelSize = {2e-5, 2e-5} }\n"
-      "obj = Object.Simple { shape = Shape.Nurbs { degree = {1, 1}; knotsU = {0,0,1,1}; knotsV = {0,0,1,1};\n"
-      "  controlPoints = {{-0.03,-0.03,0},{-0.03,0.03,0},{0,0,0},{0,0,0}}; location = {0, 0, 0.4} };\n"
-      "  shader = Shader.Constant { color = 0.9 } }\n";
+  const std::string triangle = kTriangleScene;
   gpu::Renderer renderer(gpuContext());
   for (const bool isSphere : {true, false}) {
     const PreparedScene scene = prepareScene(loadScene(dir.write("s.lua", isSphere ? sphere : triangle), {}));

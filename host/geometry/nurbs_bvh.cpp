@@ -256,20 +256,26 @@ bool nurbsClosed(const NurbsSurface& surface, bool alongU) {
 
 namespace {
 
-// Whether every control point of `patch` lies within `tolerance` (m) of one line: the line through
-// the two points farthest apart (within tolerance of one point when those two are).
+// Whether every control point of `patch` lies within `tolerance` (m) of one line: the line through a
+// far pair of them, a the point farthest from the first and b the point farthest from a (within
+// tolerance of one point when those two are). Three passes over the points, none allocated: it
+// runs on every patch of every surface (a million for the largest), where comparing all pairs cost
+// up to 36² distances each.
 bool withoutArea(const BezierPatch& patch, double tolerance) {
-  std::vector<dvec3> points;
-  for (const dvec4& h : patch.points) points.push_back(dvec3(h) / h.w);
-  dvec3 a = points[0], b = points[0];
-  double farthest = 0;
-  for (const dvec3& p : points)
-    for (const dvec3& q : points)
-      if (const double d = glm::distance(p, q); d > farthest) farthest = d, a = p, b = q;
-  if (farthest <= tolerance) return true;
-  const dvec3 direction = (b - a) / farthest;
-  for (const dvec3& p : points)
-    if (glm::length(glm::cross(p - a, direction)) > tolerance) return false;
+  const auto point = [&](std::size_t i) { return dvec3(patch.points[i]) / patch.points[i].w; };
+  const auto farthestFrom = [&](const dvec3& from) {
+    dvec3 best = from;
+    double distance = 0;
+    for (std::size_t i = 0; i < patch.points.size(); ++i)
+      if (const double d = glm::distance(point(i), from); d > distance) distance = d, best = point(i);
+    return best;
+  };
+  const dvec3 a = farthestFrom(point(0)), b = farthestFrom(a);
+  const double length = glm::distance(a, b);
+  if (length <= tolerance) return true;
+  const dvec3 direction = (b - a) / length;
+  for (std::size_t i = 0; i < patch.points.size(); ++i)
+    if (glm::length(glm::cross(point(i) - a, direction)) > tolerance) return false;
   return true;
 }
 

@@ -26,9 +26,7 @@ PreviewFiles previewExr(const std::string& exrPath, const std::string& outputDir
   std::exception_ptr writeFailure;
   request.write = [&writeFailure](const std::string& path, const std::vector<unsigned char>& png) {
     try {
-      AtomicFile file(path);
-      writeText(file, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
-      file.commit();
+      writeTextAtomically(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
       return true;
     } catch (...) {
       writeFailure = std::current_exception();

@@ -232,6 +232,23 @@ TEST_CASE("preview: integer layers read as their integers, the range of every pi
     CHECK(!std::filesystem::exists(dir.file("ids/ids.image.objectId.png")));
     CHECK(pngRange(dir.file("ids/ids.objectId.png")) == std::pair<double, double>(0, 3));
     CHECK(pngRange(dir.file("ids/ids.defects.png")) == std::pair<double, double>(0, 3));
+    // With the header's object list, objectId's range is 0 to the number of objects, whichever ids
+    // the frame shows: the colours of a sequence's frames stayed the same only while every object
+    // stayed in view (ids 0..3 here, 5 objects named; a file naming none keeps its ids' range).
+    for (const std::string objects : {"a,b,c,d,e", ""}) {
+      spec.attribute("dicsynth:objects", objects);
+      const std::string name = objects.empty() ? "none" : "named";
+      out = OIIO::ImageOutput::create(dir.file(name + ".exr"));
+      REQUIRE(out);
+      REQUIRE(out->open(dir.file(name + ".exr"), spec));
+      REQUIRE(out->write_image(OIIO::TypeDesc::UINT32, ids.data()));
+      REQUIRE(out->close());
+      const test::CliResult n = test::runCli("preview " + dir.file(name + ".exr") + " -o " + dir.file(name));
+      INFO(n.out << n.err);
+      REQUIRE(n.exitCode == 0);
+      CHECK(pngRange(dir.file(name + "/" + name + ".objectId.png")) == std::pair<double, double>(0, objects.empty() ? 3 : 5));
+      CHECK(pngRange(dir.file(name + "/" + name + ".defects.png")) == std::pair<double, double>(0, 3));
+    }
   }
   // A wide image shows every 3rd pixel; its range is the file's: a hot pixel in column 1, not
   // shown, was missing from the labels ("1 … 1").

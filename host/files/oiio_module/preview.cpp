@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -204,6 +205,13 @@ bool preview(const PreviewRequest& request, PreviewResult& result, std::string& 
     views.push_back({name, {name}, Map::Viridis, ""});
   }
 
+  // The number of objects the header names (dicsynth:objects, comma-separated; "" for none).
+  std::optional<std::size_t> objectCount;
+  if (const OIIO::ParamValue* p = spec.find_attribute("dicsynth:objects", OIIO::TypeDesc::STRING)) {
+    const std::string names = p->get_string();
+    objectCount = names.empty() ? 0 : std::size_t(std::count(names.begin(), names.end(), ',')) + 1;
+  }
+
   // Decimation by an integer: every k-th pixel, so each shown value is one of the file's.
   const int k = std::max(1, (spec.width + request.maxWidth - 1) / std::max(1, request.maxWidth));
   const int w = (spec.width + k - 1) / k, h = (spec.height + k - 1) / k;
@@ -251,6 +259,10 @@ bool preview(const PreviewRequest& request, PreviewResult& result, std::string& 
     }
     // Radiance and masks from black: below 0 (a texture's interpolation overshoot) shows black.
     if (view.map == Map::Gray && hi > 0) lo = 0;
+    // objectId over the scene's objects, 0 to their count in the header, not over the ids present:
+    // an object leaving the view recoloured every other one between two frames of a sequence (the
+    // preview audit of 2026-11-28). A file's ids beyond the count (not dicsynth's) widen it.
+    if (view.name == "objectId" && objectCount) lo = 0, hi = std::max(hi, double(*objectCount));
     const double span = hi - lo;
     OIIO::ImageBuf t(OIIO::ImageSpec(w, h, 1, OIIO::TypeDesc::FLOAT));
     for (int y = 0; y < h; ++y)

@@ -121,6 +121,12 @@ uint32_t selectDevice(const std::vector<DeviceInfo>& devices, const std::string&
     return InputError(optionName("--device") + " '" + selector + "': no such Vulkan device; available: " +
                       describeDevices(devices));
   };
+  // Spaces around a selector are a quoting slip, not a name part: " 1" matched "LLVM 15" by name
+  // where the index 1 was meant (the preview audit of 2026-11-28).
+  if (!selector.empty() && (std::isspace(static_cast<unsigned char>(selector.front())) ||
+                            std::isspace(static_cast<unsigned char>(selector.back()))))
+    throw InputError(optionName("--device") + " '" + selector +
+                     "': spaces around the selector (an index or a part of a name, without them)");
   if (!selector.empty() &&
       std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
     // A decimal index; anything too long to be an index cannot match either.

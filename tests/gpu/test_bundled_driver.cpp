@@ -65,6 +65,13 @@ TEST_CASE("bundled driver: the newer driver of one device is chosen by default a
   CHECK(selectDevice(devices, "mesa 22") == 0);
   CHECK(selectDevice(devices, "25.0") == 1);
   CHECK(selectDevice(devices, "0") == 0);
+  // " 1" matched the name's "LLVM 15" as a substring, where the index 1 was meant.
+  for (const char* spaced : {" 1", "1 ", " llvmpipe", "mesa 22\t"})
+    CHECK_THROWS_WITH_AS(selectDevice(devices, spaced),
+                         ("--device '" + std::string(spaced) +
+                          "': spaces around the selector (an index or a part of a name, without them)")
+                             .c_str(),
+                         InputError);
   CHECK_THROWS_WITH_AS(selectDevice(devices, "Mesa 24"),
                        "--device 'Mesa 24': no such Vulkan device; available: 0: llvmpipe (LLVM 15.0.6, 256 bits) "
                        "[CPU, llvmpipe Mesa 22.3.6 (LLVM 15.0.6)], 1: llvmpipe (LLVM 15.0.6, 256 bits) [CPU, llvmpipe "

@@ -15,6 +15,8 @@
 //
 // Normals: a tangent plane π = [n; −n·x] in the object frame is the world plane H⁻ᵀ π, so the world
 // normal is the xyz part of (H⁻¹)ᵀ π — exact for projective maps, not only affine ones.
+#include <cmath>
+
 #include <glm/glm.hpp>
 
 #include "core/math.h"
@@ -60,5 +62,30 @@ glm::vec<3, Real> worldNormal(const glm::mat<4, 4, Real>& objectFromWorld, glm::
   const glm::vec<4, Real> plane(nObject, -glm::dot(nObject, xObject));
   return glm::vec<3, Real>(glm::transpose(objectFromWorld) * plane);
 }
+
+// How far H is from singular, free of its scale and of its translation: |det N| / Π_j ‖N_j‖
+// (Hadamard's ratio, in (0, 1], 1 for orthogonal columns, 0 for a singular matrix) of
+//     N = [A − t pᵀ/s  0; pᵀ  s]    for    H = [A  t; pᵀ  s],  s ≠ 0,
+// since H = [I  t/s; 0  1] · N (multiply out: top-left A − t pᵀ/s + (t/s) pᵀ = A, top-right t) and
+// the first factor, a translation, is exactly invertible whatever t. For an affine H, N's ratio is
+// that of A: scale(1e-5) and translate(0, 0, 2000) are as invertible as the identity. The test this
+// replaced, |det H| > 1e-12 ‖H‖_F⁴ over the whole 4×4, refused both (the shape audit of
+// 2026-11-28). Where s = 0 (H sends its frame's origin to infinity), the ratio of H itself.
+inline double invertibilityRatio(const dmat4& h) {
+  const double s = h[3][3];
+  dmat4 n = h;  // h[col][row]
+  if (s != 0) {
+    for (int col = 0; col < 3; ++col)
+      for (int row = 0; row < 3; ++row) n[col][row] = h[col][row] - h[3][row] * h[col][3] / s;
+    n[3] = dvec4(0, 0, 0, s);
+  }
+  double lengths = 1;
+  for (int col = 0; col < 4; ++col) lengths *= glm::length(n[col]);
+  return lengths > 0 ? std::abs(glm::determinant(n)) / lengths : 0.0;
+}
+
+// An object's transform is refused below this ratio: its columns are then dependent to 1e-12 of
+// their length, where a double inverse keeps only about 4 correct digits.
+inline constexpr double kMinInvertibilityRatio = 1e-12;
 
 }  // namespace dicsynth

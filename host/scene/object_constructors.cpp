@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/homography.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
 #include "shapes/registry.h"
@@ -89,18 +90,16 @@ int objectSimple(lua_State* L) {
           "transform", "a Transform (translate, rotate_x, ..., homography)"))
     object.transform = transform->matrix;
 
-  // The transform must be invertible, relative to its own scale (Frobenius norm⁴).
-  double normSquared = 0;
   bool finite = true;
   for (int col = 0; col < 4; ++col)
-    for (int row = 0; row < 4; ++row) {
-      finite = finite && std::isfinite(object.transform[col][row]);
-      normSquared += object.transform[col][row] * object.transform[col][row];
-    }
+    for (int row = 0; row < 4; ++row) finite = finite && std::isfinite(object.transform[col][row]);
   if (!finite) p.fail("'transform' must be finite");
-  const double det = glm::determinant(object.transform);
-  if (!(std::fabs(det) > 1e-12 * normSquared * normSquared))
-    p.fail("'transform' must be invertible, but its determinant is " + formatNumber(det));
+  const double ratio = invertibilityRatio(object.transform);
+  if (!(ratio > kMinInvertibilityRatio))
+    p.fail("'transform' must be invertible, but its determinant is " + formatNumber(glm::determinant(object.transform)) +
+           (ratio > 0 ? " (" + formatNumber(ratio) + " of its columns' lengths' product, translation taken out; at least " +
+                            formatNumber(kMinInvertibilityRatio) + " is needed)"
+                      : ""));
   pushUserdata(L, std::move(object));
   return 1;
 }

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -142,4 +143,65 @@ TEST_CASE("homography: points beyond the plane a projective transform sends to i
             .find("object 'ball' is projective and object 'wall' (which its shadow rays leave) lies beyond") !=
         std::string::npos);
   CHECK(prepareError(camera + sphere("-1") + wall("-1")).empty());  // unlit: no shadow ray
+}
+
+// Hadamard's ratio |det A| / Π‖a_j‖ of a 3×3 block in long double, written out (cofactors).
+long double hadamard3(const dmat4& h) {
+  long double a[3][3];
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) a[c][r] = h[c][r];
+  const long double det = a[0][0] * (a[1][1] * a[2][2] - a[2][1] * a[1][2]) -
+                          a[1][0] * (a[0][1] * a[2][2] - a[2][1] * a[0][2]) +
+                          a[2][0] * (a[0][1] * a[1][2] - a[1][1] * a[0][2]);
+  long double lengths = 1;
+  for (int c = 0; c < 3; ++c) lengths *= std::sqrt(a[c][0] * a[c][0] + a[c][1] * a[c][1] + a[c][2] * a[c][2]);
+  return std::fabs(det) / lengths;
+}
+
+TEST_CASE("homography: invertibility judged free of the transform's scale and translation (the 2026-11-28 audit)") {
+  // The ratio is that of the linear part for an affine map, whatever its translation and scale,
+  // and unchanged by a translation applied after a projective map (H = [I t/s; 0 1] · N).
+  std::mt19937_64 rng(20261128);
+  std::uniform_real_distribution<double> unit(-1, 1), exponent(-6, 6);
+  for (int k = 0; k < 2000; ++k) {
+    dmat4 a = glm::rotate(dmat4(1), 3 * unit(rng), glm::normalize(dvec3(unit(rng), unit(rng), unit(rng)) + 1e-3));
+    a = glm::scale(a, dvec3(std::pow(10, exponent(rng)), std::pow(10, exponent(rng)), std::pow(10, exponent(rng))));
+    a[2] += 0.9 * unit(rng) * a[0] * (glm::length(a[2]) / glm::length(a[0]));  // columns not orthogonal
+    const dvec3 t(1e4 * unit(rng), 1e4 * unit(rng), 1e4 * unit(rng));
+    const dmat4 affine = glm::translate(dmat4(1), t) * a;
+    const double expected = double(hadamard3(a));
+    REQUIRE(invertibilityRatio(affine) == doctest::Approx(expected).epsilon(1e-9));
+    dmat4 projective = a;
+    projective[0][3] = unit(rng), projective[1][3] = unit(rng), projective[2][3] = unit(rng), projective[3][3] = 2;
+    const double r = invertibilityRatio(projective);
+    CHECK(r > 0);
+    CHECK(invertibilityRatio(glm::translate(dmat4(1), t) * projective) == doctest::Approx(r).epsilon(1e-6));
+  }
+  CHECK(invertibilityRatio(dmat4(1)) == 1);
+  CHECK(invertibilityRatio(dmat4(0)) == 0);
+
+  // Through the scene: a far translation and a small scale were refused as "not invertible" (the
+  // old test compared the determinant with the whole 4×4's Frobenius norm⁴: translate(0, 0, 1000)
+  // and scale(1e-4) failed), nearly dependent columns still are.
+  test::TempFolder dir;
+  auto load = [&](const std::string& transform) -> std::string {
+    const std::string path = dir.write(
+        "t.lua", "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
+                 "o = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 1} }; transform = " +
+                     transform + " }\n");
+    try {
+      loadScene(path, {});
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  for (const char* accepted : {"translate(0, 0, 2000)", "scale(1e-5)", "translate(1e6, -3e6, 5e5) * rotate_y(0.3)",
+                               "scale(1e-4, 2, 30) * rotate_x(1)", "homography{1,0,0,5e3, 0,1,0,0, 0,0,1,0, 0,0,0.5,1}"})
+    CHECK_MESSAGE(load(accepted).empty(), accepted);
+  CHECK(load("homography{1,0,1,0, 0,1,0,0, 0,0,1e-14,0, 0,0,0,1}")
+            .ends_with("t.lua:2: Object.Simple: 'transform' must be invertible, but its determinant is 1e-14 (1e-14 of "
+                       "its columns' lengths' product, translation taken out; at least 1e-12 is needed)"));
+  CHECK(load("homography{1,0,0,0, 0,1,0,0, 0,0,0,0, 0,0,0,1}")
+            .ends_with("t.lua:2: Object.Simple: 'transform' must be invertible, but its determinant is 0"));
 }

@@ -129,7 +129,7 @@ struct Cylinder {
     glm::vec<3, Real> x = o + hit.s * d;
     if (part == Side) {
       hit.normal = {x.x, 0, x.z};
-      const Real u = Real(0.5) + std::atan2(x.x, -x.z) / (2 * pi<Real>());
+      const Real u = Real(0.5) + atan2ZeroUnsigned(x.x, -x.z) / (2 * pi<Real>());
       const Real v = x.y / Real(height_m) + Real(0.5);
       hit.uv = {u, capped ? v / 2 : v};
     } else {

@@ -30,8 +30,8 @@ struct Sphere {
   static constexpr const char* kKeys[] = {"radius"};
   // Its (u, v) in docs/cameras.md's table (tests/suite/test_docs.cpp writes that row from this).
   static constexpr const char* kUv =
-      "u = ½ + atan2(x, −z)/2π (u = ½ faces the camera, seam at the back), v = polar angle from "
-      "the −y pole / π (v = 0 at the top of the image)";
+      "u = ½ + atan2(x, −z)/2π (u = ½ faces the camera, seam at the back, where u = 1; u = ½ at the "
+      "poles), v = polar angle from the −y pole / π (v = 0 at the top of the image)";
 
   double radius_m = 0;
 
@@ -72,7 +72,7 @@ struct Sphere {
     const glm::vec<3, Real> x = o + hit.s * d;
     hit.point = x;
     hit.normal = x;
-    hit.uv = {Real(0.5) + std::atan2(x.x, -x.z) / (2 * pi<Real>()),
+    hit.uv = {Real(0.5) + atan2ZeroUnsigned(x.x, -x.z) / (2 * pi<Real>()),
               std::atan2(std::sqrt(x.x * x.x + x.z * x.z), -x.y) / pi<Real>()};
     return true;
   }

@@ -37,8 +37,9 @@ hreal ds_atan_unit(hreal x) {
   return h_mul(h(real(4.0)), h_mul(x, p));
 }
 
-// atan2(y, x) in (−π, π], with atan2(0, 0) = 0, like std::atan2 for finite arguments (except
-// the sign of zero: atan2(−0, x < 0) is +π). One ds_atan_unit call on min/max of |x|, |y| instead
+// atan2(y, x) in (−π, π], like std::atan2 for finite arguments but blind to the sign of zero:
+// atan2(±0, ±0) = 0, atan2(±0, x < 0) = +π (the host's atan2ZeroUnsigned, core/math.h, which the
+// CPU's shapes use to agree). One ds_atan_unit call on min/max of |x|, |y| instead
 // of two branches: SIMD devices (lavapipe) run both sides of a divergent branch.
 hreal ds_atan2(hreal y, hreal x) {
   const hreal ax = h_abs(x), ay = h_abs(y);

@@ -45,6 +45,13 @@ TEST_CASE("shapes: sphere hit, normal and (u, v)") {
   // The −y pole (up in the image) is v = 0; +y is v = 1.
   CHECK(mustHit(g, {0, -3, 0}, {0, 1, 0}).uv.y == doctest::Approx(0.0));
   CHECK(mustHit(g, {0, 3, 0}, {0, -1, 0}).uv.y == doctest::Approx(1.0));
+  // At the poles u is undefined: u = 1/2, as the GPU's ds_atan2 gives (atan2(±0, ±0) = 0); the CPU's
+  // std::atan2(+0, −0) = π gave u = 1 there (the shape audit of 2026-11-28). On the seam at the
+  // back (x = ±0, z > 0) u = 1 whatever the sign of x's zero (std::atan2(−0, −z) = −π gave 0).
+  CHECK(mustHit(g, {0, -3, 0}, {0, 1, 0}).uv.x == 0.5);
+  CHECK(mustHit(g, {0, 3, 0}, {0, -1, 0}).uv.x == 0.5);
+  CHECK(mustHit(g, {-0.0, 0, 3}, {0, 0, -1}).uv.x == 1.0);
+  CHECK(mustHit(g, {0.0, 0, 3}, {0, 0, -1}).uv.x == 1.0);
   // 45° north-east on the front: x = z-offset, check the longitude formula.
   const double c = 0.5 / std::sqrt(2.0);
   h = mustHit(g, {c, 0, -5}, {0, 0, 1});

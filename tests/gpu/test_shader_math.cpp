@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "core/math.h"
 #include "gpu/buffer.h"
 #include "gpu/compute.h"
 #include "gpu_test_context.h"
@@ -72,7 +73,9 @@ std::vector<Real> atanInputs() {
   std::vector<Real> in;
   // Every quadrant and octant boundary, tiny and huge ratios, then a dense sweep of angles.
   const Real special[][2] = {{0, 1}, {1, 0}, {0, -1}, {-1, 0}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1},
-                             {Real(1e-30), 1}, {1, Real(1e-30)}, {Real(3), Real(-1e-20)}, {0, 0}};
+                             {Real(1e-30), 1}, {1, Real(1e-30)}, {Real(3), Real(-1e-20)}, {0, 0},
+                             {0, Real(-0.0)}, {Real(-0.0), Real(-0.0)}, {Real(-0.0), 0}, {Real(-0.0), -1},
+                             {Real(-0.0), 1}, {1, Real(-0.0)}, {-1, Real(-0.0)}};
   for (const auto& p : special) in.insert(in.end(), {p[0], p[1]});
   for (int i = 0; i < 40000; ++i) {
     const double a = -3.14159 + 6.28318 * (i + 0.5) / 40000, r = 0.001 + (i % 97) * 0.37;
@@ -86,7 +89,8 @@ template <class Real>
 void checkAtan(const std::vector<Real>& in, const std::vector<Real>& out, double maxUlps) {
   double worst = 0;
   for (std::size_t i = 0; i < out.size(); ++i) {
-    const Real ref = std::atan2(in[2 * i], in[2 * i + 1]);
+    // Blind to the sign of zero (atan2(−0, −1) = +π, atan2(+0, −0) = 0), as the CPU's shapes use it.
+    const Real ref = atan2ZeroUnsigned(in[2 * i], in[2 * i + 1]);
     const double ulp = std::max(double(std::nextafter(std::abs(ref), Real(INFINITY)) - std::abs(ref)),
                                 double(std::numeric_limits<Real>::denorm_min()));
     const double ulps = std::abs(double(out[i]) - double(ref)) / ulp;
@@ -152,13 +156,18 @@ TEST_CASE("gpu: ds_atan2 in df64 against long double") {
   const auto in = atanInputs<float>();
   const auto r = runProbe<float, std::array<float, 2>>(spirv::math_probe_df64, {0, 0, 0, 0, 0, 0, 0}, in);
   double worst = 0;
+  int zerosWrong = 0;
   for (std::size_t i = 0; i < r.atan.size(); ++i) {
-    const long double ref = std::atan2((long double)in[2 * i], (long double)in[2 * i + 1]);
-    if (ref == 0) continue;
+    const long double ref = atan2ZeroUnsigned((long double)in[2 * i], (long double)in[2 * i + 1]);
     const long double got = (long double)r.atan[i][0] + (long double)r.atan[i][1];
+    if (ref == 0) {
+      zerosWrong += got != 0;
+      continue;
+    }
     worst = std::max(worst, double(std::abs((got - ref) / ref)));
   }
   MESSAGE("df64 ds_atan2 worst relative error: 2^" << std::log2(worst));
   CHECK(worst <= 0x1p-40);
+  CHECK(zerosWrong == 0);
   test::expectNoValidationMessages();
 }

@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "job/benchmark.h"
+#include "job/render_job.h"
 
 namespace dicsynth::cli {
 namespace {
@@ -35,15 +36,31 @@ int runBench(BenchCommand cmd) {
                         {"dogbone", cmd.scenesDir + "/dogbone.lua", {{"necking", "0.002"}}}};
   for (const auto& s : cmd.options.scenes)
     if (!std::filesystem::exists(s.path)) throw InputError("--scenes " + cmd.scenesDir + ": no " + s.path);
-  std::error_code ec;
-  std::filesystem::create_directories(cmd.outputDir, ec);
-  if (ec) throw InputError("-o " + cmd.outputDir + ": cannot create the output folder: " + ec.message());
+  // Before the benchmark, as `render` does: a folder that cannot take the files was found after
+  // minutes of work (the faults audit of 2026-11-28).
+  const std::string csv = cmd.outputDir + "/bench.csv", svg = cmd.outputDir + "/bench.svg";
+  checkOutputWritable(cmd.outputDir);
+  for (const std::string& file : {csv, svg})
+    if (const std::string why = notAFileTarget(file); !why.empty())
+      throw InputError("-o " + cmd.outputDir + ": " + file + " " + why + ", which the benchmark's file would replace");
   cmd.options.log = [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); };
 
   const std::vector<BenchmarkRow> rows = runBenchmark(cmd.options);
-  const std::string csv = cmd.outputDir + "/bench.csv", svg = cmd.outputDir + "/bench.svg";
-  writeTextAtomically(csv, benchmarkCsv(rows));
-  writeTextAtomically(svg, benchmarkSvg(rows));
+  // The two files together or neither (a full disk left bench.csv and the folder made for it), and
+  // the folder made for them removed again when they fail.
+  std::error_code ec;
+  const bool existed = std::filesystem::is_directory(cmd.outputDir, ec);
+  createOutputDir(cmd.outputDir);
+  try {
+    AtomicFile csvFile(csv), svgFile(svg);
+    writeText(csvFile, benchmarkCsv(rows));
+    writeText(svgFile, benchmarkSvg(rows));
+    csvFile.commit();
+    svgFile.commit();
+  } catch (...) {
+    if (!existed) std::filesystem::remove_all(cmd.outputDir, ec);
+    throw;
+  }
   if (cmd.json) {
     std::printf("%s", benchmarkJson(rows).c_str());
   } else {

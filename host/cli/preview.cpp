@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "job/render_job.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
+#include "job/render_job.h"
 #include "io/preview.h"
 
 namespace dicsynth::cli {
@@ -44,6 +45,7 @@ int runPreview(const PreviewOptions& options) {
   std::error_code ec;
   const bool created = !std::filesystem::exists(dir, ec);
   createOutputDir(dir);
+  removeStaleTemporaries(dir);  // a killed run's pictures in the making (as render does in its folder)
   std::vector<std::string> written;
   try {
     for (const std::string& file : options.files) {

@@ -38,9 +38,11 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/version.h"
 #include "files/image_limits.h"
+#include "job/render_job.h"
 #include "texture/speckle.h"
 
 namespace dicsynth::cli {
@@ -95,6 +97,10 @@ int runSpeckle(SpeckleOptions options) {
     const std::filesystem::path folder = std::filesystem::path(options.output).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
       throw InputError("speckle: -o " + options.output + ": the folder " + folder.string() + " does not exist");
+    if (const std::string why = notAFileTarget(options.output); !why.empty())
+      throw InputError("speckle: -o " + options.output + ": it " + why + ", which the image would replace (give a file name)");
+    checkOutputWritable(folder.empty() ? "." : folder.string(), "speckle: -o " + options.output);
+    removeStaleTemporaries(folder.empty() ? "." : folder.string());  // a killed run's image in the making
   }
   SpeckleParams& p = options.params;
   p.width_px = options.size.at(0);

@@ -6,6 +6,7 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "core/commit_watch.h"
 #include "core/error.h"
 #include "core/termination.h"
 
@@ -64,9 +66,23 @@ std::size_t removeStaleTemporaries(const std::string& dir, std::chrono::seconds 
   return removed;
 }
 
+std::string notAFileTarget(const std::string& path) {
+  struct stat link {}, s {};
+  if (::lstat(path.c_str(), &link) != 0 || S_ISREG(link.st_mode)) return "";
+  if (S_ISDIR(link.st_mode)) return "is a folder";
+  if (!S_ISLNK(link.st_mode)) return S_ISFIFO(link.st_mode) ? "is a FIFO" : S_ISSOCK(link.st_mode) ? "is a socket" : "is a device";
+  if (::stat(path.c_str(), &s) != 0 || S_ISREG(s.st_mode)) return "";  // dangling, or a file: the link is replaced
+  return S_ISDIR(s.st_mode)    ? "is a link to a folder"
+         : S_ISFIFO(s.st_mode) ? "is a link to a FIFO or a pipe"
+         : S_ISSOCK(s.st_mode) ? "is a link to a socket"
+                               : "is a link to a device or a terminal";
+}
+
 AtomicFile::AtomicFile(std::string finalPath) : final_(std::move(finalPath)) {
   const std::filesystem::path target(final_);
   if (target.filename().empty()) throw Error("cannot write '" + final_ + "': not a file name");
+  if (const std::string why = notAFileTarget(final_); !why.empty())
+    throw Error("cannot write '" + final_ + "': it " + why + ", which a finished file would replace (give a file name)");
   // Create the temporary file now (O_EXCL: never adopt someone else's file), so that a missing or
   // read-only folder is reported before any work goes into the contents.
   // Made and registered at once (core/termination.h): a run ended by a signal removes it.
@@ -98,12 +114,15 @@ int AtomicFile::duplicateFd() const {
 
 void AtomicFile::commit() {
   DS_CHECK(!committed_, "AtomicFile::commit called twice for " + final_);
+  struct stat before {};
+  const bool replaced = ::lstat(final_.c_str(), &before) == 0;
   if (std::rename(temp_.c_str(), final_.c_str()) != 0) {
     const int err = errno;
     throw Error("cannot write '" + final_ + "': rename from '" + temp_ + "' failed: " + errnoText(err));
   }
   committed_ = true;
   unregisterTemporary(temp_);
+  CommitWatch::note(final_, replaced);
 }
 
 TextWriter::TextWriter(const AtomicFile& file) : finalPath_(file.finalPath()) {

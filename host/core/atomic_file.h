@@ -8,6 +8,13 @@
 
 namespace dicsynth {
 
+// Why `path` cannot be a file an AtomicFile writes, worded to follow the path ("is a FIFO"); ""
+// when it can: absent, a regular file, or a symbolic link (replaced by the file; its target is left
+// alone). The rename that commits would replace a FIFO, a device or a socket by a regular file, or
+// one that a symbolic link names (`--junit /dev/stdout` replaced /dev/stdout's link, run as root:
+// the faults audit of 2026-11-28, which also replaced /dev/full): refused instead.
+std::string notAFileTarget(const std::string& path);
+
 class AtomicFile {
  public:
   // `finalPath`'s folder must exist. The temporary file lives in the same folder (same filesystem,

@@ -207,24 +207,13 @@ int nameTexture(const textures::File& t, std::vector<PreparedTexture>& textures,
 }
 
 // One prepared texture per (file, interpolation): the coefficients depend on the kernel.
-int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<PreparedTexture>& textures,
-                std::map<std::string, int>& byPath, TextureCache* cache) {
-  const std::string key = textureKey(t);
-  if (auto it = byPath.find(key); it != byPath.end()) return it->second;
-  if (cache)
-    if (auto cached = cache->find(t.path, t.interpolation)) {
-      textures.push_back(std::move(*cached));
-      return byPath[key] = int(textures.size()) - 1;
-    }
+// The file's texture prepared for `t`'s kernel: from the disk cache (keyed by the content's digest)
+// or read, checked and prefiltered. Its stamp is left for the caller to set.
+PreparedTexture readTexture(const textures::File& t, const SourceLoc& where, const TextureDiskCache* disk) {
   // Across processes: the disk cache, keyed by the file's content.
-  const TextureDiskCache* disk = cache && cache->disk().enabled() ? &cache->disk() : nullptr;
   const std::string digest = disk ? TextureDiskCache::contentDigest(t.path) : "";
   if (disk)
-    if (auto stored = disk->find(digest, t.path, t.interpolation)) {
-      cache->insert(*stored);
-      textures.push_back(std::move(*stored));
-      return byPath[key] = int(textures.size()) - 1;
-    }
+    if (auto stored = disk->find(digest, t.path, t.interpolation)) return std::move(*stored);
   GrayImage image;
   try {
     image = readGrayImage(t.path);
@@ -256,11 +245,38 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
   pt.interpolation = t.interpolation;
   bsplinePrefilter(image.pixels, pt.width, pt.height, t.interpolation);
   pt.coefficients = std::make_shared<const std::vector<double>>(std::move(image.pixels));
-  if (cache) cache->insert(pt);
   // Stored only when the file still holds the content hashed before it was decoded.
   if (disk && !digest.empty() && TextureDiskCache::contentDigest(t.path) == digest) disk->store(digest, pt);
-  textures.push_back(std::move(pt));
-  return byPath[key] = int(textures.size()) - 1;
+  return pt;
+}
+
+int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<PreparedTexture>& textures,
+                std::map<std::string, int>& byPath, TextureCache* cache) {
+  const std::string key = textureKey(t);
+  if (auto it = byPath.find(key); it != byPath.end()) return it->second;
+  if (cache)
+    if (auto cached = cache->find(t.path, t.interpolation)) {
+      textures.push_back(std::move(*cached));
+      return byPath[key] = int(textures.size()) - 1;
+    }
+  const TextureDiskCache* disk = cache && cache->disk().enabled() ? &cache->disk() : nullptr;
+  // Read under one stamp, the same before and after the reading, so that the coefficients are the
+  // content the stamp names: a file replaced while it was decoded (an editor's save, a texture
+  // written by another job) is read again, three times at most.
+  constexpr int kReadings = 3;
+  for (int reading = 1;; ++reading) {
+    const std::optional<FileStamp> before = fileStamp(t.path);
+    PreparedTexture pt = readTexture(t, where, disk);
+    if (before && fileStamp(t.path) == before) {
+      pt.stamp = *before;
+      if (cache) cache->insert(pt);
+      textures.push_back(std::move(pt));
+      return byPath[key] = int(textures.size()) - 1;
+    }
+    if (reading == kReadings)
+      throw InputError(where, "Texture.File: " + t.path + ": the file changed while it was read, " +
+                                  std::to_string(kReadings) + " times: it is being written (render once it is complete)");
+  }
 }
 
 }  // namespace

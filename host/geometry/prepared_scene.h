@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cameras/rays.h"
+#include "core/file_stamp.h"
 #include "geometry/nurbs_bvh.h"
 #include "geometry/shapes.h"
 #include "geometry/targets.h"
@@ -67,6 +68,9 @@ struct PreparedTexture {
   // the same array (Figure 1's texture is 67 MB of doubles), so a point neither copies nor repacks it.
   std::shared_ptr<const std::vector<double>> coefficients = std::make_shared<const std::vector<double>>();
   const std::vector<double>& values() const { return *coefficients; }
+  // The file's stamp (core/file_stamp.h) when it was read, the same before and after the reading:
+  // the content these coefficients come from. Caches key by it; a sweep's point record checks it.
+  FileStamp stamp;
 };
 
 // Features the scene uses; the GPU switches the others off with specialization constants.

@@ -32,11 +32,13 @@ class TextureCache {
     if (!stamp || it == entries_.end() || it->second.stamp != *stamp) return std::nullopt;
     return it->second.texture;
   }
+  // Keyed by the stamp the texture was read under (PreparedTexture::stamp), not the file's stamp
+  // now: a file replaced while it was decoded was stored as the new file's content, and a sweep
+  // or a Python Renderer then rendered the old one until the process ended (the faults audit of
+  // 2026-11-28: 12 of 12 Renderers).
   void insert(const PreparedTexture& texture) {
-    const auto stamp = fileStamp(texture.path);
-    if (!stamp) return;
     std::lock_guard lock(mutex_);
-    entries_[{texture.path, texture.interpolation}] = {*stamp, texture};
+    entries_[{texture.path, texture.interpolation}] = {texture.stamp, texture};
   }
   std::size_t size() const {
     std::lock_guard lock(mutex_);

@@ -1,5 +1,7 @@
 #include "job/render_job.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +22,7 @@
 #include <utility>
 
 #include "core/atomic_file.h"
+#include "core/commit_watch.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/option_names.h"
@@ -73,8 +76,23 @@ Scene loadFrameScene(const RenderJob& job, int frame, bool again) {
 // was checked from those pixels. A scene that is not the same each time (iterating pairs(), whose
 // order differs between evaluations, or written to tell them apart) rendered a 60000 x 60000
 // camera it had not shown the check and ended in std::bad_alloc (the sandbox audit of 2026-11-28).
-Scene loadFrameSceneAgain(RenderSession& session, const RenderJob& job, int frame, std::uint64_t checkedPixels) {
+// Every evaluation of a job's frames must read one content of the scene file: the frames of a run
+// edited while it ran rendered two scenes without a word (a resolution made smaller mid-run left a
+// calibration file that fitted no later frame), and a sweep keyed points rendered from an edited
+// file by the content it started with (an edit undone after, the rerun took 22 of 30 such points
+// as complete: the faults audit of 2026-11-28).
+void checkSameContent(const RenderJob& job, const Scene& scene, int frame, std::uint32_t expected) {
+  if (scene.sourceCrc32 != expected)
+    throw InputError(job.sceneFile + ": the scene file changed during the run (frame " + std::to_string(frame) +
+                     " evaluated another content than the one " +
+                     (job.sceneCrc32 ? "the sweep started with" : "the run checked before any work") +
+                     "): the run is undone; run it again once the file is as you want it");
+}
+
+Scene loadFrameSceneAgain(RenderSession& session, const RenderJob& job, int frame, std::uint64_t checkedPixels,
+                          std::uint32_t sceneCrc32) {
   Scene scene = loadFrameScene(job, frame, true);
+  checkSameContent(job, scene, frame, sceneCrc32);
   if (const std::uint64_t pixels = framePixels(scene, session.args().downscale); pixels > checkedPixels)
     throw InputError(job.sceneFile + ": frame " + std::to_string(frame) + " has " + std::to_string(pixels) +
                      " pixels (all cameras) when evaluated to be rendered, against " + std::to_string(checkedPixels) +
@@ -107,6 +125,7 @@ void warnUnlit(const Scene& scene, int frame) {
 struct FramesChecked {
   bool calibrationPerFrame = false;
   std::uint64_t maxPixelsPerFrame = 0;  // over the frames: all cameras' pixels, after --downscale
+  std::uint32_t sceneCrc32 = 0;         // the scene file's content every evaluation read
 };
 // A lower bound of the GPU bytes a frame's NURBS control points take: one rational Bézier patch per
 // non-empty knot span pair, (p + 1)(q + 1) points of at least 16 bytes (fp32's vec4). Checked
@@ -164,6 +183,8 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     if (bar) bar->update(std::int64_t(fi));
     stopIfAsked(job.stop);
     const Scene scene = loadFrameScene(job, job.frames[fi], false);
+    if (fi == 0) out.sceneCrc32 = job.sceneCrc32.value_or(scene.sourceCrc32);
+    checkSameContent(job, scene, job.frames[fi], out.sceneCrc32);
     warnUnlit(scene, job.frames[fi]);
     unread.add(scene);
     checkNurbsFitsDevice(session, scene);
@@ -371,7 +392,8 @@ CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, co
   return out;
 }
 
-void checkOutputWritable(const std::string& dir) {
+void checkOutputWritable(const std::string& dir, const std::string& option) {
+  const std::string label = option.empty() ? "-o " + dir : option;  // as the messages name it
   // The folder, or the nearest existing folder above it (where it would be created), must take a
   // new file: tried with a temporary one (permission bits alone do not tell root, nor a read-only
   // mount). Nothing else is created.
@@ -384,24 +406,44 @@ void checkOutputWritable(const std::string& dir) {
   constexpr std::size_t kPathMax = 4096, kNameMax = 255, kBelow = 1 + kNameMax + 1 + 16;
   for (const auto& component : at)
     if (component.native().size() > kNameMax)
-      throw InputError("-o " + dir.substr(0, 60) + "...: a folder name of " + std::to_string(component.native().size()) +
+      throw InputError(label.substr(0, 63) + "...: a folder name of " + std::to_string(component.native().size()) +
                        " bytes, over the system's limit of 255");
   if (at.native().size() + kBelow >= kPathMax)
-    throw InputError("-o " + dir.substr(0, 60) + "...: the folder's path is " + std::to_string(at.native().size()) +
+    throw InputError(label.substr(0, 63) + "...: the folder's path is " + std::to_string(at.native().size()) +
                      " bytes long; with the files' names below it, paths would pass the system's limit of 4096 "
                      "bytes: use a shorter path (at most " + std::to_string(kPathMax - kBelow - 1) + " bytes)");
+  // A symbolic link to a missing folder passed here and failed after the work with "File exists"
+  // (the faults audit of 2026-11-28): a path that exists as a link only is none to create.
+  for (std::filesystem::path p = at; p.has_parent_path() && p != p.parent_path(); p = p.parent_path())
+    if (std::filesystem::is_symlink(std::filesystem::symlink_status(p, ec)) && !std::filesystem::exists(p, ec))
+      throw InputError(label + ": " + p.string() + " is a symbolic link to a missing folder (" +
+                       std::filesystem::read_symlink(p, ec).string() + "): create that folder, or give another");
   at = nearestExistingFolder(at);
   if (!std::filesystem::is_directory(at, ec))
-    throw InputError("-o " + dir + ": cannot create the output folder: " + at.string() + " is not a folder");
-  const std::string probe = (at / ".dicsynth-write-test-XXXXXX").string();
-  std::vector<char> name(probe.begin(), probe.end());
-  name.push_back('\0');
-  const int fd = ::mkstemp(name.data());
-  if (fd < 0)
-    throw InputError("-o " + dir + ": " + (at == std::filesystem::absolute(dir, ec) ? "the output folder" : at.string()) +
-                     " is not writable (a new file there: " + std::strerror(errno) + ")");
-  ::close(fd);
-  ::unlink(name.data());
+    throw InputError(label + ": cannot create the output folder: " + at.string() + " is not a folder");
+  // A file without a name (O_TMPFILE): nothing to leave behind when a signal comes between the
+  // probe and its removal (a named probe stayed beside the output folder: the faults audit). A
+  // file system without O_TMPFILE takes a named one, removed at once.
+  int fd = ::open(at.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0600);
+  int err = errno;
+  if (fd >= 0) {
+    ::close(fd);
+    return;
+  }
+  if (err == EOPNOTSUPP || err == EISDIR || err == EINVAL) {
+    const std::string probe = (at / ".dicsynth-write-test-XXXXXX").string();
+    std::vector<char> name(probe.begin(), probe.end());
+    name.push_back('\0');
+    fd = ::mkstemp(name.data());
+    err = errno;
+    if (fd >= 0) {
+      ::close(fd);
+      ::unlink(name.data());
+      return;
+    }
+  }
+  throw InputError(label + ": " + (at == std::filesystem::absolute(dir, ec) ? "the output folder" : at.string()) +
+                   " is not writable (a new file there: " + std::strerror(err) + ")");
 }
 
 void createOutputDir(const std::string& dir) {
@@ -461,12 +503,16 @@ Precision RenderSession::precision() {
 }
 
 // A run either completes its output set or leaves the folder as it found it: on failure, the
-// files that did not exist before the run, and the folder if the run created it (when empty), are
-// removed, with the folders above it that the run created for it (-o new/a/b on a full disk left
-// new/a behind: sweep audit of 2026-11-27). Files the run overwrote cannot be given back (docs/limits.md says so).
+// files this run committed (core/commit_watch.h), unless they replaced a file of the same name, are
+// removed, then the folders it made there when empty (preview/), and the output folder if the run
+// created it (when empty), with the folders above it that the run created for it (-o new/a/b on a
+// full disk left new/a behind: sweep audit of 2026-11-27). Files the run overwrote cannot be given
+// back (docs/limits.md says so). Only this run's files: the listing taken before the run and
+// compared after it took another run's files in the same folder for its own (faults audit of
+// 2026-11-28).
 class OutputRollback {
  public:
-  explicit OutputRollback(std::string dir) : dir_(std::move(dir)) {
+  explicit OutputRollback(std::string dir) : dir_(std::move(dir)), watch_(dir_) {
     std::error_code ec;
     existed_ = std::filesystem::is_directory(dir_, ec);
     created_ = std::filesystem::absolute(dir_, ec).lexically_normal();
@@ -478,16 +524,26 @@ class OutputRollback {
   ~OutputRollback() {
     if (kept_) return;
     std::error_code ec;
-    if (!std::filesystem::is_directory(dir_, ec)) return;
-    std::vector<std::filesystem::path> added;  // files, and folders the run made (preview/)
-    for (const auto& entry : std::filesystem::directory_iterator(dir_, ec))
-      if (!before_.count(entry.path().filename().string()) && !entry.is_symlink(ec)) added.push_back(entry.path());
-    for (const auto& path : added) std::filesystem::remove_all(path, ec);
+    std::size_t removed = 0;
+    std::set<std::filesystem::path> folders;  // below the output folder, holding removed files
+    for (const CommitWatch::Committed& c : watch_.committed()) {
+      struct stat s {};
+      // Still the file this run committed (not one another run has put there since).
+      if (c.replaced || ::lstat(c.path.c_str(), &s) != 0 || s.st_dev != c.device || s.st_ino != c.inode) continue;
+      if (!std::filesystem::remove(c.path, ec)) continue;
+      ++removed;
+      if (c.path.parent_path() != created_) folders.insert(c.path.parent_path());
+    }
+    // The folders the run made in the output folder (preview/), when it left them empty.
+    for (auto it = folders.rbegin(); it != folders.rend(); ++it)
+      if (const std::filesystem::path top = *std::next(it->begin(), std::distance(created_.begin(), created_.end()));
+          !before_.count(top.string()))
+        std::filesystem::remove(*it, ec);  // only when empty: remove() does not recurse
     // The lines of the frames written before the failure named these files (stdout): say they are
     // gone. Printed as the error unwinds, before its own message.
-    if (!added.empty())
+    if (removed > 0)
       std::fprintf(stderr, "dicsynth: removing the %zu file%s this run wrote in %s (a failed run keeps none)\n",
-                   added.size(), added.size() == 1 ? "" : "s", dir_.c_str());
+                   removed, removed == 1 ? "" : "s", dir_.c_str());
     if (existed_) return;
     // Only when empty: remove() does not recurse.
     for (std::filesystem::path p = created_;
@@ -498,15 +554,20 @@ class OutputRollback {
 
  private:
   std::string dir_;
+  CommitWatch watch_;
   std::filesystem::path created_, existing_;  // the output folder (absolute), and the folder above it that existed
   bool existed_ = false, kept_ = false;
-  std::set<std::string> before_;
+  std::set<std::string> before_;  // the names in the output folder before the run
 };
 
 RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   renderOptions(session.args(), 0);  // validate the sampling options before any work
   checkOutputWritable(job.outputDir);
   if (std::filesystem::is_directory(job.outputDir)) removeStaleTemporaries(job.outputDir);
+  // Where --preview writes too (a killed run's pictures in the making stayed there: the faults
+  // audit of 2026-11-28; so they did beside `preview`, `speckle` and `compare --junit` outputs).
+  if (const std::string previews = job.outputDir + "/preview"; job.preview && std::filesystem::is_directory(previews))
+    removeStaleTemporaries(previews);
   OutputRollback rollback(job.outputDir);
   // The device first: its limits are part of checking the frames (0.14 s on lavapipe).
   session.startDevice();
@@ -541,7 +602,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
     if (bar && fi > 0) bar->update(std::int64_t(fi));
     std::shared_ptr<RenderedFrame> rendered;
     try {
-      const Scene scene = loadFrameSceneAgain(session, job, job.frames[fi], checked.maxPixelsPerFrame);
+      const Scene scene = loadFrameSceneAgain(session, job, job.frames[fi], checked.maxPixelsPerFrame, checked.sceneCrc32);
       rendered = std::make_shared<RenderedFrame>(renderFrame(session, job, scene, job.frames[fi], summary));
     } catch (...) {
       finishWriting();  // the previous frame still completes (its own error, if any, wins)
@@ -576,7 +637,7 @@ RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
   out.calibrationPerFrame = checked.calibrationPerFrame;
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
     stopIfAsked(job.stop);
-    out.frames.push_back(renderFrame(session, job, loadFrameSceneAgain(session, job, job.frames[fi], checked.maxPixelsPerFrame),
+    out.frames.push_back(renderFrame(session, job, loadFrameSceneAgain(session, job, job.frames[fi], checked.maxPixelsPerFrame, checked.sceneCrc32),
                                      job.frames[fi], out.summary));
   }
   return out;

@@ -87,6 +87,10 @@ struct RenderJob {
   // Set by another thread to stop renderJob early (the Python module's Ctrl-C), which then throws
   // Interrupted: polled before each frame and by the render (RenderOptions::stop). Null in the CLI.
   const StopFlag* stop = nullptr;
+  // The CRC-32 of the scene file's content the job must render (a sweep: the content its points'
+  // key names); unset: whatever content the job's first evaluation reads. Every evaluation of the
+  // job's frames must read that one content (render_job.cpp, checkSameContent).
+  std::optional<std::uint32_t> sceneCrc32;
 };
 
 struct RenderJobResult {
@@ -145,7 +149,8 @@ CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, co
 // Creates `dir` (and parents); throws InputError naming it when that fails.
 void createOutputDir(const std::string& dir);
 // Throws InputError("-o DIR: ...") unless DIR, or the nearest existing folder above it, takes a new
-// file (tried with a temporary file, removed at once). Nothing else is created.
-void checkOutputWritable(const std::string& dir);
+// file (tried with a temporary file, removed at once). Nothing else is created. `option` names the
+// output in the messages instead of "-o DIR" ("--junit FILE").
+void checkOutputWritable(const std::string& dir, const std::string& option = "");
 
 }  // namespace dicsynth

@@ -6,6 +6,7 @@
 // (x right, y down, z forward); world and object frames are right-handed.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -146,6 +147,9 @@ struct Scene {
   // The -D defines (and sweep parameters) this evaluation did not read, in the order given; filled
   // only when SceneParams::requireDefinesRead is false (a run then checks them over its frames).
   std::vector<std::string> unreadDefines;
+  // CRC-32 of the scene file's bytes this evaluation ran: a run checks that every evaluation of its
+  // frames (and a sweep, of its points) read one content (job/render_job.cpp).
+  std::uint32_t sourceCrc32 = 0;
 };
 
 }  // namespace dicsynth

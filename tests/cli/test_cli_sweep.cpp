@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "exr_test_util.h"
 #include "files/image_io.h"
@@ -477,4 +478,32 @@ TEST_CASE("cli: sweep shows a progress bar on a terminal, and nothing in a log f
   CHECK(text.find("\rsweep: [########################] 6/6 points, ") != std::string::npos);
   CHECK(text.find(" img/s, ETA ") != std::string::npos);
   CHECK(text.find(" in all") != std::string::npos);
+}
+
+TEST_CASE("cli: a scene file edited while a sweep runs stops it and no point of the edited content is recorded") {
+  // The points were keyed by the content read when the sweep started, while each point evaluated
+  // the file anew: edited mid-run and then reverted (an undo, a git stash), the rerun took 22 of 30
+  // points rendered from the edit as complete (the faults audit of 2026-11-28). The edit comes once
+  // point 0 is recorded; each point takes ~0.1 s here (320 × 240 px, 16 spp on the CPU reference).
+  TempFolder dir;
+  std::string text = kScene;
+  text.replace(text.find("{32, 24}"), 8, "{320, 240}");
+  const std::string scene = dir.write("scene.lua", text);
+  const std::string out = dir.file("out");
+  test::CliResult r;
+  std::thread run([&] { r = runCli("sweep " + scene + " -o " + out + " --spp 16 --backend cpu --sweep shift=0:0.04:40"); });
+  for (int i = 0; i < 600 && !std::filesystem::exists(out + "/point_00000/point.json"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  text.replace(text.find("gray or 0.5"), 11, "gray or 0.9");
+  dir.write("scene.new", text);
+  std::filesystem::rename(dir.file("scene.new"), scene);
+  run.join();
+  INFO(r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find(scene + ": the scene file changed during the run (frame 0 evaluated another content than the one the "
+                           "sweep started with)") != std::string::npos);
+  int recorded = 0;
+  for (int i = 0; i < 40; ++i) recorded += std::filesystem::exists(out + "/" + (i < 10 ? "point_0000" : "point_000") + std::to_string(i) + "/point.json");
+  CHECK(recorded >= 1);
+  CHECK(recorded < 40);
 }

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 #include <OpenImageIO/imageio.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <tiffio.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -18,6 +19,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/exact_number.h"
@@ -170,6 +172,13 @@ TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme 
   const std::string huge = dir.write("huge.lua", "cam = Camera.Pinhole { resolution = {65535, 65535}; focalLength = 0.012; "
                                                  "pixelSize = {2e-6, 2e-6} }\n");
   const std::string device = dir.write("device.lua", plateWith("Texture.File { fileName = '/dev/zero' }"));
+  // Outputs that are not files, a link to a missing folder, folders that take no file (the faults
+  // audit of 2026-11-28: a FIFO, /dev/full and /dev/stdout's link were replaced by regular files;
+  // `bench`, `speckle` and `compare --junit` found an unwritable folder after their work, exit 3).
+  const std::string fifo = dir.file("report.fifo");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::filesystem::create_symlink("/dev/null", dir.file("null.tif"));
+  std::filesystem::create_symlink(dir.file("missing-folder"), dir.file("dangling"));
   std::string longPath;  // 19 folders of 200 bytes: 3819 bytes, plus the temporary folder's path
   for (int k = 0; k < 19; ++k) longPath += "/" + std::string(200, char('a' + k));
   const std::vector<Case> cases = {
@@ -193,10 +202,18 @@ TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme 
       {"sweep " + scene + " --sweep g=1,2 -o " + out + longPath, "bytes long; with the files' names below it, paths would pass the system's limit"},
       {"sweep " + scene + " -o " + out + " --sweep g=1,2 --frames ''", "--frames: expected A:B or N, got nothing"},
       {"sweep " + scene + " -o " + out + " --sweep g=1,2 --shard ' 0/2'", "--shard  0/2: expected I/N with 0 <= I < N"},
+      {"compare " + scene + " --spp 1 --junit " + fifo, "--junit " + fifo + ": it is a FIFO, which the report would replace"},
+      {"compare " + scene + " --spp 1 --junit /proc/report.xml", "--junit /proc/report.xml: the output folder is not writable"},
+      {"speckle --size 8 8 -o " + dir.file("null.tif"), "it is a link to a device or a terminal, which the image would replace"},
+      {"speckle --size 8 8 -o /proc/s.tif", "speckle: -o /proc/s.tif: the output folder is not writable"},
+      {"bench -o /proc", "-o /proc: the output folder is not writable"},
+      {"render " + scene + " -o " + dir.file("dangling") + "/sub", "is a symbolic link to a missing folder"},
   };
   for (const Case& c : cases) {
     const auto start = std::chrono::steady_clock::now();
     const test::CliResult r = test::runCli(c.arguments);
+    CHECK(std::filesystem::is_fifo(fifo));  // left as it was
+    CHECK(std::filesystem::is_symlink(dir.file("null.tif")));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     INFO(c.arguments << "\nstderr: " << r.err);
     CHECK(r.exitCode == 2);
@@ -314,6 +331,51 @@ TEST_CASE("hostile: a run that fails leaves the folder as it found it, and stale
   for (const auto& e : std::filesystem::directory_iterator(kept)) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   CHECK(names == std::vector<std::string>{live, "notes.txt"});
+
+  // Pictures in an existing preview/ go with the files they show (they stayed: the faults audit of
+  // 2026-11-28), the user's file there stays.
+  const std::string withPreview = dir.file("previewed");
+  std::filesystem::create_directories(withPreview + "/preview");
+  dir.write("previewed/preview/notes.txt", "mine");
+  const test::CliResult pr = test::runCli("render " + scene + " -o " + withPreview + " --frames 0:1 --backend cpu --preview");
+  CHECK(pr.exitCode == 2);
+  names.clear();
+  for (const auto& e : std::filesystem::recursive_directory_iterator(withPreview))
+    names.push_back(e.path().lexically_relative(withPreview).string());
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{"preview", "preview/notes.txt"});
+}
+
+TEST_CASE("hostile: a failed run removes only its own files, not those another run writes into the same folder") {
+  // Render A writes 40 frames while render B, into the same folder, fails at its second frame. B's
+  // rollback removed every file new since B started, A's finished frames and temporaries included
+  // (A exited 0 with frames missing, or 3: the faults audit of 2026-11-28, 11 of 11 trials). A
+  // starts first and runs for seconds; B fails within it.
+  test::TempFolder dir;
+  const std::string nan = dir.file("nan.exr");
+  writeFloatTexture(nan, std::numeric_limits<float>::quiet_NaN());
+  // A's frames take ~0.1 s each on the CPU reference (320 × 240 px, 16 spp): seconds in all.
+  std::string good = plateWith("Texture.Constant { value = 0.5 }");
+  good.replace(good.find("{32, 24}"), 8, "{320, 240}");
+  good = dir.write("good.lua", good);
+  const std::string late = dir.write(
+      "late.lua", plateWith("frame == 0 and Texture.Constant { value = 0.5 } or Texture.File { fileName = '" + nan + "' }"));
+  const std::string shared = dir.file("shared");
+  test::CliResult a;
+  std::thread first([&] { a = test::runCli("render " + good + " -o " + shared + " --frames 100:139 --backend cpu --spp 16"); });
+  // B once A has written its first frame.
+  for (int i = 0; i < 600 && !std::filesystem::exists(shared + "/cam_0100.exr"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const test::CliResult b = test::runCli("render " + late + " -o " + shared + " --frames 0:1 --backend cpu");
+  first.join();
+  INFO(a.err << b.err);
+  CHECK(b.exitCode == 2);
+  REQUIRE(a.exitCode == 0);
+  int missing = 0;
+  for (int f = 100; f < 140; ++f)
+    for (const char* ext : {".tif", ".exr"}) missing += !std::filesystem::exists(shared + "/cam_0" + std::to_string(f) + ext);
+  CHECK(missing == 0);
+  CHECK(!std::filesystem::exists(shared + "/cam_0000.exr"));  // B's own frame 0 went
 }
 
 TEST_CASE("hostile: a run ended by SIGTERM removes its temporary files and ends by the signal") {
@@ -572,4 +634,28 @@ TEST_CASE("hostile: a mistyped command or option is answered with the nearest na
     CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
   }
   CHECK(test::runCli("render " + scene + " --zzzzzz").err.find("did you mean") == std::string::npos);
+}
+
+TEST_CASE("hostile: a scene file edited while its frames render stops the run, undone") {
+  // Every frame is evaluated before work and again when rendered; an edit in between rendered two
+  // scenes in one run without a word: 640 × 480 made 320 × 240 mid-run left the calibration file
+  // of the first, fitting no later frame (the faults audit of 2026-11-28, 5 of 5 trials). The edit
+  // comes once the first frame is written, 39 frames (~4 s) before the end.
+  test::TempFolder dir;
+  std::string text = plateWith("Texture.Constant { value = 0.5 }");
+  text.replace(text.find("{32, 24}"), 8, "{320, 240}");
+  const std::string scene = dir.write("edited.lua", text);
+  const std::string out = dir.file("out");
+  test::CliResult r;
+  std::thread run([&] { r = test::runCli("render " + scene + " -o " + out + " --frames 100:139 --backend cpu --spp 16"); });
+  for (int i = 0; i < 600 && !std::filesystem::exists(out + "/cam_0100.exr"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  text.replace(text.find("{320, 240}"), 10, "{160, 120}");
+  dir.write("edited.new", text);
+  std::filesystem::rename(dir.file("edited.new"), scene);  // as editors save
+  run.join();
+  INFO(r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find(scene + ": the scene file changed during the run (frame ") != std::string::npos);
+  CHECK(!std::filesystem::exists(out));  // created by the run: gone with it
 }

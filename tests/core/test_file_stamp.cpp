@@ -65,6 +65,7 @@ TEST_CASE("file stamp: the texture cache and the sweep's checksums see a rewrite
   TextureCache cache;
   PreparedTexture texture;
   texture.path = path;
+  texture.stamp = *fileStamp(path);  // read under this stamp
   cache.insert(texture);
   CHECK(cache.find(path, Interpolation::Cubic).has_value());
   sweep::AssetChecksums checksums;
@@ -74,4 +75,22 @@ TEST_CASE("file stamp: the texture cache and the sweep's checksums see a rewrite
   CHECK_FALSE(cache.find(path, Interpolation::Cubic).has_value());  // found the old texture before
   CHECK(checksums.of(path).crc32 != crcA);                         // recorded the old CRC before
   CHECK(checksums.of(path).crc32 == sweep::crc32Of("BBBB"));
+}
+
+TEST_CASE("file stamp: a texture is cached under the stamp it was read with, not the file's stamp after") {
+  // A file replaced while it was decoded was cached under the new file's stamp with the old
+  // content: a Python Renderer, and every later point of a sweep, rendered the old texture (the
+  // faults audit of 2026-11-28: 12 of 12 Renderers). Here the replacement comes between the reading
+  // (the stamp the texture carries) and the insertion.
+  test::TempFolder dir;
+  const std::string path = dir.file("texture.tif");
+  writeBytes(path, "AAAA");
+  PreparedTexture texture;
+  texture.path = path;
+  texture.stamp = *fileStamp(path);
+  writeBytes(dir.file("new.tif"), "BBBB");
+  std::filesystem::rename(dir.file("new.tif"), path);  // as an editor or `dicsynth speckle -o` saves
+  TextureCache cache;
+  cache.insert(texture);
+  CHECK_FALSE(cache.find(path, Interpolation::Cubic).has_value());  // the new file is read again
 }

@@ -20,6 +20,12 @@ std::mutex& registryMutex() {
   return *m;
 }
 
+// Taken before the registry's: held by a set of renames (holdTermination), waited for by the cleanup.
+std::mutex& groupMutex() {
+  static std::mutex* m = new std::mutex;
+  return *m;
+}
+
 std::multiset<std::string>& registry() {
   static std::multiset<std::string>* paths = new std::multiset<std::string>;
   return *paths;
@@ -43,6 +49,7 @@ sigset_t terminationSignals() {
   // through the file's descriptor (AtomicFile::duplicateFd), so a removed file is not made again;
   // a writer that reopened one by name would (2 of 30 signalled sweeps left one before they all
   // wrote through descriptors; the next run into the folder removes such a file).
+  groupMutex().lock();  // a set of renames under way completes first
   registryMutex().lock();
   std::size_t removed = 0;
   for (const std::string& path : registry()) removed += ::unlink(path.c_str()) == 0 ? 1 : 0;
@@ -84,6 +91,8 @@ int createTemporary(const std::string& path) {
   if (fd >= 0) registry().insert(path);
   return fd;
 }
+
+std::unique_lock<std::mutex> holdTermination() { return std::unique_lock<std::mutex>(groupMutex()); }
 
 void unregisterTemporary(const std::string& path) {
   std::lock_guard lock(registryMutex());

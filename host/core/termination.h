@@ -10,6 +10,7 @@
 // in ordinary context, takes the registry's lock (so no write registers or finishes meanwhile),
 // removes every registered temporary file, says so on stderr, and ends the process by the same
 // signal (its exit status is the signal's: 128 + 15 = 143 in a shell for SIGTERM).
+#include <mutex>
 #include <string>
 
 namespace dicsynth {
@@ -26,5 +27,12 @@ void removeTemporariesOnTermination();
 // committed or removed.
 int createTemporary(const std::string& path);
 void unregisterTemporary(const std::string& path);
+
+// Holds a signal's cleanup, while the lock lives, so that the renames of a set of files (an image
+// and its ground truth, a manifest's CSV and JSON, a rig's calibration files) all happen before the
+// run ends, or none: a SIGTERM between two of them left manifest.csv without manifest.json, or a
+// TIFF without its EXR (the faults audit of 2026-11-28, with the renames held open by strace). Take
+// it for the renames only, after the files are written: the cleanup waits for it.
+std::unique_lock<std::mutex> holdTermination();
 
 }  // namespace dicsynth

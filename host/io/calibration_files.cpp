@@ -21,6 +21,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/termination.h"
 #include "core/version.h"
 #include "io/opencv_camera.h"
 
@@ -263,6 +264,7 @@ std::vector<std::string> writeCalibrationFiles(const std::string& dir,
   }
   // Commit: rename all; on a failure take back what this call renamed.
   std::vector<std::string> paths;
+  const auto hold = holdTermination();  // every rename, or a signal's cleanup first
   try {
     for (auto& file : staged) {
       file->commit();

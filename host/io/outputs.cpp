@@ -55,6 +55,7 @@
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/parallel.h"
+#include "core/termination.h"
 #include "core/version.h"
 #include "files/image_io.h"
 #include "io/opencv_camera.h"
@@ -422,6 +423,7 @@ OutputFiles writeCameraOutputs(const std::string& dir, const std::string& stem, 
     }
   }
   if (tiffWritten.valid()) tiffWritten.get();  // rethrows the TIFF's error
+  const auto hold = holdTermination();  // both renames, or a signal's cleanup first
   if (tiff) tiff->commit();
   try {
     if (exr) exr->commit();

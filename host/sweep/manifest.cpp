@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/termination.h"
 #include "sweep/point_record.h"
 
 namespace dicsynth::sweep {
@@ -145,6 +146,7 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
            std::to_string(summary.complete) + "\n}\n");
   csv.close();
   js.close();
+  const auto hold = holdTermination();  // both renames, or a signal's cleanup first
   csvFile.commit();
   jsonFile.commit();
   return summary;

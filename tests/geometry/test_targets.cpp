@@ -256,7 +256,10 @@ TEST_CASE("targets: Target.poses is deterministic and keeps every feature inside
     first.push_back(board.worldFromTarget);
     for (std::size_t c = 0; c < ps.cameras.size(); ++c) {
       CHECK(poseViolation(*board.target, board.worldFromTarget, ps.cameras[c].camera, 20).empty());
-      for (const FeatureTruth& f : targetFeatureTruth(ps, c)[0].features) {
+      // Held by name: a range-for over a member of the temporary read freed memory (AddressSanitizer,
+      // 2026-11-28; before C++23 the temporary ends before the loop).
+      const std::vector<TargetTruth> truth = targetFeatureTruth(ps, c);
+      for (const FeatureTruth& f : truth[0].features) {
         CHECK(f.visible());
         CHECK(f.pixel_px.x >= 19.5);
         CHECK(f.pixel_px.y <= ps.cameras[c].camera.height_px - 20.5);

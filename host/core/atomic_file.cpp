@@ -71,6 +71,12 @@ std::string notAFileTarget(const std::string& path) {
   if (::lstat(path.c_str(), &link) != 0 || S_ISREG(link.st_mode)) return "";
   if (S_ISDIR(link.st_mode)) return "is a folder";
   if (!S_ISLNK(link.st_mode)) return S_ISFIFO(link.st_mode) ? "is a FIFO" : S_ISSOCK(link.st_mode) ? "is a socket" : "is a device";
+  // A link into /proc or /dev names a stream (/dev/stdout, /proc/self/fd/1), whatever it resolves to
+  // now: `--junit /dev/stdout > report.xml` resolved to the regular report.xml and replaced the
+  // link, leaving report.xml empty (the faults check of 2026-11-28).
+  std::error_code ec;
+  const std::string target = std::filesystem::read_symlink(path, ec).string();
+  if (target.rfind("/proc/", 0) == 0 || target.rfind("/dev/", 0) == 0) return "is a link to a stream (" + target + ")";
   if (::stat(path.c_str(), &s) != 0 || S_ISREG(s.st_mode)) return "";  // dangling, or a file: the link is replaced
   return S_ISDIR(s.st_mode)    ? "is a link to a folder"
          : S_ISFIFO(s.st_mode) ? "is a link to a FIFO or a pipe"
@@ -114,15 +120,16 @@ int AtomicFile::duplicateFd() const {
 
 void AtomicFile::commit() {
   DS_CHECK(!committed_, "AtomicFile::commit called twice for " + final_);
-  struct stat before {};
+  struct stat before {}, mine {};
   const bool replaced = ::lstat(final_.c_str(), &before) == 0;
+  if (::fstat(fd_, &mine) != 0) mine = {};
   if (std::rename(temp_.c_str(), final_.c_str()) != 0) {
     const int err = errno;
     throw Error("cannot write '" + final_ + "': rename from '" + temp_ + "' failed: " + errnoText(err));
   }
   committed_ = true;
   unregisterTemporary(temp_);
-  CommitWatch::note(final_, replaced);
+  if (mine.st_ino != 0) CommitWatch::note(final_, mine.st_dev, mine.st_ino, replaced);
 }
 
 TextWriter::TextWriter(const AtomicFile& file) : finalPath_(file.finalPath()) {

@@ -11,9 +11,13 @@ namespace {
 std::mutex gWatchesMutex;
 std::vector<CommitWatch*> gWatches;
 
-std::filesystem::path absoluteNormal(const std::string& path) {
+// The path as the kernel resolves it (symbolic links followed; a part not there yet as written):
+// folded as text, `LINK/../x` named ./x where the kernel wrote into LINK's target's x, and a failed
+// run removed a stranger's file of that name (the faults check of 2026-11-28).
+std::filesystem::path resolved(const std::string& path) {
   std::error_code ec;
-  std::filesystem::path p = std::filesystem::absolute(path, ec).lexically_normal();
+  std::filesystem::path p = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+  if (ec) p = std::filesystem::absolute(path, ec).lexically_normal();
   if (p.filename().empty()) p = p.parent_path();  // "out/"
   return p;
 }
@@ -26,7 +30,7 @@ bool within(const std::filesystem::path& path, const std::filesystem::path& fold
 
 }  // namespace
 
-CommitWatch::CommitWatch(const std::string& folder) : folder_(absoluteNormal(folder)) {
+CommitWatch::CommitWatch(const std::string& folder) : folder_(resolved(folder)) {
   std::lock_guard lock(gWatchesMutex);
   gWatches.push_back(this);
 }
@@ -41,15 +45,16 @@ std::vector<CommitWatch::Committed> CommitWatch::committed() const {
   return committed_;
 }
 
-void CommitWatch::note(const std::string& finalPath, bool replaced) {
-  const std::filesystem::path path = absoluteNormal(finalPath);
-  struct stat s {};
-  if (::lstat(path.c_str(), &s) != 0) return;  // gone already: nothing to undo
+void CommitWatch::note(const std::string& finalPath, dev_t device, ino_t inode, bool replaced) {
+  // The folder resolved, the name as it is: the file itself, not what a link there would name.
+  const std::filesystem::path given(finalPath);
+  const std::filesystem::path path = resolved(given.parent_path().empty() ? "." : given.parent_path().string()) /
+                                     given.filename();
   std::lock_guard lock(gWatchesMutex);
   for (CommitWatch* w : gWatches)
     if (within(path, w->folder_)) {
       std::lock_guard entries(w->mutex_);
-      w->committed_.push_back({path, s.st_dev, s.st_ino, replaced});
+      w->committed_.push_back({path, device, inode, replaced});
     }
 }
 

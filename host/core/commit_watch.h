@@ -18,7 +18,7 @@ namespace dicsynth {
 class CommitWatch {
  public:
   struct Committed {
-    std::filesystem::path path;  // absolute
+    std::filesystem::path path;  // absolute, its folder resolved (symbolic links followed)
     dev_t device = 0;
     ino_t inode = 0;
     bool replaced = false;  // a file of that name was there before (overwritten: not removed)
@@ -31,9 +31,12 @@ class CommitWatch {
 
   std::vector<Committed> committed() const;
 
-  // Called by AtomicFile::commit after its rename: notes `finalPath` in every live watch whose
-  // folder holds it.
-  static void note(const std::string& finalPath, bool replaced);
+  // Called by AtomicFile::commit after its rename: notes `finalPath`, the file of `device` and
+  // `inode` (the temporary's, taken before the rename: after it, another run could have renamed
+  // its own file over the name), in every live watch whose folder holds it.
+  static void note(const std::string& finalPath, dev_t device, ino_t inode, bool replaced);
+
+  const std::filesystem::path& folder() const { return folder_; }  // as the kernel resolves it
 
  private:
   std::filesystem::path folder_;  // absolute, normalized

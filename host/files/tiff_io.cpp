@@ -71,7 +71,10 @@ bool looksLikeTiff(const std::string& path) {
 std::optional<GrayImage> readCommonTiff(const std::string& path) {
   installHandlers();
   tLastTiffError.clear();
-  TiffPtr tif(TIFFOpen(path.c_str(), "r"));
+  // "m": read, not memory-mapped: a file rewritten in place while it was read (a `cp` over a
+  // texture) ended the process with SIGBUS through the mapping (the faults check of 2026-11-28,
+  // 8 of 12 runs); read, it is a short read or a decoding error, which the caller reads again.
+  TiffPtr tif(TIFFOpen(path.c_str(), "rm"));
   if (!tif) throw InputError(path + ": cannot read image: " + lastError());
   TIFF* t = tif.get();
   const std::uint32_t width = field<std::uint32_t>(t, TIFFTAG_IMAGEWIDTH, 0);

@@ -85,8 +85,9 @@ void checkSameContent(const RenderJob& job, const Scene& scene, int frame, std::
   if (scene.sourceCrc32 != expected)
     throw InputError(job.sceneFile + ": the scene file changed during the run (frame " + std::to_string(frame) +
                      " evaluated another content than the one " +
-                     (job.sceneCrc32 ? "the sweep started with" : "the run checked before any work") +
-                     "): the run is undone; run it again once the file is as you want it");
+                     (job.sceneCrc32 ? "the sweep started with): this point is not recorded"
+                                     : "the run checked before any work): the run is undone") +
+                     "; run it again once the file is as you want it");
 }
 
 Scene loadFrameSceneAgain(RenderSession& session, const RenderJob& job, int frame, std::uint64_t checkedPixels,
@@ -416,8 +417,9 @@ void checkOutputWritable(const std::string& dir, const std::string& option) {
   // (the faults audit of 2026-11-28): a path that exists as a link only is none to create.
   for (std::filesystem::path p = at; p.has_parent_path() && p != p.parent_path(); p = p.parent_path())
     if (std::filesystem::is_symlink(std::filesystem::symlink_status(p, ec)) && !std::filesystem::exists(p, ec))
-      throw InputError(label + ": " + p.string() + " is a symbolic link to a missing folder (" +
-                       std::filesystem::read_symlink(p, ec).string() + "): create that folder, or give another");
+      throw InputError(label + ": " + p.string() + " is a symbolic link that leads to no folder (" +
+                       std::filesystem::read_symlink(p, ec).string() +
+                       ": missing, or a loop of links): create that folder, or give another");
   at = nearestExistingFolder(at);
   if (!std::filesystem::is_directory(at, ec))
     throw InputError(label + ": cannot create the output folder: " + at.string() + " is not a folder");
@@ -515,8 +517,7 @@ class OutputRollback {
   explicit OutputRollback(std::string dir) : dir_(std::move(dir)), watch_(dir_) {
     std::error_code ec;
     existed_ = std::filesystem::is_directory(dir_, ec);
-    created_ = std::filesystem::absolute(dir_, ec).lexically_normal();
-    if (created_.filename().empty()) created_ = created_.parent_path();  // "out/"
+    created_ = watch_.folder();  // as the kernel resolves it: -o LINK/../out is LINK's target's out
     existing_ = nearestExistingFolder(created_);  // the run creates the folders below it
     if (existed_)
       for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) before_.insert(entry.path().filename().string());

@@ -178,6 +178,7 @@ TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme 
   const std::string fifo = dir.file("report.fifo");
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   std::filesystem::create_symlink("/dev/null", dir.file("null.tif"));
+  std::filesystem::create_symlink("/proc/self/fd/1", dir.file("stdout.xml"));  // as /dev/stdout
   std::filesystem::create_symlink(dir.file("missing-folder"), dir.file("dangling"));
   std::string longPath;  // 19 folders of 200 bytes: 3819 bytes, plus the temporary folder's path
   for (int k = 0; k < 19; ++k) longPath += "/" + std::string(200, char('a' + k));
@@ -204,10 +205,12 @@ TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme 
       {"sweep " + scene + " -o " + out + " --sweep g=1,2 --shard ' 0/2'", "--shard  0/2: expected I/N with 0 <= I < N"},
       {"compare " + scene + " --spp 1 --junit " + fifo, "--junit " + fifo + ": it is a FIFO, which the report would replace"},
       {"compare " + scene + " --spp 1 --junit /proc/report.xml", "--junit /proc/report.xml: the output folder is not writable"},
-      {"speckle --size 8 8 -o " + dir.file("null.tif"), "it is a link to a device or a terminal, which the image would replace"},
+      {"speckle --size 8 8 -o " + dir.file("null.tif"), "it is a link to a stream (/dev/null), which the image would replace"},
+      // runCli sends stdout to a regular file, which the link resolves to: it was replaced, the file left empty.
+      {"compare " + scene + " --spp 1 --junit " + dir.file("stdout.xml"), "it is a link to a stream (/proc/self/fd/1)"},
       {"speckle --size 8 8 -o /proc/s.tif", "speckle: -o /proc/s.tif: the output folder is not writable"},
       {"bench -o /proc", "-o /proc: the output folder is not writable"},
-      {"render " + scene + " -o " + dir.file("dangling") + "/sub", "is a symbolic link to a missing folder"},
+      {"render " + scene + " -o " + dir.file("dangling") + "/sub", "is a symbolic link that leads to no folder"},
   };
   for (const Case& c : cases) {
     const auto start = std::chrono::steady_clock::now();
@@ -376,6 +379,17 @@ TEST_CASE("hostile: a failed run removes only its own files, not those another r
     for (const char* ext : {".tif", ".exr"}) missing += !std::filesystem::exists(shared + "/cam_0" + std::to_string(f) + ext);
   CHECK(missing == 0);
   CHECK(!std::filesystem::exists(shared + "/cam_0000.exr"));  // B's own frame 0 went
+
+  // -o LINK/../out writes into LINK's target's out/; the rollback folded the path as text into
+  // ./out and removed a stranger's files of the same names there (the faults check of 2026-11-28).
+  std::filesystem::create_directories(dir.file("real/sub"));
+  std::filesystem::create_symlink(dir.file("real/sub"), dir.file("link"));
+  std::filesystem::create_directories(dir.file("out"));
+  dir.write("out/cam_0000.exr", "a stranger's file");
+  const test::CliResult c = test::runCli("render " + late + " -o " + dir.file("link/../out") + " --frames 0:1 --backend cpu");
+  CHECK(c.exitCode == 2);
+  CHECK(test::readBytes(dir.file("out/cam_0000.exr")) == "a stranger's file");
+  CHECK(!std::filesystem::exists(dir.file("real/out")));  // the run's folder, with its files, gone
 }
 
 TEST_CASE("hostile: a run ended by SIGTERM removes its temporary files and ends by the signal") {

@@ -1,0 +1,1 @@
+scene.lua: cannot read the scene file: No such file or directory

@@ -11,6 +11,10 @@ struct lua_State;
 
 namespace dicsynth::scene {
 
+// How far from the world origin a light's position and a shape's location may lie (m): beyond, the
+// fp32 path's r² nears float's range, and an infinite plane's (u, v) overflowed to NaN.
+inline constexpr double kMaxDistanceFromOrigin_m = 1e12;
+
 // Registers every userdata type and sets all globals of the scene language.
 void registerSceneLanguage(lua_State* L);
 

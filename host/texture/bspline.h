@@ -21,6 +21,7 @@
 // shaders/textures/file.glsl evaluates the same sums with the same weights and index rule.
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace dicsynth {
@@ -74,6 +75,9 @@ void quinticWeights(Real f, Real w[6]) {
 template <class Real, class Coefficient>
 Real bsplineLookup(const Coefficient* coefficients, int width, int height, Real u, Real v,
                    Interpolation kind = Interpolation::Cubic) {
+  // A coordinate that is not a number has no texel: NaN, not int(NaN) (undefined behaviour; the
+  // sanitizer run of 2026-11-28). The render's radiance check then refuses the frame.
+  if (!(std::isfinite(u) && std::isfinite(v))) return std::numeric_limits<Real>::quiet_NaN();
   const Real x = u * Real(width) - Real(0.5), y = v * Real(height) - Real(0.5);
   const Real fx = std::floor(x), fy = std::floor(y);
   const int ix = int(fx), iy = int(fy);

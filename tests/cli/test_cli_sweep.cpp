@@ -123,7 +123,9 @@ TEST_CASE("cli: sweep --reference-frame measures motion from that frame, as rend
     }
   }
   // Frame 2 is the reference: no motion there; frame 0 moved 2 cm against it (disp.X = -0.02 m).
-  const std::vector<float>& disp0 = test::readExr(dir.file("out/point_00000/cam_0000.exr")).floats.at("disp.X");
+  // Held by name: a reference into the temporary read freed memory (AddressSanitizer, 2026-11-28).
+  const auto exr0 = test::readExr(dir.file("out/point_00000/cam_0000.exr"));
+  const std::vector<float>& disp0 = exr0.floats.at("disp.X");
   CHECK(std::any_of(disp0.begin(), disp0.end(), [](float v) { return std::abs(v + 0.02f) < 1e-6f; }));
   // Without the option the points are another sweep (their key names the reference frame).
   const test::CliResult again = runCli("sweep " + scene + " -o " + dir.file("out") + kFast +

@@ -165,6 +165,8 @@ TEST_CASE("scene: out-of-range values") {
       {"\no = Object.Simple { shape = Shape.Sphere { radius = 1 };\n"
        "  transform = homography {1,0,0,0, 0,1,0,0, 0,0,0,0, 0,0,0,1} }\n",
        2, "Object.Simple: 'transform' must be invertible, but its determinant is 0"},
+      {"p = Shape.Plane { location = {-1e308, 0.1, 0} }\n",
+       1, "Shape.Plane: 'location' must be within 1e12 m of the origin, got 1e+308"},
       {"s = scale(1, 0, 1)\n",
        1, "scale: factors must be non-zero, got 0"},
       {"r = rotate_y()\n",

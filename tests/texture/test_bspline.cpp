@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "texture/bspline.h"
@@ -177,4 +178,15 @@ TEST_CASE("texture: the blocked, multithreaded prefilter gives the bits of a lin
       // a backward-stable solve leaves residuals of a few ulps of 1; 1e-14 is ~45 ulps.
       CHECK(worstResidual(f, blocked, w, h, kind) < 1e-14);
     }
+}
+
+TEST_CASE("texture: a coordinate that is not a number gives NaN, not a texel index cast from NaN") {
+  // int(NaN) is undefined behaviour (the sanitizer run of 2026-11-28 met it through an infinite
+  // plane at 1e308 m, whose u overflowed); the render's radiance check refuses the NaN.
+  const std::vector<double> c(16, 0.5);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  CHECK(std::isnan(bsplineLookup<double>(c.data(), 4, 4, nan, 0.5)));
+  CHECK(std::isnan(bsplineLookup<double>(c.data(), 4, 4, 0.5, inf)));
+  CHECK(std::isnan(bsplineLookup<double>(c.data(), 4, 4, nan, 0.5, Interpolation::Quintic)));
+  CHECK(bsplineLookup<double>(c.data(), 4, 4, 0.5, 0.5) == doctest::Approx(0.5));
 }

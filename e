@@ -1,1 +1,0 @@
-scene.lua: cannot read the scene file: No such file or directory

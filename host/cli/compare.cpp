@@ -14,7 +14,6 @@
 #include "cli/commands.h"
 #include "cli/compare_items.h"
 #include "cli/options.h"
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json.h"
 #include "cpu/reference_renderer.h"
@@ -267,10 +266,7 @@ int runCompare(const CompareCommand& cmd) {
     const std::filesystem::path folder = std::filesystem::path(cmd.junitPath).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder))
       throw InputError("--junit " + cmd.junitPath + ": folder '" + folder.string() + "' does not exist");
-    if (const std::string why = notAFileTarget(cmd.junitPath); !why.empty())
-      throw InputError("--junit " + cmd.junitPath + ": it " + why + ", which the report would replace (give a file name)");
-    checkOutputWritable(folder.empty() ? "." : folder.string(), "--junit " + cmd.junitPath);
-    removeStaleTemporaries(folder.empty() ? "." : folder.string());  // a killed run's report in the making
+    checkOutputFile(cmd.junitPath, "--junit " + cmd.junitPath, "the report");
   }
   gpu::ContextOptions co;
   co.device = cmd.args.device;

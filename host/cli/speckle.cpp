@@ -38,7 +38,6 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/version.h"
 #include "files/image_limits.h"
@@ -97,10 +96,7 @@ int runSpeckle(SpeckleOptions options) {
     const std::filesystem::path folder = std::filesystem::path(options.output).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
       throw InputError("speckle: -o " + options.output + ": the folder " + folder.string() + " does not exist");
-    if (const std::string why = notAFileTarget(options.output); !why.empty())
-      throw InputError("speckle: -o " + options.output + ": it " + why + ", which the image would replace (give a file name)");
-    checkOutputWritable(folder.empty() ? "." : folder.string(), "speckle: -o " + options.output);
-    removeStaleTemporaries(folder.empty() ? "." : folder.string());  // a killed run's image in the making
+    checkOutputFile(options.output, "speckle: -o " + options.output, "the image");
   }
   SpeckleParams& p = options.params;
   p.width_px = options.size.at(0);

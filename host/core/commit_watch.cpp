@@ -46,6 +46,10 @@ std::vector<CommitWatch::Committed> CommitWatch::committed() const {
 }
 
 void CommitWatch::note(const std::string& finalPath, dev_t device, ino_t inode, bool replaced) {
+  {
+    std::lock_guard lock(gWatchesMutex);
+    if (gWatches.empty()) return;  // sweeps and caches commit with none: no path to resolve
+  }
   // The folder resolved, the name as it is: the file itself, not what a link there would name.
   const std::filesystem::path given(finalPath);
   const std::filesystem::path path = resolved(given.parent_path().empty() ? "." : given.parent_path().string()) /

@@ -266,19 +266,18 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
   constexpr int kReadings = 3;
   for (int reading = 1;; ++reading) {
     const std::optional<FileStamp> before = fileStamp(t.path);
-    PreparedTexture pt;
+    std::optional<PreparedTexture> pt;
     try {
       pt = readTexture(t, where, disk);
     } catch (const InputError&) {
       // A file rewritten in place while it was read fails to decode: read it again, and say
       // why if it kept changing; a file that stayed the same is bad as it is.
       if (!before || fileStamp(t.path) == before) throw;
-      if (reading < kReadings) continue;
     }
-    if (before && fileStamp(t.path) == before && pt.coefficients->size() > 0) {
-      pt.stamp = *before;
-      if (cache) cache->insert(pt);
-      textures.push_back(std::move(pt));
+    if (pt && before && fileStamp(t.path) == before) {
+      pt->stamp = *before;
+      if (cache) cache->insert(*pt);
+      textures.push_back(std::move(*pt));
       return byPath[key] = int(textures.size()) - 1;
     }
     if (reading == kReadings)

@@ -448,6 +448,15 @@ void checkOutputWritable(const std::string& dir, const std::string& option) {
                    " is not writable (a new file there: " + std::strerror(err) + ")");
 }
 
+void checkOutputFile(const std::string& file, const std::string& label, const std::string& what) {
+  if (const std::string why = notAFileTarget(file); !why.empty())
+    throw InputError(label + ": it " + why + ", which " + what + " would replace (give a file name)");
+  const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+  const std::string dir = folder.empty() ? "." : folder.string();
+  checkOutputWritable(dir, label);
+  removeStaleTemporaries(dir);  // a killed run's file in the making
+}
+
 void createOutputDir(const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -152,5 +152,10 @@ void createOutputDir(const std::string& dir);
 // file (tried with a temporary file, removed at once). Nothing else is created. `option` names the
 // output in the messages instead of "-o DIR" ("--junit FILE").
 void checkOutputWritable(const std::string& dir, const std::string& option = "");
+// For a file an option names (--junit FILE, speckle's -o FILE), before any work: it must not be a
+// FIFO, device, folder or link to a stream (core/atomic_file.h notAFileTarget), its folder must
+// take a new file (checkOutputWritable), and a killed run's temporaries there are removed. Throws
+// InputError("LABEL: it is a FIFO, which WHAT would replace ...").
+void checkOutputFile(const std::string& file, const std::string& label, const std::string& what);
 
 }  // namespace dicsynth

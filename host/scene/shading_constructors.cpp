@@ -50,9 +50,9 @@ Light newLight(lua_State* L, const Params& p, LightKind kind) {
     // 2026-11-28: fp64 4e-8, fp32/df64 4e-6 of full scale at 5.8e11 m); beyond it the fp32 path's
     // r² and intensity approach float's range. Farther was refused by prepare with a message
     // about a homography on another object's line.
-    p.require(glm::length(*position) <= kMaxDistanceFromOrigin_m, "position",
+    p.require(distanceFromOrigin(*position) <= kMaxDistanceFromOrigin_m, "position",
               "within 1e12 m of the origin (a nearer light with intensity scaled by distance² gives the same light)",
-              glm::length(*position));
+              distanceFromOrigin(*position));
     light.position_m = *position;
   }
   return light;

@@ -4,8 +4,6 @@
 // Every shape is defined in its own frame; `location` (metres, default {0, 0, 0}) places that
 // frame's origin in the object's frame. An Object's transform is applied about the location
 // (worldFromShape = translate(location) * transform, see scene.h).
-#include <algorithm>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -29,9 +27,7 @@ int shapeConstructor(lua_State* L) {
   // As a light's position: beyond, a plane's (u, v) overflowed to NaN, which the texture lookup
   // cast to int (undefined behaviour, found by the sanitizer run of 2026-11-28 on a fuzz mutant
   // with location -1e308), and the run ended on a misleading "radiance is nan".
-  const dvec3& at = shape.location_m;
-  const double largest = std::max({std::abs(at.x), std::abs(at.y), std::abs(at.z)});
-  const double distance = largest > 0 ? largest * glm::length(at / largest) : 0;  // no overflow to inf
+  const double distance = distanceFromOrigin(shape.location_m);
   p.require(distance <= kMaxDistanceFromOrigin_m, "location", "within 1e12 m of the origin", distance);
   shape.analytic = Kind::parse(p);
   pushUserdata(L, std::move(shape));

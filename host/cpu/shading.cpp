@@ -4,9 +4,8 @@
 
 namespace dicsynth::cpu {
 
-double spotFactor(const PreparedLight& light, dvec3 point) {
+double spotFactor(const PreparedLight& light, dvec3 fromLight) {
   if (light.kind != LightKind::Spot) return 1;
-  const dvec3 fromLight = point - light.position_m;
   const double cosPhi = glm::dot(light.direction, fromLight) / std::sqrt(glm::dot(fromLight, fromLight));
   const double t = std::clamp((cosPhi - light.cosOuter) / (light.cosInner - light.cosOuter), 0.0, 1.0);
   return t * t * (3 - 2 * t);
@@ -24,12 +23,16 @@ double shadeSurface(const PreparedScene& scene, const SurfaceHit& hit, double rh
       ambient += light.intensity;
       continue;
     }
-    const dvec3 toLight = light.position_m - hit.position;
+    // Formed relative to the ray's origin, (Q − o) − t d, as the GPU shades in camera-relative
+    // coordinates: Q − hit.position would carry the world point's rounding, ~1e-16 of its distance
+    // from the world origin, which over the lamp's distance r put a sphere 5,000 km out (r = 0.25 m)
+    // 2e-9 off in radiance, over fp64's 1e-9 (precision.md, far from the world origin).
+    const dvec3 toLight = (light.position_m - hit.rayOrigin) - hit.t * hit.rayDirection;
     const double r2 = glm::dot(toLight, toLight);
     const double r = std::sqrt(r2);
     const double cosTheta = glm::dot(hit.normal, toLight) / r;
     if (!(cosTheta > 0)) continue;
-    const double s = spotFactor(light, hit.position);
+    const double s = spotFactor(light, -toLight);
     if (!(s > 0) || occluded(scene, hit, light.position_m)) continue;
     const double e = light.intensity * s * cosTheta / r2;
     diffuse += e;

@@ -28,8 +28,9 @@ inline double specularBrdf(const PreparedObject& obj, dvec3 n, dvec3 wi, dvec3 w
   return reflectance::lobe(obj.shader, n, wi, wo);
 }
 
-// s(ωi) of a light at a point: 1 for a point light, the smoothstep above for a spot.
-double spotFactor(const PreparedLight& light, dvec3 point);
+// s(ωi) of a light towards a point, `fromLight` = point − light position: 1 for a point light, the
+// smoothstep above for a spot.
+double spotFactor(const PreparedLight& light, dvec3 fromLight);
 
 struct SurfaceHit;
 

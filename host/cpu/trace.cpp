@@ -17,7 +17,7 @@ bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit)
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const PreparedObject& obj = scene.objects[i];
     ObjectRay<double> ray;
-    if (!toObjectRay(obj.objectFromWorld, o, d, ray)) continue;
+    if (!obj.objectFromWorld.ray(o, d, ray)) continue;
     LocalHit<double> local;
     if (!intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(tBest, ray.w), nullptr, local))
       continue;
@@ -32,11 +32,12 @@ bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit)
   const PreparedObject& obj = scene.objects[std::size_t(bestObject)];
   hit.t = tBest;
   hit.position = o + tBest * d;
-  hit.normal = glm::normalize(worldNormal(obj.objectFromWorld, best.normal, best.point));
+  hit.normal = glm::normalize(worldNormal(obj.objectFromWorld.fromAnchor, best.normal, best.point));
   if (glm::dot(hit.normal, d) > 0) hit.normal = -hit.normal;
   hit.uv = best.uv;
   hit.object = bestObject;
   hit.rayDirection = d;
+  hit.rayOrigin = o;
   return true;
 }
 
@@ -48,7 +49,7 @@ bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosi
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const PreparedObject& obj = scene.objects[i];
     ObjectRay<double> ray;
-    if (!toObjectRay(obj.objectFromWorld, hit.position, d, ray)) continue;
+    if (!obj.objectFromWorld.ray(hit.position, d, ray)) continue;
     LocalHit<double> local;
     if (intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(1.0, ray.w),
                        int(i) == hit.object ? &origin : nullptr, local))

@@ -12,6 +12,7 @@ struct SurfaceHit {
   dvec2 uv{0};
   int object = -1;      // index into PreparedScene::objects
   dvec3 rayDirection{0};  // world direction of the ray that found the hit (not normalized)
+  dvec3 rayOrigin{0};     // world origin of that ray: position = rayOrigin + t rayDirection
 };
 
 // Nearest hit along o + t d, t > 0, over all objects, compared by world t.

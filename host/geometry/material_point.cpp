@@ -13,7 +13,7 @@ dvec2 materialCoordinates(const PreparedObject& o, dvec2 uv, dvec3 world_m) {
       [&](const auto& shape) -> dvec2 {
         // A kind whose (u, v) does not name one material point (Shape.Plane's tiles) says which does.
         if constexpr (requires { shape.materialUV(uv, world_m); }) {
-          const dvec4 h = o.objectFromWorld * dvec4(world_m, 1);
+          const dvec4 h = o.objectFromWorld.point(world_m);
           return shape.materialUV(uv, dvec3(h) / h.w);
         } else {
           return uv;

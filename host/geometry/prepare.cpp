@@ -7,7 +7,6 @@
 #include <sstream>
 #include <vector>
 
-#include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/option_names.h"
 #include "core/exact_number.h"
@@ -21,8 +20,6 @@
 
 namespace dicsynth {
 namespace {
-
-bool isAffine(const dmat4& m) { return m[0][3] == 0 && m[1][3] == 0 && m[2][3] == 0 && m[3][3] == 1; }
 
 Camera downscaled(Camera c, int k) {
   if (k == 1) return c;
@@ -169,7 +166,7 @@ void checkTargetInFront(const PreparedObject& o, const Object& so, const std::ve
 // untransformed plate, its relative test failing on the coordinates' size: radiometry audit).
 void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, const std::string& what) {
   if (isAffine(o.worldFromObject)) return;
-  const dvec4 a = o.objectFromWorld * dvec4(p, 1);
+  const dvec4 a = o.objectFromWorld.point(p);
   if (!(std::abs(a.w) > 1e-12 * (std::abs(a.x) + std::abs(a.y) + std::abs(a.z))))
     throw InputError(so.where, "the transform of object '" + so.name + "' sends " + what +
                                    " to infinity (it lies on the homography's singular plane)");
@@ -186,7 +183,7 @@ void checkFinite(const PreparedObject& o, const Object& so, const dvec3& p, cons
 void checkSameSide(const PreparedObject& o, const Object& so, const dvec3& p, const std::string& what) {
   const double objectSide = o.worldFromObject[3][3];
   if (isAffine(o.worldFromObject) || objectSide == 0) return;
-  const double pointSide = (o.objectFromWorld * dvec4(p, 1)).w;
+  const double pointSide = o.objectFromWorld.point(p).w;
   if ((pointSide > 0) != (objectSide > 0))
     throw InputError(so.where, "the transform of object '" + so.name + "' is projective and " + what +
                                    " lies beyond the plane it sends to infinity, on the other side than the "
@@ -366,8 +363,7 @@ PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options) {
     }
     o.worldFromObject = glm::translate(dmat4(1.0), so.shape.location_m) * so.transform *
                         glm::translate(dmat4(1.0), o.shapeOffset_m);
-    o.objectFromWorld = isAffine(o.worldFromObject) ? glm::affineInverse(o.worldFromObject)
-                                                    : glm::inverse(o.worldFromObject);
+    o.objectFromWorld = ObjectFromWorld::of(o.worldFromObject);
     if (const textures::TargetPattern* pattern = textures::targetPattern(so.texture.model)) {
       // The target's rectangle is centred on rectangleCentre_m of the target frame
       // (Target.* constructors: transform = worldFromTarget · translate(rectangleCentre_m)).

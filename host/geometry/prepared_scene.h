@@ -11,6 +11,7 @@
 #include "cameras/rays.h"
 #include "core/file_stamp.h"
 #include "geometry/nurbs_bvh.h"
+#include "geometry/object_map.h"
 #include "geometry/shapes.h"
 #include "geometry/targets.h"
 #include "model/scene.h"
@@ -48,7 +49,7 @@ struct PreparedObject {
   // NURBS, whose control points are re-centred (prepare.cpp). A point p of the scene's shape frame
   // is worldFromObject · (p − shapeOffset_m).
   dvec3 shapeOffset_m{0};
-  dmat4 objectFromWorld{1.0};
+  ObjectFromWorld objectFromWorld;  // worldFromObject's inverse, relative to the object's origin
 };
 
 struct PreparedLight {

@@ -56,11 +56,12 @@ typename Layout::GpuCamera packCamera(const PreparedCamera& pc, int spp, dvec3 o
   return g;
 }
 
-// objectFromWorld · translate(origin): maps camera-relative world coordinates into the object.
+// objectFromWorld · translate(origin): maps camera-relative world coordinates into the object, formed
+// from origin − the object's origin (geometry/object_map.h: no loss far from the world origin).
 template <class Layout>
 typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
   typename Layout::GpuObject g{};
-  const dmat4 objectFromRelative = o.objectFromWorld * glm::translate(dmat4(1.0), origin);
+  const dmat4 objectFromRelative = o.objectFromWorld.relativeTo(origin);
   for (int row = 0; row < 4; ++row)
     g.objectFromWorld[row] = h4<Layout>(objectFromRelative[0][row], objectFromRelative[1][row],
                                         objectFromRelative[2][row], objectFromRelative[3][row]);

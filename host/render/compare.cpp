@@ -44,8 +44,9 @@ Tolerances tolerancesFor(Precision p) {
   // frame (|o'| ≈ |C − O|), intersected, mapped back. Each step rounds to a few ε of the lengths
   // involved, so the object-frame ray carries an error ~ε D, D = |P − C| + |C − O|. (The GPU works
   // in camera-relative coordinates, host/gpu/pack.h: its float arithmetic never sees the distance
-  // from the world origin. The maps both sides build from world coordinates in double lose ~1e-16
-  // of it, which this bound leaves out: docs/precision.md asks for the origin in the scene.) Moving a ray
+  // from the world origin; both sides map points into an object relative to its origin,
+  // geometry/object_map.h, so the distance enters neither side's map. Only P, a world point in
+  // double on both, carries ~1e-16 of it: equal on both, as measured 5,000 km out.) Moving a ray
   // sideways by δ moves its hit along the surface by δ / cos θ. On a curved surface the error
   // saturates near a tangent: the root of the quadratic is a square root of its discriminant, so
   // it errs by ~√ε of the radius, hence the floor √ε of cos θ there; a flat surface has no such

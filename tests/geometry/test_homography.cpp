@@ -25,7 +25,7 @@ PreparedScene sphereUnder(const dmat4& worldFromObject) {
   o.id = 1;
   o.geometry.analytic = shapes::Sphere{1};
   o.worldFromObject = worldFromObject;
-  o.objectFromWorld = glm::inverse(worldFromObject);
+  o.objectFromWorld = ObjectFromWorld::of(worldFromObject);
   s.objects.push_back(o);
   return s;
 }
@@ -39,7 +39,7 @@ long double implicit(const dmat4& objectFromWorld, const dvec3& x) {
 
 void checkScene(const dmat4& H, dvec3 origin) {
   const PreparedScene scene = sphereUnder(H);
-  const dmat4 Hinv = scene.objects[0].objectFromWorld;
+  const dmat4 Hinv = glm::inverse(H);
   // Aim rays at points of the transformed sphere's visible side so most of them hit.
   const dvec4 c4 = H * dvec4(0, 0, 0, 1);
   const dvec3 centre = dvec3(c4) / c4.w;

@@ -251,6 +251,40 @@ TEST_CASE("cpu-vs-gpu: a point light nearly 1e12 m away lights and shadows alike
   test::expectNoValidationMessages();
 }
 
+TEST_CASE("cpu-vs-gpu: objects far from the world origin agree in every precision (5,000 and 20,000 km out)") {
+  // Map-grid coordinates: scenes placed 5e6 to 2e7 m from the world origin. Both paths used to map
+  // world points into an object as A⁻¹p − A⁻¹b, losing ~1e-16 of the distance from the origin
+  // before the cancellation, and the CPU shaded from the world hit point, which carries the same
+  // rounding: the 1 mm sphere seen from 5 mm below failed compare in every precision (fp64: 1208
+  // geometry outliers; the shape audit of 2026-11-28), the lit sphere and plate 0.3 m away failed
+  // fp64 (radiance 2e-9 of full scale) and df64. The maps are now taken relative to each object's
+  // origin (geometry/object_map.h) and the CPU shades relative to the ray's origin, as the GPU
+  // does: every precision holds its rules, with no wrong nearest hit.
+  test::TempFolder dir;
+  gpu::Renderer renderer(test::gpuContext());
+  const std::string small = dir.file("mm.lua");
+  test::writeBytes(small,
+                   "camera = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.00096; pixelSize = {1e-5, 1e-5};\n"
+                   "  position = {5e6, -3.5e6, 1499999.995}; lookAt = {5e6, -3.5e6, 1.5e6}; up = {0, -1, 0} }\n"
+                   "ball = Object.Simple { shape = Shape.Sphere { radius = 0.001; location = {5e6, -3.5e6, 1.5e6} };\n"
+                   "  texture = Texture.Speckle { radius = 0.0001; seed = 2 }; transform = rotate_x(0.4) * rotate_y(1.1) }\n");
+  checkEveryPrecision(renderer, prepareQuietly(small), true);
+  const std::string lit = dir.file("lit.lua");
+  test::writeBytes(lit,
+                   "local function at(x, y, z) return {1.6e7 + x, -1.05e7 + y, 3.5e6 + z} end\n"
+                   "camera = Camera.Pinhole { resolution = {96, 72}; focalLength = 0.012; pixelSize = {1e-5, 1e-5};\n"
+                   "  position = at(0, -0.02, -0.3); lookAt = at(0, 0, 0); up = {0, -1, 0} }\n"
+                   "lamp = Light.Point { position = at(0.1, -0.2, -0.15); intensity = 0.05 }\n"
+                   "ball = Object.Simple { shape = Shape.Sphere { radius = 0.02; location = at(0, 0, -0.03) };\n"
+                   "  shader = Shader.Lambert {}; texture = Texture.Speckle { seed = 3; radius = 0.002 };\n"
+                   "  transform = rotate_x(0.4) * rotate_y(1.1) }\n"
+                   "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = at(0, 0, 0) };\n"
+                   "  shader = Shader.Phong { shininess = 20 }; texture = Texture.Speckle { seed = 4; radius = 0.002 };\n"
+                   "  transform = rotate_y(0.3) }\n");
+  checkEveryPrecision(renderer, prepareQuietly(lit), false);
+  test::expectNoValidationMessages();
+}
+
 TEST_CASE("cpu-vs-gpu: shadow rays leaving a NURBS surface do not block themselves") {
   // A flat NURBS plate of 128 × 128 spans (patches of 0.8 mm at 0.4 m) lit at cos 0.11: every pixel
   // is lit (a plane cannot shadow itself). A shadow ray's origin, rounded into the float search,

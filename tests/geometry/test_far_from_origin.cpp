@@ -1,0 +1,127 @@
+// Objects far from the world origin keep their accuracy (geometry/object_map.h): the CPU reference's
+// hits on a rotated sphere at offsets up to 1e7 m, against an independent oracle in long double that
+// intersects the sphere in its own frame, mapped there from the scene's numbers as written (the
+// transform inverted by cofactors, the camera's offset from the sphere taken first).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "cpu/trace.h"
+#include "scene/scene.h"
+#include "temp_folder.h"
+
+using namespace dicsynth;
+
+namespace {
+
+using LD = long double;
+struct V3 {
+  LD x, y, z;
+};
+V3 mul(const LD m[3][3], V3 v) {  // m[row][col]
+  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+}
+LD dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// The inverse of a 3×3 matrix by cofactors, in long double.
+void invert(const LD a[3][3], LD out[3][3]) {
+  const LD det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+      out[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;  // cyclic cofactors carry their sign
+    }
+}
+
+std::string g17(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("far from the origin: a rotated sphere's hits match a long-double oracle at offsets up to 1e7 m") {
+  // Tolerance: both sides compute in double from the same numbers; the oracle's own error is ~1e-19.
+  // The CPU path's map and intersection are a few dozen roundings of 2⁻⁵³ ≈ 1.1e-16, relative to the
+  // sizes of the object frame (radius, camera distance ≤ 5 radii), divided by cos θ ≥ 0.3 at the hit:
+  // ≲ 32 · 1.1e-16 / 0.3 ≈ 1.2e-14. 1e-12 leaves a margin of ~80, and is ~1e5 below what the map
+  // formed as A⁻¹p − A⁻¹b lost at 5e6 m (7e-7 relative, the shape audit of 2026-11-28).
+  constexpr double kTolerance = 1e-12;
+  test::TempFolder dir;
+  std::mt19937_64 rng(20261128);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int checked = 0, hitMissDisagreements = 0, depthDisagreements = 0, uvDisagreements = 0;
+  double worstDepth = 0, worstUv = 0;
+  for (int scene = 0; scene < 120; ++scene) {
+    const double offset = scene < 10 ? 0.0 : std::pow(10.0, 1 + 6 * std::abs(unit(rng)));  // up to 1e7 m
+    const double radius = std::pow(10.0, -3 + 3 * std::abs(unit(rng)));                   // 1 mm to 1 m
+    const dvec3 location = offset * glm::normalize(dvec3(unit(rng), unit(rng), unit(rng)));
+    // A random rotation (its matrix rounded to double: the oracle inverts the rounded one).
+    const dmat4 rotation = glm::rotate(dmat4(1), 3 * unit(rng), glm::normalize(dvec3(unit(rng), unit(rng), unit(rng))));
+    const dvec3 view = glm::normalize(dvec3(unit(rng), unit(rng), unit(rng)));  // from the sphere to the camera
+    const dvec3 eye = location + (2 + 3 * std::abs(unit(rng))) * radius * view;
+    std::string h;
+    for (int row = 0; row < 4; ++row)
+      for (int col = 0; col < 4; ++col) h += (h.empty() ? "" : ", ") + g17(rotation[col][row]);
+    const std::string path = dir.write(
+        "far.lua", "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
+                   "ball = Object.Simple { shape = Shape.Sphere { radius = " + g17(radius) + "; location = {" +
+                       g17(location.x) + ", " + g17(location.y) + ", " + g17(location.z) + "} }; transform = homography{" +
+                       h + "} }\n");
+    const PreparedScene prepared = prepareScene(loadScene(path, {}), {1});
+
+    LD R[3][3], Rinv[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) R[r][c] = rotation[c][r];
+    invert(R, Rinv);
+    // The camera's offset from the sphere's centre: exact in long double (64-bit significands).
+    const V3 o = mul(Rinv, {LD(eye.x) - LD(location.x), LD(eye.y) - LD(location.y), LD(eye.z) - LD(location.z)});
+    for (int k = 0; k < 40; ++k) {
+      // Aim at a point of the sphere's visible cap (within ~50° of the view direction).
+      const dvec3 target = location + radius * glm::normalize(view + 0.8 * dvec3(unit(rng), unit(rng), unit(rng)));
+      const dvec3 d = target - eye;
+      const V3 dl = mul(Rinv, {LD(d.x), LD(d.y), LD(d.z)});
+      // |o + s d|² = r²: the nearer root by the stable form q = −(b + sign(b)√disc), s = c/q.
+      const LD a = dot(dl, dl), b = dot(o, dl), c = dot(o, o) - LD(radius) * LD(radius);
+      const LD disc = b * b - a * c;
+      cpu::SurfaceHit hit;
+      const bool cpuHit = cpu::traceNearest(prepared, eye, d, hit);
+      if (disc <= 0) {
+        hitMissDisagreements += cpuHit ? 1 : 0;
+        continue;
+      }
+      const LD q = -(b + std::copysign(std::sqrt(disc), b));
+      const LD s = std::min(c / q, q / a);
+      const V3 x = {o.x + s * dl.x, o.y + s * dl.y, o.z + s * dl.z};
+      const LD cosTheta = std::abs(dot(x, dl)) / (std::sqrt(dot(x, x)) * std::sqrt(a));
+      const LD sinPolar = std::sqrt(x.x * x.x + x.z * x.z) / LD(radius);
+      if (cosTheta < 0.3 || sinPolar < 0.05) continue;  // grazing, or near a pole where u turns fast
+      ++checked;
+      if (!cpuHit) {
+        ++hitMissDisagreements;
+        continue;
+      }
+      // docs/cameras.md: u = ½ + atan2(x, −z)/2π, v = polar angle from the −y pole / π.
+      const LD pi = std::acos(LD(-1));
+      const LD u = 0.5L + std::atan2(x.x, -x.z) / (2 * pi), v = std::acos(-x.y / std::sqrt(dot(x, x))) / pi;
+      const double depthError = double(std::abs(LD(hit.t) - s) / s);
+      const double du = std::abs(double(LD(hit.uv.x) - u)), dv = std::abs(double(LD(hit.uv.y) - v));
+      const double uvError = std::max(std::min(du, 1 - du), dv);  // u is periodic
+      worstDepth = std::max(worstDepth, depthError);
+      worstUv = std::max(worstUv, uvError);
+      if (!(depthError <= kTolerance)) ++depthDisagreements;
+      if (!(uvError <= kTolerance)) ++uvDisagreements;
+    }
+  }
+  INFO("worst relative depth error " << worstDepth << ", worst uv error " << worstUv);
+  CHECK(checked > 2000);
+  CHECK(hitMissDisagreements == 0);
+  CHECK(depthDisagreements == 0);
+  CHECK(uvDisagreements == 0);
+}

@@ -24,6 +24,7 @@
 #include "io/junit.h"
 #include "job/render_job.h"
 #include "model/layers.h"
+#include "render/coincident_surfaces.h"
 #include "render/compare.h"
 
 namespace dicsynth::cli {
@@ -167,6 +168,7 @@ ItemOutcome compareItem(const CompareCommand& cmd, const CompareItem& item, bool
   params.sweepParameters = item.sweepParameters;
   const Scene scene = loadScene(item.scenePath, params);
   const PreparedScene prepared = prepareScene(scene, {cmd.args.downscale, &textures});
+  warnCoincidentSurfaces(prepared);  // they fail compare, the CPU reference flickering too
   const std::string prefix = several ? item.label + ": " : "";
   options.progress = progressPrinter(prefix + "cpu reference");
   const RenderResult cpu = cpu::render(prepared, options);

@@ -41,6 +41,16 @@ bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit)
   return true;
 }
 
+bool objectDistance(const PreparedObject& obj, dvec3 o, dvec3 d, double& t) {
+  ObjectRay<double> ray;
+  LocalHit<double> local;
+  if (!obj.objectFromWorld.ray(o, d, ray) ||
+      !intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(kFarAway, ray.w), nullptr, local))
+    return false;
+  t = worldParam(local.s, ray.w);
+  return t > 0;
+}
+
 bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosition) {
   const dvec3 d = lightPosition - hit.position;
   // The shadow ray leaves the hit object at the hit: its shape skips that root by identity.

@@ -18,6 +18,9 @@ struct SurfaceHit {
 // Nearest hit along o + t d, t > 0, over all objects, compared by world t.
 bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit);
 
+// The nearest hit of one object along o + t d, t > 0: its world t, or false (render/coincident_surfaces.h).
+bool objectDistance(const PreparedObject& obj, dvec3 o, dvec3 d, double& t);
+
 // Whether any object blocks the segment from `hit.position` to `lightPosition` (t in (0, 1)).
 bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosition);
 

@@ -41,6 +41,7 @@
 #include "job/output_writers.h"
 #include "nurbs/nurbs_basis.h"
 #include "reflectance/registry.h"
+#include "render/coincident_surfaces.h"
 #include "scene/scene.h"
 #include "sensor/sensor.h"
 
@@ -235,6 +236,9 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
     });
   out.scene = prepareScene(sceneOfFrame, {args.downscale, &session.textures()});
   phaseDone("prepare");
+  // Coincident surfaces flicker on every backend (render/coincident_surfaces.h): checked on a job's
+  // first frame (a sweep point's, a run's).
+  if (!job.frames.empty() && frame == job.frames.front()) warnCoincidentSurfaces(out.scene);
   RenderOptions options = renderOptions(args, frame);
   if (job.seed) options.seed = *job.seed;
   if (job.spp) options.samplesPerPixel = *job.spp;

@@ -7,7 +7,6 @@
 #include <sstream>
 #include <vector>
 
-
 #include "core/option_names.h"
 #include "core/exact_number.h"
 #include "core/parallel.h"

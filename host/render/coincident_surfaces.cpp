@@ -15,6 +15,7 @@ std::vector<CoincidentPair> coincidentSurfaces(const PreparedScene& scene) {
   if (scene.objects.size() < 2) return {};
   std::vector<double> t(scene.objects.size());
   std::vector<char> hit(scene.objects.size());
+  std::vector<std::size_t> near;
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
     const PinholeModel<double>& model = scene.cameras[c].model;
     const Camera& cam = scene.cameras[c].camera;
@@ -35,12 +36,13 @@ std::vector<CoincidentPair> coincidentSurfaces(const PreparedScene& scene) {
       if (nearest == kFarAway) continue;
       ++raysHitting;
       // Every pair of objects both within the gap of the nearest hit (one shape three times
-      // counts its three pairs).
-      for (std::size_t a = 0; a < scene.objects.size(); ++a)
-        for (std::size_t b = a + 1; b < scene.objects.size(); ++b)
-          if (hit[a] && hit[b] && t[a] - nearest <= kCoincidenceGap * nearest &&
-              t[b] - nearest <= kCoincidenceGap * nearest)
-            ++ties[{a, b}];
+      // counts its three pairs): the few such objects first, so that a scene of many objects
+      // costs one pass over them per ray.
+      near.clear();
+      for (std::size_t o = 0; o < scene.objects.size(); ++o)
+        if (hit[o] && t[o] - nearest <= kCoincidenceGap * nearest) near.push_back(o);
+      for (std::size_t a = 0; a < near.size(); ++a)
+        for (std::size_t b = a + 1; b < near.size(); ++b) ++ties[{near[a], near[b]}];
     }
     for (const auto& [key, count] : ties) {
       if (count < kCoincidenceMinRays || double(count) < kCoincidenceMinFraction * double(raysHitting)) continue;

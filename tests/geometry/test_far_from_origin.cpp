@@ -125,3 +125,82 @@ TEST_CASE("far from the origin: a rotated sphere's hits match a long-double orac
   CHECK(depthDisagreements == 0);
   CHECK(uvDisagreements == 0);
 }
+
+TEST_CASE("far from the origin: a rotated box's hits match a long-double slab oracle at offsets up to 1e7 m") {
+  // The same promise for a flat kind: the box's faces in its frame, intersected by slabs in long
+  // double. Tolerance as above (relative depth, rays at cos θ ≥ 0.3); rays whose hit lies within
+  // 1e-6 of the box's size of an edge are left out (either face is then right within rounding).
+  constexpr double kTolerance = 1e-12;
+  test::TempFolder dir;
+  std::mt19937_64 rng(20261129);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int checked = 0, hitMissDisagreements = 0, depthDisagreements = 0, normalDisagreements = 0;
+  double worstDepth = 0;
+  for (int scene = 0; scene < 80; ++scene) {
+    const double offset = scene < 8 ? 0.0 : std::pow(10.0, 1 + 6 * std::abs(unit(rng)));
+    const dvec3 half = std::pow(10.0, -3 + 3 * std::abs(unit(rng))) * dvec3(1, 0.5 + 0.5 * std::abs(unit(rng)), 0.7);
+    const dvec3 location = offset * glm::normalize(dvec3(unit(rng), unit(rng), unit(rng)));
+    const dmat4 rotation = glm::rotate(dmat4(1), 3 * unit(rng), glm::normalize(dvec3(unit(rng), unit(rng), unit(rng))));
+    const dvec3 view = glm::normalize(dvec3(unit(rng), unit(rng), unit(rng)));
+    const double size = glm::length(half);
+    const dvec3 eye = location + (3 + 3 * std::abs(unit(rng))) * size * view;
+    std::string h;
+    for (int row = 0; row < 4; ++row)
+      for (int col = 0; col < 4; ++col) h += (h.empty() ? "" : ", ") + g17(rotation[col][row]);
+    const std::string path = dir.write(
+        "far.lua", "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
+                   "block = Object.Simple { shape = Shape.Box { size = {" + g17(2 * half.x) + ", " + g17(2 * half.y) + ", " +
+                       g17(2 * half.z) + "}; location = {" + g17(location.x) + ", " + g17(location.y) + ", " +
+                       g17(location.z) + "} }; transform = homography{" + h + "} }\n");
+    const PreparedScene prepared = prepareScene(loadScene(path, {}), {1});
+    LD R[3][3], Rinv[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) R[r][c] = rotation[c][r];
+    invert(R, Rinv);
+    const V3 o = mul(Rinv, {LD(eye.x) - LD(location.x), LD(eye.y) - LD(location.y), LD(eye.z) - LD(location.z)});
+    const LD hx[3] = {LD(2 * half.x) / 2, LD(2 * half.y) / 2, LD(2 * half.z) / 2};  // as the scene states them
+    for (int k = 0; k < 40; ++k) {
+      const dvec3 target = location + 1.2 * dvec3(half.x * unit(rng), half.y * unit(rng), half.z * unit(rng));
+      const dvec3 d = target - eye;
+      const V3 dl = mul(Rinv, {LD(d.x), LD(d.y), LD(d.z)});
+      const LD oo[3] = {o.x, o.y, o.z}, dd[3] = {dl.x, dl.y, dl.z};
+      // Slabs: the entry parameter is the largest of the axes' near planes, the exit the smallest far.
+      LD enter = -1e30L, leave = 1e30L;
+      int axis = 0;
+      for (int i = 0; i < 3; ++i) {
+        const LD t0 = (-hx[i] - oo[i]) / dd[i], t1 = (hx[i] - oo[i]) / dd[i];
+        if (std::min(t0, t1) > enter) enter = std::min(t0, t1), axis = i;
+        leave = std::min(leave, std::max(t0, t1));
+      }
+      const bool oracleHit = enter < leave && enter > 0;
+      cpu::SurfaceHit hit;
+      const bool cpuHit = cpu::traceNearest(prepared, eye, d, hit);
+      // The hit's distance to the face's border, relative to the box: near an edge either answer stands.
+      LD margin = 1e30L;
+      for (int i = 0; i < 3; ++i)
+        if (i != axis) margin = std::min(margin, hx[i] - std::abs(oo[i] + enter * dd[i]));
+      const LD gap = std::abs(enter - leave) * std::sqrt(dot(dl, dl));
+      if (std::abs(margin) < 1e-6L * LD(size) || gap < 1e-6L * LD(size)) continue;
+      const LD cosTheta = std::abs(dd[axis]) / std::sqrt(dot(dl, dl));
+      if (oracleHit && cosTheta < 0.3) continue;
+      ++checked;
+      if (oracleHit != cpuHit) {
+        ++hitMissDisagreements;
+        continue;
+      }
+      if (!oracleHit) continue;
+      const double depthError = double(std::abs(LD(hit.t) - enter) / enter);
+      worstDepth = std::max(worstDepth, depthError);
+      if (!(depthError <= kTolerance)) ++depthDisagreements;
+      // The face's normal in the world: the rotation's column `axis`, facing the camera.
+      dvec3 n(rotation[axis][0], rotation[axis][1], rotation[axis][2]);
+      if (glm::dot(n, d) > 0) n = -n;
+      if (!(glm::length(glm::normalize(n) - hit.normal) <= 1e-12)) ++normalDisagreements;
+    }
+  }
+  INFO("worst relative depth error " << worstDepth);
+  CHECK(checked > 1500);
+  CHECK(hitMissDisagreements == 0);
+  CHECK(depthDisagreements == 0);
+  CHECK(normalDisagreements == 0);
+}

@@ -1,7 +1,7 @@
 // Objects far from the world origin keep their accuracy (geometry/object_map.h): the CPU reference's
-// hits on a rotated sphere at offsets up to 1e7 m, against an independent oracle in long double that
-// intersects the sphere in its own frame, mapped there from the scene's numbers as written (the
-// transform inverted by cofactors, the camera's offset from the sphere taken first).
+// hits on a rotated sphere and a rotated box at offsets up to 1e7 m, against independent oracles in
+// long double that intersect the shape in its own frame, mapped there from the scene's numbers as
+// written (the transform inverted by cofactors, the camera's offset from the shape taken first).
 #include <doctest/doctest.h>
 
 #include <cmath>

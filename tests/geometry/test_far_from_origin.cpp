@@ -44,15 +44,46 @@ std::string g17(double v) {
   return b;
 }
 
+// Tolerance: both sides compute in double from the same numbers; the oracles' own error is ~1e-19.
+// The CPU path's map and intersection are a few dozen roundings of 2⁻⁵³ ≈ 1.1e-16, relative to the
+// sizes of the object frame (the shape, the camera within 6 of its sizes), divided by cos θ ≥ 0.3 at
+// the hit: ≲ 32 · 1.1e-16 / 0.3 ≈ 1.2e-14. 1e-12 leaves a margin of ~80, and is ~1e5 below what the
+// map formed as A⁻¹p − A⁻¹b lost at 5e6 m (7e-7 relative, the shape audit of 2026-11-28).
+constexpr double kTolerance = 1e-12;
+
+// One random far scene: a shape (its Lua constructor, without location) at `location` under
+// `rotation`, prepared; and what the oracle needs, computed apart in long double: the rotation's
+// inverse and the camera's offset from the shape's origin in the shape's frame.
+struct FarScene {
+  PreparedScene prepared;
+  LD Rinv[3][3];
+  V3 eye;  // the camera, in the shape's frame
+
+  V3 direction(dvec3 d) const { return mul(Rinv, {LD(d.x), LD(d.y), LD(d.z)}); }
+};
+
+FarScene farScene(const test::TempFolder& dir, const std::string& shape, dvec3 location, const dmat4& rotation, dvec3 eye) {
+  std::string h;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) h += (h.empty() ? "" : ", ") + g17(rotation[col][row]);
+  const std::string path = dir.write(
+      "far.lua", "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
+                 "thing = Object.Simple { shape = " + shape + "; location = {" + g17(location.x) + ", " +
+                     g17(location.y) + ", " + g17(location.z) + "} }; transform = homography{" + h + "} }\n");
+  FarScene f;
+  f.prepared = prepareScene(loadScene(path, {}), {1});
+  LD R[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) R[r][c] = rotation[c][r];
+  invert(R, f.Rinv);
+  // The camera's offset from the shape: exact in long double (64-bit significands).
+  f.eye = mul(f.Rinv, {LD(eye.x) - LD(location.x), LD(eye.y) - LD(location.y), LD(eye.z) - LD(location.z)});
+  return f;
+}
+
 }  // namespace
 
 TEST_CASE("far from the origin: a rotated sphere's hits match a long-double oracle at offsets up to 1e7 m") {
-  // Tolerance: both sides compute in double from the same numbers; the oracle's own error is ~1e-19.
-  // The CPU path's map and intersection are a few dozen roundings of 2⁻⁵³ ≈ 1.1e-16, relative to the
-  // sizes of the object frame (radius, camera distance ≤ 5 radii), divided by cos θ ≥ 0.3 at the hit:
-  // ≲ 32 · 1.1e-16 / 0.3 ≈ 1.2e-14. 1e-12 leaves a margin of ~80, and is ~1e5 below what the map
-  // formed as A⁻¹p − A⁻¹b lost at 5e6 m (7e-7 relative, the shape audit of 2026-11-28).
-  constexpr double kTolerance = 1e-12;
   test::TempFolder dir;
   std::mt19937_64 rng(20261128);
   std::uniform_real_distribution<double> unit(-1, 1);
@@ -66,32 +97,18 @@ TEST_CASE("far from the origin: a rotated sphere's hits match a long-double orac
     const dmat4 rotation = glm::rotate(dmat4(1), 3 * unit(rng), glm::normalize(dvec3(unit(rng), unit(rng), unit(rng))));
     const dvec3 view = glm::normalize(dvec3(unit(rng), unit(rng), unit(rng)));  // from the sphere to the camera
     const dvec3 eye = location + (2 + 3 * std::abs(unit(rng))) * radius * view;
-    std::string h;
-    for (int row = 0; row < 4; ++row)
-      for (int col = 0; col < 4; ++col) h += (h.empty() ? "" : ", ") + g17(rotation[col][row]);
-    const std::string path = dir.write(
-        "far.lua", "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
-                   "ball = Object.Simple { shape = Shape.Sphere { radius = " + g17(radius) + "; location = {" +
-                       g17(location.x) + ", " + g17(location.y) + ", " + g17(location.z) + "} }; transform = homography{" +
-                       h + "} }\n");
-    const PreparedScene prepared = prepareScene(loadScene(path, {}), {1});
-
-    LD R[3][3], Rinv[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) R[r][c] = rotation[c][r];
-    invert(R, Rinv);
-    // The camera's offset from the sphere's centre: exact in long double (64-bit significands).
-    const V3 o = mul(Rinv, {LD(eye.x) - LD(location.x), LD(eye.y) - LD(location.y), LD(eye.z) - LD(location.z)});
+    const FarScene far = farScene(dir, "Shape.Sphere { radius = " + g17(radius), location, rotation, eye);
+    const V3 o = far.eye;
     for (int k = 0; k < 40; ++k) {
       // Aim at a point of the sphere's visible cap (within ~50° of the view direction).
       const dvec3 target = location + radius * glm::normalize(view + 0.8 * dvec3(unit(rng), unit(rng), unit(rng)));
       const dvec3 d = target - eye;
-      const V3 dl = mul(Rinv, {LD(d.x), LD(d.y), LD(d.z)});
+      const V3 dl = far.direction(d);
       // |o + s d|² = r²: the nearer root by the stable form q = −(b + sign(b)√disc), s = c/q.
       const LD a = dot(dl, dl), b = dot(o, dl), c = dot(o, o) - LD(radius) * LD(radius);
       const LD disc = b * b - a * c;
       cpu::SurfaceHit hit;
-      const bool cpuHit = cpu::traceNearest(prepared, eye, d, hit);
+      const bool cpuHit = cpu::traceNearest(far.prepared, eye, d, hit);
       if (disc <= 0) {
         hitMissDisagreements += cpuHit ? 1 : 0;
         continue;
@@ -128,9 +145,8 @@ TEST_CASE("far from the origin: a rotated sphere's hits match a long-double orac
 
 TEST_CASE("far from the origin: a rotated box's hits match a long-double slab oracle at offsets up to 1e7 m") {
   // The same promise for a flat kind: the box's faces in its frame, intersected by slabs in long
-  // double. Tolerance as above (relative depth, rays at cos θ ≥ 0.3); rays whose hit lies within
-  // 1e-6 of the box's size of an edge are left out (either face is then right within rounding).
-  constexpr double kTolerance = 1e-12;
+  // double (relative depth, rays at cos θ ≥ 0.3); rays whose hit lies within 1e-6 of the box's
+  // size of an edge are left out (either face is then right within rounding).
   test::TempFolder dir;
   std::mt19937_64 rng(20261129);
   std::uniform_real_distribution<double> unit(-1, 1);
@@ -144,25 +160,15 @@ TEST_CASE("far from the origin: a rotated box's hits match a long-double slab or
     const dvec3 view = glm::normalize(dvec3(unit(rng), unit(rng), unit(rng)));
     const double size = glm::length(half);
     const dvec3 eye = location + (3 + 3 * std::abs(unit(rng))) * size * view;
-    std::string h;
-    for (int row = 0; row < 4; ++row)
-      for (int col = 0; col < 4; ++col) h += (h.empty() ? "" : ", ") + g17(rotation[col][row]);
-    const std::string path = dir.write(
-        "far.lua", "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
-                   "block = Object.Simple { shape = Shape.Box { size = {" + g17(2 * half.x) + ", " + g17(2 * half.y) + ", " +
-                       g17(2 * half.z) + "}; location = {" + g17(location.x) + ", " + g17(location.y) + ", " +
-                       g17(location.z) + "} }; transform = homography{" + h + "} }\n");
-    const PreparedScene prepared = prepareScene(loadScene(path, {}), {1});
-    LD R[3][3], Rinv[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) R[r][c] = rotation[c][r];
-    invert(R, Rinv);
-    const V3 o = mul(Rinv, {LD(eye.x) - LD(location.x), LD(eye.y) - LD(location.y), LD(eye.z) - LD(location.z)});
+    const FarScene far = farScene(
+        dir, "Shape.Box { size = {" + g17(2 * half.x) + ", " + g17(2 * half.y) + ", " + g17(2 * half.z) + "}", location,
+        rotation, eye);
+    const V3 o = far.eye;
     const LD hx[3] = {LD(2 * half.x) / 2, LD(2 * half.y) / 2, LD(2 * half.z) / 2};  // as the scene states them
     for (int k = 0; k < 40; ++k) {
       const dvec3 target = location + 1.2 * dvec3(half.x * unit(rng), half.y * unit(rng), half.z * unit(rng));
       const dvec3 d = target - eye;
-      const V3 dl = mul(Rinv, {LD(d.x), LD(d.y), LD(d.z)});
+      const V3 dl = far.direction(d);
       const LD oo[3] = {o.x, o.y, o.z}, dd[3] = {dl.x, dl.y, dl.z};
       // Slabs: the entry parameter is the largest of the axes' near planes, the exit the smallest far.
       LD enter = -1e30L, leave = 1e30L;
@@ -174,7 +180,7 @@ TEST_CASE("far from the origin: a rotated box's hits match a long-double slab or
       }
       const bool oracleHit = enter < leave && enter > 0;
       cpu::SurfaceHit hit;
-      const bool cpuHit = cpu::traceNearest(prepared, eye, d, hit);
+      const bool cpuHit = cpu::traceNearest(far.prepared, eye, d, hit);
       // The hit's distance to the face's border, relative to the box: near an edge either answer stands.
       LD margin = 1e30L;
       for (int i = 0; i < 3; ++i)

@@ -9,20 +9,29 @@
 #include "texture/target_texture.h"
 
 namespace dicsynth::cpu {
+namespace {
+
+// The nearest hit of one object along o + t d, searched up to world t = tMax: its hit in the
+// object's frame and its world t (any sign; the callers keep t > 0).
+bool nearestOfObject(const PreparedObject& obj, dvec3 o, dvec3 d, double tMax, LocalHit<double>& local, double& t) {
+  ObjectRay<double> ray;
+  if (!obj.objectFromWorld.ray(o, d, ray) ||
+      !intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(tMax, ray.w), nullptr, local))
+    return false;
+  t = worldParam(local.s, ray.w);
+  return true;
+}
+
+}  // namespace
 
 bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit) {
   double tBest = kFarAway;
   LocalHit<double> best;
   int bestObject = -1;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const PreparedObject& obj = scene.objects[i];
-    ObjectRay<double> ray;
-    if (!obj.objectFromWorld.ray(o, d, ray)) continue;
     LocalHit<double> local;
-    if (!intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(tBest, ray.w), nullptr, local))
-      continue;
-    const double t = worldParam(local.s, ray.w);
-    if (t > 0 && t < tBest) {
+    double t = 0;
+    if (nearestOfObject(scene.objects[i], o, d, tBest, local, t) && t > 0 && t < tBest) {
       tBest = t;
       best = local;
       bestObject = int(i);
@@ -42,13 +51,8 @@ bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit)
 }
 
 bool objectDistance(const PreparedObject& obj, dvec3 o, dvec3 d, double& t) {
-  ObjectRay<double> ray;
   LocalHit<double> local;
-  if (!obj.objectFromWorld.ray(o, d, ray) ||
-      !intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(kFarAway, ray.w), nullptr, local))
-    return false;
-  t = worldParam(local.s, ray.w);
-  return t > 0;
+  return nearestOfObject(obj, o, d, kFarAway, local, t) && t > 0;
 }
 
 bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosition) {

@@ -70,8 +70,15 @@ struct PreparedTexture {
   std::shared_ptr<const std::vector<double>> coefficients = std::make_shared<const std::vector<double>>();
   const std::vector<double>& values() const { return *coefficients; }
   // The file's stamp (core/file_stamp.h) when it was read, the same before and after the reading:
-  // the content these coefficients come from. Caches key by it; a sweep's point record checks it.
+  // the content these coefficients come from. Caches key by it.
   FileStamp stamp;
+  // The CRC-32 (core/crc32.h) of the file's bytes under that stamp: what a sweep's point records as
+  // the texture it rendered, and what tells a file touched or copied over with the same bytes (its
+  // stamp moves) from one with another content.
+  std::uint32_t contentCrc32 = 0;
+  // Whether the file at `path` still holds the content these coefficients were prepared from: its
+  // stamp unchanged, or its bytes' CRC-32 unchanged. False when it cannot be read.
+  bool fileUnchanged() const;
 };
 
 // Features the scene uses; the GPU switches the others off with specialization constants.

@@ -1,12 +1,11 @@
 #include "gpu/device_cache.h"
 
-#include <libdeflate.h>
-
 #include <cstdio>
 #include <filesystem>
 
 #include "core/atomic_file.h"
 #include "core/cache_file.h"
+#include "core/crc32.h"
 #include "core/error.h"
 #include "core/json.h"
 #include "gpu/context.h"
@@ -17,7 +16,7 @@ namespace dicsynth::gpu {
 std::string deviceKey(const std::string& pipelineCacheUUID, uint32_t driverVersion, const std::string& driver) {
   char version[32];
   std::snprintf(version, sizeof version, "%08x-%08x", driverVersion,
-                unsigned(libdeflate_crc32(0, driver.data(), driver.size())));
+                unsigned(crc32Of(driver)));
   return pipelineCacheUUID + "-" + version;
 }
 
@@ -40,7 +39,7 @@ constexpr const char* kChecksum = "checksum";
 std::string checksumOf(const Json::Value& document) {
   const std::string text = json::write(document);
   char hex[16];
-  std::snprintf(hex, sizeof hex, "%08x", unsigned(libdeflate_crc32(0, text.data(), text.size())));
+  std::snprintf(hex, sizeof hex, "%08x", unsigned(crc32Of(text)));
   return hex;
 }
 

@@ -11,7 +11,6 @@
 // Defines (-D name=value) are not globals: _G's metatable serves them through __index and records
 // each read, so that a define the scene never reads (a typo) is an error. A value is a number when
 // Lua reads the whole text as one, true/false as booleans, otherwise a string.
-#include <libdeflate.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -24,6 +23,7 @@
 #include <set>
 #include <utility>
 
+#include "core/crc32.h"
 #include "core/option_names.h"
 #include "scene/constructors.h"
 #include "scene/define_value.h"
@@ -408,7 +408,7 @@ Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& par
   if (inspect) inspect(L);
   Scene scene = scene::collectGlobals(L, path);
   scene.unreadDefines = std::move(unread);
-  scene.sourceCrc32 = libdeflate_crc32(0, source.data(), source.size());
+  scene.sourceCrc32 = crc32Of(source);
   for (const Object& object : scene.objects)
     if (object.shape.deformation && !scene.keepAlive) scene.keepAlive = sandbox;
   if (scene.cameras.empty())

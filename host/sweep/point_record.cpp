@@ -3,8 +3,6 @@
 // again: a damaged record can cost time, never a wrong "complete".
 #include "sweep/point_record.h"
 
-#include <libdeflate.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -12,25 +10,13 @@
 #include <filesystem>
 
 #include "core/atomic_file.h"
+#include "core/crc32.h"
 #include "core/error.h"
 #include "core/json.h"
 
 namespace dicsynth::sweep {
 namespace fs = std::filesystem;
 namespace {
-
-std::uint32_t fileCrc32(const fs::path& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) throw Error("cannot read '" + path.string() + "'");
-  std::uint32_t crc = 0;  // libdeflate's CRC-32 (PCLMUL): ~4x zlib 1.2.13's, the same value
-  static thread_local std::vector<unsigned char> buffer(1 << 20);
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), f)) > 0) crc = libdeflate_crc32(crc, buffer.data(), n);
-  const bool failed = std::ferror(f) != 0;
-  std::fclose(f);
-  if (failed) throw Error("cannot read '" + path.string() + "': read error");
-  return std::uint32_t(crc);
-}
 
 // Records list files sorted by name.
 bool byName(const PointFile& a, const PointFile& b) { return a.name < b.name; }
@@ -43,10 +29,6 @@ std::string hex32(std::uint32_t v) {
 
 }  // namespace
 
-std::uint32_t crc32Of(std::string_view bytes) {
-  return libdeflate_crc32(0, bytes.data(), bytes.size());
-}
-
 PointFile AssetChecksums::of(const std::string& path) {
   const fs::path absolute = fs::absolute(path).lexically_normal();
   const std::optional<FileStamp> stamp = fileStamp(absolute.string());
@@ -57,15 +39,20 @@ PointFile AssetChecksums::of(const std::string& path) {
     if (auto it = entries_.find(absolute.string()); it != entries_.end() && it->second.stamp == *stamp)
       return {absolute.string(), bytes, it->second.crc32};
   }
-  const std::uint32_t crc = fileCrc32(absolute);
+  const std::uint32_t crc = fileCrc32(absolute.string());
   std::lock_guard lock(mutex_);
   entries_[absolute.string()] = {*stamp, crc};
   return {absolute.string(), bytes, crc};
 }
 
-std::vector<PointFile> AssetChecksums::of(const std::vector<std::string>& paths) {
-  std::vector<PointFile> files;
-  for (const std::string& path : paths) files.push_back(of(path));
+PointFile AssetChecksums::known(const std::string& path, const FileStamp& stamp, std::uint32_t crc32) {
+  const fs::path absolute = fs::absolute(path).lexically_normal();
+  std::lock_guard lock(mutex_);
+  entries_[absolute.string()] = {stamp, crc32};
+  return {absolute.string(), std::uintmax_t(stamp.bytes), crc32};
+}
+
+std::vector<PointFile> AssetChecksums::listed(std::vector<PointFile> files) {
   std::sort(files.begin(), files.end(), byName);
   files.erase(std::unique(files.begin(), files.end(), [](const PointFile& a, const PointFile& b) { return a.name == b.name; }),
               files.end());
@@ -77,7 +64,7 @@ std::vector<PointFile> scanPointFiles(const std::string& folder) {
   for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
     const std::string name = e.path().filename().string();
     if (!e.is_regular_file() || name == kPointRecordName || name.empty() || name[0] == '.') continue;
-    files.push_back({name, e.file_size(), fileCrc32(e.path())});
+    files.push_back({name, e.file_size(), fileCrc32(e.path().string())});
   }
   std::sort(files.begin(), files.end(), byName);
   return files;
@@ -187,7 +174,7 @@ bool pointFilesIntact(const std::string& folder, const PointRecord& record, cons
     if (fs::file_size(path, ec) != f.bytes || ec) return fail("its file " + f.name + " has another size than recorded");
     if (verifyChecksums) {
       try {
-        if (fileCrc32(path) != f.crc32) return fail("its file " + f.name + " has another CRC-32 than recorded");
+        if (fileCrc32(path.string()) != f.crc32) return fail("its file " + f.name + " has another CRC-32 than recorded");
       } catch (const Error&) {
         return fail("its file " + f.name + " cannot be read");
       }

@@ -13,7 +13,6 @@
 #include <mutex>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "core/file_stamp.h"
@@ -45,8 +44,11 @@ class AssetChecksums {
  public:
   // The file's absolute path, size and CRC-32. Throws Error naming the file when it cannot be read.
   PointFile of(const std::string& path);
-  // of() for each path, sorted by name, each file once (a point's record lists them so).
-  std::vector<PointFile> of(const std::vector<std::string>& paths);
+  // A file whose CRC-32 was taken while it had `stamp` (a texture's, as it was decoded): noted so
+  // that of() needs no reading while the stamp stays, and listed as of() lists it.
+  PointFile known(const std::string& path, const FileStamp& stamp, std::uint32_t crc32);
+  // Sorted by name, each file once (a point's record lists its assets so).
+  static std::vector<PointFile> listed(std::vector<PointFile> files);
 
  private:
   struct Entry {
@@ -61,8 +63,6 @@ inline constexpr const char* kPointRecordName = "point.json";
 // The record's "dicsynth_point" member: 2 since records list their assets.
 inline constexpr int kPointRecordVersion = 2;
 
-// CRC-32 (ISO-HDLC: zlib's, Python's zlib.crc32) of a byte string.
-std::uint32_t crc32Of(std::string_view bytes);
 
 // Lists the regular files of `folder` (except the record and hidden temporaries) with size and CRC.
 // Throws Error naming a file that cannot be read.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/crc32.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/file_stamp.h"
@@ -180,7 +181,7 @@ void runSweep(const SweepRun& cmd) {
 
   // The key of a point: everything that determines its files. The scene enters by its content
   // (CRC-32), so editing the scene invalidates finished points; assets it loads do not enter.
-  const std::uint32_t sceneCrc32 = sweep::crc32Of(readWholeFile(cmd.args.scenePath));
+  const std::uint32_t sceneCrc32 = crc32Of(readWholeFile(cmd.args.scenePath));
   // -D values and --frames as the scene receives them, not as typed: -D gain=0.50 after gain=0.5,
   // the -D options in another order, --frames 00:1 or the default --reference-frame given did
   // render every point again and made --merge-only refuse (sweep audit, 2026-11-28). Canonical
@@ -284,7 +285,7 @@ void runSweep(const SweepRun& cmd) {
   if (cmd.sweep.randomCount)
     runKey += "--random " + std::to_string(*cmd.sweep.randomCount) + " " + std::to_string(cmd.sweep.randomSeed) + "\n";
   char fingerprint[16];
-  std::snprintf(fingerprint, sizeof fingerprint, "%08x", unsigned(sweep::crc32Of(runKey)));
+  std::snprintf(fingerprint, sizeof fingerprint, "%08x", unsigned(crc32Of(runKey)));
   const sweep::RunLock runLock(lockDir, fingerprint, cmd.outputDir);
 
   // This shard's points: index ≡ shard.index (mod shard.count).
@@ -387,23 +388,26 @@ void runSweep(const SweepRun& cmd) {
     record->device = result.summary.device;
     record->renderSeconds = result.summary.renderSeconds;
     record->host = host;
-    // The textures it rendered with, so that a rerun notices when they change.
-    std::vector<std::string> texturePaths;
+    // The textures it rendered with, so that a rerun notices when they change: the CRC-32 of the
+    // bytes each was decoded from (PreparedTexture::contentCrc32), not of the file after the render.
+    // A texture whose content changed while the point rendered stops the run, the point unrecorded:
+    // its record would hold a content no longer there, and the points after it another (the faults
+    // audit of 2026-11-28 found such points recorded with the new file's CRC over an image of the
+    // old one, 7 of 10 trials). The same bytes under a new stamp (a touch, a copy over it, another
+    // shard writing the same seeded texture again) are the content rendered: the run goes on (it
+    // stopped before).
+    std::vector<sweep::PointFile> rendered;
     for (const RenderedFrame& f : result.frames)
-      for (const PreparedTexture& t : f.scene.textures) texturePaths.push_back(t.path);
-    record->assets = assets.of(texturePaths);
-    // The CRCs recorded are of the content rendered only while each file still has the stamp it
-    // was read under: a texture replaced during the point was recorded with the new file's CRC over
-    // an image of the old one, and the rerun took the point as complete (the faults audit of
-    // 2026-11-28: 7 of 10 trials, all 30 points in 2). Such a point stops the run unrecorded.
-    for (const RenderedFrame& f : result.frames)
-      for (const PreparedTexture& t : f.scene.textures)
-        if (fileStamp(t.path) != t.stamp) {
+      for (const PreparedTexture& t : f.scene.textures) {
+        if (!t.fileUnchanged()) {
           collectWritten(true);
           throw InputError(t.path + ": the texture file changed while sweep point " + pointFolderName(p.index) +
                            " rendered (the point is not recorded; a rerun renders it, and the points after it, with the "
                            "file as it is then)");
         }
+        rendered.push_back(assets.known(t.path, t.stamp, t.contentCrc32));
+      }
+    record->assets = sweep::AssetChecksums::listed(std::move(rendered));
     writers.start([job, record, lock, folder, r = std::make_shared<RenderedJob>(std::move(result))] {
       try {
         writeRenderedJob(std::move(*r), *job);

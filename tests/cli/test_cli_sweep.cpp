@@ -8,6 +8,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -457,6 +459,44 @@ TEST_CASE("cli: sweep points that switch textures render exactly as render does 
   REQUIRE(runCli("speckle -o " + dir.file("b.tif") + " --size 64 64 --seed 4 --bits 8").exitCode == 0);
   CHECK(runCli("sweep " + scene + " -o " + dir.file("out") + kFast + " --merge-only").out ==
         "manifest: 3 of 5 points complete (" + dir.file("out") + "/manifest.csv, manifest.json)\n");
+}
+
+TEST_CASE("cli: a texture written again with the same bytes while a sweep renders does not stop it") {
+  // Another shard's script writing its seeded texture again, or an rsync of the same file, moves
+  // the texture's stamp while points render. Each point checked the stamp alone and stopped the run
+  // ("the texture file changed while sweep point ... rendered"); only another content must stop it
+  // (tests/core/test_file_stamp.cpp checks that decision). Here a thread writes the same bytes
+  // over the texture (a new file renamed over it) every 5 ms for the whole sweep.
+  TempFolder dir;
+  REQUIRE(runCli("speckle -o " + dir.file("a.tif") + " --size 256 256 --seed 1 --bits 8").exitCode == 0);
+  const std::string bytes = readText(dir.file("a.tif"));
+  const std::string scene = dir.write(
+      "tex.lua",
+      "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {5e-5, 5e-5} }\n"
+      "shift = shift or 0\n"
+      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {shift, 0, 0.5} };\n"
+      "  shader = Shader.Constant { color = 1 }; texture = Texture.File { fileName = 'a.tif' } }\n"
+      "sweep = { shift = linspace(0, 0.02, 12) }\n");
+  std::atomic<bool> done{false};
+  std::atomic<int> rewrites{0};
+  std::thread rewriter([&] {
+    while (!done) {
+      dir.write("a.tif.new", bytes);
+      std::filesystem::rename(dir.file("a.tif.new"), dir.file("a.tif"));
+      ++rewrites;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  });
+  const test::CliResult r = runCli("sweep " + scene + " -o " + dir.file("out") + kFast);
+  done = true;
+  rewriter.join();
+  INFO(r.err);
+  CHECK(rewrites > 12);  // many rewrites per point
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.out.find("rendered 12, already complete 0") != std::string::npos);
+  // Each point's record names the content it rendered, the file's: a rerun renders nothing.
+  const test::CliResult again = runCli("sweep " + scene + " -o " + dir.file("out") + kFast);
+  CHECK(again.out.find("rendered 0, already complete 12") != std::string::npos);
 }
 
 TEST_CASE("cli: sweep shows a progress bar on a terminal, and nothing in a log for a short run") {

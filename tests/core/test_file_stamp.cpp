@@ -9,8 +9,12 @@
 #include <fstream>
 #include <thread>
 
+#include "core/crc32.h"
 #include "core/file_stamp.h"
+#include "files/image_io.h"
+#include "geometry/prepared_scene.h"
 #include "geometry/texture_cache.h"
+#include "scene/scene.h"
 #include "sweep/point_record.h"
 #include "temp_folder.h"
 
@@ -74,7 +78,7 @@ TEST_CASE("file stamp: the texture cache and the sweep's checksums see a rewrite
   rewriteKeepingTime(path, "BBBB");
   CHECK_FALSE(cache.find(path, Interpolation::Cubic).has_value());  // found the old texture before
   CHECK(checksums.of(path).crc32 != crcA);                         // recorded the old CRC before
-  CHECK(checksums.of(path).crc32 == sweep::crc32Of("BBBB"));
+  CHECK(checksums.of(path).crc32 == crc32Of("BBBB"));
 }
 
 TEST_CASE("file stamp: a texture is cached under the stamp it was read with, not the file's stamp after") {
@@ -93,4 +97,42 @@ TEST_CASE("file stamp: a texture is cached under the stamp it was read with, not
   TextureCache cache;
   cache.insert(texture);
   CHECK_FALSE(cache.find(path, Interpolation::Cubic).has_value());  // the new file is read again
+}
+
+TEST_CASE("file stamp: a prepared texture's file is unchanged after a touch or a copy of its bytes, not after an edit") {
+  // What a sweep point checks after it rendered (sweep/sweep_runner.cpp): a texture touched, or
+  // written again with the same bytes by another job, while the point rendered stopped the sweep
+  // (the stamp moved); only another content must. The texture is read by prepareScene, so the
+  // content's CRC-32 is the one taken as it was decoded.
+  test::TempFolder dir;
+  const std::string tif = dir.file("t.tif");
+  std::vector<std::uint16_t> texels(16 * 8);
+  for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = std::uint16_t(i * 37 % 256);
+  writeGrayTiff(tif, 16, 8, texels, 8, "");
+  dir.write("s.lua",
+            "camera = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.008; pixelSize = {5e-6, 5e-6} }\n"
+            "plate = Object.Simple { shape = Shape.Plane { location = {0, 0, 1} };\n"
+            "  shader = Shader.Constant { color = 1 }; texture = Texture.File { fileName = 't.tif' } }\n");
+  const PreparedScene ps = prepareScene(loadScene(dir.file("s.lua"), {}));
+  REQUIRE(ps.textures.size() == 1);
+  const PreparedTexture& t = ps.textures[0];
+  CHECK(t.contentCrc32 == fileCrc32(tif));
+  CHECK(t.fileUnchanged());
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));  // past a tick of the file clock
+  std::filesystem::last_write_time(tif, std::filesystem::file_time_type::clock::now());  // touch
+  REQUIRE(fileStamp(tif) != t.stamp);
+  CHECK(t.fileUnchanged());
+  // The same bytes written again and renamed over it (another inode), as `dicsynth speckle -o` saves.
+  writeGrayTiff(dir.file("copy.tif"), 16, 8, texels, 8, "");
+  std::filesystem::rename(dir.file("copy.tif"), tif);
+  CHECK(t.fileUnchanged());
+  // Another content of the same size (one byte otherwise; not decoded here): changed. A removed
+  // file is changed.
+  std::string bytes = test::readBytes(tif);
+  bytes.back() ^= 1;
+  dir.write("copy.tif", bytes);
+  std::filesystem::rename(dir.file("copy.tif"), tif);
+  CHECK_FALSE(t.fileUnchanged());
+  std::filesystem::remove(tif);
+  CHECK_FALSE(t.fileUnchanged());
 }

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <set>
 
+#include "core/crc32.h"
 #include "core/error.h"
 #include "scene/sweep_declaration.h"
 #include "scene_test_util.h"
@@ -247,7 +248,7 @@ TEST_CASE("sweep: a point record is complete only with every file intact") {
   CHECK(r.files[0].bytes == 11);
   // zlib's CRC-32 of "truth bytes", checked against Python's zlib.crc32(b"truth bytes").
   CHECK(r.files[0].crc32 == 0x8da06fafu);
-  CHECK(sweep::crc32Of("123456789") == 0xcbf43926u);  // the CRC-32 check value (ISO-HDLC)
+  CHECK(crc32Of("123456789") == 0xcbf43926u);  // the CRC-32 check value (ISO-HDLC)
   {
     // Longer than the 1 MiB read buffer, of every byte value: zlib's crc32 (the other library)
     // agrees with the file's and the string's checksum.
@@ -256,7 +257,7 @@ TEST_CASE("sweep: a point record is complete only with every file intact") {
     for (char& c : big) c = char((x = x * 1664525u + 1013904223u) >> 24);
     dir.write("big.bin", big);
     const std::uint32_t zlib = std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(big.data()), uInt(big.size())));
-    CHECK(sweep::crc32Of(big) == zlib);
+    CHECK(crc32Of(big) == zlib);
     CHECK(assets.of(dir.file("big.bin")).crc32 == zlib);
   }
   sweep::writePointRecord(folder, r);
@@ -269,7 +270,7 @@ TEST_CASE("sweep: a point record is complete only with every file intact") {
   REQUIRE(back->assets.size() == 1);
   CHECK(back->assets[0].name == std::filesystem::absolute(dir.file("speckle.tif")).lexically_normal().string());
   CHECK(back->assets[0].bytes == 13);
-  CHECK(back->assets[0].crc32 == sweep::crc32Of("texture bytes"));
+  CHECK(back->assets[0].crc32 == crc32Of("texture bytes"));
   CHECK(sweep::pointFilesIntact(folder, *back, r.key, true, assets));
   CHECK_FALSE(sweep::pointFilesIntact(folder, *back, "another key", true, assets));
   // An asset changed since the point was rendered (same size; a new modification time, so the

@@ -56,14 +56,20 @@ bool objectDistance(const PreparedObject& obj, dvec3 o, dvec3 d, double& t) {
 }
 
 bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosition) {
-  const dvec3 d = lightPosition - hit.position;
+  // From the hit as its ray's origin plus q = t d, never rounded to a world point, with the lamp
+  // relative to that origin: the GPU's camera-relative shadow rays (shaders/lib/trace.glsl
+  // ds_occluded). From hit.position the ray carried that point's rounding, ~1e-16 of its distance
+  // from the world origin: 1e7 m out, plate points 1e-9 m from a sphere's shadow edge were decided
+  // on the wrong side (tests/geometry/test_far_from_origin.cpp: 227 of 2741).
+  const dvec3 q = hit.t * hit.rayDirection;
+  const dvec3 d = (lightPosition - hit.rayOrigin) - q;  // cpu/shading.cpp's toLight, the same doubles
   // The shadow ray leaves the hit object at the hit: its shape skips that root by identity.
   LocalHit<double> origin;
   origin.uv = hit.uv;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const PreparedObject& obj = scene.objects[i];
     ObjectRay<double> ray;
-    if (!obj.objectFromWorld.ray(hit.position, d, ray)) continue;
+    if (!obj.objectFromWorld.ray(hit.rayOrigin, q, d, ray)) continue;
     LocalHit<double> local;
     if (intersectShape(obj.geometry, ray.origin, ray.direction, 0.0, objectParam(1.0, ray.w),
                        int(i) == hit.object ? &origin : nullptr, local))

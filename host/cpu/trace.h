@@ -21,7 +21,8 @@ bool traceNearest(const PreparedScene& scene, dvec3 o, dvec3 d, SurfaceHit& hit)
 // The nearest hit of one object along o + t d, t > 0: its world t, or false (render/coincident_surfaces.h).
 bool objectDistance(const PreparedObject& obj, dvec3 o, dvec3 d, double& t);
 
-// Whether any object blocks the segment from `hit.position` to `lightPosition` (t in (0, 1)).
+// Whether any object blocks the segment from the hit to `lightPosition` (t in (0, 1)), the hit taken
+// as hit.rayOrigin + hit.t · hit.rayDirection (never rounded to a world point).
 bool occluded(const PreparedScene& scene, const SurfaceHit& hit, dvec3 lightPosition);
 
 // Radiance leaving the hit towards the viewer (grayscale, before the sensor).

@@ -47,6 +47,11 @@ struct ObjectFromWorld {
 
   // The world ray o + t d in the object frame (geometry/homography.h toObjectRay).
   bool ray(dvec3 o, dvec3 d, ObjectRay<double>& out) const { return toObjectRay(fromAnchor, o - anchor_m, d, out); }
+  // The same for a ray from o + q, a world point given as a far origin and a small offset (a hit as
+  // its ray's origin plus t d): (o − b) + q, so that the point is never rounded to world coordinates.
+  bool ray(dvec3 o, dvec3 q, dvec3 d, ObjectRay<double>& out) const {
+    return toObjectRay(fromAnchor, (o - anchor_m) + q, d, out);
+  }
 
   // H⁻¹ · translate(origin_m): the map of coordinates relative to origin_m (the GPU's, relative to
   // the camera centre: gpu/pack.cpp), formed from origin_m − anchor_m.

@@ -210,3 +210,82 @@ TEST_CASE("far from the origin: a rotated box's hits match a long-double slab or
   CHECK(depthDisagreements == 0);
   CHECK(normalDisagreements == 0);
 }
+
+TEST_CASE("far from the origin: shadow rays decide a sphere's shadow edge as a long-double oracle does") {
+  // The CPU reference's shadow ray leaves the hit as its ray's origin plus t d, each object's map
+  // taking (o − b) + t d (cpu/trace.cpp occluded), as the GPU's camera-relative one does. From the
+  // world hit point o + t d it carried that point's rounding, ~1e-16 of its distance from the
+  // origin (1.9e-9 m at 1e7 m), and decided points of a plate that near a sphere's shadow edge on
+  // the wrong side. Each sample aims a camera ray at a point of the plate whose ray to the lamp
+  // passes the sphere at a signed gap δ (log-uniform 1e-12 to 1e-5 of the radius); the oracle
+  // intersects the camera ray as it is in doubles with the plate and measures the gap again, in
+  // long double relative to the plate's location (all differences of the scene's doubles are exact
+  // there). Tolerance: the CPU's gap errs by a few roundings of the scene's size (2⁻⁵³ · ~10 r):
+  // samples within 1e-12 r of the edge are left out, ~1000 times that.
+  test::TempFolder dir;
+  std::mt19937_64 rng(20261130);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int checked = 0, disagreements = 0, wrongFirstHits = 0;
+  for (int scene = 0; scene < 60; ++scene) {
+    const double offset = scene < 6 ? 0.0 : std::pow(10.0, 1 + 6 * std::abs(unit(rng)));  // up to 1e7 m
+    const double r = std::pow(10.0, -3 + 2 * std::abs(unit(rng)));                        // 1 mm to 0.1 m
+    const dvec3 F = offset * glm::normalize(dvec3(unit(rng), unit(rng), unit(rng)));  // the plate's location
+    // Relative to the plate (plane z = 0): the sphere 3 r above it, the lamp above the sphere, the
+    // camera beside the lamp; each rounded to world doubles as the scene states it.
+    const dvec3 S = F + dvec3(0, 0, 3 * r), L = F + r * dvec3(0.5 * unit(rng), 0.5 * unit(rng), 10);
+    const dvec3 eye = F + r * dvec3(6 * unit(rng), 6 * unit(rng), 9);
+    const auto loc = [](dvec3 p) { return "{" + g17(p.x) + ", " + g17(p.y) + ", " + g17(p.z) + "}"; };
+    const std::string path = dir.write(
+        "shadow.lua", "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
+                      "plate = Object.Simple { shape = Shape.Plane { tileSize = {1, 1}; location = " + loc(F) + " } }\n"
+                      "ball = Object.Simple { shape = Shape.Sphere { radius = " + g17(r) + "; location = " + loc(S) + " } }\n");
+    const PreparedScene ps = prepareScene(loadScene(path, {}), {1});
+    const auto rel = [&](dvec3 p) { return V3{LD(p.x) - LD(F.x), LD(p.y) - LD(F.y), LD(p.z) - LD(F.z)}; };  // exact
+    const V3 s = rel(S), l = rel(L), o = rel(eye);
+    const LD R = LD(r);
+    // The gap between the sphere and the line through a and b: distance of S from it, minus r.
+    const auto gap = [&](V3 a, V3 b) {
+      const V3 u = {b.x - a.x, b.y - a.y, b.z - a.z}, w = {s.x - a.x, s.y - a.y, s.z - a.z};
+      const V3 c = {u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
+      return std::sqrt(dot(c, c) / dot(u, u)) - R;
+    };
+    for (int k = 0; k < 60; ++k) {
+      // A ray from the lamp passing the sphere at gap δ, met with the plate.
+      const V3 a = {s.x - l.x, s.y - l.y, s.z - l.z};
+      const LD D = std::sqrt(dot(a, a));
+      const V3 e1 = {a.x / D, a.y / D, a.z / D};
+      const LD phi = std::acos(LD(-1)) * LD(unit(rng));
+      // e2: a unit vector normal to e1 at angle phi about it (e1 is nearly −z).
+      V3 p = {std::cos(phi), std::sin(phi), 0};
+      const LD pe = dot(p, e1);
+      p = {p.x - pe * e1.x, p.y - pe * e1.y, p.z - pe * e1.z};
+      const LD pn = std::sqrt(dot(p, p));
+      const V3 e2 = {p.x / pn, p.y / pn, p.z / pn};
+      const LD delta = std::copysign(R * std::pow(LD(10), -12 + 7 * LD(std::abs(unit(rng)))), LD(unit(rng)));
+      const LD sinA = (R + delta) / D, cosA = std::sqrt(1 - sinA * sinA);
+      const V3 u = {cosA * e1.x + sinA * e2.x, cosA * e1.y + sinA * e2.y, cosA * e1.z + sinA * e2.z};
+      const LD lambda = -l.z / u.z;
+      const V3 q = {l.x + lambda * u.x, l.y + lambda * u.y, 0};
+      // The camera ray towards that point, its direction rounded to doubles as a small vector (through
+      // a world target point it would round by ~1e-16 of the offset and miss the edge by as much).
+      const dvec3 d(double(q.x - o.x), double(q.y - o.y), double(q.z - o.z));
+      const V3 dl = {LD(d.x), LD(d.y), LD(d.z)};
+      // Where it really meets the plate, and the gap of that point's ray to the lamp.
+      const LD t = -o.z / dl.z;
+      const V3 hitPoint = {o.x + t * dl.x, o.y + t * dl.y, 0};
+      const LD g = gap(hitPoint, l);
+      if (std::abs(g) < 1e-12L * R) continue;
+      if (gap(o, {o.x + dl.x, o.y + dl.y, o.z + dl.z}) < 1e-6L * R) continue;  // the camera sees the sphere there
+      ++checked;
+      cpu::SurfaceHit hit;
+      if (!cpu::traceNearest(ps, eye, d, hit) || ps.objects[std::size_t(hit.object)].name != "plate") {
+        ++wrongFirstHits;
+        continue;
+      }
+      if (cpu::occluded(ps, hit, L) != (g < 0)) ++disagreements;
+    }
+  }
+  CHECK(checked > 2500);  // of 3600: the rest where the camera's ray passes the sphere, or within 1e-12 r
+  CHECK(wrongFirstHits == 0);
+  CHECK(disagreements == 0);
+}

@@ -189,7 +189,7 @@ TEST_CASE("fuzz: mutated example scenes exit 0, 2 or 3, never crash or hang, and
   std::sort(originals.begin(), originals.end());
   const std::size_t mutants = countFromEnv("DICSYNTH_FUZZ_MUTANTS", 120);
   const bool keep = std::getenv("DICSYNTH_FUZZ_KEEP") != nullptr;
-  std::mt19937 rng(20261125);
+  std::mt19937 rng(std::uint32_t(countFromEnv("DICSYNTH_FUZZ_SEED", 20261125)));  // another seed: other mutants
   std::size_t exits[4] = {0, 0, 0, 0};
   double slowest = 0;
   long largestKb = 0;
@@ -247,7 +247,7 @@ TEST_CASE("fuzz: damaged texture files of every format read here are exit 0 or 2
     originals.push_back(path);
   }
   const std::size_t mutants = countFromEnv("DICSYNTH_FUZZ_TEXTURES", 96);
-  std::mt19937 rng(77);
+  std::mt19937 rng(std::uint32_t(countFromEnv("DICSYNTH_FUZZ_SEED", 77)));
   std::size_t exits[4] = {0, 0, 0, 0};
   for (std::size_t k = 0; k < mutants; ++k) {
     const std::string& original = originals[k % originals.size()];

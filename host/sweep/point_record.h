@@ -63,7 +63,6 @@ inline constexpr const char* kPointRecordName = "point.json";
 // The record's "dicsynth_point" member: 2 since records list their assets.
 inline constexpr int kPointRecordVersion = 2;
 
-
 // Lists the regular files of `folder` (except the record and hidden temporaries) with size and CRC.
 // Throws Error naming a file that cannot be read.
 std::vector<PointFile> scanPointFiles(const std::string& folder);

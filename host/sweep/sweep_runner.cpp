@@ -18,7 +18,6 @@
 #include "core/crc32.h"
 #include "core/error.h"
 #include "core/exact_number.h"
-#include "core/file_stamp.h"
 #include "core/progress.h"
 #include "core/warning.h"
 #include "core/worker_pool.h"

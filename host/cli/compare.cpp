@@ -317,6 +317,7 @@ void addCompareCommand(CLI::App& root, RunFn& run) {
       "Render on the CPU reference and the GPU with the same samples and compare (exit 1 if over tolerance); "
       "SCENE may be a folder (every *.lua in it)");
   addRenderArgs(*sub, cmd->args);
+  sub->get_option("scene")->description("Scene file (Lua), or a folder: every *.lua in it");
   sub->add_option("--frame", cmd->frame, "Value of the scene global `frame`")->capture_default_str();
   sub->add_flag("--json", cmd->json, "Print one JSON object per scene (or sweep point), one per line");
   sub->add_option("--junit", cmd->junitPath, "Also write a JUnit XML report (one test case per scene x camera)");

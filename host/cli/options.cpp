@@ -55,7 +55,7 @@ std::vector<std::string> precisionChoices() {
 }  // namespace
 
 void addRenderArgs(CLI::App& app, RenderArgs& args) {
-  app.add_option("scene", args.scenePath, "Scene file (Lua); compare also takes a folder of them")->required();
+  app.add_option("scene", args.scenePath, "Scene file (Lua)")->required();
   app.add_option("-D,--define", args.defines,
                  "Set a scene global before the scene runs: name=value (number, true/false, or string)");
   app.add_option("--spp", args.spp, "Samples per pixel, stratified over the sensitive area")

@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -390,6 +391,47 @@ TEST_CASE("hostile: a failed run removes only its own files, not those another r
   CHECK(c.exitCode == 2);
   CHECK(test::readBytes(dir.file("out/cam_0000.exr")) == "a stranger's file");
   CHECK(!std::filesystem::exists(dir.file("real/out")));  // the run's folder, with its files, gone
+}
+
+TEST_CASE("hostile: a run ended by SIGTERM has listed its finished frames on stdout, whole lines") {
+  // stdout into a file (a Slurm log) was fully buffered: a run ended by SIGTERM lost the lines of its
+  // last finished frames and cut the last one mid-path (the new-user trial of 2026-11-28: frames
+  // 24-27 on disk, unlisted). Line-buffered, every frame listed before the signal is whole, and only
+  // the newest finished frame may be unlisted: its lines are printed just after its files are
+  // complete. The script signals once frame 3's files are on disk.
+  test::TempFolder dir;
+  const std::string scene = dir.write(
+      "moving.lua",
+      "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {0.001 * frame, 0, 0.5} };\n"
+      "  shader = Shader.Constant { color = 0.5 } }\n");
+  const std::string out = dir.file("out"), log = dir.file("log"), status = dir.file("status");
+  const std::string script = dir.write(
+      "run.sh", "(exec " + std::string(DS_BINARY) + " render " + scene + " --frames 0:5000 -o " + out +
+                    " --precision fp32 --spp 1 > " + log + " 2> /dev/null) & pid=$!\n"
+                    "for i in $(seq 1 20000); do [ -e " + out + "/cam_0003.exr ] && break; sleep 0.001; done\n"
+                    "kill -TERM $pid; wait $pid; echo $? > " + status + "\n");
+  REQUIRE(std::system(("bash " + script).c_str()) == 0);
+  const std::string text = test::readBytes(log);
+  INFO(text);
+  REQUIRE(test::readBytes(status) == "143\n");  // ended by the signal, not by the end of 5001 frames
+  REQUIRE_FALSE(text.empty());
+  CHECK(text.back() == '\n');
+  // Every finished frame but the newest is listed; every listed frame is finished.
+  int newest = -1;
+  for (int f = 0;; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof name, "cam_%04d.exr", f);
+    if (!std::filesystem::exists(out + "/" + name)) break;
+    newest = f;
+  }
+  REQUIRE(newest >= 3);
+  for (int f = 0; f <= newest + 1; ++f) {
+    char line[64];
+    std::snprintf(line, sizeof line, "/cam_%04d.tif, ", f);
+    if (f < newest) CHECK_MESSAGE(text.find(line) != std::string::npos, line);
+    if (f > newest) CHECK_MESSAGE(text.find(line) == std::string::npos, line);
+  }
 }
 
 TEST_CASE("hostile: a run ended by SIGTERM removes its temporary files and ends by the signal") {

@@ -10,6 +10,7 @@
 #include "core/crc32.h"
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/math.h"
 #include "core/option_names.h"
 #include "core/parallel.h"
 #include "files/image_io.h"
@@ -107,7 +108,19 @@ void checkDistortionInvertible(const PreparedCamera& pc) {
     std::ostringstream msg;
     msg << (pc.camera.distortion.kind == DistortionKind::Rational ? "Distortion.Rational" : "Distortion.Brown")
         << " of camera '" << pc.camera.name << "' cannot be inverted at image position (" << points[firstFailed[b]].x
-        << ", " << points[firstFailed[b]].y << ") px: " << why[b] << " (check the coefficients)";
+        << ", " << points[firstFailed[b]].y << ") px: " << why[b];
+    // A field of view beyond ~84° to a corner (normalized radius > 10) is rarely meant: most often
+    // a pixel size or focal length in mm or µm where metres are asked (pixelSize = {6.9, 6.9}: fx =
+    // 0.0017 px, and the message blamed the coefficients alone; the new-user trial of 2026-11-28).
+    double corner = 0;
+    for (const double x : {-0.5, w - 0.5})
+      for (const double y : {-0.5, h - 0.5}) corner = std::max(corner, std::hypot((x - m.cx) / m.fx, (y - m.cy) / m.fy));
+    if (corner > 10)
+      msg << " (the image's corner lies at a normalized radius of " << corner << ", " << std::atan(corner) * 180 / kPi
+          << " degrees off the axis: fx = " << m.fx << " px, fy = " << m.fy
+          << " px; check focalLength and pixelSize, both in metres, then the coefficients)";
+    else
+      msg << " (check the coefficients)";
     throw InputError(pc.camera.where, msg.str());
   }
   const std::lock_guard<std::mutex> lock(mutex);

@@ -232,3 +232,29 @@ TEST_CASE("distortion inverse: a camera prepare accepts inverts every image poin
   CHECK(accepted > 100);
   CHECK(refused > 100);
 }
+
+TEST_CASE("distortion inverse: a refusal at a near-hemispherical field of view names focalLength and pixelSize") {
+  // pixelSize = {6.9, 6.9} (µm typed as metres) made fx = 0.0017 px and the message said only
+  // "check the coefficients" (the new-user trial of 2026-11-28). Beyond a normalized corner radius
+  // of 10 (84°) it names the focal length, the pixel size and their unit; a real fold does not.
+  const Distortion brown{DistortionKind::Brown, -0.08, 0.05, 0, 1e-4, -2e-4};
+  const auto messageOf = [&](double pixel_m, const Distortion& distortion) {
+    try {
+      prepareScene(test::distortedCameraScene({"um.lua", 4}, "left", 800, 600, 0.012, pixel_m, distortion));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string wrongUnit = messageOf(6.9, brown);
+  CHECK(wrongUnit.find("um.lua:4: Distortion.Brown of camera 'left' cannot be inverted") == 0);
+  CHECK(wrongUnit.find("degrees off the axis: fx = 0.00173913 px, fy = 0.00173913 px; check focalLength and pixelSize, "
+                       "both in metres, then the coefficients)") != std::string::npos);
+  // A real fold within a wide but sane field: r (1 − 0.3 r²) turns back at r = 1.05, the corner at
+  // radius 4.2 (fx = 120 px): the coefficients' fault.
+  const std::string fold = messageOf(1e-4, Distortion{DistortionKind::Brown, -0.3, 0, 0, 0, 0});
+  CHECK(fold.find("cannot be inverted") != std::string::npos);
+  CHECK(fold.find("(check the coefficients)") != std::string::npos);
+  CHECK(fold.find("pixelSize") == std::string::npos);
+  CHECK(messageOf(6.9e-6, brown).empty());  // the size meant: accepted
+}

@@ -55,6 +55,44 @@ std::string outputStem(const std::string& camera, bool numbered, int frame) {
   return camera + buf;
 }
 
+// The entries of the output folder a file cannot replace (a folder, FIFO, socket, device, or a link
+// to one: core/atomic_file.h notAFileTarget), by name, with why. Usually none: one listing, whose
+// regular files are told by the type readdir reports (no call per file in a folder of many frames).
+std::map<std::string, std::string> unwritableEntries(const std::string& dir) {
+  std::map<std::string, std::string> out;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code typeError;
+    if (it->symlink_status(typeError).type() == std::filesystem::file_type::regular) continue;
+    if (std::string why = notAFileTarget(it->path().string()); !why.empty())
+      out.emplace(it->path().filename().string(), std::move(why));
+  }
+  return out;
+}
+
+// Refuses a frame whose output file (image, ground truth, or calibration file, numbered or not)
+// would replace one of `unwritable`: before any work, where the run failed on writing it with
+// exit 3 after its earlier frames were rendered and written (the new-user trial of 2026-11-28).
+void checkOutputNames(const RenderJob& job, const Scene& scene, int frame,
+                      const std::map<std::string, std::string>& unwritable) {
+  if (unwritable.empty()) return;
+  const auto refuse = [&](const std::string& name, const std::string& what) {
+    if (const auto it = unwritable.find(name); it != unwritable.end())
+      throw InputError(job.outputDir + "/" + name + " " + it->second + ", where this run writes " + what +
+                       " (remove or rename it, or choose another -o)");
+  };
+  const std::string numbered = outputStem("", true, frame);
+  for (const Camera& camera : scene.cameras) {
+    const std::string stem = outputStem(camera.name, job.numbered, frame);
+    if (job.layers.has(Layer::Image)) refuse(stem + ".tif", "camera " + camera.name + "'s image");
+    if (job.layers.anyGroundTruth()) refuse(stem + ".exr", "camera " + camera.name + "'s ground truth");
+    for (const char* ext : {".features.csv", ".features.json"}) refuse(stem + ext, "a calibration target's feature file");
+    for (const std::string& suffix : {std::string(), numbered}) refuse(camera.name + suffix + ".yml", "a calibration file");
+  }
+  for (const StereoRig& rig : scene.rigs)
+    for (const std::string& suffix : {std::string(), numbered}) refuse(rig.name + suffix + ".yml", "a calibration file");
+}
+
 // Writes the calibration files (io/calibration_files.h) of a frame, with `suffix` ("" or "_0003");
 // returns the line naming them.
 std::string writeCalibration(const std::string& dir, const PreparedScene& prepared, const std::string& suffix) {
@@ -168,6 +206,7 @@ namespace {
 
 FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   FramesChecked out;
+  const std::map<std::string, std::string> unwritable = unwritableEntries(job.outputDir);
   LayerSources sources;
   UnreadDefines unread;  // a define may be read in some frames only (`frame >= 1 and ...`)
   std::vector<std::string> firstCalibration;
@@ -187,6 +226,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     const Scene scene = loadFrameScene(job, job.frames[fi], false);
     if (fi == 0) out.sceneCrc32 = job.sceneCrc32.value_or(scene.sourceCrc32);
     checkSameContent(job, scene, job.frames[fi], out.sceneCrc32);
+    checkOutputNames(job, scene, job.frames[fi], unwritable);
     warnUnlit(scene, job.frames[fi]);
     unread.add(scene);
     checkNurbsFitsDevice(session, scene);

@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -391,6 +392,41 @@ TEST_CASE("hostile: a failed run removes only its own files, not those another r
   CHECK(c.exitCode == 2);
   CHECK(test::readBytes(dir.file("out/cam_0000.exr")) == "a stranger's file");
   CHECK(!std::filesystem::exists(dir.file("real/out")));  // the run's folder, with its files, gone
+}
+
+TEST_CASE("hostile: an output name held by a folder or a FIFO is refused before work, naming it") {
+  // A folder named like a later frame's EXR failed the run when that frame was written (exit 3,
+  // after the earlier frames were rendered, written and then removed; the message carried a source
+  // location: the new-user trial of 2026-11-28). Now exit 2 before the device starts, no file written.
+  test::TempFolder dir;
+  const std::string scene = dir.write(
+      "moving.lua",
+      "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {0.001 * frame, 0, 0.5} };\n"
+      "  shader = Shader.Constant { color = 0.5 } }\n");
+  const std::string out = dir.file("out");
+  std::filesystem::create_directories(out + "/cam_0001.exr");
+  const auto names = [&] {
+    std::set<std::string> n;
+    for (const auto& e : std::filesystem::directory_iterator(out)) n.insert(e.path().filename().string());
+    return n;
+  };
+  const test::CliResult r = test::runCli("render " + scene + " --frames 0:1 -o " + out + " --spp 1 --precision fp32");
+  CHECK(r.exitCode == 2);
+  CHECK(r.err == out + "/cam_0001.exr is a folder, where this run writes camera cam's ground truth "
+                 "(remove or rename it, or choose another -o)\n");
+  CHECK(r.out.empty());
+  CHECK(names() == std::set<std::string>{"cam_0001.exr"});
+  // Without the EXR (--layers image) the folder is in no one's way.
+  CHECK(test::runCli("render " + scene + " --frames 0:1 -o " + out + " --spp 1 --precision fp32 --layers image").exitCode == 0);
+  CHECK(names() == std::set<std::string>{"cam.yml", "cam_0000.tif", "cam_0001.exr", "cam_0001.tif"});
+  // A FIFO in the place of an unnumbered run's calibration file.
+  const std::string out2 = dir.file("out2");
+  std::filesystem::create_directories(out2);
+  REQUIRE(::mkfifo((out2 + "/cam.yml").c_str(), 0600) == 0);
+  const test::CliResult fifo = test::runCli("render " + scene + " -o " + out2 + " --spp 1 --precision fp32");
+  CHECK(fifo.exitCode == 2);
+  CHECK(fifo.err.find(out2 + "/cam.yml is a FIFO, where this run writes a calibration file") != std::string::npos);
 }
 
 TEST_CASE("hostile: a run ended by SIGTERM has listed its finished frames on stdout, whole lines") {

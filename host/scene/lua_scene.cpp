@@ -20,11 +20,13 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <map>
 #include <set>
 #include <utility>
 
 #include "core/crc32.h"
 #include "core/option_names.h"
+#include "core/warning.h"
 #include "scene/constructors.h"
 #include "scene/define_value.h"
 #include "scene/lua_sandbox.h"
@@ -294,11 +296,26 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
   scene.file = path;
   std::vector<std::pair<const void*, std::string>> cameraGlobals;
   std::vector<RigGlobal> rigs;
+  // Every global is collected, so `plate2 = plate` renders the object twice (two coincident
+  // surfaces), a camera alias renders its images twice and a light alias doubles the light, all
+  // without a word (the new-user trial of 2026-11-28). Said once per pair: a warning, not an error
+  // (the scene renders as documented). By the value's identity: names in the order met, sorted below.
+  std::map<const void*, std::vector<std::string>> holders;
+  std::map<const void*, std::pair<const char*, SourceLoc>> kinds;
+  const auto noteHolder = [&](const char* kind, const SourceLoc& where, const std::string& name) {
+    const void* id = lua_touserdata(L, -1);
+    holders[id].push_back(name);
+    kinds.emplace(id, std::make_pair(kind, where));
+  };
   lua_pushglobaltable(L);
   lua_pushnil(L);
   while (lua_next(L, -2) != 0) {
     if (lua_type(L, -2) == LUA_TSTRING && lua_type(L, -1) == LUA_TUSERDATA) {
       const std::string name = lua_tostring(L, -2);
+      if (const Camera* c = toUserdata<Camera>(L, -1)) noteHolder("camera", c->where, name);
+      else if (const Object* o = toUserdata<Object>(L, -1)) noteHolder("object", o->where, name);
+      else if (const Light* l = toUserdata<Light>(L, -1)) noteHolder("light", l->where, name);
+      else if (const StereoRigValue* r = toUserdata<StereoRigValue>(L, -1)) noteHolder("rig", r->where, name);
       if (const Camera* camera = toUserdata<Camera>(L, -1)) {
         checkName("camera", name, camera->where);
         scene.cameras.push_back(*camera);
@@ -320,6 +337,22 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
+  std::vector<std::pair<std::string, std::string>> aliases;  // (first name, warning), said in name order
+  for (auto& [id, names] : holders) {
+    if (names.size() < 2) continue;
+    std::sort(names.begin(), names.end());
+    const auto& [kind, where] = kinds.at(id);
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      list += (i == 0 ? "'" : i + 1 == names.size() ? "' and '" : "', '") + names[i];
+    const std::string effect = std::string(kind) == "light"    ? "shines " + std::to_string(names.size()) + " times as bright"
+                               : std::string(kind) == "object" ? "is rendered " + std::to_string(names.size()) + " times, its surfaces coincident"
+                                                               : "is rendered " + std::to_string(names.size()) + " times";
+    aliases.emplace_back(names.front(), where.str() + ": the globals " + list + "' hold the same " + kind + ", which " +
+                                            effect + " (every global is collected: keep one name, or make the others `local`)");
+  }
+  std::sort(aliases.begin(), aliases.end());
+  for (const auto& [first, text] : aliases) warnAtMost("scene alias: " + text, 1, text);
 
   // A rig `rig` contributes the cameras "rig.left" and "rig.right".
   for (const RigGlobal& rig : rigs) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/warning.h"
 #include "scene/scene.h"
 #include "scene_test_util.h"
 
@@ -444,4 +445,32 @@ assert(tostring(Shape.Sphere { radius = 1 }) == "Shape.Sphere")
 assert(tostring(translate(1, 2, 3)) == "Transform{{1, 0, 0, 1}, {0, 1, 0, 2}, {0, 0, 1, 3}, {0, 0, 0, 1}}")
 assert(getmetatable(cam) == "Camera")
 )");
+}
+
+TEST_CASE("scene: a global alias of an object, light or camera is a warning naming both globals, once") {
+  // Every global is collected: `plate2 = plate` rendered the plate twice (coincident surfaces) and
+  // `lamp2 = lamp` doubled the light, without a word (the new-user trial of 2026-11-28).
+  test::TempFolder dir;
+  const std::string path = dir.write(
+      "alias.lua",
+      "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {0, 0, 0.5} };\n"
+      "  shader = Shader.Lambert { color = 0.5 } }\n"
+      "lamp = Light.Point { position = {0, 0, 0}; intensity = 1 }\n"
+      "plate2 = plate; lamp2 = lamp; lamp3 = lamp; view = cam\n"
+      "local other = plate  -- a local alias is no global: no warning\n"
+      "twin = Object.Simple { shape = Shape.Sphere { radius = 0.01; location = {0, 0, 0.6} } }\n");
+  WarningCapture capture;
+  const Scene scene = loadScene(path, {});
+  CHECK(scene.objects.size() == 3);  // plate, plate2, twin: collected as documented
+  CHECK(scene.lights.size() == 3);
+  CHECK(loadScene(path, {}).cameras.size() == 2);  // evaluated again (a second frame): said once
+  const std::vector<std::string> said = capture.take();
+  REQUIRE(said.size() == 3);
+  CHECK(said[0] == path + ":1: the globals 'cam' and 'view' hold the same camera, which is rendered 2 times (every global "
+                          "is collected: keep one name, or make the others `local`)");
+  CHECK(said[1] == path + ":4: the globals 'lamp', 'lamp2' and 'lamp3' hold the same light, which shines 3 times as bright "
+                          "(every global is collected: keep one name, or make the others `local`)");
+  CHECK(said[2] == path + ":2: the globals 'plate' and 'plate2' hold the same object, which is rendered 2 times, its surfaces "
+                          "coincident (every global is collected: keep one name, or make the others `local`)");
 }

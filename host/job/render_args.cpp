@@ -107,6 +107,12 @@ RenderOptions renderOptions(const RenderArgs& args, int frame) {
 
 Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::Renderer& renderer) {
   if (const auto named = parsePrecision(args.precision)) return *named;
+  // Said before measuring: seconds, with the shaders compiled the first time (a fresh machine's first
+  // render: 13 s for Figure 1, 27 s for the new-user trial's stereo scene, lavapipe on 2 cores),
+  // which passed in silence.
+  if (!cachedCalibration(context))
+    note("precision auto: measuring the error and speed of each precision on " + context.info().name +
+         " (once per device and driver; kept in the cache folder)");
   const PrecisionCalibration calibration = calibratePrecisions(context, renderer);
   const Precision chosen = choosePrecision(calibration, args.maxErrorPx);
   // Said when measured now (the run took seconds for it); from the cache the choice is silent, so

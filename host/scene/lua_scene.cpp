@@ -312,25 +312,25 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
   while (lua_next(L, -2) != 0) {
     if (lua_type(L, -2) == LUA_TSTRING && lua_type(L, -1) == LUA_TUSERDATA) {
       const std::string name = lua_tostring(L, -2);
-      if (const Camera* c = toUserdata<Camera>(L, -1)) noteHolder("camera", c->where, name);
-      else if (const Object* o = toUserdata<Object>(L, -1)) noteHolder("object", o->where, name);
-      else if (const Light* l = toUserdata<Light>(L, -1)) noteHolder("light", l->where, name);
-      else if (const StereoRigValue* r = toUserdata<StereoRigValue>(L, -1)) noteHolder("rig", r->where, name);
       if (const Camera* camera = toUserdata<Camera>(L, -1)) {
         checkName("camera", name, camera->where);
+        noteHolder("camera", camera->where, name);
         scene.cameras.push_back(*camera);
         scene.cameras.back().name = name;
         cameraGlobals.emplace_back(lua_touserdata(L, -1), name);
       } else if (const Object* object = toUserdata<Object>(L, -1)) {
         checkName("object", name, object->where);
+        noteHolder("object", object->where, name);
         scene.objects.push_back(*object);
         scene.objects.back().name = name;
       } else if (const Light* light = toUserdata<Light>(L, -1)) {
         checkName("light", name, light->where);
+        noteHolder("light", light->where, name);
         scene.lights.push_back(*light);
         scene.lights.back().name = name;
       } else if (const StereoRigValue* rig = toUserdata<StereoRigValue>(L, -1)) {
         checkName("rig", name, rig->where);
+        noteHolder("rig", rig->where, name);
         rigs.push_back(rigGlobal(L, name, rig));
       }
     }

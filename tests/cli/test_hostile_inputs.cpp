@@ -77,6 +77,12 @@ std::string pngHeader(std::uint32_t width, std::uint32_t height) {
          chunk("IDAT", std::string(reinterpret_cast<char*>(empty), size)) + chunk("IEND", "");
 }
 
+// A tiny camera and a plate that moves with `frame`: many quick frames.
+const std::string kMovingPlate =
+    "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+    "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {0.001 * frame, 0, 0.5} };\n"
+    "  shader = Shader.Constant { color = 0.5 } }\n";
+
 }  // namespace
 
 TEST_CASE("hostile: non-finite and negative texels are refused with the scene line and the texel, on both backends") {
@@ -399,11 +405,7 @@ TEST_CASE("hostile: an output name held by a folder or a FIFO is refused before 
   // after the earlier frames were rendered, written and then removed; the message carried a source
   // location: the new-user trial of 2026-11-28). Now exit 2 before the device starts, no file written.
   test::TempFolder dir;
-  const std::string scene = dir.write(
-      "moving.lua",
-      "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
-      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {0.001 * frame, 0, 0.5} };\n"
-      "  shader = Shader.Constant { color = 0.5 } }\n");
+  const std::string scene = dir.write("moving.lua", kMovingPlate);
   const std::string out = dir.file("out");
   std::filesystem::create_directories(out + "/cam_0001.exr");
   const auto names = [&] {
@@ -436,11 +438,7 @@ TEST_CASE("hostile: a run ended by SIGTERM has listed its finished frames on std
   // the newest finished frame may be unlisted: its lines are printed just after its files are
   // complete. The script signals once frame 3's files are on disk.
   test::TempFolder dir;
-  const std::string scene = dir.write(
-      "moving.lua",
-      "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
-      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {0.001 * frame, 0, 0.5} };\n"
-      "  shader = Shader.Constant { color = 0.5 } }\n");
+  const std::string scene = dir.write("moving.lua", kMovingPlate);
   const std::string out = dir.file("out"), log = dir.file("log"), status = dir.file("status");
   const std::string script = dir.write(
       "run.sh", "(exec " + std::string(DS_BINARY) + " render " + scene + " --frames 0:5000 -o " + out +

@@ -403,7 +403,7 @@ TEST_CASE("hostile: a failed run removes only its own files, not those another r
 TEST_CASE("hostile: an output name held by a folder or a FIFO is refused before work, naming it") {
   // A folder named like a later frame's EXR failed the run when that frame was written (exit 3,
   // after the earlier frames were rendered, written and then removed; the message carried a source
-  // location: the new-user trial of 2026-11-28). Now exit 2 before the device starts, no file written.
+  // location: the new-user trial of 2026-11-28). Now exit 2 before any frame renders, no file written.
   test::TempFolder dir;
   const std::string scene = dir.write("moving.lua", kMovingPlate);
   const std::string out = dir.file("out");

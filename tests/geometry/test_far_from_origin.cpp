@@ -26,6 +26,7 @@ V3 mul(const LD m[3][3], V3 v) {  // m[row][col]
           m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
 }
 LD dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+V3 sub(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 
 // The inverse of a 3×3 matrix by cofactors, in long double.
 void invert(const LD a[3][3], LD out[3][3]) {
@@ -43,6 +44,12 @@ std::string g17(double v) {
   std::snprintf(b, sizeof b, "%.17g", v);
   return b;
 }
+
+// A point as the scene language reads it back to the same doubles.
+std::string luaVector(dvec3 p) { return "{" + g17(p.x) + ", " + g17(p.y) + ", " + g17(p.z) + "}"; }
+
+// The far scenes' camera (prepare needs one; the tests trace their own rays).
+const std::string kCamera = "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n";
 
 // Tolerance: both sides compute in double from the same numbers; the oracles' own error is ~1e-19.
 // The CPU path's map and intersection are a few dozen roundings of 2⁻⁵³ ≈ 1.1e-16, relative to the
@@ -67,9 +74,8 @@ FarScene farScene(const test::TempFolder& dir, const std::string& shape, dvec3 l
   for (int row = 0; row < 4; ++row)
     for (int col = 0; col < 4; ++col) h += (h.empty() ? "" : ", ") + g17(rotation[col][row]);
   const std::string path = dir.write(
-      "far.lua", "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
-                 "thing = Object.Simple { shape = " + shape + "; location = {" + g17(location.x) + ", " +
-                     g17(location.y) + ", " + g17(location.z) + "} }; transform = homography{" + h + "} }\n");
+      "far.lua", kCamera + "thing = Object.Simple { shape = " + shape + "; location = " + luaVector(location) +
+                     " }; transform = homography{" + h + "} }\n");
   FarScene f;
   f.prepared = prepareScene(loadScene(path, {}), {1});
   LD R[3][3];
@@ -234,24 +240,23 @@ TEST_CASE("far from the origin: shadow rays decide a sphere's shadow edge as a l
     // camera beside the lamp; each rounded to world doubles as the scene states it.
     const dvec3 S = F + dvec3(0, 0, 3 * r), L = F + r * dvec3(0.5 * unit(rng), 0.5 * unit(rng), 10);
     const dvec3 eye = F + r * dvec3(6 * unit(rng), 6 * unit(rng), 9);
-    const auto loc = [](dvec3 p) { return "{" + g17(p.x) + ", " + g17(p.y) + ", " + g17(p.z) + "}"; };
     const std::string path = dir.write(
-        "shadow.lua", "cam = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
-                      "plate = Object.Simple { shape = Shape.Plane { tileSize = {1, 1}; location = " + loc(F) + " } }\n"
-                      "ball = Object.Simple { shape = Shape.Sphere { radius = " + g17(r) + "; location = " + loc(S) + " } }\n");
+        "shadow.lua", kCamera + "plate = Object.Simple { shape = Shape.Plane { tileSize = {1, 1}; location = " + luaVector(F) +
+                          " } }\nball = Object.Simple { shape = Shape.Sphere { radius = " + g17(r) + "; location = " +
+                          luaVector(S) + " } }\n");
     const PreparedScene ps = prepareScene(loadScene(path, {}), {1});
     const auto rel = [&](dvec3 p) { return V3{LD(p.x) - LD(F.x), LD(p.y) - LD(F.y), LD(p.z) - LD(F.z)}; };  // exact
     const V3 s = rel(S), l = rel(L), o = rel(eye);
     const LD R = LD(r);
     // The gap between the sphere and the line through a and b: distance of S from it, minus r.
     const auto gap = [&](V3 a, V3 b) {
-      const V3 u = {b.x - a.x, b.y - a.y, b.z - a.z}, w = {s.x - a.x, s.y - a.y, s.z - a.z};
+      const V3 u = sub(b, a), w = sub(s, a);
       const V3 c = {u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
       return std::sqrt(dot(c, c) / dot(u, u)) - R;
     };
     for (int k = 0; k < 60; ++k) {
       // A ray from the lamp passing the sphere at gap δ, met with the plate.
-      const V3 a = {s.x - l.x, s.y - l.y, s.z - l.z};
+      const V3 a = sub(s, l);
       const LD D = std::sqrt(dot(a, a));
       const V3 e1 = {a.x / D, a.y / D, a.z / D};
       const LD phi = std::acos(LD(-1)) * LD(unit(rng));
@@ -268,7 +273,8 @@ TEST_CASE("far from the origin: shadow rays decide a sphere's shadow edge as a l
       const V3 q = {l.x + lambda * u.x, l.y + lambda * u.y, 0};
       // The camera ray towards that point, its direction rounded to doubles as a small vector (through
       // a world target point it would round by ~1e-16 of the offset and miss the edge by as much).
-      const dvec3 d(double(q.x - o.x), double(q.y - o.y), double(q.z - o.z));
+      const V3 qo = sub(q, o);
+      const dvec3 d(double(qo.x), double(qo.y), double(qo.z));
       const V3 dl = {LD(d.x), LD(d.y), LD(d.z)};
       // Where it really meets the plate, and the gap of that point's ray to the lamp.
       const LD t = -o.z / dl.z;

@@ -22,13 +22,18 @@ struct FileStamp {
   bool operator==(const FileStamp&) const = default;
 };
 
+// The stamp of a stat() or fstat() result.
+inline FileStamp fileStampOf(const struct stat& s) {
+  const auto ns = [](const timespec& t) { return std::int64_t(t.tv_sec) * 1000000000 + t.tv_nsec; };
+  return FileStamp{std::int64_t(s.st_size), ns(s.st_mtim), ns(s.st_ctim), std::uint64_t(s.st_ino),
+                   std::uint64_t(s.st_dev)};
+}
+
 // The stamp of the file `path` names (symbolic links followed); none when it cannot be read.
 inline std::optional<FileStamp> fileStamp(const std::string& path) {
   struct stat s {};
   if (::stat(path.c_str(), &s) != 0) return std::nullopt;
-  const auto ns = [](const timespec& t) { return std::int64_t(t.tv_sec) * 1000000000 + t.tv_nsec; };
-  return FileStamp{std::int64_t(s.st_size), ns(s.st_mtim), ns(s.st_ctim), std::uint64_t(s.st_ino),
-                   std::uint64_t(s.st_dev)};
+  return fileStampOf(s);
 }
 
 }  // namespace dicsynth

@@ -3,27 +3,35 @@
 #include "files/image_io.h"
 
 #include <algorithm>
-#include <filesystem>
 #include <optional>
-#include <system_error>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/file_stamp.h"
+#include "files/file_bytes.h"
 #include "files/oiio_reader.h"
 #include "files/tiff_io.h"
 
 namespace dicsynth {
 
+GrayImage decodeGrayImage(const std::string& path, std::string_view bytes, bool* readPath) {
+  if (readPath) *readPath = false;
+  if (looksLikeTiff(bytes))
+    if (std::optional<GrayImage> image = readCommonTiff(path, bytes)) return std::move(*image);
+  return readGrayImageWithOiio(path, bytes, readPath);
+}
+
 GrayImage readGrayImage(const std::string& path) {
-  // Check the commonest failures ourselves: the readers' wording for them varies between formats.
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a folder, not an image");
-  // Devices and pipes are refused: reading /dev/zero as an image never ends.
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": not a regular file");
-  if (looksLikeTiff(path))
-    if (std::optional<GrayImage> image = readCommonTiff(path)) return std::move(*image);
-  return readGrayImageWithOiio(path);
+  constexpr int kReadings = 3;
+  for (int reading = 1; reading <= kReadings; ++reading) {
+    bool readPath = false;
+    const std::optional<FileBytes> file = readFileBytes(path);
+    if (!file) continue;
+    GrayImage image = decodeGrayImage(path, file->bytes, &readPath);
+    if (!readPath || fileStamp(path) == file->stamp) return image;
+  }
+  throw InputError(path + ": the file changed while it was read, " + std::to_string(kReadings) +
+                   " times: it is being written (read it once it is complete)");
 }
 
 void writeGrayTiff(AtomicFile& file, int width, int height, const std::vector<std::uint16_t>& values,

@@ -2,6 +2,7 @@
 // Image files: TIFF through libtiff (files/tiff_io.h), other formats through OpenImageIO (files/oiio_reader.h).
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace dicsynth {
@@ -19,8 +20,17 @@ struct GrayImage {
 // (value / max; uint8 and uint16 exactly in double, others through OIIO's conversion); float formats
 // as stored. 1 channel → itself; 2 channels (gray + alpha) → the first; 3 or more → Rec. 709
 // luminance of the first three, taken as linear RGB as stored (alpha and further channels ignored).
-// Throws InputError("PATH: reason") when the file is missing, unreadable or empty.
+// Throws InputError("PATH: reason") when the file is missing, unreadable or empty, or when it kept
+// changing while it was read (files/file_bytes.h: three readings, each written in place meanwhile).
 GrayImage readGrayImage(const std::string& path);
+
+// The same from the file's bytes, read by the caller (files/file_bytes.h); `path` names the file in
+// messages and its extension tells OpenImageIO the format to try first. Every decoder reads the
+// bytes, except OpenImageIO's for the few formats whose reader takes no memory input (SGI, ICO,
+// FITS, RLA, Cineon, Softimage, RAW, HEIF, ... in OpenImageIO 2.4): those read `path`, and
+// `*readPath` (when given) is set to say so, for the caller to check that the file is still the one
+// it read.
+GrayImage decodeGrayImage(const std::string& path, std::string_view bytes, bool* readPath = nullptr);
 
 // Writes a single-channel TIFF (8-bit when bits <= 8, else 16-bit) of raw values, atomically.
 // `description` goes to the TIFF ImageDescription tag. Throws Error on I/O failure.

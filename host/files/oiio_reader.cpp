@@ -20,13 +20,16 @@ ReadGrayFn loadModule(std::string& failure) {
 
 void* oiioModuleSymbol(const char* symbol, std::string& failure) { return oiioModule().symbol(symbol, failure); }
 
-GrayImage readGrayImageWithOiio(const std::string& path) {
+GrayImage readGrayImageWithOiio(const std::string& path, std::string_view bytes, bool* readPath) {
   std::string failure;
   const ReadGrayFn read = loadModule(failure);
   if (!read) throw InputError(path + ": reading this format needs OpenImageIO's module: " + failure);
   GrayImage image;
   std::string error;
-  if (!read(path.c_str(), &image, &error)) throw InputError(path + ": " + error);
+  bool fromPath = false;
+  const bool ok = read(path.c_str(), bytes.data(), bytes.size(), &image, &error, &fromPath);
+  if (readPath) *readPath = fromPath;
+  if (!ok) throw InputError(path + ": " + error);
   return image;
 }
 

@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <memory>
 
 #include "core/error.h"
@@ -59,22 +59,56 @@ T field(TIFF* tif, ttag_t tag, T fallback) {
 
 }  // namespace
 
-bool looksLikeTiff(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char magic[4] = {};
-  if (!in.read(reinterpret_cast<char*>(magic), 4)) return false;
-  const bool little = magic[0] == 'I' && magic[1] == 'I' && (magic[2] == 42 || magic[2] == 43) && magic[3] == 0;
-  const bool big = magic[0] == 'M' && magic[1] == 'M' && magic[2] == 0 && (magic[3] == 42 || magic[3] == 43);
+bool looksLikeTiff(std::string_view bytes) {
+  if (bytes.size() < 4) return false;
+  const auto magic = [&](int i) { return static_cast<unsigned char>(bytes[std::size_t(i)]); };
+  const bool little = magic(0) == 'I' && magic(1) == 'I' && (magic(2) == 42 || magic(2) == 43) && magic(3) == 0;
+  const bool big = magic(0) == 'M' && magic(1) == 'M' && magic(2) == 0 && (magic(3) == 42 || magic(3) == 43);
   return little || big;
 }
 
-std::optional<GrayImage> readCommonTiff(const std::string& path) {
+namespace {
+
+// libtiff reads the bytes in memory through its client interface: a read-only stream over them.
+struct MemoryStream {
+  std::string_view bytes;
+  std::uint64_t position = 0;
+};
+
+tmsize_t memoryRead(thandle_t handle, void* buffer, tmsize_t size) {
+  auto* s = static_cast<MemoryStream*>(handle);
+  if (size < 0 || s->position >= s->bytes.size()) return 0;
+  const std::uint64_t n = std::min<std::uint64_t>(std::uint64_t(size), s->bytes.size() - s->position);
+  std::memcpy(buffer, s->bytes.data() + s->position, n);
+  s->position += n;
+  return tmsize_t(n);
+}
+tmsize_t memoryWrite(thandle_t, void*, tmsize_t) { return -1; }  // opened for reading only
+toff_t memorySeek(thandle_t handle, toff_t offset, int whence) {
+  auto* s = static_cast<MemoryStream*>(handle);
+  // toff_t is unsigned: a negative relative offset arrives as its two's complement, which the
+  // unsigned sum wraps back.
+  const std::uint64_t base = whence == SEEK_CUR ? s->position : whence == SEEK_END ? s->bytes.size() : 0;
+  const std::uint64_t target = base + std::uint64_t(offset);
+  if (target > std::uint64_t(INT64_MAX)) return toff_t(-1);
+  s->position = target;  // past the end: later reads return 0 (a damaged offset), as a file's would
+  return toff_t(target);
+}
+int memoryClose(thandle_t) { return 0; }
+toff_t memorySize(thandle_t handle) { return toff_t(static_cast<MemoryStream*>(handle)->bytes.size()); }
+// No mapping: libtiff reads strips through memoryRead (its "mapped" path would hand it our buffer,
+// which it must not write; reading copies only a strip at a time).
+int memoryMap(thandle_t, void**, toff_t*) { return 0; }
+void memoryUnmap(thandle_t, void*, toff_t) {}
+
+}  // namespace
+
+std::optional<GrayImage> readCommonTiff(const std::string& path, std::string_view bytes) {
   installHandlers();
   tLastTiffError.clear();
-  // "m": read, not memory-mapped: a file rewritten in place while it was read (a `cp` over a
-  // texture) ended the process with SIGBUS through the mapping (the faults check of 2026-11-28,
-  // 8 of 12 runs); read, it is a short read or a decoding error, which the caller reads again.
-  TiffPtr tif(TIFFOpen(path.c_str(), "rm"));
+  MemoryStream stream{bytes};
+  TiffPtr tif(TIFFClientOpen(path.c_str(), "rm", &stream, memoryRead, memoryWrite, memorySeek, memoryClose,
+                             memorySize, memoryMap, memoryUnmap));
   if (!tif) throw InputError(path + ": cannot read image: " + lastError());
   TIFF* t = tif.get();
   const std::uint32_t width = field<std::uint32_t>(t, TIFFTAG_IMAGEWIDTH, 0);

@@ -13,6 +13,7 @@
 #include "core/math.h"
 #include "core/option_names.h"
 #include "core/parallel.h"
+#include "files/file_bytes.h"
 #include "files/image_io.h"
 #include "geometry/homography.h"
 #include "geometry/prepared_scene.h"
@@ -218,16 +219,19 @@ int nameTexture(const textures::File& t, std::vector<PreparedTexture>& textures,
 }
 
 // One prepared texture per (file, interpolation): the coefficients depend on the kernel.
-// The file's texture prepared for `t`'s kernel: from the disk cache (keyed by the content's digest)
-// or read, checked and prefiltered. Its stamp is left for the caller to set.
-PreparedTexture readTexture(const textures::File& t, const SourceLoc& where, const TextureDiskCache* disk) {
+// The texture of `file` (the bytes of t.path) prepared for `t`'s kernel: from the disk cache (keyed
+// by the bytes' digest) or decoded, checked and prefiltered. `*readPath` says whether the decoder
+// read the path instead of the bytes (files/image_io.h). Its stamp is left for the caller to set.
+PreparedTexture readTexture(const textures::File& t, const FileBytes& file, const SourceLoc& where,
+                            const TextureDiskCache* disk, bool* readPath) {
+  *readPath = false;
   // Across processes: the disk cache, keyed by the file's content.
-  const std::string digest = disk ? TextureDiskCache::contentDigest(t.path) : "";
+  const std::string digest = disk ? TextureDiskCache::digestOf(file.bytes) : "";
   if (disk)
     if (auto stored = disk->find(digest, t.path, t.interpolation)) return std::move(*stored);
   GrayImage image;
   try {
-    image = readGrayImage(t.path);
+    image = decodeGrayImage(t.path, file.bytes, readPath);
   } catch (const InputError& e) {
     throw InputError(where, std::string("Texture.File: ") + e.what());
   }
@@ -256,8 +260,8 @@ PreparedTexture readTexture(const textures::File& t, const SourceLoc& where, con
   pt.interpolation = t.interpolation;
   bsplinePrefilter(image.pixels, pt.width, pt.height, t.interpolation);
   pt.coefficients = std::make_shared<const std::vector<double>>(std::move(image.pixels));
-  // Stored only when the file still holds the content hashed before it was decoded.
-  if (disk && !digest.empty() && TextureDiskCache::contentDigest(t.path) == digest) disk->store(digest, pt);
+  // Stored under the digest of the bytes decoded (a path read: when the file is still those bytes).
+  if (disk && !digest.empty() && (!*readPath || fileStamp(t.path) == file.stamp)) disk->store(digest, pt);
   return pt;
 }
 
@@ -271,33 +275,36 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
       return byPath[key] = int(textures.size()) - 1;
     }
   const TextureDiskCache* disk = cache && cache->disk().enabled() ? &cache->disk() : nullptr;
-  // Read under one stamp, the same before and after the reading, so that the coefficients are the
-  // content the stamp names: a file replaced while it was decoded (an editor's save, a texture
-  // written by another job) is read again, three times at most.
+  // The file's bytes are read once, under one stamp (files/file_bytes.h), and decoded from memory:
+  // the coefficients, the digest and the CRC are of one content, however long the decoding takes.
+  // Read again (three readings at most) when it was written in place while read; a file renamed
+  // over it meanwhile is no change (the bytes are the file opened).
   constexpr int kReadings = 3;
   for (int reading = 1;; ++reading) {
-    const std::optional<FileStamp> before = fileStamp(t.path);
-    std::optional<PreparedTexture> pt;
-    std::uint32_t crc = 0;
+    std::optional<FileBytes> file;
     try {
-      pt = readTexture(t, where, disk);
-      // Within the stamp's window, so of the bytes decoded: 0.3-0.9 ms for scenes/speckle.tif (2.5 MB,
-      // page cache warm; measured 2026-11-28).
-      crc = fileCrc32(t.path);
-    } catch (const InputError&) {
-      // A file rewritten in place while it was read fails to decode: read it again, and say
-      // why if it kept changing; a file that stayed the same is bad as it is.
-      if (!before || fileStamp(t.path) == before) throw;
-    } catch (const Error&) {
-      // Removed or unreadable since it was decoded: read again (and then refused as it is).
-      if (!before || fileStamp(t.path) == before) throw;
+      file = readFileBytes(t.path);
+    } catch (const InputError& e) {
+      throw InputError(where, std::string("Texture.File: ") + e.what());
     }
-    if (pt && before && fileStamp(t.path) == before) {
-      pt->stamp = *before;
-      pt->contentCrc32 = crc;
-      if (cache) cache->insert(*pt);
-      textures.push_back(std::move(*pt));
-      return byPath[key] = int(textures.size()) - 1;
+    if (file) {
+      bool readPath = false;
+      std::optional<PreparedTexture> pt;
+      try {
+        pt = readTexture(t, *file, where, disk, &readPath);
+      } catch (const InputError&) {
+        // Bytes that do not decode: a file being written (its stamp has moved since: read it
+        // again, and say why if it kept changing), or a file bad as it is.
+        if (fileStamp(t.path) == file->stamp) throw;
+      }
+      // A format decoded from its path (files/image_io.h): the file must still be the one read.
+      if (pt && (!readPath || fileStamp(t.path) == file->stamp)) {
+        pt->stamp = file->stamp;
+        pt->contentCrc32 = crc32Of(file->bytes);
+        if (cache) cache->insert(*pt);
+        textures.push_back(std::move(*pt));
+        return byPath[key] = int(textures.size()) - 1;
+      }
     }
     if (reading == kReadings)
       throw InputError(where, "Texture.File: " + t.path + ": the file changed while it was read, " +

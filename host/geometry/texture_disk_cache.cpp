@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <system_error>
 #include <vector>
@@ -99,20 +101,18 @@ TextureDiskCache TextureDiskCache::fromEnvironment() {
   return TextureDiskCache(resolveCacheDir(""), limitMiB << 20);
 }
 
-std::string TextureDiskCache::contentDigest(const std::string& path) {
-  File in(std::fopen(path.c_str(), "rb"));
-  if (!in) return "";
-  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> context(EVP_MD_CTX_new(), &EVP_MD_CTX_free);
-  if (!context || EVP_DigestInit_ex(context.get(), EVP_sha256(), nullptr) != 1) return "";
-  std::vector<unsigned char> buffer(1 << 20);
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), in.get())) > 0)
-    if (EVP_DigestUpdate(context.get(), buffer.data(), n) != 1) return "";
-  if (std::ferror(in.get())) return "";
+std::string TextureDiskCache::digestOf(std::string_view bytes) {
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
-  if (EVP_DigestFinal_ex(context.get(), digest, &length) != 1) return "";
+  if (EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr) != 1) return "";
   return hexString({digest, length});
+}
+
+std::string TextureDiskCache::contentDigest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in.is_open() || in.bad()) return "";
+  return digestOf(bytes);
 }
 
 std::string TextureDiskCache::fileFor(const std::string& digest, Interpolation interpolation) const {

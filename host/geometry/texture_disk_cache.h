@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "geometry/prepared_scene.h"
 
@@ -34,6 +35,8 @@ class TextureDiskCache {
   bool enabled() const { return !folder_.empty(); }
   const std::string& folder() const { return folder_; }  // .../textures, "" when disabled
 
+  // The SHA-256 of `bytes` (a file's content, files/file_bytes.h) in hex; "" when OpenSSL fails.
+  static std::string digestOf(std::string_view bytes);
   // The SHA-256 of the file's bytes in hex; "" when it cannot be read.
   static std::string contentDigest(const std::string& path);
 

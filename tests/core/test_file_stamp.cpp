@@ -4,6 +4,7 @@
 // a Python Renderer render the old texture after such an edit.
 #include <doctest/doctest.h>
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -135,4 +136,62 @@ TEST_CASE("file stamp: a prepared texture's file is unchanged after a touch or a
   CHECK_FALSE(t.fileUnchanged());
   std::filesystem::remove(tif);
   CHECK_FALSE(t.fileUnchanged());
+}
+
+TEST_CASE("file stamp: a texture renamed over again and again while it is prepared is one content, never refused") {
+  // Another job saving a texture (an editor, `dicsynth speckle -o` in each shard's script) renames a
+  // new file over it. Read by path, the stamp before and after the decoding differed and three such
+  // renames in a row refused the texture as "being written"; read once as bytes (files/file_bytes.h)
+  // and decoded from them, each preparation is of one of the contents, its CRC that content's.
+  test::TempFolder dir;
+  const int size = 512;  // decoding and prefiltering take ~10 ms: many renames fall within them
+  std::vector<std::uint16_t> a(std::size_t(size) * size), b(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    a[i] = std::uint16_t(i * 2654435761u >> 16);
+    b[i] = std::uint16_t(65535 - a[i]);
+  }
+  writeGrayTiff(dir.file("a.tif"), size, size, a, 16, "");
+  writeGrayTiff(dir.file("b.tif"), size, size, b, 16, "");
+  const std::string bytesA = test::readBytes(dir.file("a.tif")), bytesB = test::readBytes(dir.file("b.tif"));
+  const auto scene = [&](const std::string& file) {
+    dir.write("s.lua", "camera = Camera.Pinhole { resolution = {8, 6}; focalLength = 0.008; pixelSize = {5e-6, 5e-6} }\n"
+                       "plate = Object.Simple { shape = Shape.Plane { location = {0, 0, 1} };\n"
+                       "  shader = Shader.Constant { color = 1 }; texture = Texture.File { fileName = '" + file + "' } }\n");
+    return loadScene(dir.file("s.lua"), {});
+  };
+  const std::vector<double> coefficientsA = prepareScene(scene("a.tif")).textures.at(0).values();
+  const std::vector<double> coefficientsB = prepareScene(scene("b.tif")).textures.at(0).values();
+  REQUIRE(coefficientsA != coefficientsB);
+
+  dir.write("t.tif", bytesA);
+  const Scene renamed = scene("t.tif");
+  std::atomic<bool> stop{false};
+  std::atomic<int> renames{0};
+  std::thread writer([&] {
+    for (int i = 0; !stop; ++i) {
+      dir.write("t.new", i % 2 ? bytesA : bytesB);
+      std::filesystem::rename(dir.file("t.new"), dir.file("t.tif"));
+      ++renames;
+    }
+  });
+  int preparedA = 0, preparedB = 0, refused = 0;
+  for (int i = 0; i < 40; ++i) {
+    try {
+      const PreparedScene ps = prepareScene(renamed);
+      const PreparedTexture& t = ps.textures.at(0);
+      const bool isA = t.values() == coefficientsA, isB = t.values() == coefficientsB;
+      CHECK(isA != isB);  // one content, not a mix
+      CHECK(t.contentCrc32 == crc32Of(isA ? bytesA : bytesB));
+      preparedA += isA;
+      preparedB += isB;
+    } catch (const InputError& e) {
+      ++refused;
+      MESSAGE(std::string(e.what()));
+    }
+  }
+  stop = true;
+  writer.join();
+  CHECK(refused == 0);
+  CHECK(renames > 40);  // the file was replaced during the preparations, not once
+  MESSAGE(preparedA << " of A, " << preparedB << " of B, " << renames.load() << " renames");
 }

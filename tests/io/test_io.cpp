@@ -14,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/math.h"
+#include "files/file_bytes.h"
 #include "files/image_io.h"
 #include "files/oiio_reader.h"
 #include "files/tiff_io.h"
@@ -401,10 +402,13 @@ TEST_CASE("io: the libtiff reader gives OpenImageIO's values on every common TIF
                                       write("u16_" + tag + ".tif", OIIO::TypeDesc::UINT16, u16.data()),
                                       write("f32_" + tag + ".tif", OIIO::TypeDesc::FLOAT, f32.data())}) {
         CAPTURE(path);
-        REQUIRE(looksLikeTiff(path));
-        const std::optional<GrayImage> native = readCommonTiff(path);
+        const std::string bytes = readFileBytes(path).value().bytes;
+        REQUIRE(looksLikeTiff(bytes));
+        const std::optional<GrayImage> native = readCommonTiff(path, bytes);
         REQUIRE(native.has_value());
-        const GrayImage viaOiio = readGrayImageWithOiio(path);
+        bool readPath = true;
+        const GrayImage viaOiio = readGrayImageWithOiio(path, bytes, &readPath);
+        CHECK_FALSE(readPath);  // OpenImageIO's TIFF reader took the bytes
         CHECK(native->width == viaOiio.width);
         CHECK(native->height == viaOiio.height);
         CHECK(native->pixels == viaOiio.pixels);  // the same doubles, bit for bit
@@ -419,8 +423,9 @@ TEST_CASE("io: the libtiff reader gives OpenImageIO's values on every common TIF
   for (std::size_t i = 0; i < u32.size(); ++i) u32[i] = next();
   const std::string int32 = folder.file("u32.tif");
   writeWithOiio(int32, width, height, 1, OIIO::TypeDesc::UINT32, u32);
-  CHECK_FALSE(readCommonTiff(int32).has_value());
-  CHECK(readGrayImage(int32).pixels == readGrayImageWithOiio(int32).pixels);
+  const std::string int32Bytes = readFileBytes(int32).value().bytes;
+  CHECK_FALSE(readCommonTiff(int32, int32Bytes).has_value());
+  CHECK(readGrayImage(int32).pixels == readGrayImageWithOiio(int32, int32Bytes, nullptr).pixels);
   const std::string tiled = folder.file("tiled.tif");
   {
     auto out = OIIO::ImageOutput::create(tiled);
@@ -431,8 +436,56 @@ TEST_CASE("io: the libtiff reader gives OpenImageIO's values on every common TIF
     for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = std::uint8_t(i * 7);
     REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, bytes.data()));
     REQUIRE(out->close());
-    CHECK_FALSE(readCommonTiff(tiled).has_value());
+    CHECK_FALSE(readCommonTiff(tiled, readFileBytes(tiled).value().bytes).has_value());
     const GrayImage image = readGrayImage(tiled);
     for (std::size_t i = 0; i < bytes.size(); ++i) CHECK(image.pixels[i] == bytes[i] / 255.0);
   }
+}
+
+TEST_CASE("io: images are decoded from the bytes read, in every format whose reader takes memory input") {
+  // decodeGrayImage (files/image_io.h) decodes the bytes the caller read; only formats whose
+  // OpenImageIO reader takes no memory input read the path (and say so). Checked by decoding bytes
+  // that differ from the file at the path: what comes back must be the bytes' image.
+  TempFolder folder;
+  const int width = 24, height = 16;
+  std::vector<std::uint8_t> a(std::size_t(width * height)), b(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    a[i] = std::uint8_t(i * 7);
+    b[i] = std::uint8_t(255 - i * 3);
+  }
+  int fromBytes = 0;
+  for (const std::string extension : {"tif", "png", "exr", "bmp", "pgm", "tga", "jpg"}) {
+    CAPTURE(extension);
+    const std::string path = folder.file("a." + extension), other = folder.file("b." + extension);
+    writeWithOiio(path, width, height, 1, OIIO::TypeDesc::UINT8, a);
+    writeWithOiio(other, width, height, 1, OIIO::TypeDesc::UINT8, b);
+    const std::string bytesB = readFileBytes(other).value().bytes;
+    bool readPath = true;
+    const GrayImage decoded = decodeGrayImage(path, bytesB, &readPath);  // a's name, b's bytes
+    CHECK_FALSE(readPath);
+    CHECK(decoded.pixels == readGrayImage(other).pixels);
+    CHECK(decoded.pixels != readGrayImage(path).pixels);
+    fromBytes += !readPath;
+  }
+  CHECK(fromBytes == 7);
+
+  // A PNG named .tif: not TIFF bytes, so OpenImageIO's readers are tried on them, the PNG one reads them.
+  const std::string png = folder.file("b.png"), misnamed = folder.file("png.tif");
+  std::filesystem::copy_file(png, misnamed);
+  bool readPath = true;
+  CHECK(decodeGrayImage(misnamed, readFileBytes(misnamed).value().bytes, &readPath).pixels ==
+        readGrayImage(png).pixels);
+  CHECK_FALSE(readPath);
+
+  // SGI: OpenImageIO 2.4's reader takes no memory input; the path is read, and the caller told.
+  const std::string sgi = folder.file("a.sgi");
+  writeWithOiio(sgi, width, height, 1, OIIO::TypeDesc::UINT8, a);
+  readPath = false;
+  const GrayImage fromPath = decodeGrayImage(sgi, readFileBytes(sgi).value().bytes, &readPath);
+  CHECK(readPath);
+  for (std::size_t i = 0; i < a.size(); ++i) REQUIRE(fromPath.pixels[i] == a[i] / 255.0);
+
+  // Not a regular file: refused before any reading (a FIFO would block, /dev/zero never ends).
+  CHECK_THROWS_WITH_AS(readFileBytes("/dev/zero"), "/dev/zero: not a regular file", InputError);
+  CHECK_THROWS_WITH_AS(readFileBytes(folder.file("none.png")), containsText("none.png: no such file"), InputError);
 }

@@ -2,10 +2,13 @@
 // on first use). Built as its own module so that the dicsynth binary does not link OpenImageIO.
 #include "files/oiio_module/oiio_module.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <exception>
+#include <memory>
 
 #include "core/math.h"
 #include "files/image_limits.h"
@@ -33,13 +36,71 @@ bool readNormalized(OIIO::ImageInput& in, int nchannels, OIIO::TypeDesc type, do
   return true;
 }
 
-bool readGray(const std::string& path, GrayImage& image, std::string& error) {
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t end; (end = text.find(separator, start)) != std::string::npos; start = end + 1)
+    parts.push_back(text.substr(start, end - start));
+  parts.push_back(text.substr(start));
+  return parts;
+}
+
+// The input formats OpenImageIO knows, the one the file's extension names first (the order in
+// which ImageInput::open tries them).
+std::vector<std::string> formatsToTry(const std::string& path) {
+  std::vector<std::string> formats = split(OIIO::get_string_attribute("input_format_list"), ',');
+  std::string extension = OIIO::Filesystem::extension(path, false);
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  // "extension_list": "tiff:tif,tiff,tx;png:png;..."
+  for (const std::string& entry : split(OIIO::get_string_attribute("extension_list"), ';')) {
+    const std::size_t colon = entry.find(':');
+    if (colon == std::string::npos || extension.empty()) continue;
+    const std::vector<std::string> extensions = split(entry.substr(colon + 1), ',');
+    const auto format = std::find(formats.begin(), formats.end(), entry.substr(0, colon));
+    if (format != formats.end() && std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) {
+      std::rotate(formats.begin(), format, format + 1);
+      break;
+    }
+  }
+  return formats;
+}
+
+// An opened reader and the memory it reads (declared first: it must outlive the reader).
+struct OpenedImage {
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
+  std::unique_ptr<OIIO::ImageInput> in;
+};
+
+// Opens the file's bytes with the first format whose reader takes memory input
+// (supports("ioproxy")) and accepts them. ImageInput::open(path, config, proxy) is not used: where
+// a reader takes no proxy, OpenImageIO 2.4 ignores it and opens the path.
+OpenedImage openBytes(const std::string& path, const char* bytes, std::size_t size, const OIIO::ImageSpec& config) {
+  for (const std::string& format : formatsToTry(path)) {
+    OpenedImage opened;
+    opened.in = OIIO::ImageInput::create(format);  // a format's name: created, not opened or probed
+    if (!opened.in || !opened.in->supports("ioproxy")) continue;
+    opened.memory = std::make_unique<OIIO::Filesystem::IOMemReader>(bytes, size);
+    OIIO::ImageSpec spec;
+    if (opened.in->set_ioproxy(opened.memory.get()) && opened.in->open(path, spec, config)) return opened;
+    (void)opened.in->geterror();  // this format's complaint: not ours to report
+  }
+  (void)OIIO::geterror();
+  return {};
+}
+
+bool readGray(const std::string& path, const char* bytes, std::size_t size, GrayImage& image, std::string& error,
+              bool& readPath) {
   // The stored values, alpha ignored, as the libtiff reader gives them: by default OpenImageIO
   // multiplies the colour of a file with unassociated alpha (PNG, TIFF with ExtraSamples = 2) by
   // it, so an RGBA PNG read half as bright as the same strip TIFF (the texture audit of 2026-11-28).
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
+  OpenedImage opened = openBytes(path, bytes, size, config);
+  readPath = !opened.in;
+  // No reader took the bytes: a format read from files only, or bytes no format reads, which
+  // OpenImageIO's own search by the path then names.
+  if (!opened.in) opened.in = OIIO::ImageInput::open(path, &config);
+  OIIO::ImageInput* in = opened.in.get();
   if (!in) {
     error = "cannot read image: " + oneLine(OIIO::geterror());
     return false;
@@ -91,10 +152,11 @@ bool readGray(const std::string& path, GrayImage& image, std::string& error) {
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) bool dicsynth_oiio_read_gray(const char* path, GrayImage* image,
-                                                                               std::string* error) {
+extern "C" __attribute__((visibility("default"))) bool dicsynth_oiio_read_gray(const char* path, const char* bytes,
+                                                                               std::size_t size, GrayImage* image,
+                                                                               std::string* error, bool* readPath) {
   try {
-    return readGray(path, *image, *error);
+    return readGray(path, bytes, size, *image, *error, *readPath);
   } catch (const std::exception& e) {  // e.g. std::bad_alloc for a huge declared size
     *error = std::string("cannot read image: ") + e.what();
     return false;

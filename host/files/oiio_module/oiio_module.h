@@ -1,6 +1,7 @@
 #pragma once
 // The interface of libdicsynth_oiio.so (files/oiio_reader.h, io/preview.h load it): C-named functions,
 // built by the same compiler and standard library as their callers, so they may take C++ objects.
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -12,9 +13,12 @@ namespace dicsynth {
 inline constexpr const char* kOiioModuleFile = "libdicsynth_oiio.so";
 inline constexpr const char* kOiioReadGraySymbol = "dicsynth_oiio_read_gray";
 
-// Fills `image` per readGrayImage's contract and returns true, or sets `error` ("cannot read image:
-// ...", without the path) and returns false. Never throws.
-using ReadGrayFn = bool (*)(const char* path, GrayImage* image, std::string* error);
+// Fills `image` per decodeGrayImage's contract (files/image_io.h) from the `size` bytes at `bytes`
+// (the content of the file `path`) and returns true, or sets `error` ("cannot read image: ...",
+// without the path) and returns false. `*readPath` says whether the file was read by its path
+// instead (a format whose reader takes no memory input). Never throws.
+using ReadGrayFn = bool (*)(const char* path, const char* bytes, std::size_t size, GrayImage* image,
+                            std::string* error, bool* readPath);
 
 inline constexpr const char* kOiioPreviewSymbol = "dicsynth_oiio_preview";
 

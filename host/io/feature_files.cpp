@@ -12,15 +12,15 @@
 #include "render/target_features.h"
 
 namespace dicsynth {
-namespace {
 
 // A target drawn on both sides is seen from its back too, mirrored, and its features stay visible;
 // a printed one would show a blank back, and a detector labels the mirrored pattern as a front view
 // with a false pose (the calibration audit of 2026-11-28). Said once per run (per process in the
-// CLI, per call in Python: core/warning.h). The back faces
+// CLI, per call of the Python module's `features`: core/warning.h). The back faces
 // +z of the target frame: a ray meets it when it travels against z (ray · z < 0); the rays are the
 // chief rays from the camera centre to the visible features, or the axis of a telecentric camera.
-void warnBackView(const PreparedScene& scene, std::size_t camera, int frame, const std::vector<TargetTruth>& targets) {
+void warnIfSeenFromBack(const PreparedScene& scene, std::size_t camera, int frame,
+                        const std::vector<TargetTruth>& targets) {
   const PreparedCamera& cam = scene.cameras[camera];
   const bool telecentric = std::holds_alternative<cameras::Orthographic>(cam.camera.model);
   for (const TargetTruth& target : targets) {
@@ -40,9 +40,11 @@ void warnBackView(const PreparedScene& scene, std::size_t camera, int frame, con
   }
 }
 
-const char* kindName(TextureKind kind) {
+const char* targetKindName(TextureKind kind) {
   return kind == TextureKind::Checkerboard ? "checkerboard" : "circle_grid";
 }
+
+namespace {
 
 // Exact (core/exact_number.h); NaN as "nan" in CSV, whatever its sign bit.
 std::string csvNumber(double v) { return std::isnan(v) ? "nan" : exactNumber(v); }
@@ -87,14 +89,11 @@ std::string jsonText(const PreparedScene& scene, std::size_t camera, int frame,
   Json::Value& list = d["targets"] = Json::Value(Json::arrayValue);
   for (const TargetTruth& t : targets) {
     const TargetLayout& l = *t.layout;
-    // The target's pose in the camera, as cv::calibrateCamera / cv::solvePnP state it:
-    // x_camera = R x_target + t.
-    const dmat4& wt = scene.objects[t.object].worldFromTarget;
-    const dmat3 R = c.rotationCameraFromWorld * dmat3(wt);
-    const dvec3 tv = c.rotationCameraFromWorld * dvec3(wt[3]) + c.translationCameraFromWorld;
+    const dmat3& R = t.R_cameraFromTarget;
+    const dvec3& tv = t.t_cameraFromTarget_m;
     Json::Value target(Json::objectValue);
     target["name"] = t.name;
-    target["kind"] = kindName(l.kind);
+    target["kind"] = targetKindName(l.kind);
     target["pattern_size"] = jsonIntegers({l.perRow, l.rows});
     target["asymmetric"] = l.pattern.asymmetric;
     target["spacing_m"] = json::value(l.pattern.spacing_m);
@@ -128,7 +127,7 @@ FeatureFiles writeFeatureFiles(const std::string& dir, const std::string& stem, 
                                std::size_t camera, int frame) {
   const std::vector<TargetTruth> targets = targetFeatureTruth(scene, camera);
   if (targets.empty()) return {};
-  warnBackView(scene, camera, frame, targets);
+  warnIfSeenFromBack(scene, camera, frame, targets);
   FeatureFiles files{dir + "/" + stem + ".features.csv", dir + "/" + stem + ".features.json"};
   writeTextAtomically(files.csv, csvText(targets));
   writeTextAtomically(files.json, jsonText(scene, camera, frame, targets));

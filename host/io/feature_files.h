@@ -5,14 +5,25 @@
 // when complete (core/atomic_file.h).
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "geometry/prepared_scene.h"
+#include "render/target_features.h"
 
 namespace dicsynth {
 
 struct FeatureFiles {
   std::string csv, json;  // empty when the scene has no target (nothing is written)
 };
+
+// The target's kind as the feature JSON's "kind" names it: "checkerboard" or "circle_grid".
+const char* targetKindName(TextureKind kind);
+
+// Warns (once per run: core/warning.h) when a visible feature of a target is seen from the
+// target's back, where a printed target is blank. writeFeatureFiles says it; so does the Python
+// module's `features`, which writes no file.
+void warnIfSeenFromBack(const PreparedScene& scene, std::size_t camera, int frame,
+                        const std::vector<TargetTruth>& targets);
 
 // `dir` must exist. Throws Error naming the file when it cannot be written.
 FeatureFiles writeFeatureFiles(const std::string& dir, const std::string& stem, const PreparedScene& scene,

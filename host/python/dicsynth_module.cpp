@@ -22,6 +22,8 @@
 //
 // The calibration the CLI's files state for that frame, at the renderer's downscale, under the
 // files' keys (io/calibration_files.h) as numpy float64 arrays: the same doubles the files print.
+//
+//   r.features(scene, frame=0)      # {camera: [target, ...]}: the feature files' truth as arrays
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -50,8 +52,10 @@
 #include "core/warning.h"
 #include "geometry/prepared_scene.h"
 #include "io/calibration_files.h"
+#include "io/feature_files.h"
 #include "io/opencv_camera.h"
 #include "io/outputs.h"
+#include "render/target_features.h"
 #include "scene/define_value.h"
 #include "scene/scene.h"
 
@@ -249,6 +253,45 @@ py::dict cameraCalibration(const Camera& camera) {
   return d;
 }
 
+// One target's feature truth under the feature JSON's keys (io/feature_files.cpp), the per-feature
+// values as arrays of n rows.
+py::dict targetFeatures(const TargetTruth& t) {
+  const std::size_t n = t.features.size();
+  const auto column = [&](auto value, auto type) {
+    py::array_t<decltype(type)> a({py::ssize_t(n)});
+    for (std::size_t i = 0; i < n; ++i) a.mutable_data()[i] = value(t.features[i]);
+    return a;
+  };
+  const auto rows = [&](auto vector, py::ssize_t width) {
+    py::array_t<double> a({py::ssize_t(n), width});
+    for (std::size_t i = 0; i < n; ++i)
+      for (py::ssize_t k = 0; k < width; ++k) a.mutable_data()[i * std::size_t(width) + std::size_t(k)] = vector(t.features[i])[int(k)];
+    return a;
+  };
+  const TargetLayout& l = *t.layout;
+  py::dict d;
+  d["name"] = t.name;
+  d["kind"] = targetKindName(l.kind);
+  d["pattern_size"] = py::make_tuple(l.perRow, l.rows);
+  d["asymmetric"] = l.pattern.asymmetric;
+  d["spacing_m"] = l.pattern.spacing_m;
+  const dmat3 Rt = glm::transpose(t.R_cameraFromTarget);  // glm is column-major: rows of R
+  d["R_camera_from_target"] = doubles(&Rt[0][0], {3, 3});
+  d["t_camera_from_target_m"] = doubles(&t.t_cameraFromTarget_m[0], {3});
+  d["index"] = column([](const FeatureTruth& f) { return f.index; }, std::int32_t());
+  d["row"] = column([](const FeatureTruth& f) { return f.row; }, std::int32_t());
+  d["col"] = column([](const FeatureTruth& f) { return f.col; }, std::int32_t());
+  d["target_m"] = rows([](const FeatureTruth& f) { return f.target_m; }, 3);
+  d["world_m"] = rows([](const FeatureTruth& f) { return f.world_m; }, 3);
+  d["pixel"] = rows([](const FeatureTruth& f) { return f.pixel_px; }, 2);
+  d["depth_m"] = column([](const FeatureTruth& f) { return f.depth_m; }, double());
+  d["in_front"] = column([](const FeatureTruth& f) { return f.inFront; }, bool());
+  d["in_image"] = column([](const FeatureTruth& f) { return f.inImage; }, bool());
+  d["unoccluded"] = column([](const FeatureTruth& f) { return f.unoccluded; }, bool());
+  d["visible"] = column([](const FeatureTruth& f) { return f.visible(); }, bool());
+  return d;
+}
+
 // The scene evaluated at `frame`, quietly (a render says its prints and fit reports, as the CLI's
 // run does, frame by frame): a define only other frames read is no error here (render checks the
 // defines over the frames it renders).
@@ -418,6 +461,26 @@ class PyRenderer {
 
   // The objects' names at `frame`, in objectId order (objectId k names objects[k - 1]): the EXR
   // header's dicsynth:objects, as a list.
+  // Every camera's calibration-target ground truth at `frame`, after the downscale: what the CLI's
+  // feature files hold (io/feature_files.h), a target's features as arrays, one row per feature.
+  // The scene is evaluated and prepared as for calibration(); the features' occlusion is traced on
+  // the CPU in double, as the CLI's.
+  py::dict features(const PyScene& scene, int frame) {
+    PrepareOptions options;
+    options.downscale = downscale_;
+    options.textureData = false;
+    const PreparedScene prepared = prepareScene(evaluate(scene, frame), options);
+    py::dict cameras;
+    for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
+      const std::vector<TargetTruth> targets = targetFeatureTruth(prepared, c);
+      warnIfSeenFromBack(prepared, c, frame, targets);
+      py::list list;
+      for (const TargetTruth& t : targets) list.append(targetFeatures(t));
+      cameras[py::str(prepared.cameras[c].camera.name)] = list;
+    }
+    return cameras;
+  }
+
   std::vector<std::string> objects(const PyScene& scene, int frame) {
     std::vector<std::string> names;
     for (const Object& object : evaluate(scene, frame).objects) names.push_back(object.name);
@@ -533,6 +596,15 @@ PYBIND11_MODULE(dicsynth, m) {
           py::arg("scene"), py::arg("frame") = 0,
           "The cameras' and rigs' calibration at that frame, after the downscale: "
           "{'cameras': {name: {...}}, 'rigs': {name: {...}}}, the calibration files' keys and values")
+      .def(
+          "features",
+          [](PyRenderer& r, const PyScene& scene, const py::object& frame) {
+            const int f = frameNumber(frame, "frame");
+            return withWarnings([&] { return r.features(scene, f); });
+          },
+          py::arg("scene"), py::arg("frame") = 0,
+          "Every camera's calibration-target features at that frame, after the downscale: "
+          "{camera: [target, ...]}, each target the feature JSON's keys, its features as arrays")
       .def(
           "objects",
           [](PyRenderer& r, const PyScene& scene, const py::object& frame) {

@@ -16,6 +16,9 @@ std::vector<TargetTruth> targetFeatureTruth(const PreparedScene& scene, std::siz
     truth.name = object.name;
     truth.object = o;
     truth.layout = object.target.get();
+    const dmat4& wt = object.worldFromTarget;
+    truth.R_cameraFromTarget = camera.rotationCameraFromWorld * dmat3(wt);
+    truth.t_cameraFromTarget_m = camera.rotationCameraFromWorld * dvec3(wt[3]) + camera.translationCameraFromWorld;
     for (const TargetFeature& f : object.target->features) {
       FeatureTruth t;
       t.index = int(truth.features.size());

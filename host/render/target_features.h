@@ -27,6 +27,10 @@ struct TargetTruth {
   std::string name;         // the object's name
   std::size_t object = 0;   // index into PreparedScene::objects
   const TargetLayout* layout = nullptr;  // owned by the PreparedScene
+  // The target's pose in the camera, as cv::calibrateCamera and cv::solvePnP state it:
+  // x_camera = R_cameraFromTarget · x_target + t_cameraFromTarget_m.
+  dmat3 R_cameraFromTarget{1.0};
+  dvec3 t_cameraFromTarget_m{0};
   std::vector<FeatureTruth> features;
 };
 

@@ -270,6 +270,66 @@ def test_calibration_checks_as_a_render_does():
         renderer.calibration(dicsynth.Scene(os.path.join(SCENES, "rectangle.lua")), frame=-1)
 
 
+def test_features_equal_the_cli_files():
+    # Renderer.features against the CLI's feature JSON of the same frames (a stereo calibration set
+    # with Brown distortion at downscale 4), value for value (the files print 17 digits; NaN as null);
+    # and the pixels against OpenCV's projection of the world points through the calibration.
+    import json
+    import cv2
+    path = os.path.join(SCENES, "stereo_calibration.lua")
+    with tempfile.TemporaryDirectory() as folder:
+        out = os.path.join(folder, "out")
+        subprocess.run([BINARY, "render", path, "-o", out, "--backend", "cpu", "--downscale", "4", "--spp", "1",
+                        "--layers", "image", "--frames", "0:1"], check=True, capture_output=True)
+        renderer = dicsynth.Renderer(backend="cpu", downscale=4)
+        scene = dicsynth.Scene(path)
+        for frame in (0, 1):
+            features = renderer.features(scene, frame=frame)
+            calibration = renderer.calibration(scene, frame=frame)
+            assert sorted(features) == ["rig.left", "rig.right"]
+            for camera, targets in features.items():
+                with open(os.path.join(out, "%s_%04d.features.json" % (camera, frame))) as f:
+                    stored = json.load(f)
+                assert len(targets) == len(stored["targets"]) == 1
+                for got, want in zip(targets, stored["targets"]):
+                    for key in ("name", "kind", "asymmetric", "spacing_m"):
+                        assert got[key] == want[key], key
+                    assert list(got["pattern_size"]) == want["pattern_size"]
+                    np.testing.assert_array_equal(got["R_camera_from_target"].reshape(9), want["R_camera_from_target"])
+                    np.testing.assert_array_equal(got["t_camera_from_target_m"], want["t_camera_from_target_m"])
+                    rows = want["features"]
+                    assert got["pixel"].shape == (len(rows), 2) and got["index"].dtype == np.int32
+                    for key in ("index", "row", "col", "in_front", "in_image", "unoccluded", "visible"):
+                        assert got[key].tolist() == [r[key] for r in rows], key
+                    for key, json_key in (("target_m", "target_m"), ("world_m", "world_m"), ("pixel", "pixel")):
+                        want_rows = np.array([[np.nan if v is None else v for v in r[json_key]] for r in rows])
+                        np.testing.assert_array_equal(got[key], want_rows, err_msg=key)
+                    np.testing.assert_array_equal(got["depth_m"], [r["depth_m"] for r in rows])
+                    assert got["visible"].all()  # the poses keep every corner in both images
+                    cam = calibration["cameras"][camera]
+                    projected, _ = cv2.projectPoints(got["world_m"], cv2.Rodrigues(cam["R"])[0], cam["t"],
+                                                     cam["camera_matrix"], cam["distortion_coefficients"])
+                    # OpenCV's projection in double against dicsynth's: rounding only (1e-12 px measured ~3e-13)
+                    assert np.abs(projected.reshape(-1, 2) - got["pixel"]).max() < 1e-9
+
+
+def test_features_warn_of_a_target_seen_from_its_back():
+    # The warning the CLI says when it writes the feature files (docs/calibration.md) reaches Python
+    # through features(), which writes none (the calibration trial of 2026-11-28: render,
+    # calibration and Scene said nothing in Python).
+    renderer = dicsynth.Renderer(backend="cpu")
+    with tempfile.TemporaryDirectory() as folder:
+        back = os.path.join(folder, "back.lua")
+        with open(back, "w") as f:
+            f.write("cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.012; pixelSize = {4e-5, 4e-5} }\n"
+                    "board = Target.Checkerboard { squares = {5, 4}; squareSize = 0.02; location = {0.04, -0.03, 1};\n"
+                    "  transform = rotate_y(math.pi) }\n")
+        scene = dicsynth.Scene(back)
+        with pytest.warns(dicsynth.DicsynthWarning, match="target 'board' is seen from its back"):
+            features = renderer.features(scene)
+        assert features["cam"][0]["visible"].any()
+
+
 def test_warnings_are_python_warnings(capfd):
     # What the CLI says on stderr without stopping reaches Python's warnings (a notebook shows them,
     # filters act on them): here a camera that sees nothing.

@@ -100,6 +100,13 @@ std::string readWholeFile(const std::string& path) {
   return text;
 }
 
+// A point's values for messages: "noise=0, blur=1.5".
+std::string pointValues(const SweepPoint& point) {
+  std::string values;
+  for (const auto& [name, value] : point.values) values += (values.empty() ? "" : ", ") + name + "=" + value.defineText();
+  return values;
+}
+
 // A point's key as named fields, in order; "name=value" joined by spaces is the key its record
 // holds (runSweep builds them: everything that determines the point's files).
 using KeyFields = std::vector<std::pair<std::string, std::string>>;
@@ -232,9 +239,9 @@ void runSweep(const SweepRun& cmd) {
     throw InputError("-o " + cmd.outputDir + ": no such folder: --merge-only merges the points of an existing sweep");
   checkOutputWritable(cmd.outputDir);
   std::uint64_t firstPointBytes = 0;  // its rendered frames until written (a point's size, for the writers)
-  {
-    // Every frame of the first point: a parameter may be read in some frames only.
-    UnreadDefines unread;
+  // Every frame of the first point: a parameter may be read in some frames only.
+  UnreadDefines unread;
+  try {
     LayerSources sources;  // a layer the first point cannot produce is refused before the folder is made
     for (const int frame : frames) {
       SceneParams first{pointDefines(defines, plan.point(0)), frame};
@@ -246,9 +253,15 @@ void runSweep(const SweepRun& cmd) {
       sources.add(scene);
       firstPointBytes += framePixels(scene, cmd.args.downscale) * kBytesPerPixelInFlight;
     }
-    unread.check(cmd.args.scenePath, plan.names);
     checkLayersProducible(layers, sources);
+  } catch (const InputError& e) {
+    // The point's scene or layers, named as a later point's error is: `--layers noise` refused
+    // where the first point's value turns the sensor model off read as the sweep's own refusal (the
+    // calibration trial of 2026-11-28).
+    throw InputError(std::string(e.what()) + " (sweep point " + pointFolderName(0) + ": " + pointValues(plan.point(0)) +
+                     ", evaluated before any work)");
   }
+  unread.check(cmd.args.scenePath, plan.names);  // of the parameters, whatever the point
   createOutputDir(cmd.outputDir);  // writable: checkOutputWritable created a file where it goes
   // A killed run's partial manifests (.manifest.csv.tmp<pid>_<n>.csv): the points' own are removed
   // when a point is rendered again, these here.
@@ -362,9 +375,7 @@ void runSweep(const SweepRun& cmd) {
         // Only the first point is evaluated before work: a later point's scene error stops the run
         // here, the points before it complete. The message names the point (the sweep audit met a
         // bare "scene.lua:2: negative shift" after two points were written).
-        std::string values;
-        for (const auto& [name, value] : p.values) values += (values.empty() ? "" : ", ") + name + "=" + value.defineText();
-        throw InputError(std::string(e.what()) + " (sweep point " + pointFolderName(p.index) + ": " + values +
+        throw InputError(std::string(e.what()) + " (sweep point " + pointFolderName(p.index) + ": " + pointValues(p) +
                          "; the points rendered before it are complete, and a rerun resumes after the fix)");
       }
     } catch (...) {

@@ -365,6 +365,17 @@ TEST_CASE("cli: sweep bad input: one line, exit code 2") {
   bad(scene + " -o " + dir.file("afile/sub"),
       "-o " + dir.file("afile/sub") + ": cannot create the output folder: " + dir.file("afile") + " is not a folder");
   bad(scene + " -o " + dir.file("o4") + " --shard 3/3", "--shard 3/3: expected I/N with 0 <= I < N");
+  // A layer the first point cannot produce (its value turns the sensor off): the point is named,
+  // as a later point's error is (the calibration trial of 2026-11-28 read it as the sweep's).
+  const std::string sensor = dir.write(
+      "sensor.lua", "shift = shift or 0\n"
+                    "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4};\n"
+                    "  sensor = shift > 0 and Sensor.Emva { preset = 'machine-vision-cmos' } or nil }\n"
+                    "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {shift, 0, 0.5} } }\n");
+  bad(sensor + " -o " + dir.file("o5") + " --sweep shift=0,0.5 --layers image,noise",
+      "--layers: layer 'noise' cannot be produced: no camera of the scene has a sensor model (a camera's sensor = "
+      "Sensor.Emva { ... } or postProcessing) (sweep point point_00000: shift=0, evaluated before any work)");
+  CHECK_FALSE(std::filesystem::exists(dir.file("o5")));
 }
 
 TEST_CASE("cli: sweep on a full disk stops with a clean error and resumes afterwards") {

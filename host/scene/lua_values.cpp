@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/closest_name.h"
+#include "core/math.h"
 
 namespace dicsynth::scene {
 
@@ -135,6 +136,14 @@ void Params::fail(const std::string& message) const {
 
 void Params::require(bool ok, const char* key, const char* condition, double value) const {
   if (!ok) fail(quote(key) + " must be " + condition + ", got " + formatNumber(value));
+}
+
+void Params::requireAngle(bool ok, const char* key, const char* condition, double value_rad) const {
+  if (ok) return;
+  std::string message = quote(key) + " must be " + condition + ", got " + formatNumber(value_rad);
+  if (std::abs(value_rad) > 2 * kPi)
+    message += "; angles are in radians: degrees(" + formatNumber(value_rad) + ") for " + formatNumber(value_rad) + " degrees";
+  fail(message);
 }
 
 bool Params::has(const char* key) const {

@@ -206,6 +206,9 @@ class Params {
   [[noreturn]] void fail(const std::string& message) const;
   // Range check helper: fails with "'key' must be <condition>, got <value>" unless ok.
   void require(bool ok, const char* key, const char* condition, double value) const;
+  // The same for an angle in radians; a value beyond 2π (degrees meant: `tilt = 30`) adds
+  // "; angles are in radians: degrees(30) for 30 degrees".
+  void requireAngle(bool ok, const char* key, const char* condition, double value_rad) const;
 
   static std::string quote(const char* key) { return std::string("'") + key + "'"; }
 

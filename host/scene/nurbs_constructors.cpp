@@ -259,7 +259,7 @@ int nurbsCylinderSegment(lua_State* L) {
   CylinderSegmentSpec spec;
   spec.radius_m = positive(p, "radius");
   spec.angle_rad = p.requiredNumber("angle");
-  p.require(spec.angle_rad > 0 && spec.angle_rad <= kPi * (1 + 1e-12), "angle",
+  p.requireAngle(spec.angle_rad > 0 && spec.angle_rad <= kPi * (1 + 1e-12), "angle",
             "in (0, pi] radians (at most half a cylinder)", spec.angle_rad);
   spec.height_m = positive(p, "height");
   // At least enough arcs for 90° each (the tolerance keeps degrees(90) one arc despite rounding).

@@ -129,7 +129,7 @@ int rigStereo(lua_State* L) {
     layout.vergence_rad = vergenceForDistance(layout.baseline_m, distance);
   } else {
     layout.vergence_rad = *p.number("vergence");
-    p.require(layout.vergence_rad >= 0 && layout.vergence_rad < kPi, "vergence",
+    p.requireAngle(layout.vergence_rad >= 0 && layout.vergence_rad < kPi, "vergence",
               "in [0, pi) radians", layout.vergence_rad);
     layout.axis = p.vec3("direction").value_or(dvec3(0, 0, 1));
     if (!(glm::length(layout.axis) > 0)) p.fail("'direction' must not be zero");

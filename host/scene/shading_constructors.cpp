@@ -142,10 +142,10 @@ int lightSpot(lua_State* L) {
   light.direction /= length;
   light.intensity = readIntensity(p);
   light.innerAngle_rad = p.number("innerAngle", 0.0);
-  p.require(light.innerAngle_rad >= 0, "innerAngle", ">= 0 (radians)", light.innerAngle_rad);
+  p.requireAngle(light.innerAngle_rad >= 0, "innerAngle", ">= 0 (radians)", light.innerAngle_rad);
   if (!p.has("outerAngle")) p.fail("missing required 'outerAngle' (radians)");
   light.outerAngle_rad = p.requiredNumber("outerAngle");
-  p.require(light.outerAngle_rad > light.innerAngle_rad && light.outerAngle_rad <= kPi, "outerAngle",
+  p.requireAngle(light.outerAngle_rad > light.innerAngle_rad && light.outerAngle_rad <= kPi, "outerAngle",
             "in (innerAngle, pi] (radians)", light.outerAngle_rad);
   pushUserdata(L, std::move(light));
   return 1;

@@ -234,9 +234,9 @@ int targetPoses(lua_State* L) {
   p.require(distance->y >= distance->x, "distance", "{near, far} with 0 < near <= far", distance->y);
   o.distance_m = *distance;
   o.maxTilt_rad = p.number("tilt", o.maxTilt_rad);
-  p.require(o.maxTilt_rad >= 0 && o.maxTilt_rad <= 80 * kPi / 180, "tilt", "in [0, degrees(80)]", o.maxTilt_rad);
+  p.requireAngle(o.maxTilt_rad >= 0 && o.maxTilt_rad <= 80 * kPi / 180, "tilt", "in [0, degrees(80)]", o.maxTilt_rad);
   o.maxRoll_rad = p.number("roll", o.maxRoll_rad);
-  p.require(o.maxRoll_rad >= 0 && o.maxRoll_rad < kPi / 2, "roll", "in [0, pi/2)", o.maxRoll_rad);
+  p.requireAngle(o.maxRoll_rad >= 0 && o.maxRoll_rad < kPi / 2, "roll", "in [0, pi/2)", o.maxRoll_rad);
   o.margin_px = p.number("margin", o.margin_px);
   p.require(o.margin_px >= 0, "margin", ">= 0 (pixels)", o.margin_px);
   const long long tries = p.integer("tries").value_or(o.triesPerPose);

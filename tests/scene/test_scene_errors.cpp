@@ -175,6 +175,13 @@ TEST_CASE("scene: out-of-range values") {
        1, "translate: expected translate(x, y, z) or translate{x, y, z}, got 2 arguments"},
       {"\nt = translate(1, 2, 3) * 2\n",
        2, "'*' composes two transforms, got Transform * number"},
+      // An angle given in degrees says so (the calibration trial of 2026-11-28: tilt = 30); one
+      // within 2π is taken as radians and refused without the hint.
+      {"l = Light.Spot { position = {0, 0, 0}; direction = {0, 0, 1}; outerAngle = 45 }\n",
+       1, "Light.Spot: 'outerAngle' must be in (innerAngle, pi] (radians), got 45; angles are in radians: "
+          "degrees(45) for 45 degrees"},
+      {"l = Light.Spot { position = {0, 0, 0}; direction = {0, 0, 1}; outerAngle = 4 }\n",
+       1, "Light.Spot: 'outerAngle' must be in (innerAngle, pi] (radians), got 4"},
   });
 }
 

@@ -1,5 +1,6 @@
 #include "io/feature_files.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <variant>
@@ -19,6 +20,8 @@ namespace dicsynth {
 // CLI, per call of the Python module's `features`: core/warning.h). The back faces
 // +z of the target frame: a ray meets it when it travels against z (ray · z < 0); the rays are the
 // chief rays from the camera centre to the visible features, or the axis of a telecentric camera.
+namespace {
+
 void warnIfSeenFromBack(const PreparedScene& scene, std::size_t camera, int frame,
                         const std::vector<TargetTruth>& targets) {
   const PreparedCamera& cam = scene.cameras[camera];
@@ -38,6 +41,62 @@ void warnIfSeenFromBack(const PreparedScene& scene, std::size_t camera, int fram
       return;
     }
   }
+}
+
+// A target none of whose features is visible, or whose visible features lie closer together in
+// the image than a detector resolves: the calibration trial of 2026-11-28 gave `focalLength = 16`
+// (mm for m: 0 of 70 features in the image), `squareSize = 10` (1 of 70) and `pixelSize = {5.5,
+// 5.5}` (µm for m: the board within one pixel, its 70 features all listed as visible) and heard
+// nothing but, at most, that the image is background only. Said at most 3 times per run.
+void warnIfUnseen(const PreparedScene& scene, std::size_t camera, int frame, const std::vector<TargetTruth>& targets) {
+  const std::string where = "camera " + scene.cameras[camera].camera.name + ", frame " + std::to_string(frame) + ": ";
+  const std::string units = "check the camera's pose, focalLength and pixelSize and the target's location and size, all in metres";
+  const std::string further = " (further warnings of unseen targets not reported)";
+  for (const TargetTruth& target : targets) {
+    std::size_t behind = 0, outside = 0, hidden = 0, visible = 0;
+    for (const FeatureTruth& f : target.features) {
+      if (!f.inFront) ++behind;
+      else if (!f.inImage) ++outside;
+      else if (!f.unoccluded) ++hidden;
+      else ++visible;
+    }
+    if (visible == 0 && !target.features.empty()) {
+      warnAtMost("target unseen", 3,
+                 where + "no feature of target '" + target.name + "' is visible (of " +
+                     std::to_string(target.features.size()) + ": " + std::to_string(behind) + " behind the camera, " +
+                     std::to_string(outside) + " outside the image, " + std::to_string(hidden) +
+                     " hidden by an object); " + units,
+                 further);
+      continue;
+    }
+    // The median distance between neighbouring visible features (same row, next column), px.
+    std::vector<double> gaps;
+    for (std::size_t i = 0; i + 1 < target.features.size(); ++i) {
+      const FeatureTruth &a = target.features[i], &b = target.features[i + 1];
+      if (a.row == b.row && a.visible() && b.visible()) gaps.push_back(glm::length(b.pixel_px - a.pixel_px));
+    }
+    if (gaps.empty()) continue;
+    std::nth_element(gaps.begin(), gaps.begin() + std::ptrdiff_t(gaps.size() / 2), gaps.end());
+    const double gap_px = gaps[gaps.size() / 2];
+    // 2 px: a checkerboard's squares or a grid's dots that small are not resolved by a corner or
+    // blob detector (OpenCV's findChessboardCornersSB wants several pixels per square).
+    std::ostringstream gap;
+    gap.precision(3);
+    gap << gap_px;
+    if (gap_px < 2)
+      warnAtMost("target unseen", 3,
+                 where + "the features of target '" + target.name + "' lie " + gap.str() +
+                     " px apart in the image (median of neighbours), closer than a detector resolves; " + units,
+                 further);
+  }
+}
+
+}  // namespace
+
+void warnAboutTargetViews(const PreparedScene& scene, std::size_t camera, int frame,
+                          const std::vector<TargetTruth>& targets) {
+  warnIfSeenFromBack(scene, camera, frame, targets);
+  warnIfUnseen(scene, camera, frame, targets);
 }
 
 const char* targetKindName(TextureKind kind) {
@@ -127,7 +186,7 @@ FeatureFiles writeFeatureFiles(const std::string& dir, const std::string& stem, 
                                std::size_t camera, int frame) {
   const std::vector<TargetTruth> targets = targetFeatureTruth(scene, camera);
   if (targets.empty()) return {};
-  warnIfSeenFromBack(scene, camera, frame, targets);
+  warnAboutTargetViews(scene, camera, frame, targets);
   FeatureFiles files{dir + "/" + stem + ".features.csv", dir + "/" + stem + ".features.json"};
   writeTextAtomically(files.csv, csvText(targets));
   writeTextAtomically(files.json, jsonText(scene, camera, frame, targets));

@@ -19,11 +19,12 @@ struct FeatureFiles {
 // The target's kind as the feature JSON's "kind" names it: "checkerboard" or "circle_grid".
 const char* targetKindName(TextureKind kind);
 
-// Warns (once per run: core/warning.h) when a visible feature of a target is seen from the
-// target's back, where a printed target is blank. writeFeatureFiles says it; so does the Python
-// module's `features`, which writes no file.
-void warnIfSeenFromBack(const PreparedScene& scene, std::size_t camera, int frame,
-                        const std::vector<TargetTruth>& targets);
+// Warns (core/warning.h) when a visible feature of a target is seen from the target's back, where a
+// printed target is blank (once per run), and when no feature of a target is visible or its visible
+// features lie less than 2 px apart (at most 3 times per run: units mistaken, a target out of view).
+// writeFeatureFiles says them; so does the Python module's `features`, which writes no file.
+void warnAboutTargetViews(const PreparedScene& scene, std::size_t camera, int frame,
+                          const std::vector<TargetTruth>& targets);
 
 // `dir` must exist. Throws Error naming the file when it cannot be written.
 FeatureFiles writeFeatureFiles(const std::string& dir, const std::string& stem, const PreparedScene& scene,

@@ -473,7 +473,7 @@ class PyRenderer {
     py::dict cameras;
     for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
       const std::vector<TargetTruth> targets = targetFeatureTruth(prepared, c);
-      warnIfSeenFromBack(prepared, c, frame, targets);
+      warnAboutTargetViews(prepared, c, frame, targets);
       py::list list;
       for (const TargetTruth& t : targets) list.append(targetFeatures(t));
       cameras[py::str(prepared.cameras[c].camera.name)] = list;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/json.h"
+#include "core/warning.h"
 #include "cpu/trace.h"
 #include "geometry/prepared_scene.h"
 #include "geometry/target_poses.h"
@@ -286,4 +287,33 @@ TEST_CASE("targets: Target.poses is deterministic and keeps every feature inside
     const dvec3 base = 0.5 * (dvec3(s.cameras[0].worldFromCamera[3]) + dvec3(s.cameras[1].worldFromCamera[3]));
     CHECK(std::acos(glm::dot(normal, glm::normalize(centre - base))) <= o.maxTilt_rad + 1e-12);
   }
+}
+
+TEST_CASE("targets: a target no feature of which is visible, or whose features lie within pixels, is a warning") {
+  // Unit mistakes the calibration trial of 2026-11-28 made and heard nothing of: a focal length in
+  // mm (the board fills the view, its corners all outside the image) and a pixel size in µm (the
+  // board within one pixel, its features all "visible").
+  test::TempFolder dir;
+  const auto said = [&](const std::string& camera) {
+    const std::string path = dir.write("units.lua",
+        "cam = Camera.Pinhole { resolution = {320, 240}; " + camera + " }\n"
+        "board = Target.Checkerboard { squares = {8, 6}; squareSize = 0.01; location = {-0.035, -0.025, 0.5} }\n");
+    const PreparedScene ps = prepareScene(loadScene(path, {}));
+    WarningCapture capture;
+    warnAboutTargetViews(ps, 0, 4, targetFeatureTruth(ps, 0));
+    return capture.take();
+  };
+  const std::string check = "; check the camera's pose, focalLength and pixelSize and the target's location and size, all in metres";
+  CHECK(said("focalLength = 0.016; pixelSize = {5.5e-6, 5.5e-6}").empty());
+  CHECK(said("focalLength = 16; pixelSize = {5.5e-6, 5.5e-6}") ==
+        std::vector<std::string>{"camera cam, frame 4: no feature of target 'board' is visible (of 35: 0 behind the camera, "
+                                 "35 outside the image, 0 hidden by an object)" + check});
+  // Neighbours 0.01 m apart at 0.5 m through fx = 0.016 m / 5.5 m = 0.00291 px: 5.82e-5 px.
+  CHECK(said("focalLength = 0.016; pixelSize = {5.5, 5.5}") ==
+        std::vector<std::string>{"camera cam, frame 4: the features of target 'board' lie 5.82e-05 px apart in the image "
+                                 "(median of neighbours), closer than a detector resolves" + check});
+  // fx · 0.01 / 0.5: 75 · 0.02 = 1.5 px with 0.2133 mm pixels, below the 2 px a detector needs;
+  // 145.5 · 0.02 = 2.91 px with 0.11 mm pixels is not.
+  CHECK(said("focalLength = 0.016; pixelSize = {2.1333333e-4, 2.1333333e-4}").size() == 1);
+  CHECK(said("focalLength = 0.016; pixelSize = {1.1e-4, 1.1e-4}").empty());
 }

@@ -48,8 +48,8 @@ int runBench(BenchCommand cmd) {
   const std::vector<BenchmarkRow> rows = runBenchmark(cmd.options);
   // The two files together or neither (a full disk left bench.csv and the folder made for it), and
   // the folder made for them removed again when they fail.
-  std::error_code ec;
-  const bool existed = std::filesystem::is_directory(cmd.outputDir, ec);
+  // With the folders above it that it made (-o new/a/b left new/a behind).
+  const std::filesystem::path existing = nearestExistingFolder(cmd.outputDir);
   createOutputDir(cmd.outputDir);
   try {
     AtomicFile csvFile(csv), svgFile(svg);
@@ -58,7 +58,7 @@ int runBench(BenchCommand cmd) {
     csvFile.commit();
     svgFile.commit();
   } catch (...) {
-    if (!existed) std::filesystem::remove_all(cmd.outputDir, ec);
+    removeCreatedFolders(cmd.outputDir, existing);  // the AtomicFiles removed their temporaries
     throw;
   }
   if (cmd.json) {

@@ -44,6 +44,7 @@ int runPreview(const PreviewOptions& options) {
   checkOutputWritable(dir);
   std::error_code ec;
   const bool created = !std::filesystem::exists(dir, ec);
+  const std::filesystem::path existing = nearestExistingFolder(dir);
   createOutputDir(dir);
   removeStaleTemporaries(dir);  // a killed run's pictures in the making (as render does in its folder)
   std::vector<std::string> written;
@@ -60,7 +61,7 @@ int runPreview(const PreviewOptions& options) {
     // previewExr).
     if (created) {
       for (const std::string& png : written) std::filesystem::remove(png, ec);
-      std::filesystem::remove(dir, ec);  // only when empty
+      removeCreatedFolders(dir, existing);  // with the folders above it that it made; only when empty
     }
     throw;
   }

@@ -361,15 +361,24 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
   return lines;
 }
 
-// The nearest folder at or above the absolute `path` that exists: a run creates those below it.
+}  // namespace
+
 std::filesystem::path nearestExistingFolder(std::filesystem::path path) {
   std::error_code ec;
+  path = std::filesystem::absolute(path, ec);
   while (!std::filesystem::exists(path, ec) && path.has_parent_path() && path != path.parent_path())
     path = path.parent_path();
   return path;
 }
 
-}  // namespace
+void removeCreatedFolders(std::filesystem::path folder, const std::filesystem::path& existing) {
+  std::error_code ec;
+  folder = std::filesystem::absolute(folder, ec);
+  // Only when empty: remove() does not recurse.
+  for (std::filesystem::path p = folder;
+       p != existing && p.has_parent_path() && p != p.parent_path() && std::filesystem::remove(p, ec); p = p.parent_path()) {
+  }
+}
 
 const PreparedScene& frameScene(const RenderJob& job, RenderedFrame& rendered, bool first,
                                 std::unique_ptr<ReferenceFrame>& reference) {
@@ -598,11 +607,7 @@ class OutputRollback {
     if (removed > 0)
       std::fprintf(stderr, "dicsynth: removing the %zu file%s this run wrote in %s (a failed run keeps none)\n",
                    removed, removed == 1 ? "" : "s", dir_.c_str());
-    if (existed_) return;
-    // Only when empty: remove() does not recurse.
-    for (std::filesystem::path p = created_;
-         p != existing_ && p.has_parent_path() && p != p.parent_path() && std::filesystem::remove(p, ec); p = p.parent_path()) {
-    }
+    if (!existed_) removeCreatedFolders(created_, existing_);
   }
   void keep() { kept_ = true; }
 

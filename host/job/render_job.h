@@ -6,6 +6,7 @@
 // resolved precision, prepared textures) alive across points, and writes a point's files
 // (writeRenderedJob) on a worker thread while the next point renders.
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -148,6 +149,12 @@ CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, co
 
 // Creates `dir` (and parents); throws InputError naming it when that fails.
 void createOutputDir(const std::string& dir);
+// The nearest folder at or above `path` (made absolute) that exists: createOutputDir(path) creates
+// the folders below it.
+std::filesystem::path nearestExistingFolder(std::filesystem::path path);
+// Undoes createOutputDir after a failure: removes `folder` and the folders above it up to
+// `existing` (nearestExistingFolder before the creation; excluded), each only when empty.
+void removeCreatedFolders(std::filesystem::path folder, const std::filesystem::path& existing);
 // Throws InputError("-o DIR: ...") unless DIR, or the nearest existing folder above it, takes a new
 // file (tried with a temporary file, removed at once). Nothing else is created. `option` names the
 // output in the messages instead of "-o DIR" ("--junit FILE").

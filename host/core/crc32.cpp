@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "core/error.h"
@@ -24,6 +25,17 @@ std::uint32_t fileCrc32(const std::string& path) {
   std::fclose(f);
   if (failed) throw Error("cannot read '" + path + "': read error");
   return crc;
+}
+
+bool fileStillHolds(const std::string& path, const FileStamp& stamp, std::uint32_t crc32) {
+  const std::optional<FileStamp> now = fileStamp(path);
+  if (!now) return false;
+  if (*now == stamp) return true;
+  try {
+    return now->bytes == stamp.bytes && fileCrc32(path) == crc32;
+  } catch (const Error&) {
+    return false;
+  }
 }
 
 }  // namespace dicsynth

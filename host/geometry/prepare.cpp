@@ -314,18 +314,7 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
 
 }  // namespace
 
-bool PreparedTexture::fileUnchanged() const {
-  const std::optional<FileStamp> now = fileStamp(path);
-  if (!now) return false;
-  if (*now == stamp) return true;
-  // A touch, a copy of the same bytes over it (rsync, cp), another job writing the same texture
-  // again (a seeded `dicsynth speckle` in each shard's script) move the stamp, not the content.
-  try {
-    return now->bytes == stamp.bytes && fileCrc32(path) == contentCrc32;
-  } catch (const Error&) {
-    return false;
-  }
-}
+bool PreparedTexture::fileUnchanged() const { return fileStillHolds(path, stamp, contentCrc32); }
 
 PinholeModel<double> pinholeModel(const Camera& c) {
   PinholeModel<double> m;

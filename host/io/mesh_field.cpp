@@ -59,8 +59,21 @@ MeshField::MeshField(MeshFieldOptions options) : options_(std::move(options)) {
   const VtkModule& module = vtkModule();
   if (!module.open) throw InputError(path + ": reading a mesh needs VTK's module: " + module.failure);
   std::string error;
+  // Read under one stamp, the same before and after VTK read it and its CRC was taken, so that the
+  // CRC a sweep point records is of the mesh it rendered (VTK's readers take a path, not bytes).
+  const std::optional<FileStamp> before = fileStamp(path);
   handle_ = module.open(path.c_str(), options_.array.c_str(), options_.step, &info_, &error);
   if (!handle_) throw InputError(path + ": " + error);
+  try {
+    content_ = {path, before.value_or(FileStamp{}), fileCrc32(path)};
+  } catch (const Error& e) {
+    module.close(handle_);
+    throw InputError(path + ": cannot read the mesh: " + e.what());
+  }
+  if (!before || fileStamp(path) != before) {
+    module.close(handle_);
+    throw InputError(path + ": the mesh file changed while it was read: it is being written (render once it is complete)");
+  }
 }
 
 MeshField::~MeshField() {

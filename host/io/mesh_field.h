@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/crc32.h"
 #include "core/math.h"
 #include "io/vtk_module/mesh_field_module.h"
 
@@ -36,11 +37,15 @@ class MeshField {
   std::vector<dvec3> at(const std::vector<dvec3>& points_m) const;
 
   const MeshFieldOptions& options() const { return options_; }
+  // The file's content as read: the stamp it kept while VTK read it and its CRC-32 (a sweep point
+  // records it as an asset, core/crc32.h).
+  const FileContent& content() const { return content_; }
   const MeshFieldInfo& info() const { return info_; }
   std::string describe() const;  // "PATH 'array' step S: N points, M cells (quad M), bounds ... m"
 
  private:
   MeshFieldOptions options_;
+  FileContent content_;
   MeshFieldInfo info_;
   MeshFieldHandle* handle_ = nullptr;
   mutable std::mutex mutex_;

@@ -8,9 +8,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/crc32.h"
 #include "core/error.h"
 #include "core/math.h"
 #include "model/sensor_model.h"
@@ -71,6 +73,7 @@ struct Deformation {
   std::shared_ptr<const NurbsSurface> reference;  // S: the surface that was deformed (shape frame)
   DisplacementField field;  // d, callable after the scene ran (it keeps what it needs alive)
   std::string source;       // "Lua function (scene.lua:12)", or the mesh file, array and step
+  std::optional<FileContent> meshFile;  // Field.load's file as read (a sweep point's asset)
   double tolerance_m = 0;
   NurbsFitReport report;
   bool fromCache = false;   // the fit of an earlier frame, verified against this frame's field

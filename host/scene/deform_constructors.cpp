@@ -223,6 +223,7 @@ int nurbsDeform(lua_State* L) {
     mesh = field->mesh;
     deformation->field = [mesh](const std::vector<dvec3>& points) { return mesh->at(points); };
     deformation->source = mesh->describe();
+    deformation->meshFile = mesh->content();
   }
 
   NurbsSurface fitted;

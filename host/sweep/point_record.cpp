@@ -162,9 +162,10 @@ bool pointFilesIntact(const std::string& folder, const PointRecord& record, cons
   for (const PointFile& a : record.assets) {
     try {
       const PointFile now = assets.of(a.name);
-      if (now.bytes != a.bytes || now.crc32 != a.crc32) return fail("the texture " + a.name + " changed since");
+      // An asset is a texture or a Field.load mesh: named as the file it is.
+      if (now.bytes != a.bytes || now.crc32 != a.crc32) return fail("the file " + a.name + " changed since");
     } catch (const Error&) {
-      return fail("the texture " + a.name + " cannot be read now");  // the point cannot be as it was
+      return fail("the file " + a.name + " cannot be read now");  // the point cannot be as it was
     }
   }
   for (const PointFile& f : record.files) {

@@ -343,7 +343,7 @@ void runSweep(const SweepRun& cmd) {
     // once (the sweep audit met points re-rendered without a word after a texture was edited).
     if (recorded && recorded->index == p.index && recorded->key == key && damaged++ == 0)
       warn(pointFolderName(p.index) + " is rendered again: " + why +
-           " (as is every finished point whose textures or files are not as recorded)");
+           " (as is every finished point whose textures, meshes or files are not as recorded)");
     // A finished point made with other inputs is rendered again (its files replaced): said once, with
     // what differs, since a forgotten option would otherwise replace a whole sweep unnoticed.
     if (recorded && recorded->index == p.index && recorded->key != key && replaced++ == 0) {
@@ -416,6 +416,21 @@ void runSweep(const SweepRun& cmd) {
                            "file as it is then)");
         }
         rendered.push_back(assets.known(t.path, t.stamp, t.contentCrc32));
+      }
+    // The meshes of Field.load fields likewise (a rerun of the FE simulation rewrites them): before
+    // 2026-11-28 a point did not record them, and a sweep run again after the mesh changed took its
+    // points, made with the old field, as complete.
+    for (const RenderedFrame& f : result.frames)
+      for (const PreparedObject& o : f.scene.objects) {
+        if (!o.deformation || !o.deformation->meshFile) continue;
+        const FileContent& mesh = *o.deformation->meshFile;
+        if (!fileStillHolds(mesh.path, mesh.stamp, mesh.crc32)) {
+          collectWritten(true);
+          throw InputError(mesh.path + ": the mesh file changed while sweep point " + pointFolderName(p.index) +
+                           " rendered (the point is not recorded; a rerun renders it, and the points after it, with the "
+                           "file as it is then)");
+        }
+        rendered.push_back(assets.known(mesh.path, mesh.stamp, mesh.crc32));
       }
     record->assets = sweep::AssetChecksums::listed(std::move(rendered));
     writers.start([job, record, lock, folder, r = std::make_shared<RenderedJob>(std::move(result))] {

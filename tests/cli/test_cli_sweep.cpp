@@ -199,7 +199,7 @@ TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered ag
   CHECK(r.out.find("rendered 3, already complete 3") != std::string::npos);
   // Said once, at the first such point, with why (re-rendered without a word before: sweep audit).
   CHECK(r.err.find("warning: point_00001 is rendered again: its file cam.tif has another CRC-32 than recorded (as is "
-                   "every finished point whose textures or files are not as recorded)") != std::string::npos);
+                   "every finished point whose textures, meshes or files are not as recorded)") != std::string::npos);
   CHECK(r.err.find("point_00003 is rendered again") == std::string::npos);
   CHECK(readText(out + "/point_00000/point.json") == point0Record);  // untouched
   CHECK(manifestWithoutTimes(out) == before);

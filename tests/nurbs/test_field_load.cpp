@@ -614,3 +614,36 @@ TEST_CASE("field-load: a point near a cell's face is interpolated by the cell th
     CHECK(wrongPoints("quads", field, probes, truth) == 0);
   }
 }
+
+TEST_CASE("field-load: a sweep point records the mesh it rendered, and a changed mesh renders the point again") {
+  // An FE simulation run again rewrites its mesh: the points rendered with the old field must not
+  // stay complete (before 2026-11-28 a point recorded its textures only, and the rerun kept them).
+  test::TempFolder dir;
+  auto affine = [](double s) {
+    return [s](double x, double y) { return dvec3(s * 1e-4 * x, s * 2e-4 * y, 0); };
+  };
+  dir.write("field.vtu", quadGrid(3, -0.06, 0.06, -0.04, 0.04, affine(1)));
+  const std::string scene = dir.write(
+      "sweep.lua",
+      "gray = gray or 0.5\n"
+      "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.012; pixelSize = {8e-5, 8e-5} }\n"
+      "ref = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n"
+      "plate = Object.Simple { shape = Nurbs.deform { surface = ref; tolerance = 1e-12;\n"
+      "  displacement = Field.load { fileName = 'field.vtu' } }; shader = Shader.Constant { color = gray } }\n");
+  const std::string run = "sweep " + scene + " -o " + dir.file("out") + " --sweep gray=0.25,0.75 --spp 1 --backend cpu";
+  test::CliResult r = test::runCli(run);
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const std::string mesh = std::filesystem::canonical(dir.file("field.vtu")).string();
+  CHECK(test::readBytes(dir.file("out/point_00000/point.json")).find(mesh) != std::string::npos);
+  r = test::runCli(run);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.out.find("rendered 0, already complete 2") != std::string::npos);
+  // The simulation run again with another load: the same mesh, another field.
+  dir.write("field.vtu", quadGrid(3, -0.06, 0.06, -0.04, 0.04, affine(2)));
+  r = test::runCli(run);
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.out.find("rendered 2, already complete 0") != std::string::npos);
+  CHECK(r.err.find("point_00000 is rendered again: the file " + mesh + " changed since") != std::string::npos);
+}

@@ -129,6 +129,32 @@ void checkSameContent(const RenderJob& job, const Scene& scene, int frame, std::
                      "; run it again once the file is as you want it");
 }
 
+// Every frame of a job must render one content of each file the scene reads besides itself (a
+// Texture.File, a Field.load mesh), as of the scene file: a texture renamed over while a 30-frame
+// render ran gave frames of two speckle patterns, in the CLI and in Python, without a word, while
+// disp and flow took them for one material (the Python trial of 2026-11-28). The first frame's
+// content is the run's; a frame that read another stops the run as an edited scene file does.
+class InputContents {
+ public:
+  void check(const RenderJob& job, const PreparedScene& scene, int frame) {
+    for (const PreparedTexture& t : scene.textures) check(job, "texture", t.path, t.contentCrc32, frame);
+    for (const PreparedObject& o : scene.objects)
+      if (o.deformation && o.deformation->meshFile)
+        check(job, "mesh", o.deformation->meshFile->path, o.deformation->meshFile->crc32, frame);
+  }
+
+ private:
+  void check(const RenderJob& job, const char* kind, const std::string& path, std::uint32_t crc32, int frame) {
+    const auto [it, first] = seen_.try_emplace(path, crc32, frame);
+    if (first || it->second.first == crc32) return;
+    throw InputError(path + ": the " + kind + " file changed during the run (frame " + std::to_string(frame) +
+                     " read another content than frame " + std::to_string(it->second.second) + "): " +
+                     (job.sceneCrc32 ? "this point is not recorded" : "the run is undone") +
+                     "; run it again once the file is as you want it");
+  }
+  std::map<std::string, std::pair<std::uint32_t, int>> seen_;  // path: CRC-32, the frame that first read it
+};
+
 Scene loadFrameSceneAgain(RenderSession& session, const RenderJob& job, int frame, std::uint64_t checkedPixels,
                           std::uint32_t sceneCrc32) {
   Scene scene = loadFrameScene(job, frame, true);
@@ -249,7 +275,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
 }
 
 RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Scene& sceneOfFrame, int frame,
-                          RenderJobResult& summary) {
+                          RenderJobResult& summary, InputContents& contents) {
   const RenderArgs& args = session.args();
   RenderedFrame out;
   out.frame = frame;
@@ -275,6 +301,7 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
       }
     });
   out.scene = prepareScene(sceneOfFrame, {args.downscale, &session.textures()});
+  contents.check(job, out.scene, frame);
   phaseDone("prepare");
   // Coincident surfaces flicker on every backend (render/coincident_surfaces.h): checked on a job's
   // first frame (a sweep point's, a run's).
@@ -655,6 +682,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
       pending.erase(it);
     }
   };
+  InputContents contents;
   std::optional<ProgressBar> bar;
   if (!job.progressLabel.empty() && job.frames.size() > 1) bar.emplace("render", "frames", std::int64_t(job.frames.size()), stderrIsTerminal());
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
@@ -662,7 +690,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
     std::shared_ptr<RenderedFrame> rendered;
     try {
       const Scene scene = loadFrameSceneAgain(session, job, job.frames[fi], checked.maxPixelsPerFrame, checked.sceneCrc32);
-      rendered = std::make_shared<RenderedFrame>(renderFrame(session, job, scene, job.frames[fi], summary));
+      rendered = std::make_shared<RenderedFrame>(renderFrame(session, job, scene, job.frames[fi], summary, contents));
     } catch (...) {
       finishWriting();  // the previous frame still completes (its own error, if any, wins)
       throw;
@@ -694,10 +722,11 @@ RenderedJob renderJob(RenderSession& session, const RenderJob& job) {
   session.startDevice();
   const FramesChecked checked = checkFrames(session, job);
   out.calibrationPerFrame = checked.calibrationPerFrame;
+  InputContents contents;
   for (std::size_t fi = 0; fi < job.frames.size(); ++fi) {
     stopIfAsked(job.stop);
     out.frames.push_back(renderFrame(session, job, loadFrameSceneAgain(session, job, job.frames[fi], checked.maxPixelsPerFrame, checked.sceneCrc32),
-                                     job.frames[fi], out.summary));
+                                     job.frames[fi], out.summary, contents));
   }
   return out;
 }

@@ -3,9 +3,13 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <thread>
+#include <vector>
 
 #include "core/json.h"
 #include "exr_test_util.h"
@@ -260,4 +264,42 @@ TEST_CASE("cli: a render writes several frames at once with the same files, line
       CHECK(test::readBytes(dir.file(backend + "1/camera.yml")) == test::readBytes(dir.file(backend + writers + "/camera.yml")));
     }
   }
+}
+
+TEST_CASE("cli: a texture replaced while the frames of a run render stops the run, as an edited scene does") {
+  // Each frame prepares its scene again: a texture renamed over during a 30-frame run gave frames of
+  // two speckle patterns without a word, while disp and flow took them for one material (the
+  // Python trial of 2026-11-28: the frames' sources A and B mixed, on both backends and in the CLI).
+  test::TempFolder dir;
+  std::vector<std::uint16_t> a(64 * 64), b(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    a[i] = std::uint16_t(i * 2654435761u >> 16);
+    b[i] = std::uint16_t(65535 - a[i]);
+  }
+  writeGrayTiff(dir.file("a.tif"), 64, 64, a, 16, "");
+  writeGrayTiff(dir.file("b.tif"), 64, 64, b, 16, "");
+  const std::string bytesA = test::readBytes(dir.file("a.tif")), bytesB = test::readBytes(dir.file("b.tif"));
+  dir.write("t.tif", bytesA);
+  const std::string scene = dir.write(
+      "moving.lua",
+      "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.012; pixelSize = {8e-5, 8e-5} }\n"
+      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.08}; location = {1e-4 * frame, 0, 0.4} };\n"
+      "  shader = Shader.Constant { color = 1 }; texture = Texture.File { fileName = 't.tif' } }\n");
+  std::atomic<bool> stop{false};
+  std::thread writer([&] {
+    for (int i = 0; !stop; ++i) {
+      dir.write("t.new", i % 2 ? bytesA : bytesB);
+      std::filesystem::rename(dir.file("t.new"), dir.file("t.tif"));
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  });
+  const test::CliResult r =
+      test::runCli("render " + scene + " -o " + dir.file("out") + " --frames 0:29 --spp 1 --backend cpu --layers image");
+  stop = true;
+  writer.join();
+  INFO(r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find(": the texture file changed during the run (frame ") != std::string::npos);
+  CHECK(r.err.find("): the run is undone; run it again once the file is as you want it") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("out")));  // no frame of either content is left
 }

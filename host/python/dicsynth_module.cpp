@@ -102,8 +102,18 @@ int frameNumber(const py::handle& value, const std::string& what) { return int(i
 std::vector<int> frameList(const py::handle& frames) {
   if (py::isinstance<py::str>(frames) || py::isinstance<py::bytes>(frames) || py::isinstance<py::bool_>(frames))
     throw py::type_error("frames: an int or an iterable of ints, got " + std::string(py::str(frames.get_type())));
-  // Iterables first: a numpy array has __index__ too, which fails for more than one element.
-  if (!py::hasattr(frames, "__iter__")) {
+  // Iterables first: a numpy array has __index__ too, which fails for more than one element. A
+  // 0-d array (np.array(2)) has __iter__ and __len__, which raise "len() of unsized object", a
+  // TypeError not naming `frames` (the Python trial of 2026-11-28): it is one frame number.
+  const bool zeroDimensional = py::hasattr(frames, "ndim") && py::hasattr(frames, "shape") &&
+                               py::len(frames.attr("shape")) == 0;
+  if (zeroDimensional && py::hasattr(frames, "dtype")) {
+    const std::string kind = py::str(frames.attr("dtype").attr("kind"));
+    if (kind != "i" && kind != "u")
+      throw py::type_error("frames: an int or an iterable of ints, got a 0-d array of " +
+                           std::string(py::str(frames.attr("dtype"))));
+  }
+  if (zeroDimensional || !py::hasattr(frames, "__iter__")) {
     if (!PyIndex_Check(frames.ptr()))
       throw py::type_error("frames: an int or an iterable of ints, got " + std::string(py::str(frames.get_type())));
     return {frameNumber(frames, "frames: frame number")};

@@ -154,13 +154,16 @@ def test_arguments_out_of_range_name_the_argument(tmp_path):
         with pytest.raises(dicsynth.InputError) as error:
             make()
         assert str(error.value).startswith(message), str(error.value)
-    for kwargs in [{"frames": "0"}, {"frames": 1.5}, {"frames": [0.0]}, {"spp": 4.0}, {"frames": True}]:
+    for kwargs in [{"frames": "0"}, {"frames": 1.5}, {"frames": [0.0]}, {"spp": 4.0}, {"frames": True},
+                   {"frames": np.array(2.0)}]:
         with pytest.raises(TypeError, match="frames|spp"):
             renderer.render(scene, **kwargs)
     # What is accepted: one int, any iterable of ints, numpy's ints.
     assert sorted(renderer.render(scene, frames=1, spp=1, layers="image")) == [("camera", 1)]
     assert sorted(renderer.render(scene, frames=np.arange(2), spp=np.int64(1), layers="image")) == [("camera", 0), ("camera", 1)]
     assert sorted(renderer.render(scene, frames=(f for f in [2, 0]), spp=1, layers="image")) == [("camera", 0), ("camera", 2)]
+    # A 0-d array is one frame (it raised "len() of unsized object", naming no argument).
+    assert sorted(renderer.render(scene, frames=np.array(2), spp=1, layers="image")) == [("camera", 2)]
 
 
 def test_each_call_may_warn_again(tmp_path):

@@ -4,9 +4,9 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
 
 #include <algorithm>
-#include <cctype>
 #include <exception>
 #include <memory>
 
@@ -36,26 +36,17 @@ bool readNormalized(OIIO::ImageInput& in, int nchannels, OIIO::TypeDesc type, do
   return true;
 }
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t end; (end = text.find(separator, start)) != std::string::npos; start = end + 1)
-    parts.push_back(text.substr(start, end - start));
-  parts.push_back(text.substr(start));
-  return parts;
-}
-
 // The input formats OpenImageIO knows, the one the file's extension names first (the order in
 // which ImageInput::open tries them).
 std::vector<std::string> formatsToTry(const std::string& path) {
-  std::vector<std::string> formats = split(OIIO::get_string_attribute("input_format_list"), ',');
-  std::string extension = OIIO::Filesystem::extension(path, false);
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  using OIIO::Strutil::splits;
+  std::vector<std::string> formats = splits(OIIO::get_string_attribute("input_format_list"), ",");
+  const std::string extension = OIIO::Strutil::lower(OIIO::Filesystem::extension(path, false));
   // "extension_list": "tiff:tif,tiff,tx;png:png;..."
-  for (const std::string& entry : split(OIIO::get_string_attribute("extension_list"), ';')) {
+  for (const std::string& entry : splits(OIIO::get_string_attribute("extension_list"), ";")) {
     const std::size_t colon = entry.find(':');
     if (colon == std::string::npos || extension.empty()) continue;
-    const std::vector<std::string> extensions = split(entry.substr(colon + 1), ',');
+    const std::vector<std::string> extensions = splits(entry.substr(colon + 1), ",");
     const auto format = std::find(formats.begin(), formats.end(), entry.substr(0, colon));
     if (format != formats.end() && std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) {
       std::rotate(formats.begin(), format, format + 1);

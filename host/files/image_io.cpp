@@ -7,7 +7,6 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/file_stamp.h"
 #include "files/file_bytes.h"
 #include "files/oiio_reader.h"
 #include "files/tiff_io.h"
@@ -22,16 +21,11 @@ GrayImage decodeGrayImage(const std::string& path, std::string_view bytes, bool*
 }
 
 GrayImage readGrayImage(const std::string& path) {
-  constexpr int kReadings = 3;
-  for (int reading = 1; reading <= kReadings; ++reading) {
-    bool readPath = false;
-    const std::optional<FileBytes> file = readFileBytes(path);
-    if (!file) continue;
-    GrayImage image = decodeGrayImage(path, file->bytes, &readPath);
-    if (!readPath || fileStamp(path) == file->stamp) return image;
-  }
-  throw InputError(path + ": the file changed while it was read, " + std::to_string(kReadings) +
-                   " times: it is being written (read it once it is complete)");
+  // One reading: the retries of a file being written are the texture loader's (geometry/prepare.cpp),
+  // which also keeps the bytes' stamp and CRC.
+  const std::optional<FileBytes> file = readFileBytes(path);
+  if (!file) throw InputError(path + ": the file changed while it was read: it is being written (read it once it is complete)");
+  return decodeGrayImage(path, file->bytes);
 }
 
 void writeGrayTiff(AtomicFile& file, int width, int height, const std::vector<std::uint16_t>& values,

@@ -20,8 +20,8 @@ struct GrayImage {
 // (value / max; uint8 and uint16 exactly in double, others through OIIO's conversion); float formats
 // as stored. 1 channel → itself; 2 channels (gray + alpha) → the first; 3 or more → Rec. 709
 // luminance of the first three, taken as linear RGB as stored (alpha and further channels ignored).
-// Throws InputError("PATH: reason") when the file is missing, unreadable or empty, or when it kept
-// changing while it was read (files/file_bytes.h: three readings, each written in place meanwhile).
+// Throws InputError("PATH: reason") when the file is missing, unreadable or empty, or when it was
+// written in place while it was read (files/file_bytes.h).
 GrayImage readGrayImage(const std::string& path);
 
 // The same from the file's bytes, read by the caller (files/file_bytes.h); `path` names the file in

@@ -316,6 +316,13 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
 
 bool PreparedTexture::fileUnchanged() const { return fileStillHolds(path, stamp, contentCrc32); }
 
+void forEachInputFile(const PreparedScene& scene,
+                      const std::function<void(const char* kind, const FileContent& file)>& visit) {
+  for (const PreparedTexture& t : scene.textures) visit("texture", FileContent{t.path, t.stamp, t.contentCrc32});
+  for (const PreparedObject& o : scene.objects)
+    if (o.deformation && o.deformation->meshFile) visit("mesh", *o.deformation->meshFile);
+}
+
 PinholeModel<double> pinholeModel(const Camera& c) {
   PinholeModel<double> m;
   m.kind = c.kind();

@@ -4,11 +4,13 @@
 // to its precision variant.
 #include <compare>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "cameras/rays.h"
+#include "core/crc32.h"
 #include "core/file_stamp.h"
 #include "geometry/nurbs_bvh.h"
 #include "geometry/object_map.h"
@@ -152,5 +154,11 @@ inline int rigPartner(const PreparedScene& scene, std::size_t camera) {
 // distortion that cannot be inverted over the image, a camera or light on an object's plane at
 // infinity, a calibration target wholly behind a camera (none of its features in front of it).
 PreparedScene prepareScene(const Scene& scene, const PrepareOptions& options = {});
+
+// Calls `visit(kind, file)` for each file the prepared scene read besides the scene file, as it
+// read it: every texture ("texture") and every Field.load mesh ("mesh"). What a sweep point
+// records as its assets and what every frame of a run must read alike (job/render_job.cpp).
+void forEachInputFile(const PreparedScene& scene,
+                      const std::function<void(const char* kind, const FileContent& file)>& visit);
 
 }  // namespace dicsynth

@@ -137,21 +137,17 @@ void checkSameContent(const RenderJob& job, const Scene& scene, int frame, std::
 class InputContents {
  public:
   void check(const RenderJob& job, const PreparedScene& scene, int frame) {
-    for (const PreparedTexture& t : scene.textures) check(job, "texture", t.path, t.contentCrc32, frame);
-    for (const PreparedObject& o : scene.objects)
-      if (o.deformation && o.deformation->meshFile)
-        check(job, "mesh", o.deformation->meshFile->path, o.deformation->meshFile->crc32, frame);
+    forEachInputFile(scene, [&](const char* kind, const FileContent& file) {
+      const auto [it, first] = seen_.try_emplace(file.path, file.crc32, frame);
+      if (first || it->second.first == file.crc32) return;
+      throw InputError(file.path + ": the " + kind + " file changed during the run (frame " + std::to_string(frame) +
+                       " read another content than frame " + std::to_string(it->second.second) + "): " +
+                       (job.sceneCrc32 ? "this point is not recorded" : "the run is undone") +
+                       "; run it again once the file is as you want it");
+    });
   }
 
  private:
-  void check(const RenderJob& job, const char* kind, const std::string& path, std::uint32_t crc32, int frame) {
-    const auto [it, first] = seen_.try_emplace(path, crc32, frame);
-    if (first || it->second.first == crc32) return;
-    throw InputError(path + ": the " + kind + " file changed during the run (frame " + std::to_string(frame) +
-                     " read another content than frame " + std::to_string(it->second.second) + "): " +
-                     (job.sceneCrc32 ? "this point is not recorded" : "the run is undone") +
-                     "; run it again once the file is as you want it");
-  }
   std::map<std::string, std::pair<std::uint32_t, int>> seen_;  // path: CRC-32, the frame that first read it
 };
 

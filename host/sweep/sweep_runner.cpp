@@ -406,32 +406,20 @@ void runSweep(const SweepRun& cmd) {
     // old one, 7 of 10 trials). The same bytes under a new stamp (a touch, a copy over it, another
     // shard writing the same seeded texture again) are the content rendered: the run goes on (it
     // stopped before).
-    std::vector<sweep::PointFile> rendered;
-    for (const RenderedFrame& f : result.frames)
-      for (const PreparedTexture& t : f.scene.textures) {
-        if (!t.fileUnchanged()) {
-          collectWritten(true);
-          throw InputError(t.path + ": the texture file changed while sweep point " + pointFolderName(p.index) +
-                           " rendered (the point is not recorded; a rerun renders it, and the points after it, with the "
-                           "file as it is then)");
-        }
-        rendered.push_back(assets.known(t.path, t.stamp, t.contentCrc32));
-      }
     // The meshes of Field.load fields likewise (a rerun of the FE simulation rewrites them): before
     // 2026-11-28 a point did not record them, and a sweep run again after the mesh changed took its
     // points, made with the old field, as complete.
+    std::vector<sweep::PointFile> rendered;
     for (const RenderedFrame& f : result.frames)
-      for (const PreparedObject& o : f.scene.objects) {
-        if (!o.deformation || !o.deformation->meshFile) continue;
-        const FileContent& mesh = *o.deformation->meshFile;
-        if (!fileStillHolds(mesh.path, mesh.stamp, mesh.crc32)) {
+      forEachInputFile(f.scene, [&](const char* kind, const FileContent& file) {
+        if (!fileStillHolds(file.path, file.stamp, file.crc32)) {
           collectWritten(true);
-          throw InputError(mesh.path + ": the mesh file changed while sweep point " + pointFolderName(p.index) +
+          throw InputError(file.path + ": the " + kind + " file changed while sweep point " + pointFolderName(p.index) +
                            " rendered (the point is not recorded; a rerun renders it, and the points after it, with the "
                            "file as it is then)");
         }
-        rendered.push_back(assets.known(mesh.path, mesh.stamp, mesh.crc32));
-      }
+        rendered.push_back(assets.known(file.path, file.stamp, file.crc32));
+      });
     record->assets = sweep::AssetChecksums::listed(std::move(rendered));
     writers.start([job, record, lock, folder, r = std::make_shared<RenderedJob>(std::move(result))] {
       try {

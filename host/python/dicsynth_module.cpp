@@ -386,10 +386,7 @@ class PyRenderer {
   // calibration files hold. The scene is evaluated and its cameras prepared (the same checks as a
   // render: a distortion that folds over is an InputError here), its textures left unread.
   py::dict calibration(const PyScene& scene, int frame) {
-    PrepareOptions options;
-    options.downscale = downscale_;
-    options.textureData = false;
-    const PreparedScene prepared = prepareScene(evaluate(scene, frame), options);
+    const PreparedScene prepared = prepareWithoutTextures(scene, frame);
     py::dict cameras, rigs;
     for (const PreparedCamera& c : prepared.cameras) cameras[py::str(c.camera.name)] = cameraCalibration(c.camera);
     for (const PreparedRig& rig : prepared.rigs) {
@@ -476,10 +473,7 @@ class PyRenderer {
   // The scene is evaluated and prepared as for calibration(); the features' occlusion is traced on
   // the CPU in double, as the CLI's.
   py::dict features(const PyScene& scene, int frame) {
-    PrepareOptions options;
-    options.downscale = downscale_;
-    options.textureData = false;
-    const PreparedScene prepared = prepareScene(evaluate(scene, frame), options);
+    const PreparedScene prepared = prepareWithoutTextures(scene, frame);
     py::dict cameras;
     for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
       const std::vector<TargetTruth> targets = targetFeatureTruth(prepared, c);
@@ -502,6 +496,15 @@ class PyRenderer {
   std::string device() const { return device_; }
 
  private:
+  // The scene at `frame`, evaluated and prepared at the renderer's downscale with a render's checks,
+  // its textures' data left undecoded: what calibration() and features() state.
+  PreparedScene prepareWithoutTextures(const PyScene& scene, int frame) const {
+    PrepareOptions options;
+    options.downscale = downscale_;
+    options.textureData = false;
+    return prepareScene(evaluate(scene, frame), options);
+  }
+
   std::unique_ptr<RenderSession> session_;
   std::mutex renderMutex_;  // render(): one at a time
   int downscale_ = 1;

@@ -10,8 +10,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <system_error>
 #include <vector>
@@ -106,13 +104,6 @@ std::string TextureDiskCache::digestOf(std::string_view bytes) {
   unsigned int length = 0;
   if (EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr) != 1) return "";
   return hexString({digest, length});
-}
-
-std::string TextureDiskCache::contentDigest(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (!in.is_open() || in.bad()) return "";
-  return digestOf(bytes);
 }
 
 std::string TextureDiskCache::fileFor(const std::string& digest, Interpolation interpolation) const {

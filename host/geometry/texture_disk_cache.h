@@ -37,8 +37,6 @@ class TextureDiskCache {
 
   // The SHA-256 of `bytes` (a file's content, files/file_bytes.h) in hex; "" when OpenSSL fails.
   static std::string digestOf(std::string_view bytes);
-  // The SHA-256 of the file's bytes in hex; "" when it cannot be read.
-  static std::string contentDigest(const std::string& path);
 
   // The texture prepared from content `digest` with `interpolation`, when a valid file holds it
   // (its path set to `path`); marks the file recently used.

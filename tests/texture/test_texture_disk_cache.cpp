@@ -116,7 +116,7 @@ TEST_CASE("texture-disk-cache: a texture read back from disk equals its preparat
   // Another process (a new cache object): the coefficients come from the file, bit for bit.
   TextureCache second(TextureDiskCache(dir.path().string() + "/cache", kLimit));
   CHECK(prepared(scene, &second) == reference);
-  const std::string digest = TextureDiskCache::contentDigest(texture);
+  const std::string digest = TextureDiskCache::digestOf(test::readBytes(texture));
   REQUIRE(second.disk().find(digest, texture, Interpolation::Cubic));
   CHECK(second.disk().find(digest, texture, Interpolation::Cubic)->values() == reference);
   // The file is what a preparation reads: a forged file (other coefficients, its checksum made
@@ -148,7 +148,7 @@ TEST_CASE("texture-disk-cache: a damaged, truncated or foreign file is ignored a
   writeTexture(texture, kSide, 3);
   const Scene scene = sceneWith(dir, texture);
   const std::vector<double> reference = prepared(scene, nullptr);
-  const std::string digest = TextureDiskCache::contentDigest(texture);
+  const std::string digest = TextureDiskCache::digestOf(test::readBytes(texture));
   const TextureDiskCache disk(dir.path().string() + "/cache", kLimit);
   {
     TextureCache cache(disk);
@@ -209,8 +209,8 @@ TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays un
   prepared(sceneWith(dir, b), &cache);
   const std::vector<fs::path> files = cacheFiles(disk);
   REQUIRE(files.size() == 1);
-  CHECK(disk.find(TextureDiskCache::contentDigest(b), b, Interpolation::Cubic));
-  CHECK_FALSE(disk.find(TextureDiskCache::contentDigest(a), a, Interpolation::Cubic));
+  CHECK(disk.find(TextureDiskCache::digestOf(test::readBytes(b)), b, Interpolation::Cubic));
+  CHECK_FALSE(disk.find(TextureDiskCache::digestOf(test::readBytes(a)), a, Interpolation::Cubic));
 
   // A texture larger than the whole limit is not kept (the file just written survived trimming: a
   // 67 MB file in a 10 MiB folder, the cache audit of 2026-11-28).
@@ -221,8 +221,8 @@ TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays un
 
   // Concurrent writers of one key (two processes preparing the same texture) leave one valid file.
   const TextureDiskCache shared(dir.path().string() + "/shared", kLimit);
-  const PreparedTexture texture = *disk.find(TextureDiskCache::contentDigest(b), b, Interpolation::Cubic);
-  const std::string digest = TextureDiskCache::contentDigest(b);
+  const PreparedTexture texture = *disk.find(TextureDiskCache::digestOf(test::readBytes(b)), b, Interpolation::Cubic);
+  const std::string digest = TextureDiskCache::digestOf(test::readBytes(b));
   std::vector<std::thread> writers;
   for (int i = 0; i < 4; ++i) writers.emplace_back([&] { shared.store(digest, texture); });
   for (std::thread& t : writers) t.join();
@@ -242,7 +242,7 @@ TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays un
   prepared(sceneWith(dir, a), &again);  // stores a, trims (b goes: one file fits)
   CHECK(fs::exists(fresh));
   CHECK_FALSE(fs::exists(stale));
-  CHECK(disk.find(TextureDiskCache::contentDigest(a), a, Interpolation::Cubic));
+  CHECK(disk.find(TextureDiskCache::digestOf(test::readBytes(a)), a, Interpolation::Cubic));
   fs::remove(fresh);
 
   // A cache folder that cannot be created (a file stands in its way): preparing still works.

@@ -137,13 +137,23 @@ SceneResidency residencyOf(const PreparedScene& scene, std::uint32_t maxTexelBuf
   std::size_t texels = 0;
   for (const PreparedTexture& t : scene.textures) texels += t.values().size();
   r.texelView = texelViewPossible && texels <= maxTexelBufferElements;
-  if (r.uniformScene && scene.objects.size() >= 1 && scene.objects.size() <= DS_MAX_UNROLLED_OBJECTS)
+  // On a CPU device both loops unroll or neither:
+  // - the objects' loop unrolled with the lights' over a dynamic count crashed Mesa 25.0's lavapipe
+  //   (SIGSEGV in a recursion of its shader compiler, on its own thread: one object and five lights,
+  //   every precision, up to the uniform block's light capacity; the radiometry trial of
+  //   2026-11-29). Mesa 22.3 compiled it; both loops dynamic, or storage buffers, compile on both;
+  // - the lights' loop unrolled around a loop over a dynamic object count (each light's shadow ray
+  //   inlines that loop) doubled lavapipe's cold pipeline creation and rendered no faster
+  //   (bench/RESULTS.md, "Unrolled object counts").
+  const bool lightsExact = scene.lights.size() <= DS_MAX_UNROLLED_LIGHTS;
+  if (r.uniformScene && scene.objects.size() >= 1 && scene.objects.size() <= DS_MAX_UNROLLED_OBJECTS &&
+      (lightsExact || !cpuDevice))
     r.objectCount = int(scene.objects.size());
-  if (r.uniformScene && scene.lights.size() <= DS_MAX_UNROLLED_LIGHTS) r.lightCount = int(scene.lights.size());
+  if (r.uniformScene && lightsExact && (r.objectCount > 0 || !cpuDevice)) r.lightCount = int(scene.lights.size());
   // Not with NURBS: their loop indexes the objects by a variable (lib/trace.glsl), so the copies would
   // be memory that every invocation fills in full (the NURBS plate rendered 4-9 % slower).
   r.localScene = rendererOptions.localScene && cpuDevice && !scene.features.hasShape(ShapeKind::Nurbs) &&
-                 (r.objectCount > 0 || r.lightCount >= 0);
+                 r.objectCount > 0;
   return r;
 }
 

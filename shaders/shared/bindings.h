@@ -30,7 +30,14 @@
 
 // Object and light counts up to which the pipeline is specialized to the exact count (loops over
 // objects and lights unroll to constant indices); above, the count comes from the push constants.
-#define DS_MAX_UNROLLED_OBJECTS 4
+// 8 objects, not 4: on lavapipe a loop over a dynamic count reading the objects' uniform block
+// compiled for minutes on a cold shader cache (LLVM's coroutine pass over the lane-by-lane loads),
+// while the unrolled loop compiles in seconds and renders faster on both Mesas. Measured
+// 2026-11-29 on the 2-core VM (bench/RESULTS.md, "Unrolled object counts"): 8 objects, 2 lights,
+// cold pipeline creation fp32 / df64 / fp64 on Mesa 25: 94 / 91 / 36 s dynamic, 4.1 / 15.5 /
+// 11.6 s unrolled; 640 × 480 fp32 16 spp render 0.42 -> 0.32 s (Mesa 25), 2.55 -> 0.81 s (Mesa 22.3).
+// Unrolled 16 objects took 16 / 49 / 43 s to create: the unrolled code grows faster than linearly.
+#define DS_MAX_UNROLLED_OBJECTS 8
 #define DS_MAX_UNROLLED_LIGHTS 4
 
 // Deepest NURBS BVH the traversal stack holds (root = depth 0); the host refuses deeper ones.

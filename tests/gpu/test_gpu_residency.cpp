@@ -96,6 +96,30 @@ TEST_CASE("gpu-residency: uniform blocks, texel buffer and exact counts change n
       test::checkSameArithmetic(scene, chosen, renderer.render(scene, options, storageOnly()), p);
     }
   }
+  // DS_MAX_UNROLLED_OBJECTS objects (a floor and 7 spheres, 2 lights): still the exact count, and on a
+  // CPU device copied, against the CPU reference (fp32: one pipeline creation of a few seconds; the
+  // dynamic object loop it replaces took minutes on a cold shader cache, bench/RESULTS.md
+  // "Unrolled object counts").
+  test::TempFolder folder;
+  const PreparedScene eight = prepareScene(loadScene(folder.write("grid.lua", gridScene(7, 2)), {}), {1});
+  REQUIRE(eight.objects.size() == DS_MAX_UNROLLED_OBJECTS);
+  options.precision = Precision::Fp32;
+  const gpu::SceneResidency where = renderer.residency(Precision::Fp32, eight, {});
+  CHECK(where.objectCount == DS_MAX_UNROLLED_OBJECTS);
+  CHECK(where.lightCount == 2);
+  CHECK(where.localScene == cpuDevice());
+  const RenderResult reference = cpu::render(eight, options);
+  std::set<std::uint32_t> seen(reference.cameras[0].objectId.begin(), reference.cameras[0].objectId.end());
+  seen.erase(0);  // background
+  CHECK(seen.size() == DS_MAX_UNROLLED_OBJECTS);  // every object covers pixels
+  const Tolerances tol = tolerancesFor(Precision::Fp32);
+  const RenderResult unrolled = renderer.render(eight, options);
+  for (const CameraDifference& d : compareResults(eight, reference, unrolled, tol)) {
+    MESSAGE("grid of 7 spheres, 2 lights, fp32: max dL " << d.maxRadianceDiff << ", max dP " << d.maxPositionDiff_m
+            << " m, object mismatches " << d.objectIdMismatches);
+    CHECK(withinTolerance(d, tol));
+  }
+  test::checkSameArithmetic(eight, unrolled, renderer.render(eight, options, storageOnly()), Precision::Fp32);
   test::expectNoValidationMessages();
 }
 
@@ -119,20 +143,24 @@ TEST_CASE("gpu-residency: the per-invocation copies hold every member the shader
                                 renderer.render(scene, options, withoutLocalCopies()), p);
     }
   }
-  // More objects than the unrolled count but lights within it: only the lights are copied. Not in
-  // df64, whose lights are the same float members as fp32's (GpuLight has no hreal member) and whose
-  // pipeline for this scene takes ~20 s to create on Mesa 22.3 with a cold shader cache.
+  // More objects than the unrolled count, lights within theirs: a GPU unrolls the lights alone, a
+  // CPU device neither (gpu/renderer.cpp residencyOf: unrolled around the dynamic object loop, the
+  // lights doubled lavapipe's cold pipeline creation), and copies nothing. The CPU device's
+  // pipeline is the one of the 41-object scene below (same kinds, both counts dynamic), so the
+  // comparison here costs no pipeline creation of its own on a warm shader cache.
   test::TempFolder folder;
-  const PreparedScene lightsOnly = prepareScene(loadScene(folder.write("grid.lua", gridScene(5, 2)), {}), {1});
+  const PreparedScene lightsOnly = prepareScene(loadScene(folder.write("grid.lua", gridScene(9, 2)), {}), {1});
+  REQUIRE(lightsOnly.objects.size() == DS_MAX_UNROLLED_OBJECTS + 2);
   for (Precision p : {Precision::Fp64, Precision::Fp32}) {
-    INFO("grid of 5 spheres, 2 lights, " << std::string(toString(p)));
+    INFO("grid of 9 spheres, 2 lights, " << std::string(toString(p)));
     options.precision = p;
     const gpu::SceneResidency where = renderer.residency(p, lightsOnly, {});
     CHECK(where.objectCount == 0);
-    CHECK(where.lightCount == 2);
-    CHECK(where.localScene == cpuDevice());
-    test::checkSameArithmetic(lightsOnly, renderer.render(lightsOnly, options),
-                              renderer.render(lightsOnly, options, withoutLocalCopies()), p);
+    CHECK(where.lightCount == (cpuDevice() ? -1 : 2));
+    CHECK_FALSE(where.localScene);
+    if (p == Precision::Fp32)
+      test::checkSameArithmetic(lightsOnly, renderer.render(lightsOnly, options),
+                                renderer.render(lightsOnly, options, storageOnly()), p);
   }
   // Not with NURBS: their loop's variable object index would make the copies memory (renderer.cpp).
   const PreparedScene nurbs =
@@ -176,6 +204,40 @@ TEST_CASE("gpu-residency: more objects and lights than the unrolled counts and t
     }
     // And the storage layout gives the same image as the one chosen.
     test::checkSameArithmetic(scene, gpu, renderer.render(scene, options, storageOnly()), p);
+  }
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("gpu-residency: more lights than the unrolled count over few objects render, as the CPU reference") {
+  // One object and five lights crashed Mesa 25.0's lavapipe (SIGSEGV in its shader compiler) while
+  // the objects' loop unrolled and the lights' ran over a dynamic count: exit 139 and no message, on
+  // every precision, from 5 lights up to the uniform block's capacity (the radiometry trial of
+  // 2026-11-29). A CPU device now unrolls both loops or neither (gpu/renderer.cpp residencyOf).
+  // A floor, one sphere and five lights: the kinds of the 41-object scene above, so that fp32's
+  // pipeline is that scene's (both counts dynamic) and a warm shader cache compiles nothing here.
+  test::TempFolder folder;
+  const PreparedScene scene = prepareScene(loadScene(folder.write("lights.lua", gridScene(1, 5)), {}), {1});
+  REQUIRE(scene.lights.size() == DS_MAX_UNROLLED_LIGHTS + 1);
+  gpu::Renderer renderer(test::gpuContext());
+  for (Precision p : {Precision::Fp64, Precision::Df64, Precision::Fp32}) {
+    INFO(std::string(toString(p)));
+    const gpu::SceneResidency where = renderer.residency(p, scene, {});
+    CHECK(where.uniformScene);
+    CHECK(where.objectCount == (cpuDevice() ? 0 : 2));
+    CHECK(where.lightCount == -1);
+    CHECK_FALSE(where.localScene);
+  }
+  RenderOptions options;
+  options.samplesPerPixel = kSpp;
+  options.seed = 5;
+  options.precision = Precision::Fp32;
+  const RenderResult reference = cpu::render(scene, options);
+  const RenderResult gpu = renderer.render(scene, options);
+  const Tolerances tol = tolerancesFor(Precision::Fp32);
+  for (const CameraDifference& d : compareResults(scene, reference, gpu, tol)) {
+    MESSAGE("floor, sphere, 5 lights, fp32: max dL " << d.maxRadianceDiff << ", max dP " << d.maxPositionDiff_m
+            << " m, object mismatches " << d.objectIdMismatches);
+    CHECK(withinTolerance(d, tol));
   }
   test::expectNoValidationMessages();
 }

@@ -116,7 +116,14 @@ void checkDistortionInvertible(const PreparedCamera& pc) {
     double corner = 0;
     for (const double x : {-0.5, w - 0.5})
       for (const double y : {-0.5, h - 0.5}) corner = std::max(corner, std::hypot((x - m.cx) / m.fx, (y - m.cy) / m.fy));
-    if (corner > 10)
+    // A telecentric camera's normalized coordinates are metres on the object side (cameras.md): 10 m
+    // from the axis is no telecentric field either, and its scale is magnification / pixelSize (an
+    // orthographic camera has no focalLength; the camera trial of 2026-11-29 was sent looking for one).
+    if (corner > 10 && pc.camera.kind() == CameraKind::Orthographic)
+      msg << " (the image's corner lies " << corner << " m from the axis on the object side: fx = " << m.fx
+          << " and fy = " << m.fy
+          << " px per metre; check magnification and pixelSize (in metres), then the coefficients, which are in metres too)";
+    else if (corner > 10)
       msg << " (the image's corner lies at a normalized radius of " << corner << ", " << std::atan(corner) * 180 / kPi
           << " degrees off the axis: fx = " << m.fx << " px, fy = " << m.fy
           << " px; check focalLength and pixelSize, both in metres, then the coefficients)";

@@ -16,6 +16,8 @@
 #include "camera/distortion.h"
 #include "distortion_test_util.h"
 #include "geometry/prepared_scene.h"
+#include "scene/scene.h"
+#include "temp_folder.h"
 
 using namespace dicsynth;
 
@@ -257,4 +259,28 @@ TEST_CASE("distortion inverse: a refusal at a near-hemispherical field of view n
   CHECK(fold.find("(check the coefficients)") != std::string::npos);
   CHECK(fold.find("pixelSize") == std::string::npos);
   CHECK(messageOf(6.9e-6, brown).empty());  // the size meant: accepted
+}
+
+TEST_CASE("distortion inverse: a telecentric camera's refusal names magnification and pixelSize, not focalLength") {
+  // pixelSize = {5, 5} (µm typed as metres) on a Camera.Orthographic: the message said "degrees off
+  // the axis" and "check focalLength", a key that camera refuses (the camera trial of 2026-11-29).
+  // Its normalized coordinates are metres on the object side: the corner lies 4,000 m out.
+  test::TempFolder folder;
+  const std::string path = folder.write("tele.lua",
+      "camera = Camera.Orthographic { resolution = {640, 480}; pixelSize = {5, 5}; magnification = 0.5;\n"
+      "  distortion = Distortion.Brown { radial = {-200} } }\n"
+      "plate = Object.Simple { shape = Shape.Rectangle { size = {0.02, 0.02}; location = {0, 0, 0.1} };\n"
+      "  shader = Shader.Constant { color = 0.5 } }\n");
+  std::string message;
+  try {
+    prepareScene(loadScene(path, {}));
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  INFO(message);
+  CHECK(message.find("/tele.lua:1: Distortion.Brown of camera 'camera' cannot be inverted") != std::string::npos);
+  CHECK(message.find("m from the axis on the object side: fx = 0.1 and fy = 0.1 px per metre; check magnification and "
+                     "pixelSize (in metres)") != std::string::npos);
+  CHECK(message.find("focalLength") == std::string::npos);
+  CHECK(message.find("degrees") == std::string::npos);
 }

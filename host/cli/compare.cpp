@@ -76,6 +76,7 @@ std::string toJson(const CompareItem& item, const RenderResult& cpu, const Rende
     Json::Value& c = cameras[d.camera] = Json::Value(Json::objectValue);
     c["pixels"] = Json::UInt64(d.pixels);
     c["max_radiance_diff"] = json::value(d.maxRadianceDiff);
+    c["max_radiance_ratio"] = json::value(d.maxRadianceRatio);
     c["rms_radiance_diff"] = json::value(d.rmsRadianceDiff);
     c["pixels_differing"] = Json::UInt64(d.pixelsDiffering);
     c["radiance_outliers"] = Json::UInt64(d.radianceOutliers);
@@ -126,12 +127,14 @@ std::string format(const char* fmt, auto... values) {
 // The text block of one camera (stdout and the JUnit failure's details).
 std::string cameraText(const CameraDifference& d, const Tolerances& tol) {
   return format(
-      "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, over tolerance %.3g: %zu px (%zu off edges);"
+      "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, worst difference/bound %.3g, over bound"
+      " (%.3g of full scale, relative above it, + shading terms): %zu px (%zu off edges);"
       " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px (%zu off edges),"
       " ties %zu px; max |duv| %.3g,"
       " max |dP| %.3g m, max |dZ| %.3g m, max |dN| %.3g; worst error/bound %.3g, over bound: %zu px\n"
       "    wrong nearest hits: %zu px (miss %zu, extra hit %zu, other object %zu, farther root %zu, nearer root %zu)\n",
-      d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff, tol.radiance,
+      d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff, d.maxRadianceRatio,
+      tol.radiance,
       d.radianceOutliers, d.radianceOutliersOffEdge, d.pixelsDiffering, d.objectIdMismatches,
       d.objectIdMismatchesOffEdge, d.objectTies, d.maxUvDiff, d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxNormalDiff, d.maxGeometryRatio,
       d.geometryOutliers, d.wrongNearestHits(), d.wrongMiss, d.wrongExtraHit, d.wrongOtherObject, d.wrongFartherRoot,

@@ -311,6 +311,7 @@ std::vector<CameraDifference> compareResults(const PreparedScene& scene, const R
         d.maxGeometryRatio = worst(d.maxGeometryRatio, ratio);
         if (!(ratio <= 1)) ++d.geometryOutliers;
       }
+      d.maxRadianceRatio = worst(d.maxRadianceRatio, dr / boundRadiance);
       if (!(dr <= boundRadiance)) {
         ++d.radianceOutliers;
         if (!edge) ++d.radianceOutliersOffEdge;

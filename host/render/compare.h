@@ -20,6 +20,11 @@ struct CameraDifference {
   // Radiance as a fraction of full scale (radiance × exposure): what the sensor would see.
   double maxRadianceDiff = 0;
   double rmsRadianceDiff = 0;
+  // Worst radiance difference over its per-pixel bound (≤ 1: fine): Tolerances::radiance of full
+  // scale, relative above full scale, plus (fp32, df64) the derived shading terms, which grow as a
+  // light nears a surface. maxRadianceDiff alone can read as a failure where the bound is wide
+  // (8e27 beside a lamp on a sphere, PASS: the radiometry trial of 2026-11-29).
+  double maxRadianceRatio = 0;
   std::size_t pixelsDiffering = 0;      // digital numbers (bitsPerPixel) differ
   std::size_t radianceOutliers = 0;     // pixels whose radiance difference exceeds the tolerance
   std::size_t objectIdMismatches = 0;   // pixel-centre rays hit different objects (or one misses)

@@ -133,6 +133,7 @@ TEST_CASE("cli: --tolerance-scale tightens the lights' share of the radiance tol
   const Json::Value& camera = (*result)["cameras"]["camera"];
   CHECK(camera["max_radiance_diff"].asDouble() > 1e-9);
   CHECK(camera["radiance_outliers"].asUInt64() > 100);
+  CHECK(camera["max_radiance_ratio"].asDouble() > 1);  // the worst difference over its per-pixel bound
   // The masks' visibility is traced by the GPU's query and the CPU reference, and compared: the
   // camera's own hits towards itself (no rig), every answer the same.
   CHECK(camera["visibility"]["camera"].asString() == "camera");

@@ -80,6 +80,10 @@ TEST_CASE("cli: compare --json reports every camera and passes on a scene") {
     CHECK(json::numberMember(camera, key));
   CHECK(json::countMember(camera, "pixels_differing"));
   CHECK(json::boolMember(camera, "pass") == true);
+  // A pass: every pixel's radiance difference within its bound.
+  const std::optional<double> ratio = json::numberMember(camera, "max_radiance_ratio");
+  REQUIRE(ratio);
+  CHECK(*ratio <= 1);
 }
 
 TEST_CASE("cli: scene errors give one line with file:line, exit code 2 and no output") {

@@ -1,10 +1,13 @@
 // Shader.<Kind> for every reflectance model of the registry (host/reflectance/registry.h: each
 // kind's home documents its parameters and formulas); Light.Point, Light.Ambient, Light.Spot (the
 // radiance sum over lights: host/cpu/shading.h). docs/reflectance.md repeats the tables.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "core/exact_number.h"
+#include "core/warning.h"
 #include "scene/constructors.h"
 #include "reflectance/registry.h"
 #include "scene/lua_values.h"
@@ -31,6 +34,19 @@ int shaderConstructor(lua_State* L) {
   Shader shader;
   shader.where = LuaSandbox::of(L).here(L);
   shader.color = readColor(p, "color", dvec3(Kind::kDefaultColor));
+  // A lit shader's colour is an albedo: above 1 the surface sends back more light than falls on it.
+  // Said, not refused (the image renders as asked): Shader.Lambert { color = 5 } rendered 5 times
+  // the physical radiance without a word (the radiometry trial of 2026-11-29). Shader.Constant's
+  // colour is a radiance, which may exceed 1. Once per constructor line (the scene runs every frame).
+  if (Kind::kLit) {
+    const double most = std::max({shader.color.x, shader.color.y, shader.color.z});
+    if (most > 1) {
+      const std::string text = shader.where.str() + ": " + name + "'s color reaches " + shortestNumber(most) +
+                               ", an albedo above 1: the surface reflects more light than falls on it (brighten the "
+                               "image with the lights' intensity or the camera's exposure instead)";
+      warnAtMost("albedo above 1: " + text, 1, text);
+    }
+  }
   shader.model = Kind::parse(p);
   pushUserdata(L, std::move(shader));
   return 1;

@@ -474,3 +474,26 @@ TEST_CASE("scene: a global alias of an object, light or camera is a warning nami
   CHECK(said[2] == path + ":2: the globals 'plate' and 'plate2' hold the same object, which is rendered 2 times, its surfaces "
                           "coincident (every global is collected: keep one name, or make the others `local`)");
 }
+
+TEST_CASE("scene: a lit shader's color above 1 is said once with its line but a Constant's radiance is not") {
+  // Shader.Lambert { color = 5 } rendered five times the physical radiance without a word (the
+  // radiometry trial of 2026-11-29): an albedo is at most 1. RGB: any channel above 1.
+  test::TempFolder folder;
+  const std::string path = folder.write(
+      "albedo.lua",
+      "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+      "a = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {0, 0, 0.5} };\n"
+      "  shader = Shader.Lambert { color = 5 } }\n"
+      "b = Object.Simple { shape = Shape.Sphere { radius = 0.01; location = {0, 0, 0.4} }; shader = Shader.GGX { color = {0.2, 1.5, 0.1} } }\n"
+      "c = Object.Simple { shape = Shape.Sphere { radius = 0.01; location = {0.05, 0, 0.4} }; shader = Shader.Constant { color = 3 } }\n"
+      "d = Object.Simple { shape = Shape.Sphere { radius = 0.01; location = {-0.05, 0, 0.4} }; shader = Shader.Phong { color = 1 } }\n"
+      "lamp = Light.Point { position = {0, 0, 0}; intensity = 1 }\n");
+  WarningCapture capture;
+  loadScene(path, {});
+  loadScene(path, {});  // a second frame: said once
+  const std::vector<std::string> said = capture.take();
+  REQUIRE(said.size() == 2);
+  CHECK(said[0] == path + ":3: Shader.Lambert's color reaches 5, an albedo above 1: the surface reflects more light than "
+                          "falls on it (brighten the image with the lights' intensity or the camera's exposure instead)");
+  CHECK(said[1].find(path + ":4: Shader.GGX's color reaches 1.5, an albedo above 1") == 0);
+}

@@ -1,7 +1,7 @@
 -- Depth of field: a speckled plate (5 cm x 6 cm) tilted 60° about the vertical, seen by a thin lens
 -- (f = 50 mm at f/8, focused at 0.5 m) with OpenCV's rational + thin-prism distortion. The plate's
 -- middle lies on the plane in focus and is sharp; its ends (about 0.478 m and 0.522 m away) are
--- blurred by disks of diameter c = A fx |1/u - 1/d| ≈ 6.4 px and 5.9 px (A = f/N = 6.25 mm,
+-- blurred by disks of diameter c = A fx |1/u - 1/d| ≈ 6.3 px and 5.8 px (A = f/N = 6.25 mm,
 -- fx = v / pixel size = 11111 px at v = 55.6 mm, the image distance of 0.5 m). A backdrop at 0.7 m
 -- is blurred by 40 px. The camera matrix (fx = v/sx) and the ground truth are the chief ray's.
 -- Camera.ThinLens and Distortion.Rational: docs/cameras.md.

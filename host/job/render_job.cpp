@@ -411,7 +411,8 @@ const PreparedScene& frameScene(const RenderJob& job, RenderedFrame& rendered, b
     reference = std::make_unique<ReferenceFrame>(rendered.frame, std::move(rendered.scene), rendered.result, otherFrames, motion);
   // The reference frame's scene now lives in `reference` (moved: its textures are not copied).
   const PreparedScene& scene = first ? reference->scene() : rendered.scene;
-  // One guard for every cause (a colour, an intensity, an exposure near the double range): the
+  // One guard for every cause (a colour, an intensity, an exposure near the double range, a lamp on
+  // a curved surface: 8e43 at a pixel for I = 1e12, the radiometry trial of 2026-11-29): the
   // radiance must survive the float32 of the EXR and the sensor, or the run stops before writing.
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
     const CameraImage& image = rendered.result.cameras[c];
@@ -421,7 +422,8 @@ const PreparedScene& frameScene(const RenderJob& job, RenderedFrame& rendered, b
                          scene.cameras[c].camera.name + ": the radiance at pixel (" +
                          std::to_string(i % std::size_t(image.width_px)) + ", " +
                          std::to_string(i / std::size_t(image.width_px)) + ") is " + shortestNumber(image.radiance[i]) +
-                         ", beyond float32 (a shader colour or light intensity near the double range?)");
+                         ", beyond float32 (a light on or a hair from a surface, where I cos θ / r² grows without "
+                         "bound as r -> 0, or a shader colour or light intensity near the double range?)");
   }
   return scene;
 }
@@ -444,6 +446,38 @@ OutputInfo frameInfo(const RenderJob& job, const RenderedFrame& rendered, const 
   return info;
 }
 
+// A thin lens whose blur disk at a seen point is wider than the image is nearly always a unit
+// mistake: focalLength = 50 and focusDistance = 500 (mm typed as metres) on a plate 0.5 m away
+// rendered black with exit 0, the plate 1/100 of a focal length from the lens, every lens sample
+// but the chief ray missing it (the camera trial of 2026-11-29). The blur diameter of a point at
+// depth d is A fx |1/u - 1/d| px (cameras/thin_lens.h); the widest over the pixel centres that see
+// an object is compared with the image's diagonal. Said, not refused (a deliberately blurred
+// backdrop is a few tens of pixels); at most 3 per run. Needs the depth layer's rays (not traced
+// for --layers image alone).
+void warnAboutThinLensBlur(const PreparedCamera& pc, const CameraImage& image, int frame) {
+  const auto* lens = std::get_if<cameras::ThinLens>(&pc.camera.model);
+  if (!lens || image.depth_m.size() != image.pixelCount()) return;
+  double widest_px = 0;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < image.depth_m.size(); ++i) {
+    const double d = image.depth_m[i];
+    if (image.objectId[i] == 0 || !(d > 0)) continue;
+    const double blur_px = lens->aperture_m * pc.model.fx * std::abs(1 / lens->focusDistance_m - 1 / d);
+    if (blur_px > widest_px) widest_px = blur_px, at = i;
+  }
+  const double diagonal_px = std::hypot(double(image.width_px), double(image.height_px));
+  if (!(widest_px > diagonal_px)) return;
+  warnAtMost("thin lens blur wider than the image", 3,
+             "camera " + pc.camera.name + ", frame " + std::to_string(frame) + ": Camera.ThinLens blurs the point seen at pixel (" +
+                 std::to_string(at % std::size_t(image.width_px)) + ", " + std::to_string(at / std::size_t(image.width_px)) +
+                 "), depth " + shortestNumber(image.depth_m[at]) + " m, over a disk " + shortestNumber(widest_px) +
+                 " px across, wider than the image (" + shortestNumber(std::round(diagonal_px)) +
+                 " px diagonal; aperture " + shortestNumber(lens->aperture_m) + " m, focus distance " +
+                 shortestNumber(lens->focusDistance_m) + " m): check focalLength, focusDistance and fNumber or aperture, "
+                 "in metres",
+             " (further such cameras are not reported)");
+}
+
 CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, const PreparedScene& scene, std::size_t c,
                          const ReferenceFrame& reference) {
   const Camera& cam = scene.cameras[c].camera;
@@ -459,6 +493,7 @@ CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, co
                    ": no pixel centre sees an object (the image is all background): check the camera's pose and the "
                    "objects' locations",
                " (further images of background only are not reported)");
+  warnAboutThinLensBlur(scene.cameras[c], rendered.result.cameras[c], rendered.frame);
   out.truth = deriveTruth(reference, rendered.frame, scene, rendered.result, c, job.layers, rendered.visibility);
   phaseDone("truth");
   if (!out.truth.disparityCamera.empty() && out.truth.disparityVisibleCount == 0)

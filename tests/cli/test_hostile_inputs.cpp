@@ -749,3 +749,33 @@ TEST_CASE("hostile: a scene file edited while its frames render stops the run, u
   CHECK(r.err.find(scene + ": the scene file changed during the run (frame ") != std::string::npos);
   CHECK(!std::filesystem::exists(out));  // created by the run: gone with it
 }
+
+TEST_CASE("hostile inputs: a thin lens in millimetres whose blur disk is wider than the image is said but a sane one is not") {
+  // focalLength = 50 and focusDistance = 500 (mm typed as metres) before a plate 0.5 m away: the
+  // plate lies 1/100 of a focal length from the lens, and every lens sample but the chief ray
+  // missed it: a black image, exit 0, nothing said (the camera trial of 2026-11-29). The blur
+  // diameter there is A fx |1/u - 1/d| = 6.25 m × 1.11e7 px × |1/500 - 1/0.5| ≈ 1.4e8 px.
+  test::TempFolder dir;
+  const auto lensScene = [&](const std::string& name, const std::string& lens) {
+    return dir.write(name, "cam = Camera.ThinLens { resolution = {64, 48}; pixelSize = {5e-6, 5e-6}; " + lens +
+                               " }\n"
+                               "p = Object.Simple { shape = Shape.Rectangle { size = {0.05, 0.05}; location = {0, 0, 0.5} } }\n");
+  };
+  const std::string mm = lensScene("mm.lua", "focalLength = 50; fNumber = 8; focusDistance = 500");
+  const test::CliResult wrong = test::runCli("render " + mm + " -o " + dir.file("mm") + " --backend cpu --spp 1");
+  INFO(wrong.err);
+  CHECK(wrong.exitCode == 0);
+  CHECK(wrong.err.find("warning: camera cam, frame 0: Camera.ThinLens blurs the point seen at pixel (") != std::string::npos);
+  CHECK(wrong.err.find("px across, wider than the image (80 px diagonal; aperture 6.25 m, focus distance 500 m): check "
+                       "focalLength, focusDistance and fNumber or aperture, in metres") != std::string::npos);
+  // The same lens in metres, the plate at the focus distance: sharp, nothing said.
+  const std::string metres = lensScene("m.lua", "focalLength = 0.05; fNumber = 8; focusDistance = 0.5");
+  const test::CliResult right = test::runCli("render " + metres + " -o " + dir.file("m") + " --backend cpu --spp 1");
+  CHECK(right.exitCode == 0);
+  CHECK(right.err.find("Camera.ThinLens blurs") == std::string::npos);
+  // scenes/thin_lens.lua blurs its backdrop by ~40 px on purpose (cameras.md): not said either.
+  const test::CliResult example = test::runCli("render " + std::string(DS_SOURCE_DIR) + "/scenes/thin_lens.lua -o " +
+                                               dir.file("t") + " --backend cpu --spp 1 --downscale 4");
+  CHECK(example.exitCode == 0);
+  CHECK(example.err.find("Camera.ThinLens blurs") == std::string::npos);
+}

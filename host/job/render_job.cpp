@@ -454,6 +454,16 @@ OutputInfo frameInfo(const RenderJob& job, const RenderedFrame& rendered, const 
 // an object is compared with the image's diagonal. Said, not refused (a deliberately blurred
 // backdrop is a few tens of pixels); at most 3 per run. Needs the depth layer's rays (not traced
 // for --layers image alone).
+namespace {
+
+// A figure for a message, to three significant digits (the blur's shortest form read
+// 138749999.99999997).
+std::string threeDigits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
 void warnAboutThinLensBlur(const PreparedCamera& pc, const CameraImage& image, int frame) {
   const auto* lens = std::get_if<cameras::ThinLens>(&pc.camera.model);
   if (!lens || image.depth_m.size() != image.pixelCount()) return;
@@ -470,13 +480,15 @@ void warnAboutThinLensBlur(const PreparedCamera& pc, const CameraImage& image, i
   warnAtMost("thin lens blur wider than the image", 3,
              "camera " + pc.camera.name + ", frame " + std::to_string(frame) + ": Camera.ThinLens blurs the point seen at pixel (" +
                  std::to_string(at % std::size_t(image.width_px)) + ", " + std::to_string(at / std::size_t(image.width_px)) +
-                 "), depth " + shortestNumber(image.depth_m[at]) + " m, over a disk " + shortestNumber(widest_px) +
+                 "), depth " + shortestNumber(image.depth_m[at]) + " m, over a disk " + threeDigits(widest_px) +
                  " px across, wider than the image (" + shortestNumber(std::round(diagonal_px)) +
                  " px diagonal; aperture " + shortestNumber(lens->aperture_m) + " m, focus distance " +
                  shortestNumber(lens->focusDistance_m) + " m): check focalLength, focusDistance and fNumber or aperture, "
                  "in metres",
              " (further such cameras are not reported)");
 }
+
+}  // namespace
 
 CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, const PreparedScene& scene, std::size_t c,
                          const ReferenceFrame& reference) {

@@ -128,13 +128,13 @@ std::string format(const char* fmt, auto... values) {
 std::string cameraText(const CameraDifference& d, const Tolerances& tol) {
   return format(
       "  %s: %s\n    radiance (fraction of full scale): max %.3g, rms %.3g, worst difference/bound %.3g, over bound"
-      " (%.3g of full scale, relative above it, + shading terms): %zu px (%zu off edges);"
+      " (%.3g of full scale, relative above it%s): %zu px (%zu off edges);"
       " digital numbers differ: %zu px\n    pixel-centre rays: different object %zu px (%zu off edges),"
       " ties %zu px; max |duv| %.3g,"
       " max |dP| %.3g m, max |dZ| %.3g m, max |dN| %.3g; worst error/bound %.3g, over bound: %zu px\n"
       "    wrong nearest hits: %zu px (miss %zu, extra hit %zu, other object %zu, farther root %zu, nearer root %zu)\n",
       d.camera.c_str(), withinTolerance(d, tol) ? "PASS" : "FAIL", d.maxRadianceDiff, d.rmsRadianceDiff, d.maxRadianceRatio,
-      tol.radiance,
+      tol.radiance, tol.epsilon > 0 ? ", + the derived shading terms" : "",
       d.radianceOutliers, d.radianceOutliersOffEdge, d.pixelsDiffering, d.objectIdMismatches,
       d.objectIdMismatchesOffEdge, d.objectTies, d.maxUvDiff, d.maxPositionDiff_m, d.maxDepthDiff_m, d.maxNormalDiff, d.maxGeometryRatio,
       d.geometryOutliers, d.wrongNearestHits(), d.wrongMiss, d.wrongExtraHit, d.wrongOtherObject, d.wrongFartherRoot,

@@ -19,6 +19,7 @@
 #include <mutex>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <utility>
 
 #include "core/atomic_file.h"
@@ -446,6 +447,8 @@ OutputInfo frameInfo(const RenderJob& job, const RenderedFrame& rendered, const 
   return info;
 }
 
+namespace {
+
 // A thin lens whose blur disk at a seen point is wider than the image is nearly always a unit
 // mistake: focalLength = 50 and focusDistance = 500 (mm typed as metres) on a plate 0.5 m away
 // rendered black with exit 0, the plate 1/100 of a focal length from the lens, every lens sample
@@ -454,16 +457,6 @@ OutputInfo frameInfo(const RenderJob& job, const RenderedFrame& rendered, const 
 // an object is compared with the image's diagonal. Said, not refused (a deliberately blurred
 // backdrop is a few tens of pixels); at most 3 per run. Needs the depth layer's rays (not traced
 // for --layers image alone).
-namespace {
-
-// A figure for a message, to three significant digits (the blur's shortest form read
-// 138749999.99999997).
-std::string threeDigits(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
-
 void warnAboutThinLensBlur(const PreparedCamera& pc, const CameraImage& image, int frame) {
   const auto* lens = std::get_if<cameras::ThinLens>(&pc.camera.model);
   if (!lens || image.depth_m.size() != image.pixelCount()) return;
@@ -477,15 +470,15 @@ void warnAboutThinLensBlur(const PreparedCamera& pc, const CameraImage& image, i
   }
   const double diagonal_px = std::hypot(double(image.width_px), double(image.height_px));
   if (!(widest_px > diagonal_px)) return;
-  warnAtMost("thin lens blur wider than the image", 3,
-             "camera " + pc.camera.name + ", frame " + std::to_string(frame) + ": Camera.ThinLens blurs the point seen at pixel (" +
-                 std::to_string(at % std::size_t(image.width_px)) + ", " + std::to_string(at / std::size_t(image.width_px)) +
-                 "), depth " + shortestNumber(image.depth_m[at]) + " m, over a disk " + threeDigits(widest_px) +
-                 " px across, wider than the image (" + shortestNumber(std::round(diagonal_px)) +
-                 " px diagonal; aperture " + shortestNumber(lens->aperture_m) + " m, focus distance " +
-                 shortestNumber(lens->focusDistance_m) + " m): check focalLength, focusDistance and fNumber or aperture, "
-                 "in metres",
-             " (further such cameras are not reported)");
+  // A stream's 6 significant digits, as prepare's messages (the blur's shortest form read
+  // 138749999.99999997).
+  std::ostringstream text;
+  text << "camera " << pc.camera.name << ", frame " << frame << ": Camera.ThinLens blurs the point seen at pixel ("
+       << at % std::size_t(image.width_px) << ", " << at / std::size_t(image.width_px) << "), depth "
+       << image.depth_m[at] << " m, over a disk " << widest_px << " px across, wider than the image ("
+       << std::round(diagonal_px) << " px diagonal; aperture " << lens->aperture_m << " m, focus distance "
+       << lens->focusDistance_m << " m): check focalLength, focusDistance and fNumber or aperture, in metres";
+  warnAtMost("thin lens blur wider than the image", 3, text.str(), " (further such cameras are not reported)");
 }
 
 }  // namespace

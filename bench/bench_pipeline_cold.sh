@@ -4,7 +4,9 @@
 # N - 1 spheres, 2 lights), per precision:
 # - cold: the wall time of one `render --spp 1` whose shader caches are empty (a fresh
 #   MESA_SHADER_CACHE_DIR and DICSYNTH_CACHE_DIR: the first render of that scene on a machine,
-#   where lavapipe's JIT compiles the pipeline at its first dispatch), minus the same render warm;
+#   where lavapipe's JIT compiles the pipeline at its first dispatch), minus the same render warm:
+#   the pipeline's compile, plus ~0.26 s of the texture's preparation (the prepare phase of
+#   8 objects, fp32: 0.33 s cold, 0.07 s warm, 2026-11-29);
 # - warm: the wall time of `render --spp 16 --layers image` (640 × 480), median of RUNS rounds, the
 #   two builds alternating.
 # Usage: bench/bench_pipeline_cold.sh OLD_BUILD_DIR NEW_BUILD_DIR [RUNS] [OBJECT_COUNTS] [PRECISIONS]

@@ -34,8 +34,9 @@
 // compiled for minutes on a cold shader cache (LLVM's coroutine pass over the lane-by-lane loads),
 // while the unrolled loop compiles in seconds and renders faster on both Mesas. Measured
 // 2026-11-29 on the 2-core VM (bench/RESULTS.md, "Unrolled object counts"): 8 objects, 2 lights,
-// cold pipeline creation fp32 / df64 / fp64 on Mesa 25: 94 / 91 / 36 s dynamic, 4.1 / 15.5 /
-// 11.6 s unrolled; 640 × 480 fp32 16 spp render 0.42 -> 0.32 s (Mesa 25), 2.55 -> 0.81 s (Mesa 22.3).
+// first render on Mesa 25 minus a warm one, fp32 / df64 / fp64: 87.7 / 96.3 / 32.4 s dynamic,
+// 3.8 / 11.6 / 9.8 s unrolled (bench/bench_pipeline_cold.sh); 640 × 480 fp32 16 spp render
+// 0.42 -> 0.32 s (Mesa 25), 2.55 -> 0.81 s (Mesa 22.3).
 // Unrolled 16 objects took 16 / 49 / 43 s to create: the unrolled code grows faster than linearly.
 #define DS_MAX_UNROLLED_OBJECTS 8
 #define DS_MAX_UNROLLED_LIGHTS 4

@@ -369,6 +369,39 @@ TEST_CASE("io: readGrayImage of a missing, corrupt or empty file throws InputErr
                        containsText(folder.path().string() + ": "), InputError);
 }
 
+TEST_CASE("io: a damaged PNG is refused in one line that names its cause once") {
+  // OpenImageIO reports a truncated PNG at three levels ("Read error: hit end of file", "PNG read
+  // error: IDAT: Read error: hit end of file", "PNG library error"); the message read "... hit
+  // end of file PNG read error: IDAT: Read error: hit end of file PNG library error" (the speckle
+  // trial of 2026-11-29).
+  TempFolder folder;
+  const std::string path = folder.file("truncated.png");
+  {
+    auto out = OIIO::ImageOutput::create(path);
+    REQUIRE(out);
+    const int size = 64;
+    std::vector<std::uint8_t> pixels(std::size_t(size) * size);
+    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = std::uint8_t((i * 2654435761u) >> 24);  // incompressible
+    REQUIRE(out->open(path, OIIO::ImageSpec(size, size, 1, OIIO::TypeDesc::UINT8)));
+    REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+    REQUIRE(out->close());
+  }
+  const std::string bytes = test::readBytes(path);
+  test::writeBytes(path, bytes.substr(0, bytes.size() / 2));  // inside the IDAT chunk
+  std::string message;
+  try {
+    readGrayImage(path);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  CAPTURE(message);
+  REQUIRE(message.find(path + ": ") != std::string::npos);
+  CHECK(message.find('\n') == std::string::npos);
+  const std::string cause = "hit end of file";
+  REQUIRE(message.find(cause) != std::string::npos);
+  CHECK(message.find(cause) == message.rfind(cause));
+}
+
 TEST_CASE("io: the libtiff reader gives OpenImageIO's values on every common TIFF kind, and hands it the rest") {
   TempFolder folder;
   const int width = 37, height = 19, n = width * height;  // odd sizes: rows not multiples of strips

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <exception>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/math.h"
 #include "files/image_limits.h"
@@ -17,11 +19,24 @@ namespace {
 
 using dicsynth::GrayImage;
 
-// OIIO's messages may span lines or end with one; ours are one line.
-std::string oneLine(std::string text) {
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  while (!text.empty() && text.back() == ' ') text.pop_back();
-  return text.empty() ? "unknown OpenImageIO error" : text;
+// OIIO's messages may span lines or end with one; ours are one line. A reader often reports one
+// cause at several levels (a truncated PNG: "Read error: hit end of file", "PNG read error: IDAT:
+// Read error: hit end of file", "PNG library error"): a line that another line contains is
+// dropped, the rest joined by "; ".
+std::string oneLine(const std::string& text) {
+  std::vector<std::string> lines;
+  for (std::string line : OIIO::Strutil::splits(text, "\n")) {
+    line = std::string(OIIO::Strutil::strip(line));
+    if (!line.empty()) lines.push_back(std::move(line));
+  }
+  std::string joined;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    bool repeated = false;  // contained in a longer line, or equal to an earlier one
+    for (std::size_t j = 0; j < lines.size() && !repeated; ++j)
+      repeated = j != i && lines[j].find(lines[i]) != std::string::npos && (lines[j].size() > lines[i].size() || j < i);
+    if (!repeated) joined += (joined.empty() ? "" : "; ") + lines[i];
+  }
+  return joined.empty() ? "unknown OpenImageIO error" : joined;
 }
 
 // Reads `nchannels` channels of the first subimage as T and maps each value v to v / maxValue.

@@ -212,8 +212,10 @@ void checkSameSide(const PreparedObject& o, const Object& so, const dvec3& p, co
                                    "object: rays from there would miss it (keep it on the object's side)");
 }
 
-// The key of a file texture in prepareScene's table: one entry per path and kernel.
-std::string textureKey(const textures::File& t) { return std::to_string(int(t.interpolation)) + ":" + t.path; }
+// The key of a file texture in prepareScene's table: one entry per path and spline (kernel, borders).
+std::string textureKey(const textures::File& t) {
+  return std::to_string(splineCode(t.interpolation, t.wrap)) + ":" + t.path;
+}
 
 // PrepareOptions::textureData false: the table's entry names the texture, without reading it.
 int nameTexture(const textures::File& t, std::vector<PreparedTexture>& textures, std::map<std::string, int>& byPath) {
@@ -221,11 +223,13 @@ int nameTexture(const textures::File& t, std::vector<PreparedTexture>& textures,
   PreparedTexture named;
   named.path = t.path;
   named.interpolation = t.interpolation;
+  named.wrap = t.wrap;
   textures.push_back(std::move(named));
   return byPath[textureKey(t)] = int(textures.size()) - 1;
 }
 
-// One prepared texture per (file, interpolation): the coefficients depend on the kernel.
+// One prepared texture per (file, interpolation, wrap): the coefficients depend on the kernel and
+// the borders.
 // The texture of `file` (the bytes of t.path) prepared for `t`'s kernel: from the disk cache (keyed
 // by the bytes' digest) or decoded, checked and prefiltered. `*readPath` says whether the decoder
 // read the path instead of the bytes (files/image_io.h). Its stamp is left for the caller to set.
@@ -235,7 +239,7 @@ PreparedTexture readTexture(const textures::File& t, const FileBytes& file, cons
   // Across processes: the disk cache, keyed by the file's content.
   const std::string digest = disk ? TextureDiskCache::digestOf(file.bytes) : "";
   if (disk)
-    if (auto stored = disk->find(digest, t.path, t.interpolation)) return std::move(*stored);
+    if (auto stored = disk->find(digest, t.path, t.interpolation, t.wrap)) return std::move(*stored);
   GrayImage image;
   try {
     image = decodeGrayImage(t.path, file.bytes, readPath);
@@ -265,7 +269,8 @@ PreparedTexture readTexture(const textures::File& t, const FileBytes& file, cons
   pt.width = image.width;
   pt.height = image.height;
   pt.interpolation = t.interpolation;
-  bsplinePrefilter(image.pixels, pt.width, pt.height, t.interpolation);
+  pt.wrap = t.wrap;
+  bsplinePrefilter(image.pixels, pt.width, pt.height, t.interpolation, t.wrap);
   pt.coefficients = std::make_shared<const std::vector<double>>(std::move(image.pixels));
   // Stored under the digest of the bytes decoded (a path read: when the file is still those bytes).
   if (disk && !digest.empty() && (!*readPath || fileStamp(t.path) == file.stamp)) disk->store(digest, pt);
@@ -277,7 +282,7 @@ int loadTexture(const textures::File& t, const SourceLoc& where, std::vector<Pre
   const std::string key = textureKey(t);
   if (auto it = byPath.find(key); it != byPath.end()) return it->second;
   if (cache)
-    if (auto cached = cache->find(t.path, t.interpolation)) {
+    if (auto cached = cache->find(t.path, t.interpolation, t.wrap)) {
       textures.push_back(std::move(*cached));
       return byPath[key] = int(textures.size()) - 1;
     }

@@ -66,7 +66,8 @@ struct PreparedTexture {
   std::string path;
   int width = 0, height = 0;
   Interpolation interpolation = Interpolation::Cubic;
-  // B-spline coefficients for that kernel (texture/bspline.h), row-major. Shared and immutable: the
+  TextureWrap wrap = TextureWrap::Clamp;
+  // B-spline coefficients for that kernel and those borders (texture/bspline.h), row-major. Shared and immutable: the
   // texture cache, every point of a sweep and the GPU's uploaded copy (gpu/renderer.cpp) refer to
   // the same array (Figure 1's texture is 67 MB of doubles), so a point neither copies nor repacks it.
   std::shared_ptr<const std::vector<double>> coefficients = std::make_shared<const std::vector<double>>();

@@ -38,7 +38,7 @@ struct FileHeader {
   char magic[8];
   std::uint32_t format;
   std::uint32_t byteOrder;
-  std::uint32_t interpolation;
+  std::uint32_t spline;  // splineCode (texture/bspline.h): interpolation and wrap
   std::uint32_t width, height;
   std::uint32_t adler;  // Adler-32 of the coefficients' bytes
   std::uint64_t count;  // coefficients (doubles) after the header
@@ -106,16 +106,17 @@ std::string TextureDiskCache::digestOf(std::string_view bytes) {
   return hexString({digest, length});
 }
 
-std::string TextureDiskCache::fileFor(const std::string& digest, Interpolation interpolation) const {
+std::string TextureDiskCache::fileFor(const std::string& digest, int spline) const {
   // The build in the name too: the CLI and the Python module (two binaries) keep their own files
   // instead of overwriting each other's on every alternation.
-  return folder_ + "/" + digest + "-" + std::to_string(int(interpolation)) + "-" + codeBuildId().substr(0, 16) + ".bin";
+  return folder_ + "/" + digest + "-" + std::to_string(spline) + "-" + codeBuildId().substr(0, 16) + ".bin";
 }
 
 std::optional<PreparedTexture> TextureDiskCache::find(const std::string& digest, const std::string& path,
-                                                      Interpolation interpolation) const {
+                                                      Interpolation interpolation, TextureWrap wrap) const {
   if (!enabled() || digest.empty()) return std::nullopt;
-  const std::string file = fileFor(digest, interpolation);
+  const int spline = splineCode(interpolation, wrap);
+  const std::string file = fileFor(digest, spline);
   // A regular file no larger than the folder may hold (core/cache_file.h: a FIFO there waited
   // forever, the cache audit of 2026-11-28).
   const std::optional<CacheFileHandle> handle = openCacheFile(file, limitBytes_);
@@ -127,7 +128,7 @@ std::optional<PreparedTexture> TextureDiskCache::find(const std::string& digest,
   }
   FileHeader h{};
   if (std::fread(&h, sizeof h, 1, in.get()) != 1 || std::memcmp(h.magic, kMagic, sizeof kMagic) != 0 ||
-      h.format != kFormat || h.byteOrder != kByteOrder || h.interpolation != std::uint32_t(interpolation) ||
+      h.format != kFormat || h.byteOrder != kByteOrder || h.spline != std::uint32_t(spline) ||
       !sameText(h.digest, digest) || !sameText(h.buildId, codeBuildId()) || h.width == 0 || h.height == 0 ||
       h.count != std::uint64_t(h.width) * h.height)
     return std::nullopt;
@@ -142,6 +143,7 @@ std::optional<PreparedTexture> TextureDiskCache::find(const std::string& digest,
   t.width = int(h.width);
   t.height = int(h.height);
   t.interpolation = interpolation;
+  t.wrap = wrap;
   t.coefficients = std::move(values);
   return t;
 }
@@ -151,7 +153,8 @@ void TextureDiskCache::store(const std::string& digest, const PreparedTexture& t
   // A texture larger than the whole limit is not kept: trimming keeps the file just written, and
   // the folder held 67 MB under a 10 MiB limit (the cache audit of 2026-11-28).
   if (sizeof(FileHeader) + texture.values().size() * sizeof(double) > limitBytes_) return;
-  const std::string file = fileFor(digest, texture.interpolation);
+  const int spline = splineCode(texture.interpolation, texture.wrap);
+  const std::string file = fileFor(digest, spline);
   try {
     std::error_code ec;
     fs::create_directories(folder_, ec);
@@ -160,7 +163,7 @@ void TextureDiskCache::store(const std::string& digest, const PreparedTexture& t
     std::memcpy(h.magic, kMagic, sizeof kMagic);
     h.format = kFormat;
     h.byteOrder = kByteOrder;
-    h.interpolation = std::uint32_t(texture.interpolation);
+    h.spline = std::uint32_t(spline);
     h.width = std::uint32_t(texture.width);
     h.height = std::uint32_t(texture.height);
     h.count = texture.values().size();

@@ -3,9 +3,9 @@
 // (decoding and B-spline prefiltering Figure 1's 4096×2048 texture: ~0.1 s on 2 cores; reading its
 // 67 MB of coefficients back: bench/RESULTS.md, "Speed as a user times it").
 // Key: the SHA-256 of the file's bytes (not its name or date: a copy of a texture on a cluster node
-// hits, an edited one misses), the interpolation, and the build ID of the code that prepared it
+// hits, an edited one misses), the spline (interpolation and wrap), and the build ID of the code that prepared it
 // (core/module_folder.h: any rebuild of the decoder or the prefilter invalidates every entry).
-// Files: <cache folder>/textures/<digest>-<interpolation>-<build ID prefix>.bin, written atomically (core/atomic_file.h:
+// Files: <cache folder>/textures/<digest>-<splineCode>-<build ID prefix>.bin, written atomically (core/atomic_file.h:
 // concurrent writers each leave a complete file, the last rename wins), read with a check of the
 // whole header and an Adler-32 of the coefficients, so a damaged, truncated or foreign file is
 // ignored (and rewritten). The folder is kept under a size limit, least recently used first.
@@ -38,16 +38,16 @@ class TextureDiskCache {
   // The SHA-256 of `bytes` (a file's content, files/file_bytes.h) in hex; "" when OpenSSL fails.
   static std::string digestOf(std::string_view bytes);
 
-  // The texture prepared from content `digest` with `interpolation`, when a valid file holds it
+  // The texture prepared from content `digest` with `interpolation` and `wrap`, when a valid file holds it
   // (its path set to `path`); marks the file recently used.
   std::optional<PreparedTexture> find(const std::string& digest, const std::string& path,
-                                      Interpolation interpolation) const;
+                                      Interpolation interpolation, TextureWrap wrap) const;
   // Stores `texture` (prepared from content `digest`) when it is large enough, then trims the
   // folder to the limit. Never throws: a failure prints one warning line and is otherwise ignored.
   void store(const std::string& digest, const PreparedTexture& texture) const noexcept;
 
  private:
-  std::string fileFor(const std::string& digest, Interpolation interpolation) const;
+  std::string fileFor(const std::string& digest, int splineCode) const;
   void trim(const std::string& keep) const;
   std::string folder_;
   std::uint64_t limitBytes_ = 0;

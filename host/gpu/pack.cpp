@@ -217,7 +217,7 @@ PackedScene<Layout> packScene(const PreparedScene& scene) {
     // The shader indexes texels with 32-bit ints.
     if (offset + t.values().size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
       throw InputError(t.path + ": textures too large in total for the GPU backend");
-    p.textures.push_back({{t.width, t.height, int(offset), int(t.interpolation)}});
+    p.textures.push_back({{t.width, t.height, int(offset), splineCode(t.interpolation, t.wrap)}});
     offset += t.values().size();
   }
   return p;

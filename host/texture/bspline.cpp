@@ -1,6 +1,7 @@
 #include "texture/bspline.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -117,25 +118,86 @@ class LineSolver {
   std::vector<double> band_, factor_;  // quintic
 };
 
+// A line that repeats (c[k + n] = c[k]): the circulant system Σ_m b[m] c[(k + m) mod n] = f[k] with
+// the b above, solved by the B-spline's recursive filter (Unser, Aldroubi and Eden 1993). The
+// symbol B(z) = Σ b[m] z^m factors as λ⁻¹ Π_z (1 − z ζ⁻¹)(1 − z ζ) over the poles z (|z| < 1), so
+// c = λ f followed, per pole, by a causal pass c⁺[k] = c[k] + z c⁺[k−1] and an anticausal one
+// c[k] = z (c[k+1] − c⁺[k]). λ = Π (1 − z)(1 − 1/z) = Π (2 − w) with w = z + 1/z the roots of
+// B's symmetric form: cubic w = −4, λ = 6; quintic w = −13 ± √105, λ = (15 − √105)(15 + √105) =
+// 120. On a periodic line the recursions' starts are their infinite sums folded over the period
+// (exact, no truncation):
+//   c⁺[0]   = Σ_{j=0}^{n−1} z^j c[(n − j) mod n] / (1 − z^n)      (c⁺[k] = Σ_{j≥0} z^j c[k − j])
+//   c[n−1]  = −z Σ_{j=0}^{n−1} z^j c⁺[(n − 1 + j) mod n] / (1 − z^n)   (c[k] = −z Σ_{j≥0} z^j c⁺[k + j])
+// Each pass is a contraction (|z| < 1), so the solve is accurate to a few ulps: tests/texture/
+// test_bspline.cpp compares it with a dense Gaussian elimination of the circulant system.
+class PeriodicLineSolver {
+ public:
+  PeriodicLineSolver(std::size_t n, Interpolation kind) : n_(n) {
+    // z = 2 / (w − √(w² − 4)): the root of z + 1/z = w inside the unit circle, without cancellation.
+    const auto pole = [](double w) { return 2.0 / (w - std::sqrt(w * w - 4.0)); };
+    if (kind == Interpolation::Quintic) {
+      poles_ = {pole(-13.0 + std::sqrt(105.0)), pole(-13.0 - std::sqrt(105.0))};
+      gain_ = 120.0;
+    } else {
+      poles_ = {pole(-4.0)};  // √3 − 2
+      gain_ = 6.0;
+    }
+  }
+
+  void solve(double* f, std::size_t stride, std::size_t next, std::size_t count) const {
+    std::vector<double> c(n_);
+    for (std::size_t j = 0; j < count; ++j) {
+      double* line = f + j * next;
+      for (std::size_t k = 0; k < n_; ++k) c[k] = gain_ * line[k * stride];
+      for (const double z : poles_) {
+        double zj = 1, sum = 0;
+        for (std::size_t i = 0; i < n_; ++i, zj *= z) sum += zj * c[(n_ - i) % n_];
+        const double period = 1.0 - zj;  // zj = z^n here
+        c[0] = sum / period;
+        for (std::size_t k = 1; k < n_; ++k) c[k] += z * c[k - 1];
+        zj = 1;
+        sum = 0;
+        for (std::size_t i = 0; i < n_; ++i, zj *= z) sum += zj * c[(n_ - 1 + i) % n_];
+        c[n_ - 1] = -z * sum / period;
+        for (std::size_t k = n_ - 1; k-- > 0;) c[k] = z * (c[k + 1] - c[k]);
+      }
+      for (std::size_t k = 0; k < n_; ++k) line[k * stride] = c[k];
+    }
+  }
+
+ private:
+  std::size_t n_;
+  std::vector<double> poles_;
+  double gain_;
+};
+
+// One axis's solve: mirrored borders (LineSolver) or periodic ones (PeriodicLineSolver).
+void solveLines(std::size_t n, Interpolation kind, bool periodic, std::vector<double>& values,
+                std::size_t lines, std::size_t stride, std::size_t next, std::size_t lineStep) {
+  constexpr std::size_t kBlock = 8;
+  const auto run = [&](const auto& solver) {
+    parallelFor((lines + kBlock - 1) / kBlock, [&](std::size_t block) {
+      const std::size_t first = block * kBlock;
+      solver.solve(values.data() + first * lineStep, stride, next, std::min(kBlock, lines - first));
+    });
+  };
+  if (periodic)
+    run(PeriodicLineSolver(n, kind));
+  else
+    run(LineSolver(n, kind));
+}
+
 }  // namespace
 
-void bsplinePrefilter(std::vector<double>& values, int width, int height, Interpolation kind) {
+void bsplinePrefilter(std::vector<double>& values, int width, int height, Interpolation kind, TextureWrap wrap) {
   DS_CHECK(width > 0 && height > 0 && values.size() == std::size_t(width) * std::size_t(height),
            "texture size mismatch");
   const std::size_t w = std::size_t(width), h = std::size_t(height);
-  // Blocks of 8 lines solved together: 8 rows walked in step, or 8 adjacent columns walked row by
-  // row (64 bytes per row of the block: whole cache lines).
-  constexpr std::size_t kBlock = 8;
-  const LineSolver rowSolver(w, kind);
-  parallelFor((h + kBlock - 1) / kBlock, [&](std::size_t block) {
-    const std::size_t y0 = block * kBlock;
-    rowSolver.solve(values.data() + y0 * w, 1, w, std::min(kBlock, h - y0));
-  });
-  const LineSolver columnSolver(h, kind);
-  parallelFor((w + kBlock - 1) / kBlock, [&](std::size_t block) {
-    const std::size_t x0 = block * kBlock;
-    columnSolver.solve(values.data() + x0, w, 1, std::min(kBlock, w - x0));
-  });
+  // Blocks of 8 lines solved together: 8 rows walked in step (element stride 1, next line w), or 8
+  // adjacent columns walked row by row (stride w, next 1: 64 bytes per row of the block, whole
+  // cache lines).
+  solveLines(w, kind, repeatsU(wrap), values, h, 1, w, w);
+  solveLines(h, kind, repeatsV(wrap), values, w, w, 1, 1);
 }
 
 }  // namespace dicsynth

@@ -30,21 +30,27 @@ Texture.File: an image (e.g. a speckle pattern) glued on the surface's (u, v) pa
   interpolation | string  | "cubic"  | "cubic": interpolating cubic B-spline (4×4 texels);
                 |         |          | "quintic": interpolating quintic B-spline (6×6 texels),
                 |         |          | less interpolation bias (texture/bspline.h, docs/scene-language.md)
+  wrap          | string  | "clamp"  | the borders: "clamp": (u, v) outside [0, 1] read the edge, the
+                |         |          | spline mirrored at it; "repeat": periodic in u and v, the spline
+                |         |          | continues across u = 1 → 0 and v = 1 → 0 (seamless tiles of a
+                |         |          | Shape.Plane); "repeatU": periodic in u only (around a sphere or
+                |         |          | cylinder), v clamped; "repeatV": v only
 
 The file must exist and be readable when the constructor runs (the error names the line); it is
 decoded later, when the scene is prepared.
 
-Example:  Texture.File { fileName = "speckle.tif"; interpolation = "quintic" }
+Example:  Texture.File { fileName = "speckle.tif"; interpolation = "quintic"; wrap = "repeatU" }
 ------------------------------------------------------------------------------------------------ */
 struct File {
   static constexpr TextureKind kKind = TextureKind::File;
   static constexpr const char* kName = "File";
   static constexpr const char* kConstructor = "Texture.File";
-  static constexpr std::array<const char*, 2> kKeys{"fileName", "interpolation"};
+  static constexpr std::array<const char*, 3> kKeys{"fileName", "interpolation", "wrap"};
   static constexpr const char* kTwin = "file";
 
   std::string path;  // resolved (a relative fileName resolves against the scene's folder)
   Interpolation interpolation = Interpolation::Cubic;
+  TextureWrap wrap = TextureWrap::Clamp;
   // Prepared (geometry/prepare.cpp): the image's B-spline coefficients, shared with
   // PreparedScene::textures[index] (which the GPU uploads), and that index.
   std::shared_ptr<const std::vector<double>> coefficients;
@@ -64,6 +70,17 @@ struct File {
       f.interpolation = Interpolation::Quintic;
     else
       p.fail("'interpolation' must be \"cubic\" or \"quintic\", got \"" + interpolation + "\"");
+    const std::string wrap = p.string("wrap").value_or("clamp");
+    if (wrap == "clamp")
+      f.wrap = TextureWrap::Clamp;
+    else if (wrap == "repeat")
+      f.wrap = TextureWrap::Repeat;
+    else if (wrap == "repeatU")
+      f.wrap = TextureWrap::RepeatU;
+    else if (wrap == "repeatV")
+      f.wrap = TextureWrap::RepeatV;
+    else
+      p.fail("'wrap' must be \"clamp\", \"repeat\", \"repeatU\" or \"repeatV\", got \"" + wrap + "\"");
     // Resolve against the scene's folder, then check the file can be read.
     const std::filesystem::path given(*fileName);
     const std::filesystem::path resolved = given.is_absolute() ? given : sceneDir / given;
@@ -80,10 +97,11 @@ struct File {
     return f;
   }
 
-  // The interpolated value at (u, v) (clamped to [0, 1]²), from the prepared coefficients.
+  // The interpolated value at (u, v) (each clamped to [0, 1] or taken modulo 1: `wrap`), from the
+  // prepared coefficients.
   double at(dvec2 uv) const {
-    return bsplineLookup(coefficients->data(), width, height, std::clamp(uv.x, 0.0, 1.0), std::clamp(uv.y, 0.0, 1.0),
-                         interpolation);
+    return bsplineLookup(coefficients->data(), width, height, textureCoordinate(uv.x, repeatsU(wrap)),
+                         textureCoordinate(uv.y, repeatsV(wrap)), interpolation, wrap);
   }
   // A B-spline is a convex combination of its coefficients: |value| ≤ max |c|.
   double maxValue() const {
@@ -93,7 +111,8 @@ struct File {
   }
   // The B-spline's slope is bounded by the largest difference of neighbouring coefficients per
   // texel (its derivative is a quadratic B-spline, a convex combination, of those differences),
-  // times texels per unit (u, v).
+  // times texels per unit (u, v); along an axis that repeats, the last and first coefficients are
+  // neighbours too.
   double slopePerUv() const {
     const std::vector<double>& c = *coefficients;
     double sx = 0, sy = 0;
@@ -101,8 +120,8 @@ struct File {
     for (std::size_t y = 0; y < h; ++y)
       for (std::size_t x = 0; x < w; ++x) {
         const double here = c[y * w + x];
-        if (x + 1 < w) sx = std::max(sx, std::abs(c[y * w + x + 1] - here));
-        if (y + 1 < h) sy = std::max(sy, std::abs(c[(y + 1) * w + x] - here));
+        if (x + 1 < w || repeatsU(wrap)) sx = std::max(sx, std::abs(c[y * w + (x + 1) % w] - here));
+        if (y + 1 < h || repeatsV(wrap)) sy = std::max(sy, std::abs(c[(y + 1) % h * w + x] - here));
       }
     return std::max(sx * double(width), sy * double(height));
   }

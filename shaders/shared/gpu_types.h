@@ -67,7 +67,8 @@ struct GpuLight {
 
 struct GpuTexture {
   ivec4 info;  // width, height, offset of the first coefficient in the texel buffer,
-               // interpolation (0: cubic, 1: quintic B-spline; host/texture/bspline.h)
+               // splineCode (host/texture/bspline.h): bit 0 the interpolation (0: cubic, 1:
+               // quintic B-spline), bit 1 u repeats, bit 2 v repeats
 };
 
 // NURBS (host/geometry/nurbs_bvh.h): every NURBS object's BVH nodes, sub-patches, Bézier patches

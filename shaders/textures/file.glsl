@@ -28,6 +28,18 @@ int ds_mirror_index(int k, int n) {
   return clamp(k, 0, n - 1);
 }
 
+// Periodic index into [0, n) for k in [-3, n + 2] (an axis that repeats), equal to wrapIndex() of
+// host/texture/bspline.h there: one addition or subtraction where n ≥ 3; for n < 3, where k can
+// lie a whole period out, the modulo of k + 3n ≥ 0.
+int ds_wrap_index(int k, int n) {
+  if (n < 3) return (k + 3 * n) % n;
+  k = k < 0 ? k + n : k;
+  return k >= n ? k - n : k;
+}
+
+// A tap's texel along one axis: periodic or mirrored.
+int ds_texel_index(int k, int n, bool repeat) { return repeat ? ds_wrap_index(k, n) : ds_mirror_index(k, n); }
+
 void ds_bspline_weights(real f, out real w[4]) {
   const real f2 = f * f, f3 = f2 * f, g = 1.0 - f;
   w[0] = g * g * g / 6.0;
@@ -47,9 +59,13 @@ void ds_quintic_weights(real f, out real w[6]) {
   w[5] = f * f * f * f * f / 120.0;
 }
 
-// Texel coordinate u·n − 1/2 of a clamped u, as integer part and fraction.
-void ds_texel_coordinate(hreal u, int n, out int index, out real fraction) {
-  u = h_lt(u, h(real(0.0))) ? h(real(0.0)) : h_gt(u, h(real(1.0))) ? h(real(1.0)) : u;
+// Texel coordinate u·n − 1/2 of u clamped to [0, 1], or of u modulo 1 along an axis that repeats
+// (host/texture/bspline.h textureCoordinate), as integer part and fraction.
+void ds_texel_coordinate(hreal u, int n, bool repeat, out int index, out real fraction) {
+  if (repeat)
+    u = h_sub(u, h_floor(u));
+  else
+    u = h_lt(u, h(real(0.0))) ? h(real(0.0)) : h_gt(u, h(real(1.0))) ? h(real(1.0)) : u;
   const hreal x = h_sub(h_mul(u, h(real(n))), h(real(0.5)));
   const hreal whole = h_floor(x);
   index = int(h_real(whole));
@@ -58,19 +74,20 @@ void ds_texel_coordinate(hreal u, int n, out int index, out real fraction) {
 
 real ds_texture_lookup(ivec4 info, hreal2 uv) {
   const int width = info.x, height = info.y, offset = info.z;
+  const bool repeatU = (info.w & 2) != 0, repeatV = (info.w & 4) != 0;  // splineCode's bits
   int ix, iy;
   real fx, fy;
-  ds_texel_coordinate(h_x(uv), width, ix, fx);
-  ds_texel_coordinate(h_y(uv), height, iy, fy);
-  if (HAS_QUINTIC_TEXTURES && info.w == 1) {
+  ds_texel_coordinate(h_x(uv), width, repeatU, ix, fx);
+  ds_texel_coordinate(h_y(uv), height, repeatV, iy, fy);
+  if (HAS_QUINTIC_TEXTURES && (info.w & 1) != 0) {
     real qx[6], qy[6];
     ds_quintic_weights(fx, qx);
     ds_quintic_weights(fy, qy);
     int qcols[6];
-    for (int i = 0; i < 6; ++i) qcols[i] = ds_mirror_index(ix + i - 2, width);
+    for (int i = 0; i < 6; ++i) qcols[i] = ds_texel_index(ix + i - 2, width, repeatU);
     real qsum = 0.0;
     for (int j = 0; j < 6; ++j) {
-      const int rowStart = offset + ds_mirror_index(iy + j - 2, height) * width;
+      const int rowStart = offset + ds_texel_index(iy + j - 2, height, repeatV) * width;
       real rowSum = 0.0;
       for (int i = 0; i < 6; ++i) rowSum += qx[i] * DS_TEXEL(rowStart + qcols[i]);
       qsum += qy[j] * rowSum;
@@ -81,10 +98,10 @@ real ds_texture_lookup(ivec4 info, hreal2 uv) {
   ds_bspline_weights(fx, wx);
   ds_bspline_weights(fy, wy);
   int cols[4];
-  for (int i = 0; i < 4; ++i) cols[i] = ds_mirror_index(ix + i - 1, width);
+  for (int i = 0; i < 4; ++i) cols[i] = ds_texel_index(ix + i - 1, width, repeatU);
   real sum = 0.0;
   for (int j = 0; j < 4; ++j) {
-    const int rowStart = offset + ds_mirror_index(iy + j - 1, height) * width;
+    const int rowStart = offset + ds_texel_index(iy + j - 1, height, repeatV) * width;
     real rowSum = 0.0;
     for (int i = 0; i < 4; ++i) rowSum += wx[i] * DS_TEXEL(rowStart + cols[i]);
     sum += wy[j] * rowSum;

@@ -72,12 +72,12 @@ TEST_CASE("file stamp: the texture cache and the sweep's checksums see a rewrite
   texture.path = path;
   texture.stamp = *fileStamp(path);  // read under this stamp
   cache.insert(texture);
-  CHECK(cache.find(path, Interpolation::Cubic).has_value());
+  CHECK(cache.find(path, Interpolation::Cubic, TextureWrap::Clamp).has_value());
   sweep::AssetChecksums checksums;
   const std::uint32_t crcA = checksums.of(path).crc32;
   CHECK(checksums.of(path).crc32 == crcA);
   rewriteKeepingTime(path, "BBBB");
-  CHECK_FALSE(cache.find(path, Interpolation::Cubic).has_value());  // found the old texture before
+  CHECK_FALSE(cache.find(path, Interpolation::Cubic, TextureWrap::Clamp).has_value());  // found the old texture before
   CHECK(checksums.of(path).crc32 != crcA);                         // recorded the old CRC before
   CHECK(checksums.of(path).crc32 == crc32Of("BBBB"));
 }
@@ -97,7 +97,7 @@ TEST_CASE("file stamp: a texture is cached under the stamp it was read with, not
   std::filesystem::rename(dir.file("new.tif"), path);  // as an editor or `dicsynth speckle -o` saves
   TextureCache cache;
   cache.insert(texture);
-  CHECK_FALSE(cache.find(path, Interpolation::Cubic).has_value());  // the new file is read again
+  CHECK_FALSE(cache.find(path, Interpolation::Cubic, TextureWrap::Clamp).has_value());  // the new file is read again
 }
 
 TEST_CASE("file stamp: a prepared texture's file is unchanged after a touch or a copy of its bytes, not after an edit") {

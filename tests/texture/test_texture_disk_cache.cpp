@@ -42,13 +42,14 @@ void writeTexture(const std::string& path, int side, std::uint32_t seed) {
   writeGrayTiff(path, side, side, values, 16, "test texture");
 }
 
-// A scene whose one object carries Texture.File `texture` with the given interpolation.
-Scene sceneWith(const TempFolder& dir, const std::string& texture, const std::string& interpolation = "cubic") {
+// A scene whose one object carries Texture.File `texture` with the given interpolation and wrap.
+Scene sceneWith(const TempFolder& dir, const std::string& texture, const std::string& interpolation = "cubic",
+                const std::string& wrap = "clamp") {
   const std::string file = dir.path().string() + "/scene.lua";
   std::ofstream(file) << "camera = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.012; pixelSize = {6e-5, 6e-5}; };\n"
                          "plate = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1}; };\n"
                          "  shader = Shader.Lambert { color = 0.8; }; texture = Texture.File { fileName = \""
-                      << texture << "\"; interpolation = \"" << interpolation << "\"; }; };\n";
+                      << texture << "\"; interpolation = \"" << interpolation << "\"; wrap = \"" << wrap << "\"; }; };\n";
   return loadScene(file, {});
 }
 
@@ -82,6 +83,29 @@ constexpr std::size_t kHeaderBytes = 8 + 6 * 4 + 8 + 64 + 64;
 constexpr std::size_t kAdlerOffset = 8 + 5 * 4;
 
 }  // namespace
+
+TEST_CASE("texture-disk-cache: each wrap of one file is its own entry, in the process and on disk") {
+  // The coefficients depend on the borders (texture/bspline.h): a repeating texture must never be
+  // served a clamped one's coefficients, or the other way round.
+  TempFolder dir;
+  const std::string texture = dir.path().string() + "/t.tif";
+  writeTexture(texture, kSide, 3);
+  const std::vector<double> clamped = prepared(sceneWith(dir, texture), nullptr);
+  const std::vector<double> repeating = prepared(sceneWith(dir, texture, "cubic", "repeat"), nullptr);
+  const std::vector<double> repeatingU = prepared(sceneWith(dir, texture, "cubic", "repeatU"), nullptr);
+  CHECK(clamped != repeating);
+  CHECK(repeating != repeatingU);
+  TextureCache first(TextureDiskCache(dir.path().string() + "/cache", kLimit));
+  CHECK(prepared(sceneWith(dir, texture), &first) == clamped);
+  CHECK(prepared(sceneWith(dir, texture, "cubic", "repeat"), &first) == repeating);
+  CHECK(prepared(sceneWith(dir, texture, "cubic", "repeatU"), &first) == repeatingU);
+  CHECK(first.size() == 3);
+  CHECK(cacheFiles(first.disk()).size() == 3);
+  TextureCache second(TextureDiskCache(dir.path().string() + "/cache", kLimit));  // another process
+  CHECK(prepared(sceneWith(dir, texture, "cubic", "repeatU"), &second) == repeatingU);
+  CHECK(prepared(sceneWith(dir, texture, "cubic", "repeat"), &second) == repeating);
+  CHECK(prepared(sceneWith(dir, texture), &second) == clamped);
+}
 
 TEST_CASE("texture-disk-cache: the code has a build ID, the key of every cache file") {
   const std::string id = codeBuildId();
@@ -117,11 +141,11 @@ TEST_CASE("texture-disk-cache: a texture read back from disk equals its preparat
   TextureCache second(TextureDiskCache(dir.path().string() + "/cache", kLimit));
   CHECK(prepared(scene, &second) == reference);
   const std::string digest = TextureDiskCache::digestOf(test::readBytes(texture));
-  REQUIRE(second.disk().find(digest, texture, Interpolation::Cubic));
-  CHECK(second.disk().find(digest, texture, Interpolation::Cubic)->values() == reference);
+  REQUIRE(second.disk().find(digest, texture, Interpolation::Cubic, TextureWrap::Clamp));
+  CHECK(second.disk().find(digest, texture, Interpolation::Cubic, TextureWrap::Clamp)->values() == reference);
   // The file is what a preparation reads: a forged file (other coefficients, its checksum made
   // consistent by storing them through the cache) is returned as it is.
-  PreparedTexture forged = *second.disk().find(digest, texture, Interpolation::Cubic);
+  PreparedTexture forged = *second.disk().find(digest, texture, Interpolation::Cubic, TextureWrap::Clamp);
   std::vector<double> halved = reference;
   for (double& c : halved) c *= 0.5;
   forged.coefficients = std::make_shared<const std::vector<double>>(halved);
@@ -156,7 +180,7 @@ TEST_CASE("texture-disk-cache: a damaged, truncated or foreign file is ignored a
   }
   const std::vector<fs::path> files = cacheFiles(disk);
   REQUIRE(files.size() == 1);
-  REQUIRE(disk.find(digest, texture, Interpolation::Cubic));
+  REQUIRE(disk.find(digest, texture, Interpolation::Cubic, TextureWrap::Clamp));
   struct Damage {
     const char* what;
     std::size_t offset;
@@ -173,20 +197,20 @@ TEST_CASE("texture-disk-cache: a damaged, truncated or foreign file is ignored a
     }();
     std::uint8_t b = std::uint8_t(original[d.offset]) ^ d.byte;
     patch(files[0], d.offset, &b, 1);
-    CHECK_FALSE(disk.find(digest, texture, Interpolation::Cubic));
+    CHECK_FALSE(disk.find(digest, texture, Interpolation::Cubic, TextureWrap::Clamp));
     TextureCache cache(disk);
     CHECK(prepared(scene, &cache) == reference);  // prepared again, and the file rewritten
-    CHECK(disk.find(digest, texture, Interpolation::Cubic));
+    CHECK(disk.find(digest, texture, Interpolation::Cubic, TextureWrap::Clamp));
   }
   // Truncated (a copy cut short by a full disk) or longer than its header says.
   fs::resize_file(files[0], fs::file_size(files[0]) - 8);
-  CHECK_FALSE(disk.find(digest, texture, Interpolation::Cubic));
+  CHECK_FALSE(disk.find(digest, texture, Interpolation::Cubic, TextureWrap::Clamp));
   {
     TextureCache cache(disk);
     CHECK(prepared(scene, &cache) == reference);
   }
   std::ofstream(files[0], std::ios::app | std::ios::binary) << "extra";
-  CHECK_FALSE(disk.find(digest, texture, Interpolation::Cubic));
+  CHECK_FALSE(disk.find(digest, texture, Interpolation::Cubic, TextureWrap::Clamp));
 }
 
 TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays under its limit, a failure is a warning") {
@@ -209,8 +233,8 @@ TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays un
   prepared(sceneWith(dir, b), &cache);
   const std::vector<fs::path> files = cacheFiles(disk);
   REQUIRE(files.size() == 1);
-  CHECK(disk.find(TextureDiskCache::digestOf(test::readBytes(b)), b, Interpolation::Cubic));
-  CHECK_FALSE(disk.find(TextureDiskCache::digestOf(test::readBytes(a)), a, Interpolation::Cubic));
+  CHECK(disk.find(TextureDiskCache::digestOf(test::readBytes(b)), b, Interpolation::Cubic, TextureWrap::Clamp));
+  CHECK_FALSE(disk.find(TextureDiskCache::digestOf(test::readBytes(a)), a, Interpolation::Cubic, TextureWrap::Clamp));
 
   // A texture larger than the whole limit is not kept (the file just written survived trimming: a
   // 67 MB file in a 10 MiB folder, the cache audit of 2026-11-28).
@@ -221,14 +245,14 @@ TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays un
 
   // Concurrent writers of one key (two processes preparing the same texture) leave one valid file.
   const TextureDiskCache shared(dir.path().string() + "/shared", kLimit);
-  const PreparedTexture texture = *disk.find(TextureDiskCache::digestOf(test::readBytes(b)), b, Interpolation::Cubic);
+  const PreparedTexture texture = *disk.find(TextureDiskCache::digestOf(test::readBytes(b)), b, Interpolation::Cubic, TextureWrap::Clamp);
   const std::string digest = TextureDiskCache::digestOf(test::readBytes(b));
   std::vector<std::thread> writers;
   for (int i = 0; i < 4; ++i) writers.emplace_back([&] { shared.store(digest, texture); });
   for (std::thread& t : writers) t.join();
   CHECK(cacheFiles(shared).size() == 1);
-  REQUIRE(shared.find(digest, b, Interpolation::Cubic));
-  CHECK(shared.find(digest, b, Interpolation::Cubic)->values() == texture.values());
+  REQUIRE(shared.find(digest, b, Interpolation::Cubic, TextureWrap::Clamp));
+  CHECK(shared.find(digest, b, Interpolation::Cubic, TextureWrap::Clamp)->values() == texture.values());
 
   // Another process's temporary (".<name>.tmp<pid>_<n>.bin", being written) is not trimmed, even
   // when its process is not on this machine (a folder shared by cluster nodes: pid 999999999 is no
@@ -242,7 +266,7 @@ TEST_CASE("texture-disk-cache: small textures stay off disk, the folder stays un
   prepared(sceneWith(dir, a), &again);  // stores a, trims (b goes: one file fits)
   CHECK(fs::exists(fresh));
   CHECK_FALSE(fs::exists(stale));
-  CHECK(disk.find(TextureDiskCache::digestOf(test::readBytes(a)), a, Interpolation::Cubic));
+  CHECK(disk.find(TextureDiskCache::digestOf(test::readBytes(a)), a, Interpolation::Cubic, TextureWrap::Clamp));
   fs::remove(fresh);
 
   // A cache folder that cannot be created (a file stands in its way): preparing still works.

@@ -2,6 +2,7 @@
 // Math aliases: GLM in double precision for everything the host computes.
 // Matrices are column-major as in GLM/GLSL: m[col][row]. Homogeneous points are column vectors,
 // so p_world = worldFromObject * p_object.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/glm.hpp>
@@ -30,6 +31,18 @@ inline constexpr double kFarAway = 1e30;
 template <class Real>
 Real atan2ZeroUnsigned(Real y, Real x) {
   return std::atan2(y == 0 ? Real(0) : y, x == 0 ? Real(0) : x);
+}
+
+// How far from the world origin a light's position and a shape's location may lie (m), and how far
+// a NURBS control point from its shape's origin or a displacement moves a point: beyond, the fp32
+// path's r² nears float's range, and an infinite plane's (u, v) overflowed to NaN.
+inline constexpr double kMaxDistanceFromOrigin_m = 1e12;
+
+// |p| without overflow to inf (scaled by its largest component), so that a refusal names the
+// distance given: glm::length({-1e308, 0, 0}) is inf.
+inline double distanceFromOrigin(const dvec3& p) {
+  const double largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  return largest > 0 ? largest * glm::length(p / largest) : 0;
 }
 
 // Rec. 709 / sRGB-linear luminance weights: grayscale output = luminance of linear RGB.

@@ -161,14 +161,21 @@ double denominator(const Net& net, double tu, double tv) {
   return w;
 }
 
-// The field at `points`, which must give one finite vector per point.
+// The field at `points`, which must give one finite vector per point, at most 1e12 m long (as far
+// as a shape's location may lie, core/math.h): a field of 1e300 m made the fit's squares overflow,
+// refine to its budget for 11 s, and report "best reached inf m" (the NURBS trial of 2026-11-29).
 std::vector<dvec3> checkedDisplacement(const DisplacementField& displacement, const std::vector<dvec3>& points) {
   std::vector<dvec3> d = displacement(points);
   DS_CHECK(d.size() == points.size(), "a displacement field returned the wrong number of values");
-  for (std::size_t k = 0; k < d.size(); ++k)
+  for (std::size_t k = 0; k < d.size(); ++k) {
+    const std::string at =
+        "(" + exactNumber(points[k].x) + ", " + exactNumber(points[k].y) + ", " + exactNumber(points[k].z) + ")";
     if (!std::isfinite(d[k].x) || !std::isfinite(d[k].y) || !std::isfinite(d[k].z))
-      throw InputError("the displacement is not finite at (" + exactNumber(points[k].x) + ", " +
-                       exactNumber(points[k].y) + ", " + exactNumber(points[k].z) + ")");
+      throw InputError("the displacement is not finite at " + at);
+    if (distanceFromOrigin(d[k]) > kMaxDistanceFromOrigin_m)
+      throw InputError("the displacement at " + at + " is " + shortestNumber(distanceFromOrigin(d[k])) +
+                       " m long, over the limit of 1e12 m (as far as a shape's location may lie)");
+  }
   return d;
 }
 

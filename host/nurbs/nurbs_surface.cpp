@@ -126,6 +126,11 @@ void validateNurbs(const NurbsSurface& s) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       fail("controlPoints[" + std::to_string(k + 1) + "] = {" + number(p.x) + ", " + number(p.y) +
            ", " + number(p.z) + "} is not finite");
+    // As a shape's location (core/math.h): a point at 1e300 m was accepted and drawn as nothing.
+    if (distanceFromOrigin(p) > kMaxDistanceFromOrigin_m)
+      fail("controlPoints[" + std::to_string(k + 1) + "] = {" + number(p.x) + ", " + number(p.y) + ", " +
+           number(p.z) + "} lies " + number(distanceFromOrigin(p)) + " m from the shape's origin, over the limit of " +
+           number(kMaxDistanceFromOrigin_m) + " m (as a shape's location)");
   }
   for (std::size_t k = 0; k < points; ++k) {
     const double w = s.weights[k];

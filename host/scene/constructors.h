@@ -14,17 +14,6 @@ struct lua_State;
 
 namespace dicsynth::scene {
 
-// How far from the world origin a light's position and a shape's location may lie (m): beyond, the
-// fp32 path's r² nears float's range, and an infinite plane's (u, v) overflowed to NaN.
-inline constexpr double kMaxDistanceFromOrigin_m = 1e12;
-
-// |p| without overflow to inf (scaled by its largest component), so that a refusal names the
-// distance given: glm::length({-1e308, 0, 0}) is inf.
-inline double distanceFromOrigin(const dvec3& p) {
-  const double largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  return largest > 0 ? largest * glm::length(p / largest) : 0;
-}
-
 // Registers every userdata type and sets all globals of the scene language.
 void registerSceneLanguage(lua_State* L);
 

@@ -133,8 +133,13 @@ int shapeNurbs(lua_State* L) {
   checked(p, [&] { validateNurbsKnots(s); });  // counts within the limit, knots valid
 
   const std::size_t count = static_cast<std::size_t>(s.countU) * s.countV;
-  const std::string countText = "countU × countV = " + std::to_string(s.countU) + " × " +
-                                std::to_string(s.countV) + " = " + std::to_string(count);
+  // The counts come from the knot vectors: a knot too many reads as a wrong number of points, so
+  // the message shows where the counts come from (the NURBS trial of 2026-11-29).
+  const std::string countText = "countU × countV = (#knotsU − degreeU − 1) × (#knotsV − degreeV − 1) = (" +
+                                std::to_string(s.knotsU.size()) + " − " + std::to_string(s.degreeU + 1) + ") × (" +
+                                std::to_string(s.knotsV.size()) + " − " + std::to_string(s.degreeV + 1) + ") = " +
+                                std::to_string(s.countU) + " × " + std::to_string(s.countV) + " = " +
+                                std::to_string(count);
   auto points = p.vec3List("controlPoints", count, countText);
   if (!points) p.fail("missing required 'controlPoints' = {{x, y, z}, ...} (" + countText + ")");
   s.controlPoints = std::move(*points);

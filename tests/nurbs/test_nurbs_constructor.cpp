@@ -139,12 +139,19 @@ TEST_CASE("scene: Shape.Nurbs errors name the line and what is wrong") {
   checkBodyError(dir, "s = Shape.Nurbs { degree = {1, 1}; knotsU = {0, 0, 1, 1}; knotsV = {0, 0, 1, 1} }\n",
                  2,
                  "Shape.Nurbs: missing required 'controlPoints' = {{x, y, z}, ...} (countU × "
-                 "countV = 2 × 2 = 4)");
+                 "countV = (#knotsU − degreeU − 1) × (#knotsV − degreeV − 1) = (4 − 2) × (4 − 2) = 2 × 2 = 4)");
   const std::string net = "s = Shape.Nurbs { degree = {1, 1}; knotsU = {0, 0, 1, 1}; knotsV = "
                           "{0, 0, 1, 1};\n  controlPoints = ";
   checkBodyError(dir, net + "{{0, 0, 0}, {0, 1, 0}, {1, 0, 0}} }\n", 2,
-                 "Shape.Nurbs: 'controlPoints' must be {{x, y, z}, ...} (countU × countV = 2 × 2 "
-                 "= 4 tables {x, y, z}), got 3 values");
+                 "Shape.Nurbs: 'controlPoints' must be {{x, y, z}, ...} (countU × countV = "
+                 "(#knotsU − degreeU − 1) × (#knotsV − degreeV − 1) = (4 − 2) × (4 − 2) = 2 × 2 = 4 tables "
+                 "{x, y, z}), got 3 values");
+  // A knot too many: the points' count names the knot vectors it comes from (the NURBS trial).
+  checkBodyError(dir, "s = Shape.Nurbs { degree = {1, 1}; knotsU = {0, 0, 0.5, 1, 1}; knotsV = {0, 0, 1, 1};\n"
+                      "  controlPoints = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}} }\n", 2,
+                 "Shape.Nurbs: 'controlPoints' must be {{x, y, z}, ...} (countU × countV = "
+                 "(#knotsU − degreeU − 1) × (#knotsV − degreeV − 1) = (5 − 2) × (4 − 2) = 3 × 2 = 6 tables "
+                 "{x, y, z}), got 4 values");
   checkBodyError(dir, net + "{{0, 0, 0}, {0, 'a', 0}, {1, 0, 0}, {1, 1, 0}} }\n", 2,
                  "Shape.Nurbs: 'controlPoints'[2][2] must be a number, got string");
   checkBodyError(dir, net + "{{0, 0, 0}, {0, 1, 0}, {1, 0}, {1, 1, 0}} }\n", 2,

@@ -171,6 +171,11 @@ TEST_CASE("nurbs-deform: a budget too small says the best error reached and why"
   const PointDisplacement notFinite = [](const dvec3&) { return dvec3(std::nan(""), 0, 0); };
   CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), pointwise(notFinite), 1e-9, report), doctest::Contains("not finite"),
                        InputError);
+  // A displacement beyond 1e12 m is refused at its first evaluation: 1e300 m made the fit's
+  // squares overflow and refine to its budget (11 s) before "best reached inf m" (the NURBS trial).
+  const PointDisplacement huge = [](const dvec3&) { return dvec3(1e300, 0, 0); };
+  CHECK_THROWS_WITH_AS(fitDeformedNurbs(makePlate(plate), pointwise(huge), 1e-9, report),
+                       doctest::Contains("is 1e+300 m long, over the limit of 1e12 m"), InputError);
 }
 
 TEST_CASE("nurbs-deform: the scene constructor fits, reports on stderr, and refuses bad input with file:line") {

@@ -148,6 +148,14 @@ TEST_CASE("scene: validateNurbs refuses bad control points and weights") {
   s = validSurface();
   s.controlPoints[19].z = -kInf;
   CHECK(errorOf(s) == "controlPoints[20] = {0.4, 0.30000000000000004, -inf} is not finite");
+  // Beyond 1e12 m from the shape's origin, as a shape's location (the NURBS trial: -1e300 m was
+  // accepted and rendered as nothing); 1e12 m itself is accepted.
+  s = validSurface();
+  s.controlPoints[1] = {-1e300, 0, 0};
+  CHECK(errorOf(s) == "controlPoints[2] = {-1e+300, 0, 0} lies 1e+300 m from the shape's origin, over the limit of 1e+12 m "
+                      "(as a shape's location)");
+  s.controlPoints[1] = {0, -1e12, 0};
+  CHECK(errorOf(s) == "(accepted)");
   s = validSurface();
   s.weights[2] = kInf;
   CHECK(errorOf(s) == "weights[3] must be finite, got inf");

@@ -10,6 +10,7 @@
 
 #include "camera/distortion.h"
 #include "cpu/reference_renderer.h"
+#include "every_precision.h"
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
 #include "identical_results.h"
@@ -43,23 +44,12 @@ PreparedScene prepareQuietly(const std::string& path, int downscale = 1) {
   return prepareScene(loadScene(path, params), {downscale});
 }
 
-// `scene` rendered at 2 spp by the CPU reference and by the GPU in every precision: each within
-// its precision's compare rules, no pixel with a wrong nearest hit, and (`sameObjects`) every
-// pixel centre seeing the same object on both.
+// `scene` rendered at 2 spp by the CPU reference and by the GPU in every precision
+// (test::checkEveryPrecision).
 void checkEveryPrecision(gpu::Renderer& renderer, const PreparedScene& scene, bool sameObjects) {
   RenderOptions options;
   options.samplesPerPixel = 2;
-  const RenderResult reference = cpu::render(scene, options);
-  for (Precision precision : kPrecisions) {
-    INFO(toString(precision));
-    options.precision = precision;
-    const Tolerances tol = tolerancesFor(precision);
-    for (const CameraDifference& d : compareResults(scene, reference, renderer.render(scene, options), tol)) {
-      CHECK(withinTolerance(d, tol));
-      CHECK(d.wrongNearestHits() == 0);
-      if (sameObjects) CHECK(d.objectIdMismatches == 0);
-    }
-  }
+  test::checkEveryPrecision(renderer, scene, cpu::render(scene, options), options, sameObjects);
 }
 
 }  // namespace

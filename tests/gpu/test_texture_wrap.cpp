@@ -12,10 +12,10 @@
 
 #include "bspline_oracle.h"
 #include "cpu/reference_renderer.h"
+#include "every_precision.h"
 #include "files/image_io.h"
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
-#include "render/compare.h"
 #include "scene/scene.h"
 #include "temp_folder.h"
 
@@ -96,15 +96,7 @@ TEST_CASE("texture-wrap: a repeating texture has no seam on a tiled plane or aro
     CHECK(wrong == 0);
     CHECK(seamPixels > 50);
     CHECK(clampedBreaks > seamPixels / 4);  // the check sees a seam where there is one
-    for (const Precision precision : kPrecisions) {
-      INFO(toString(precision));
-      options.precision = precision;
-      const Tolerances tol = tolerancesFor(precision);
-      for (const CameraDifference& d : compareResults(scene, reference, renderer.render(scene, options), tol)) {
-        CHECK(withinTolerance(d, tol));
-        CHECK(d.wrongNearestHits() == 0);
-      }
-    }
+    test::checkEveryPrecision(renderer, scene, reference, options, false);
   }
   test::expectNoValidationMessages();
 }

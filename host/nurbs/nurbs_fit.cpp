@@ -167,13 +167,15 @@ double denominator(const Net& net, double tu, double tv) {
 std::vector<dvec3> checkedDisplacement(const DisplacementField& displacement, const std::vector<dvec3>& points) {
   std::vector<dvec3> d = displacement(points);
   DS_CHECK(d.size() == points.size(), "a displacement field returned the wrong number of values");
+  // The point's text only for a refusal: this runs at every sample of every refinement.
+  const auto at = [&points](std::size_t k) {
+    return "(" + exactNumber(points[k].x) + ", " + exactNumber(points[k].y) + ", " + exactNumber(points[k].z) + ")";
+  };
   for (std::size_t k = 0; k < d.size(); ++k) {
-    const std::string at =
-        "(" + exactNumber(points[k].x) + ", " + exactNumber(points[k].y) + ", " + exactNumber(points[k].z) + ")";
     if (!std::isfinite(d[k].x) || !std::isfinite(d[k].y) || !std::isfinite(d[k].z))
-      throw InputError("the displacement is not finite at " + at);
+      throw InputError("the displacement is not finite at " + at(k));
     if (distanceFromOrigin(d[k]) > kMaxDistanceFromOrigin_m)
-      throw InputError("the displacement at " + at + " is " + shortestNumber(distanceFromOrigin(d[k])) +
+      throw InputError("the displacement at " + at(k) + " is " + shortestNumber(distanceFromOrigin(d[k])) +
                        " m long, over the limit of 1e12 m (as far as a shape's location may lie)");
   }
   return d;

@@ -120,9 +120,14 @@ struct File {
     for (std::size_t y = 0; y < h; ++y)
       for (std::size_t x = 0; x < w; ++x) {
         const double here = c[y * w + x];
-        if (x + 1 < w || repeatsU(wrap)) sx = std::max(sx, std::abs(c[y * w + (x + 1) % w] - here));
-        if (y + 1 < h || repeatsV(wrap)) sy = std::max(sy, std::abs(c[(y + 1) % h * w + x] - here));
+        if (x + 1 < w) sx = std::max(sx, std::abs(c[y * w + x + 1] - here));
+        if (y + 1 < h) sy = std::max(sy, std::abs(c[(y + 1) * w + x] - here));
       }
+    // The seam's pairs apart, instead of a modulo per texel in the loop above.
+    if (repeatsU(wrap))
+      for (std::size_t y = 0; y < h; ++y) sx = std::max(sx, std::abs(c[y * w] - c[y * w + w - 1]));
+    if (repeatsV(wrap))
+      for (std::size_t x = 0; x < w; ++x) sy = std::max(sy, std::abs(c[x] - c[(h - 1) * w + x]));
     return std::max(sx * double(width), sy * double(height));
   }
 };

@@ -2,8 +2,8 @@
 # A checking build: the test suite (or the ctest selection given as arguments, e.g. -LE gpu or
 # -R nurbs) built and run under AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/. Any
 # out-of-bounds access, use after free or undefined behaviour fails the case that hit it with a
-# report (docs/development.md "Sanitizers"). Not part of scripts/test.sh:
-# the instrumented build is ~3x slower to build and to run. Needs what scripts/test.sh needs.
+# report (docs/development.md "Sanitizers"). Not part of scripts/test.sh: the instrumented build
+# and its runs take much longer (figures there). Needs what scripts/test.sh needs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh

@@ -100,7 +100,7 @@ typename Layout::GpuObject packObject(const PreparedObject& o, dvec3 origin) {
   g.target0 = h4<Layout>(t.origin_uv.x, t.origin_uv.y, t.cell_uv.x, t.cell_uv.y);
   g.target1 = h4<Layout>(t.radiusSquared_cells, t.dark, t.light);
   g.targetInfo = {t.cols, t.rows, t.asymmetric ? 1 : 0, 0};
-  g.speckleInfo = {int(sp.seed), 0, 0, 0};  // the seed's bits (uint(int) in the shader)
+  g.speckleInfo = {int(sp.seed), sp.periodU_cells, sp.periodV_cells, 0};  // the seed's bits (uint(int) in the shader)
   g.speckle0 = h4<Layout>(sp.cellsPerUv.x, sp.cellsPerUv.y, sp.dark, sp.light);
   for (int q = 0; q < 4; ++q)
     g.speckleCdf[q] = {sp.cdf[std::size_t(4 * q)], sp.cdf[std::size_t(4 * q + 1)], sp.cdf[std::size_t(4 * q + 2)],

@@ -30,7 +30,7 @@ constexpr double kMaxCells = 1048576.0;
 double speckleMeanPerCell(double density) { return -4.0 * std::log1p(-density) / kPi; }
 
 AnalyticSpeckle makeAnalyticSpeckle(double radius_uv, double density, double aspect, std::uint32_t seed,
-                                    double dark, double light) {
+                                    double dark, double light, bool periodicU, bool periodicV) {
   if (!(radius_uv > 0) || !std::isfinite(radius_uv))
     throw InputError("radius must be a finite number > 0 (u units), got " + str(radius_uv));
   if (!(density > 0 && density <= kMaxDensity))
@@ -47,6 +47,17 @@ AnalyticSpeckle makeAnalyticSpeckle(double radius_uv, double density, double asp
   s.dark = dark;
   s.light = light;
   s.cellsPerUv = {1.0 / (2.0 * radius_uv), aspect / (2.0 * radius_uv)};
+  // A periodic axis holds a whole number of cells (analytic_speckle.h, "Periodic axes").
+  // (Capped before the conversion to int; more than kMaxCells is refused below.)
+  const auto whole = [](double cells) { return int(std::clamp(std::round(cells), 1.0, 2 * kMaxCells)); };
+  if (periodicU) s.periodU_cells = whole(s.cellsPerUv.x);
+  if (periodicV) s.periodV_cells = whole(s.cellsPerUv.y);
+  if (periodicU && periodicV)
+    s.cellsPerUv = {double(s.periodU_cells), double(s.periodV_cells)};
+  else if (periodicU)
+    s.cellsPerUv = {double(s.periodU_cells), aspect * s.periodU_cells};
+  else if (periodicV)
+    s.cellsPerUv = {s.periodV_cells / aspect, double(s.periodV_cells)};
   if (s.cellsPerUv.x > kMaxCells || s.cellsPerUv.y > kMaxCells)
     throw InputError("radius " + str(radius_uv) + " (aspect " + str(aspect) + ") makes more than 1048576 (2^20)" +
                      " disk diameters (cells of 2 radii) across the surface's u or v range: the radius must be at "

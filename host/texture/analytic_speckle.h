@@ -30,6 +30,20 @@
 // is the GPU twin, all in the variant's hreal: df64 decides to ~2^-44 of a cell, fp32 to ~x·2^-23
 // cells (the rounding of x = u · cellsPerU dominates), which can flip only samples that close to a
 // disk edge (tests/texture/test_analytic_speckle.cpp bounds it; host/render/compare.cpp excuses such pixels).
+//
+// Periodic axes (Texture.Speckle's `wrap`, for seams: a tiled Shape.Plane, a cylinder's or sphere's
+// u = 1 → 0). Along a periodic axis the unit range must hold a whole number P of cells, and the cell
+// index is taken modulo P before it is hashed: cell P is cell 0 again, so the disks of the last
+// cells reach across the seam into the first ones and the pattern is periodic with period 1 in that
+// coordinate. P = max(1, round(c)), c = 1/(2r) (v: aspect/(2r)) the cells per unit as asked: the
+// radius becomes 1/(2P) u units (v: aspect/(2P)); for c ≥ 1, |P − c| ≤ 1/2 changes it by at most
+// 1/(2P − 1) relative (a radius > 1/4, c < 2, may become 1/2: one cell). With u periodic only, cellsPerV = aspect · P, so the
+// disks stay round; v only, cellsPerU = P/aspect; both, each axis snapped on its own: the disks are
+// stretched in v by aspect · Pu/Pv (each count within 1/2 of the asked one: for Pu, Pv ≥ 2 the
+// stretch is within ~1/(2Pu − 1) + 1/(2Pv − 1) of 1). The same cells, so
+// the same disks, as the non-periodic pattern wherever no neighbour index wraps (1/(2r) integral):
+// only the cells next to the seam change. Each step is integer arithmetic, the same in GLSL
+// (speckleWrapCell: non-negative operands only, where GLSL's % is defined).
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -51,12 +65,21 @@ struct AnalyticSpeckle {
   double dark = 0, light = 1;
   // Derived (makeAnalyticSpeckle).
   dvec2 cellsPerUv{100, 100};
+  int periodU_cells = 0, periodV_cells = 0;  // cells per unit u, v along a periodic axis; 0: not periodic
   std::array<std::uint32_t, kSpeckleMaxPerCell> cdf{};
 };
 
-// Fills the derived fields; throws InputError for parameters out of range.
+// Fills the derived fields; throws InputError for parameters out of range. `periodicU`/`periodicV`:
+// the axes that repeat (their cell counts snapped to integers, see above).
 AnalyticSpeckle makeAnalyticSpeckle(double radius_uv, double density, double aspect, std::uint32_t seed,
-                                    double dark, double light);
+                                    double dark, double light, bool periodicU = false, bool periodicV = false);
+
+// The cell index k along an axis of `period` cells (0: not periodic): k modulo period in [0, period).
+// Written with non-negative operands of %, as its GLSL twin must (ds_speckle_wrap_cell).
+inline int speckleWrapCell(int k, int period) {
+  if (period == 0) return k;
+  return k >= 0 ? k % period : period - 1 - (-1 - k) % period;
+}
 
 // Mean disk count per cell for a coverage `density`: m = −4 ln(1 − density)/π.
 double speckleMeanPerCell(double density);
@@ -89,7 +112,8 @@ Real speckleNearestSquared(const AnalyticSpeckle& s, int i, int j, Real fx, Real
   const std::uint32_t stream = speckleStream(s.seed);
   for (int dj = -1; dj <= 1; ++dj) {
     for (int di = -1; di <= 1; ++di) {
-      const std::uint32_t cell = speckleCellHashFrom(stream, i + di, j + dj);
+      const std::uint32_t cell =
+          speckleCellHashFrom(stream, speckleWrapCell(i + di, s.periodU_cells), speckleWrapCell(j + dj, s.periodV_cells));
       const int n = speckleDiskCount(s, cell);
       const std::uint32_t disks = ds_hash_combine(cell, DS_DIM_SPECKLE_DISK);
       for (int k = 0; k < n; ++k) {

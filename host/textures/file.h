@@ -17,6 +17,7 @@
 #include "core/math.h"
 #include "shared/kinds.h"
 #include "texture/bspline.h"
+#include "textures/wrap.h"
 
 namespace dicsynth::textures {
 
@@ -70,17 +71,7 @@ struct File {
       f.interpolation = Interpolation::Quintic;
     else
       p.fail("'interpolation' must be \"cubic\" or \"quintic\", got \"" + interpolation + "\"");
-    const std::string wrap = p.string("wrap").value_or("clamp");
-    if (wrap == "clamp")
-      f.wrap = TextureWrap::Clamp;
-    else if (wrap == "repeat")
-      f.wrap = TextureWrap::Repeat;
-    else if (wrap == "repeatU")
-      f.wrap = TextureWrap::RepeatU;
-    else if (wrap == "repeatV")
-      f.wrap = TextureWrap::RepeatV;
-    else
-      p.fail("'wrap' must be \"clamp\", \"repeat\", \"repeatU\" or \"repeatV\", got \"" + wrap + "\"");
+    f.wrap = parseWrap(p);
     // Resolve against the scene's folder, then check the file can be read.
     const std::filesystem::path given(*fileName);
     const std::filesystem::path resolved = given.is_absolute() ? given : sceneDir / given;

@@ -10,6 +10,7 @@
 #include "core/math.h"
 #include "shared/kinds.h"
 #include "texture/analytic_speckle.h"
+#include "textures/wrap.h"
 
 namespace dicsynth::textures {
 
@@ -28,14 +29,19 @@ Model and formulas: host/texture/analytic_speckle.h.
   seed      | integer | 1       | 0 … 2^32 − 1; the same seed gives the same disks everywhere
   dark      | number  | 0       | texture value inside the disks, >= 0
   light     | number  | 1       | texture value outside, >= 0
+  wrap      | string  | "clamp" | "clamp": not periodic, the disks end at u, v = 0 and 1 (a seam
+            |         |         | cuts them); "repeat", "repeatU", "repeatV": periodic in u and v,
+            |         |         | u only, v only: the pattern continues across u = 1 → 0 (v = 1 → 0),
+            |         |         | the cells per unit along it rounded to a whole number (the radius
+            |         |         | then 1/(2·round(1/(2r))); texture/analytic_speckle.h)
 
-Example:  Texture.Speckle { radius = 0.004; density = 0.5; aspect = 0.5; seed = 7 }
+Example:  Texture.Speckle { radius = 0.004; density = 0.5; aspect = 0.5; seed = 7; wrap = "repeatU" }
 ------------------------------------------------------------------------------------------------ */
 struct Speckle {
   static constexpr TextureKind kKind = TextureKind::Speckle;
   static constexpr const char* kName = "Speckle";
   static constexpr const char* kConstructor = "Texture.Speckle";
-  static constexpr std::array<const char*, 6> kKeys{"radius", "density", "aspect", "seed", "dark", "light"};
+  static constexpr std::array<const char*, 7> kKeys{"radius", "density", "aspect", "seed", "dark", "light", "wrap"};
   static constexpr const char* kTwin = "speckle";
 
   AnalyticSpeckle model;
@@ -44,10 +50,12 @@ struct Speckle {
   static Speckle parse(const Params& p, const std::filesystem::path&) {
     const long long seed = p.integer("seed").value_or(1);
     p.require(seed >= 0 && seed <= 0xffffffffLL, "seed", "an integer in 0 .. 2^32 - 1", double(seed));
+    const TextureWrap wrap = parseWrap(p);
     Speckle s;
     try {
       s.model = makeAnalyticSpeckle(p.number("radius", 0.005), p.number("density", 0.5), p.number("aspect", 1.0),
-                                    std::uint32_t(seed), p.number("dark", 0.0), p.number("light", 1.0));
+                                    std::uint32_t(seed), p.number("dark", 0.0), p.number("light", 1.0),
+                                    repeatsU(wrap), repeatsV(wrap));
     } catch (const InputError& e) {
       p.fail(e.what());
     }

@@ -44,7 +44,7 @@ struct GpuObject {
   hreal4 target1;            // radiusSquared_cells, dark, light, 0
   ivec4 targetInfo;          // cols, rows, asymmetric (0/1), 0
   // Texture.Speckle (host/texture/analytic_speckle.h); speckleInfo pairs targetInfo (32 bytes):
-  ivec4 speckleInfo;         // seed (bits), 0, 0, 0
+  ivec4 speckleInfo;         // seed (bits), cells per period of u, of v (0: not periodic), 0
   hreal4 speckle0;           // cells per u, cells per v, dark, light
   uvec4 speckleCdf[4];       // Poisson inversion thresholds cdf[0..15]
 };

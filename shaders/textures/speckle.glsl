@@ -13,13 +13,21 @@ struct GpuSpeckle {
   hreal4 cells;    // cells per u, cells per v, dark, light (GpuObject.speckle0)
   uvec4 cdf[4];    // Poisson inversion thresholds cdf[0..15] (GpuObject.speckleCdf)
   uint seed;       // GpuObject.speckleInfo.x
+  ivec2 period;    // cells per period of u, v; 0: not periodic (GpuObject.speckleInfo.yz)
 };
 
 GpuSpeckle ds_speckle_data(int object) {
   return GpuSpeckle(DS_OBJECT_H(object, speckle0),
                     uvec4[4](DS_OBJECT(object, speckleCdf[0]), DS_OBJECT(object, speckleCdf[1]),
                              DS_OBJECT(object, speckleCdf[2]), DS_OBJECT(object, speckleCdf[3])),
-                    uint(DS_OBJECT(object, speckleInfo).x));
+                    uint(DS_OBJECT(object, speckleInfo).x), DS_OBJECT(object, speckleInfo).yz);
+}
+
+// The cell index k modulo `period` (0: k itself), as speckleWrapCell: GLSL's % is undefined for
+// negative operands, so a negative k is mirrored first.
+int ds_speckle_wrap_cell(int k, int period) {
+  if (period == 0) return k;
+  return k >= 0 ? k % period : period - 1 - (-1 - k) % period;
 }
 
 #if defined(DS_DF64)
@@ -27,7 +35,7 @@ GpuSpeckle ds_speckle_data(int object) {
 #else
 #define DS_PRECISE precise
 #endif
-bool ds_speckle_covered(hreal2 uv, hreal2 cellsPerUv, uint seed, uvec4 cdf[4]) {
+bool ds_speckle_covered(hreal2 uv, hreal2 cellsPerUv, uint seed, uvec4 cdf[4], ivec2 period) {
   const hreal x = h_mul(h_x(uv), h_x(cellsPerUv)), y = h_mul(h_y(uv), h_y(cellsPerUv));
   const hreal wx = h_floor(x), wy = h_floor(y);
   const int i = int(h_real(wx)), j = int(h_real(wy));
@@ -40,7 +48,8 @@ bool ds_speckle_covered(hreal2 uv, hreal2 cellsPerUv, uint seed, uvec4 cdf[4]) {
                                   ivec2(1, 0), ivec2(-1, 1), ivec2(0, 1), ivec2(1, 1));
   for (int c = 0; c < 9; ++c) {
     const int di = order[c].x, dj = order[c].y;
-    const uint cell = ds_hash_combine(ds_hash_combine(stream, uint(i + di)), uint(j + dj));
+    const uint cell = ds_hash_combine(ds_hash_combine(stream, uint(ds_speckle_wrap_cell(i + di, period.x))),
+                                      uint(ds_speckle_wrap_cell(j + dj, period.y)));
     const uint bits = ds_hash_combine(cell, DS_DIM_SPECKLE_COUNT);
     // N = #{k : bits ≥ cdf[k]}; cdf is non-decreasing, so that is the first k with bits < cdf[k].
     int n = 0;
@@ -64,7 +73,7 @@ bool ds_speckle_covered(hreal2 uv, hreal2 cellsPerUv, uint seed, uvec4 cdf[4]) {
 }
 
 real ds_speckle_value(GpuSpeckle g, hreal2 uv) {
-  const bool covered = ds_speckle_covered(uv, h2(h_x(g.cells), h_y(g.cells)), g.seed, g.cdf);
+  const bool covered = ds_speckle_covered(uv, h2(h_x(g.cells), h_y(g.cells)), g.seed, g.cdf, g.period);
   return covered ? h_real(h_z(g.cells)) : h_real(h_w(g.cells));
 }
 

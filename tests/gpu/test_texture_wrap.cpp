@@ -2,7 +2,8 @@
 // Shape.Plane's borders, a cylinder's back meridian turned to the camera): the CPU reference's
 // image is the periodic spline of the texels (an oracle of dense solves and explicit sums,
 // tests/bspline_oracle.h), where the clamped texture breaks; and the GPU renders it as the CPU
-// reference does in every precision.
+// reference does in every precision. The same for Texture.Speckle's `wrap` (an independent oracle
+// of the periodic pattern, tests/speckle_oracle.h).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -17,6 +18,7 @@
 #include "gpu/renderer.h"
 #include "gpu_test_context.h"
 #include "scene/scene.h"
+#include "speckle_oracle.h"
 #include "temp_folder.h"
 
 using namespace dicsynth;
@@ -96,6 +98,78 @@ TEST_CASE("texture-wrap: a repeating texture has no seam on a tiled plane or aro
     CHECK(wrong == 0);
     CHECK(seamPixels > 50);
     CHECK(clampedBreaks > seamPixels / 4);  // the check sees a seam where there is one
+    test::checkEveryPrecision(renderer, scene, reference, options, false);
+  }
+  test::expectNoValidationMessages();
+}
+
+TEST_CASE("texture-wrap: a periodic Texture.Speckle has no seam on a tiled plane or around a cylinder, on every renderer") {
+  test::TempFolder dir;
+  // Sample at the pixel centre, where the reference's uv is (fillFactor 1e-30: within 1e-15 px).
+  const std::string camera =
+      "camera = Camera.Pinhole { resolution = {96, 72}; focalLength = 0.01; pixelSize = {1e-5, 1e-5}; fillFactor = 1e-30 }\n";
+  struct Case {
+    const char* name;
+    double radius, aspect;
+    bool repeatU, repeatV;
+    std::string object;
+  };
+  // 0.3 mm per pixel at 0.3 m: disks of ~0.5 mm radius, ~3 px wide cells.
+  const Case cases[] = {
+      // Tiles 10 × 8 mm: radius 0.047 u = 0.47 mm, 10.6 → 11 cells per tile in u, 8.5 → 9 in v.
+      {"tiled plane", 0.047, 0.8, true, true, "shape = Shape.Plane { tileSize = {0.01, 0.008}; location = {0, 0, 0.3} }"},
+      // Circumference 62.8 mm, height 30 mm (aspect 0.477): radius 0.0081 u = 0.51 mm, 61.7 → 62 cells
+      // around; the seam turned to the camera (centre column).
+      {"cylinder seam", 0.0081, 0.03 / (2 * kPi * 0.01), true, false,
+       "shape = Shape.Cylinder { radius = 0.01; height = 0.03; capped = false; location = {0, 0, 0.3} }; transform = rotate_y(math.pi)"},
+  };
+  gpu::Renderer renderer(test::gpuContext());
+  for (const Case& c : cases) {
+    INFO(std::string(c.name));
+    const char* wrap = c.repeatU && c.repeatV ? "repeat" : "repeatU";
+    const std::string path = dir.file("scene.lua");
+    test::writeBytes(path, camera + "s = Object.Simple { " + c.object + "; shader = Shader.Constant { color = 1 }; " +
+                               "texture = Texture.Speckle { radius = " + std::to_string(c.radius) + "; aspect = " +
+                               std::to_string(c.aspect) + "; seed = 5; dark = 0.2; light = 0.9; wrap = \"" + wrap + "\" } }\n");
+    SceneParams params;
+    params.quiet = true;
+    const PreparedScene scene = prepareScene(loadScene(path, params), {1});
+    RenderOptions options;
+    options.samplesPerPixel = 1;
+    const RenderResult reference = cpu::render(scene, options);
+    const CameraImage& image = reference.cameras[0];
+    // The oracle from the parameters as written into the scene (std::to_string's 6 decimals).
+    const test::SpeckleOracle periodic(std::stod(std::to_string(c.radius)), 0.5, std::stod(std::to_string(c.aspect)), 5,
+                                       c.repeatU, c.repeatV);
+    test::SpeckleOracle cut = periodic;
+    cut.periodU = cut.periodV = 0;
+    int hits = 0, wrong = 0, nearRim = 0, seamPixels = 0, cutBreaks = 0;
+    for (std::size_t p = 0; p < image.radiance.size(); ++p) {
+      if (image.objectId[p] == 0) continue;
+      ++hits;
+      const dvec2 uv = image.uv[p];
+      const long double d2 = periodic.nearestSquared(uv.x, uv.y);
+      // uv within ~1e-15 of the sample's: 1e-9 cells² of d² is far beyond any doubt.
+      if (std::abs(d2 - 0.25L) < 1e-9L) {
+        ++nearRim;
+        continue;
+      }
+      const double expected = d2 <= 0.25L ? 0.2 : 0.9;
+      wrong += image.radiance[p] != expected ? 1 : 0;
+      // Within a cell of the u seam: the disks there reach across it.
+      const double cellU = 1 / double(periodic.cellsU);
+      if (uv.x < cellU || uv.x > 1 - cellU) {
+        ++seamPixels;
+        cutBreaks += (cut.nearestSquared(uv.x, uv.y) <= 0.25L) != (d2 <= 0.25L) ? 1 : 0;
+      }
+    }
+    MESSAGE(std::string(c.name) << ": " << hits << " hit pixels, " << wrong << " differ from the periodic oracle (" << nearRim
+                                << " within 1e-9 cells² of a rim); " << cutBreaks << " of the " << seamPixels
+                                << " pixels within a cell of the u seam would differ without the modulo");
+    CHECK(hits > 1000);
+    CHECK(wrong == 0);
+    CHECK(seamPixels > 50);
+    CHECK(cutBreaks > 0);  // the check sees a seam where there is one
     test::checkEveryPrecision(renderer, scene, reference, options, false);
   }
   test::expectNoValidationMessages();

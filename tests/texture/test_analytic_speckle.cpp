@@ -24,6 +24,7 @@
 #include "spirv/texture_probe_df64.h"
 #include "spirv/texture_probe_fp32.h"
 #include "spirv/texture_probe_fp64.h"
+#include "speckle_oracle.h"
 #include "texture/analytic_speckle.h"
 #include "texture/bspline.h"
 
@@ -232,6 +233,75 @@ TEST_CASE("texture-speckle: the seed fixes the pattern") {
   CHECK(std::abs(fraction - 0.5) <= 5 * std::sqrt(0.25 / n) + 0.01);
 }
 
+TEST_CASE("texture-speckle: a periodic pattern (wrap) is the model with cell indices modulo the period (independent oracle)") {
+  struct Config {
+    double radius, aspect;
+    bool repeatU, repeatV;
+    int periodU, periodV;  // the cell counts by hand: P = max(1, round(c))
+  };
+  const Config configs[] = {
+      {0.0123, 1.0, true, false, 41, 0},     // c = 40.65 → 41; v: 41 cells per unit
+      {0.0123, 0.47, true, false, 41, 0},    // a cylinder's aspect: v = 41 · 0.47 cells per unit
+      {0.011, 0.8, true, true, 45, 36},      // cu = 45.45 → 45, cv = 36.36 → 36
+      {0.021, 2.5, false, true, 0, 60},      // cv = 59.52 → 60, cu = 60 / 2.5 = 24 (no count near a half: the oracle rounds in long double)
+      {1.0 / 64, 1.0, true, true, 32, 32},   // integral: 32 exactly
+      {0.3, 1.0, true, true, 2, 2},          // c = 1.67 → 2 cells: each disk meets its own images
+      {0.45, 1.0, true, false, 1, 0},        // c = 1.11 → 1 cell: the neighbours are the cell itself
+  };
+  int index = 0;
+  for (const Config& c : configs) {
+    INFO("config " << index++ << ": radius " << c.radius << ", aspect " << c.aspect);
+    const AnalyticSpeckle s = makeAnalyticSpeckle(c.radius, 0.5, c.aspect, 77, 0, 1, c.repeatU, c.repeatV);
+    CHECK(s.periodU_cells == c.periodU);
+    CHECK(s.periodV_cells == c.periodV);
+    const test::SpeckleOracle periodic(c.radius, 0.5, c.aspect, 77, c.repeatU, c.repeatV);
+    // The same cells without the modulo: what the pattern was before `wrap`, seen at the seam.
+    test::SpeckleOracle cut = periodic;
+    cut.periodU = cut.periodV = 0;
+    CHECK(double(periodic.cellsU) == doctest::Approx(s.cellsPerUv.x).epsilon(1e-15));
+    CHECK(double(periodic.cellsV) == doctest::Approx(s.cellsPerUv.y).epsilon(1e-15));
+    // 30 000 random (u, v) over four periods around the seams u, v ∈ {−1, 0, 1, 2}, and 30 000 within
+    // two cells of u = 0 or 1 (v = 0 or 1 where v repeats), where the modulo acts.
+    int disagreements = 0, nearRim = 0, seamCut = 0, compared = 0;
+    for (std::uint32_t q = 0; q < 60000; ++q) {
+      double u = -1.5 + 4 * testUnit(31, q), v = -1.5 + 4 * testUnit(32, q);
+      if (q >= 30000) {
+        const double du = (testUnit(33, q) - 0.5) * 4 / double(s.cellsPerUv.x), dv = (testUnit(34, q) - 0.5) * 4 / s.cellsPerUv.y;
+        if (c.repeatU) u = (q & 1) + du;
+        if (c.repeatV) v = (q & 2 ? 1 : 0) + dv;
+      }
+      const long double d2 = periodic.nearestSquared(u, v);
+      // The library rounds x = u · cells and the differences in double: ~1e-13 cells² at |x| ≤ 250.
+      // Closer than 1e-9 to the rim the two may round to either side: counted apart, not compared.
+      if (std::abs(d2 - 0.25L) < 1e-9L) {
+        ++nearRim;
+        continue;
+      }
+      ++compared;
+      const bool expected = d2 <= 0.25L;
+      disagreements += speckleCovered(s, {u, v}) != expected ? 1 : 0;
+      seamCut += (cut.nearestSquared(u, v) <= 0.25L) != expected ? 1 : 0;
+    }
+    MESSAGE("periods " << s.periodU_cells << " × " << s.periodV_cells << ": " << disagreements << " disagreements of " << compared
+                       << " (" << nearRim << " within 1e-9 cells² of a rim); the pattern without the modulo differs on "
+                       << seamCut);
+    CHECK(disagreements == 0);
+    CHECK(nearRim < 20);  // a band of relative width ~4e-9: expected ~0 of 60 000
+    CHECK(seamCut > 1000);  // the test sees the seam: without the modulo the pattern breaks there
+  }
+  // Where 1/(2r) is a whole number, the periodic pattern is the non-periodic one on every cell whose
+  // neighbours need no modulo (cells 1 … P − 2): only the seam's cells change.
+  const AnalyticSpeckle plain = makeAnalyticSpeckle(1.0 / 64, 0.5, 1.0, 9, 0, 1);
+  const AnalyticSpeckle tiled = makeAnalyticSpeckle(1.0 / 64, 0.5, 1.0, 9, 0, 1, true, true);
+  REQUIRE(plain.cellsPerUv.x == 32.0);
+  int interiorDiffer = 0;
+  for (std::uint32_t q = 0; q < 20000; ++q) {
+    const dvec2 uv{(1 + 30 * testUnit(35, q)) / 32, (1 + 30 * testUnit(36, q)) / 32};
+    interiorDiffer += speckleCovered(plain, uv) != speckleCovered(tiled, uv) ? 1 : 0;
+  }
+  CHECK(interiorDiffer == 0);
+}
+
 TEST_CASE("texture-speckle: scenes/analytic_speckle.lua, GPU fp64 = CPU to 1e-12 of full scale") {
   const PreparedScene scene = prepareScene(loadScene(std::string(DS_SOURCE_DIR) + "/scenes/analytic_speckle.lua", {}), {4});
   REQUIRE(scene.features.speckleTextures);
@@ -349,6 +419,13 @@ TEST_CASE("texture-speckle: scene errors name the line") {
   const std::string unknown = test::loadError(dir.write("s.lua", std::string(test::kCameraLine) +
                                                                      "t = Texture.Speckle { radious = 1 }\n"));
   CHECK(unknown.find("radious") != std::string::npos);
+  test::checkBodyError(dir, "t = Texture.Speckle { wrap = \"periodic\" }\n", 2,
+                       "Texture.Speckle: 'wrap' must be \"clamp\", \"repeat\", \"repeatU\" or \"repeatV\", got \"periodic\"");
+  // The limit holds along a periodic axis too (1/(2 · 4.7e-7) = 1063829.8 rounds to 1063830 > 2^20).
+  test::checkBodyError(dir, "t = Texture.Speckle { radius = 4.7e-7; wrap = \"repeatU\" }\n", 2,
+                       "Texture.Speckle: radius 4.7e-07 (aspect 1) makes more than 1048576 (2^20) disk diameters (cells "
+                       "of 2 radii) across the surface's u or v range: the radius must be at least max(1, aspect) / "
+                       "2^21 = 4.76837e-07");
   test::checkBodyError(dir, "t = Texture.File { fileName = \"s.lua\"; interpolation = \"linear\" }\n", 2,
                        "Texture.File: 'interpolation' must be \"cubic\" or \"quintic\", got \"linear\"");
 }

@@ -3,7 +3,8 @@
 //
 //   dicsynth speckle -o FILE.tif --size W H [--radius PX | --diameter PX] [--radius-spread F]
 //                    [--density F | --count-density N] [--edge-width PX] [--pattern disks|perlin]
-//                    [--perlin-cell PX] [--octaves N] [--seed N] [--supersampling S] [--bits 8|16]
+//                    [--perlin-cell PX] [--octaves N] [--periodic] [--seed N] [--supersampling S]
+//                    [--bits 8|16]
 //
 //   option             default  meaning
 //   -o, --output       -        the TIFF to write (.tif/.tiff); its folder must exist
@@ -18,6 +19,9 @@
 //   --pattern P        disks    disks (Boolean model) or perlin (thresholded gradient noise)
 //   --perlin-cell PX   8        perlin: lattice spacing of the first octave (>= 1)
 //   --octaves N        1        perlin: octaves summed, 1..8
+//   --periodic         off      the image tiles seamlessly (last column into the first, last row
+//                               into the first), for Texture.File { wrap = "repeat" }; perlin: the
+//                               size must be a whole number of cells
 //   --seed N           1        32-bit seed: the same parameters give the same pixels everywhere
 //   --supersampling S  4        S x S samples per pixel (1..8) for anti-aliasing
 //   --bits 8|16        16       bits per pixel; value = round(fraction uncovered · (2^bits − 1))
@@ -82,6 +86,7 @@ std::string extras(const SpeckleOptions& o) {
   if (p.radiusSpread != 0) s += " --radius-spread " + shortest(p.radiusSpread);
   if (p.disksPerPx2 != 0) s += " --count-density " + shortest(p.disksPerPx2);
   if (p.edgeWidth_px != 0) s += " --edge-width " + shortest(p.edgeWidth_px);
+  if (p.periodic) s += " --periodic";
   return s;
 }
 
@@ -188,6 +193,8 @@ void addSpeckleCommand(CLI::App& root, RunFn& run) {
   sub->add_option("--perlin-cell", options->params.perlinCell_px, "Perlin: lattice spacing in px (>= 1)")
       ->capture_default_str();
   sub->add_option("--octaves", options->params.perlinOctaves, "Perlin: octaves, 1..8")->capture_default_str();
+  sub->add_flag("--periodic", options->params.periodic,
+                "The image tiles seamlessly (for Texture.File { wrap = \"repeat\" }); perlin: size a whole number of cells");
   sub->add_option("--seed", options->params.seed, "Seed (32-bit unsigned)")->capture_default_str();
   sub->add_option("--supersampling", options->params.supersampling, "Samples per pixel along each axis (1..8)")
       ->capture_default_str();

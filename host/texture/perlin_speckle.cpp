@@ -26,12 +26,18 @@ double ramp(std::uint32_t h, double dx, double dy) {
   return a + b;
 }
 
-double octaveNoise(std::uint32_t stream, double x, double y) {
+// Lattice index k modulo `period` (0: not periodic).
+int wrapLattice(int k, int period) { return period == 0 ? k : ((k % period) + period) % period; }
+
+// One octave at lattice coordinates (x, y); periodic with `periodX` × `periodY` lattice cells
+// (0: not periodic): the corner gradients are those of the indices modulo the period.
+double octaveNoise(std::uint32_t stream, double x, double y, int periodX, int periodY) {
   const double wx = std::floor(x), wy = std::floor(y);
   const int i = int(wx), j = int(wy);
   const double fx = x - wx, fy = y - wy;
   auto corner = [&](int a, int b) {
-    const std::uint32_t h = ds_hash_combine(ds_hash_combine(stream, std::uint32_t(i + a)), std::uint32_t(j + b));
+    const std::uint32_t h = ds_hash_combine(ds_hash_combine(stream, std::uint32_t(wrapLattice(i + a, periodX))),
+                                            std::uint32_t(wrapLattice(j + b, periodY)));
     return ramp(h, fx - a, fy - b);
   };
   const double u = fade(fx), v = fade(fy);
@@ -42,13 +48,21 @@ double octaveNoise(std::uint32_t stream, double x, double y) {
 
 }  // namespace
 
+int perlinPeriodCells(const SpeckleParams& p, int side_px) {
+  return p.periodic ? int(std::lround(double(side_px) / p.perlinCell_px)) : 0;
+}
+
 double perlinNoise(const SpeckleParams& p, double x, double y) {
   double sum = 0, amplitude = 1, scale = 1.0 / p.perlinCell_px;
   const std::uint32_t base = ds_hash(p.seed ^ kPerlinStream);
+  // Periodic: W/c and H/c lattice cells (whole numbers, validateSpeckle), twice as many per octave.
+  int periodX = perlinPeriodCells(p, p.width_px), periodY = perlinPeriodCells(p, p.height_px);
   for (int o = 0; o < p.perlinOctaves; ++o) {
-    sum += amplitude * octaveNoise(ds_hash_combine(base, std::uint32_t(o)), x * scale, y * scale);
+    sum += amplitude * octaveNoise(ds_hash_combine(base, std::uint32_t(o)), x * scale, y * scale, periodX, periodY);
     amplitude *= 0.5;
     scale *= 2.0;
+    periodX *= 2;
+    periodY *= 2;
   }
   return sum;
 }

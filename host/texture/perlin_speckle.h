@@ -11,6 +11,9 @@
 // square with local coordinates (fx, fy) ∈ [0, 1)² the noise is the bilinear blend, with the fade
 // φ(t) = 6t⁵ − 15t⁴ + 10t³ (C², Perlin 2002), of the four corner ramps g·(fx − a, fy − b). Octaves:
 // n(x) = Σ_{o < O} 2^-o noise_o(2^o x / c).
+// Periodic (--periodic): W and H must be whole multiples of c; the lattice indices of octave o are
+// then taken modulo (W/c)·2^o and (H/c)·2^o, so n(x + W, y) = n(x, y + H) = n(x, y) and the image
+// tiles seamlessly.
 // Speckle. The threshold t is the (1 − density) quantile of n over the pixel centres, so exactly
 // `density` of them are dark (ties aside). A sample's darkness is 1 where n > t (hard edges) or,
 // with an edge width w px, the smoothstep S((n − t)/(w·G) + 1/2) clamped to [0, 1], where G is the
@@ -27,5 +30,8 @@ GrayImage generatePerlinSpeckle(const SpeckleParams& params);
 
 // The noise n at (x, y) px (exposed for tests).
 double perlinNoise(const SpeckleParams& params, double x, double y);
+
+// Lattice cells of the first octave across `side_px` when periodic (W/c or H/c), else 0.
+int perlinPeriodCells(const SpeckleParams& params, int side_px);
 
 }  // namespace dicsynth

@@ -35,6 +35,13 @@
 //   choosing λ = −ln(1 − density)/A_eff keeps the mean darkness at `density`.
 // - Intensity (--count-density λ): disks per px² given directly; coverage 1 − exp(−λ A_eff).
 // The border extension becomes the disk's reach r(1 + s) + w/2.
+// - Periodic (--periodic): the image is a torus. The centres are uniform over [0, W) × [0, H)
+//   itself (span W, no border), n = round(λ W H), and disk k is drawn at (cx + aW, cy + bH) for every
+//   integer a, b whose translate reaches the image (|a| ≤ ⌈reach/W⌉, |b| ≤ ⌈reach/H⌉): a point of the
+//   torus is missed by one disk with probability 1 − A_eff/(W H) exactly, so the coverage is the
+//   Boolean model's up to O(1/n), with no border at all, and column W − 1 continues into column 0 as
+//   any two neighbouring columns do. The same hash dims: a periodic pattern is another pattern than
+//   the non-periodic one of the same seed (its centres span another rectangle).
 #include "texture/speckle.h"
 
 #include "texture/perlin_speckle.h"
@@ -103,8 +110,10 @@ void rasterizeDisk(double cx, double cy, double r, const SpeckleParams& p, const
 struct Disk {
   double x, y, r;
 };
+// The centres span [−ext, W + ext) × [−ext, H + ext) (`extWidth` × `extHeight` from −ext), or the
+// image itself when periodic (ext 0).
 Disk disk(const SpeckleParams& p, std::uint32_t stream, std::uint32_t k, double extWidth, double extHeight) {
-  const double ext = reach(p);
+  const double ext = p.periodic ? 0.0 : reach(p);
   const std::uint32_t h = ds_hash_combine(stream, k);
   const double ux = ds_unit(ds_hash_combine(h, 0u));
   const double uy = ds_unit(ds_hash_combine(h, 1u));
@@ -120,14 +129,40 @@ Disk disk(const SpeckleParams& p, std::uint32_t stream, std::uint32_t k, double 
   return {sx - ext, sy - ext, r};
 }
 
+// The rectangle the centres span: the image extended by the reach on every side, or the image.
+double centreSpan(const SpeckleParams& p, int side_px) {
+  return p.periodic ? double(side_px) : double(side_px) + 2.0 * reach(p);
+}
+
+// Calls draw(x, y, r) for disk k at each of its translates by whole image sizes that reaches the
+// image: only itself unless periodic.
+template <class Draw>
+void forEachImage(const SpeckleParams& p, const Disk& d, Draw&& draw) {
+  if (!p.periodic) {
+    draw(d.x, d.y, d.r);
+    return;
+  }
+  const double ext = reach(p), W = p.width_px, H = p.height_px;
+  const int A = int(std::ceil(ext / W)), B = int(std::ceil(ext / H));
+  for (int b = -B; b <= B; ++b)
+    for (int a = -A; a <= A; ++a) {
+      const double x = d.x + double(a) * W, y = d.y + double(b) * H;
+      if (x + ext < 0 || x - ext >= W || y + ext < 0 || y - ext >= H) continue;  // misses the image
+      draw(x, y, d.r);
+    }
+}
+
 // Soft edges: every sample's Π (1 − D_k) over the disks within reach, found through a grid of
 // square bins of side 2·reach (a sample's disks lie in its bin and the 8 around it).
 GrayImage generateSoft(const SpeckleParams& p, std::uint32_t diskCount) {
   const double ext = reach(p), w = p.edgeWidth_px;
+  // The bins cover the image extended by the reach: every drawn disk's centre (a periodic
+  // pattern's translates included) lies there.
   const double extWidth = double(p.width_px) + 2.0 * ext, extHeight = double(p.height_px) + 2.0 * ext;
   const double bin = 2.0 * ext;
   const int binsX = int(std::ceil(extWidth / bin)) + 1, binsY = int(std::ceil(extHeight / bin)) + 1;
-  std::vector<Disk> disks(diskCount);
+  std::vector<Disk> disks;
+  disks.reserve(diskCount);
   std::vector<std::uint32_t> start(std::size_t(binsX) * std::size_t(binsY) + 1, 0);
   auto binOf = [&](double x, double y) {
     const int bx = std::clamp(int(std::floor((x + ext) / bin)), 0, binsX - 1);
@@ -135,13 +170,13 @@ GrayImage generateSoft(const SpeckleParams& p, std::uint32_t diskCount) {
     return std::size_t(by) * std::size_t(binsX) + std::size_t(bx);
   };
   const std::uint32_t stream = ds_hash(p.seed ^ kSpeckleStream);
-  for (std::uint32_t k = 0; k < diskCount; ++k) {
-    disks[k] = disk(p, stream, k, extWidth, extHeight);
-    ++start[binOf(disks[k].x, disks[k].y) + 1];
-  }
+  const double spanW = centreSpan(p, p.width_px), spanH = centreSpan(p, p.height_px);
+  for (std::uint32_t k = 0; k < diskCount; ++k)
+    forEachImage(p, disk(p, stream, k, spanW, spanH), [&](double x, double y, double r) { disks.push_back({x, y, r}); });
+  for (const Disk& d : disks) ++start[binOf(d.x, d.y) + 1];
   for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-  std::vector<std::uint32_t> order(diskCount), fill(start.begin(), start.end() - 1);
-  for (std::uint32_t k = 0; k < diskCount; ++k) order[fill[binOf(disks[k].x, disks[k].y)]++] = k;
+  std::vector<std::uint32_t> order(disks.size()), fill(start.begin(), start.end() - 1);
+  for (std::uint32_t k = 0; k < std::uint32_t(disks.size()); ++k) order[fill[binOf(disks[k].x, disks[k].y)]++] = k;
 
   const int S = p.supersampling;
   GrayImage image;
@@ -176,9 +211,7 @@ GrayImage generateSoft(const SpeckleParams& p, std::uint32_t diskCount) {
 
 template <typename Mask>
 GrayImage generate(const SpeckleParams& p, std::uint32_t diskCount) {
-  const double r = reach(p);
-  const double extWidth = double(p.width_px) + 2.0 * r;
-  const double extHeight = double(p.height_px) + 2.0 * r;
+  const double spanW = centreSpan(p, p.width_px), spanH = centreSpan(p, p.height_px);
   const int S = p.supersampling;
   std::vector<double> offsets(S);
   for (int i = 0; i < S; ++i) offsets[i] = (double(i) + 0.5) / double(S);
@@ -187,8 +220,8 @@ GrayImage generate(const SpeckleParams& p, std::uint32_t diskCount) {
   std::vector<Mask> masks(std::size_t(p.width_px) * std::size_t(p.height_px), Mask(0));
   const std::uint32_t stream = ds_hash(p.seed ^ kSpeckleStream);
   for (std::uint32_t k = 0; k < diskCount; ++k) {
-    const Disk d = disk(p, stream, k, extWidth, extHeight);
-    rasterizeDisk(d.x, d.y, d.r, p, offsets, masks);
+    forEachImage(p, disk(p, stream, k, spanW, spanH),
+                 [&](double x, double y, double r) { rasterizeDisk(x, y, r, p, offsets, masks); });
   }
 
   // Value = fraction of the samples inside no disk.
@@ -234,6 +267,18 @@ void validateSpeckle(const SpeckleParams& p) {
       throw InputError("speckle: Perlin octaves must be in 1..8 (got " + std::to_string(p.perlinOctaves) + ")");
     if (!(p.edgeWidth_px >= 0) || !std::isfinite(p.edgeWidth_px))
       throw InputError("speckle: edge width must be a finite number >= 0 px (got " + str(p.edgeWidth_px) + ")");
+    // Periodic noise needs a whole number of lattice cells across each side, to 1e-9 relative: a
+    // cell written in decimal (1000/3 px as 333.333333333) is accepted, the noise's period then
+    // differs from the side by at most 1e-9 of it (1e-6 px at 1000 px), far below a sample spacing.
+    if (p.periodic)
+      for (const int side : {p.width_px, p.height_px}) {
+        const double cells = double(side) / p.perlinCell_px;
+        if (std::abs(cells - std::round(cells)) > 1e-9 * cells)
+          throw InputError("speckle: --periodic with --pattern perlin needs the size to be a whole number of Perlin "
+                           "cells: " + std::to_string(side) + " px / " + str(p.perlinCell_px) + " px = " + str(cells) +
+                           " (choose a cell that divides both " + std::to_string(p.width_px) + " and " +
+                           std::to_string(p.height_px) + ")");
+      }
     return;
   }
   if (!(p.radiusSpread >= 0 && p.radiusSpread < 1))
@@ -250,8 +295,7 @@ void validateSpeckle(const SpeckleParams& p) {
 GrayImage generateSpeckle(const SpeckleParams& params) {
   if (params.pattern == SpecklePattern::Perlin) return generatePerlinSpeckle(params);  // validates too
   validateSpeckle(params);
-  const double r = reach(params);
-  const double extArea = (double(params.width_px) + 2.0 * r) * (double(params.height_px) + 2.0 * r);
+  const double extArea = centreSpan(params, params.width_px) * centreSpan(params, params.height_px);
   const double lambda = speckleIntensity(params);  // disks per px²
   const double expectedCount = lambda * extArea;
   const double diskCount = std::floor(expectedCount + 0.5);

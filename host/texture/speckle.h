@@ -25,6 +25,9 @@ struct SpeckleParams {
                              // blob's contour (Perlin); 0: hard edges
   double perlinCell_px = 8;  // Perlin: lattice spacing of the first octave
   int perlinOctaves = 1;     // Perlin: octaves summed (each half the spacing, half the amplitude)
+  bool periodic = false;     // the image tiles seamlessly: column W − 1 continues into column 0,
+                             // row H − 1 into row 0 (for Texture.File { wrap = "repeat" }); Perlin:
+                             // W and H must be whole multiples of the cell
 };
 
 // Disks: the effective area A_eff = ∫ darkness of one disk, = π(E[R²] + w²/20) with
@@ -37,10 +40,12 @@ double speckleIntensity(const SpeckleParams& p);
 // generator's continuous frame pixel (x, y) covers [x, x+1) x [y, y+1); its samples lie on the
 // regular grid (x + (i + 0.5)/S, y + (j + 0.5)/S). Disk centres are uniform over the image extended
 // by the radius on every side, so coverage is uniform up to the edges (model: texture/speckle.cpp).
+// Periodic: the centres are uniform over the image itself, a torus, and each disk is drawn at every
+// translate by whole image sizes that reaches the image (model: texture/speckle.cpp).
 // Throws InputError for impossible parameters (size outside 1..65536 per side, radius <= 0,
 // density outside (0, 1), supersampling outside 1..8, more than 2^32 - 1 disks, spread outside
 // [0, 1), disksPerPx2 < 0, edge width < 0 or above the smallest diameter, Perlin cell < 1 px or
-// octaves outside 1..8).
+// octaves outside 1..8, periodic Perlin with W or H not a whole number of cells).
 // Perlin: texture/perlin_speckle.cpp.
 GrayImage generateSpeckle(const SpeckleParams& params);
 

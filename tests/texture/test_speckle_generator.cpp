@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 #include "core/math.h"
 #include "files/image_io.h"
 #include "run_cli.h"
+#include "shared/rng.h"
 #include "temp_folder.h"
 #include "texture/perlin_speckle.h"
 #include "texture/speckle.h"
@@ -459,4 +461,233 @@ TEST_CASE("speckle-options: the CLI options reach the generator and bad values e
     CHECK(test::runCli("speckle -o " + bad + " --size 10 10 " + args).exitCode == 2);
   }
   CHECK(!std::filesystem::exists(bad));
+}
+
+namespace {
+
+// An independent oracle of `--periodic` disks (texture/speckle.cpp's model as documented): the
+// disks of the hash stream with centres uniform over the W × H image, on a torus: a sample's
+// darkness from every translate (a, b) ∈ [−2, 2]² of every disk (more than the generator's
+// ⌈reach/W⌉, so its choice of translates is checked too), distances in long double.
+struct TorusOracle {
+  std::vector<double> pixels;  // value = 1 − mean darkness of the S × S samples
+  int doubtful = 0;            // hard edges: samples within 1e-9 px of a rim (either side may round)
+  std::vector<char> pixelDoubtful;
+};
+TorusOracle torusOracle(const SpeckleParams& p) {
+  const double W = p.width_px, H = p.height_px, s = p.radiusSpread, w = p.edgeWidth_px;
+  // A_eff = π(E[R²] + w²/20), E[R²] = r²(1 + s²/3) (docs/commands.md); λ = −ln(1 − density)/A_eff.
+  const long double aEff = kPi * ((long double)p.radius_px * p.radius_px * (1 + s * s / 3) + w * w / 20);
+  const auto n = std::uint32_t(std::floor(-std::log1p(-(long double)p.density) / aEff * W * H + 0.5L));
+  const std::uint32_t stream = ds_hash(p.seed ^ 0x5bd1e995u);  // the disks' stream (texture/speckle.cpp)
+  struct D {
+    long double x, y, r;
+  };
+  std::vector<D> disks;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const std::uint32_t h = ds_hash_combine(stream, k);
+    const long double r = p.radius_px * (1 + s * (2 * (long double)ds_unit(ds_hash_combine(h, 2u)) - 1));
+    disks.push_back({ds_unit(ds_hash_combine(h, 0u)) * W, ds_unit(ds_hash_combine(h, 1u)) * H, r});
+  }
+  TorusOracle o;
+  const int S = p.supersampling;
+  o.pixels.resize(std::size_t(p.width_px * p.height_px));
+  o.pixelDoubtful.assign(o.pixels.size(), 0);
+  for (int y = 0; y < p.height_px; ++y)
+    for (int x = 0; x < p.width_px; ++x) {
+      long double dark = 0;
+      for (int j = 0; j < S; ++j)
+        for (int i = 0; i < S; ++i) {
+          const long double sx = x + (i + 0.5L) / S, sy = y + (j + 0.5L) / S;
+          long double clear = 1;
+          for (const D& d : disks)
+            for (int b = -2; b <= 2; ++b)
+              for (int a = -2; a <= 2; ++a) {
+                const long double distance = std::hypot(sx - (d.x + a * W), sy - (d.y + b * H));
+                if (w == 0) {
+                  if (std::abs(distance - d.r) < 1e-9L) {
+                    ++o.doubtful;
+                    o.pixelDoubtful[std::size_t(y * p.width_px + x)] = 1;
+                  }
+                  if (distance <= d.r) clear = 0;
+                } else {
+                  const long double t = std::clamp((distance - (d.r - w / 2)) / w, 0.0L, 1.0L);
+                  clear *= t * t * (3 - 2 * t);
+                }
+              }
+          dark += 1 - clear;
+        }
+      o.pixels[std::size_t(y * p.width_px + x)] = double(1 - dark / (S * S));
+    }
+  return o;
+}
+
+// Mean |difference| of horizontally neighbouring pixels: across the wrap (column W − 1 beside
+// column 0, as when the image is tiled) and between the image's own neighbouring columns x − 1, x
+// with x a multiple of `stride`; and the standard error of a mean of H such pairs (from the
+// interior pairs' spread). Perlin noise is not stationary (it vanishes at its lattice points), so
+// its seam, on a lattice line, is compared with the other lattice lines (stride: the cell).
+struct SeamStats {
+  double seam = 0, interior = 0, standardError = 0;
+};
+SeamStats seamStats(const GrayImage& image, int stride = 1) {
+  SeamStats r;
+  const int W = image.width, H = image.height;
+  double sumSquares = 0;
+  for (int y = 0; y < H; ++y) {
+    const double* row = &image.pixels[std::size_t(y) * std::size_t(W)];
+    r.seam += std::abs(row[W - 1] - row[0]);
+    for (int x = stride; x < W; x += stride) {
+      const double d = std::abs(row[x] - row[x - 1]);
+      r.interior += d;
+      sumSquares += d * d;
+    }
+  }
+  const double pairs = double(H) * ((W - 1) / stride);
+  r.seam /= H;
+  r.interior /= pairs;
+  r.standardError = std::sqrt((sumSquares / pairs - r.interior * r.interior) / H);
+  return r;
+}
+
+GrayImage transposed(const GrayImage& image) {
+  GrayImage t;
+  t.width = image.height;
+  t.height = image.width;
+  t.pixels.resize(image.pixels.size());
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      t.pixels[std::size_t(x) * std::size_t(t.width) + std::size_t(y)] = image.pixels[std::size_t(y) * std::size_t(image.width) + std::size_t(x)];
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("speckle-periodic: --periodic disks are the Boolean model on a torus (independent oracle)") {
+  struct Case {
+    int w, h;
+    double radius, spread, edge, density;
+    int S;
+  };
+  const Case cases[] = {
+      {48, 40, 3.7, 0, 0, 0.5, 3},    // hard edges
+      {40, 36, 2.5, 0.4, 1.5, 0.6, 4},  // a size spread and soft edges (the binned path)
+      {12, 10, 7, 0, 0, 0.7, 2},      // a disk wider than half the image: it wraps onto itself
+      {12, 10, 4, 0, 3, 0.7, 2},      // the same with soft edges (reach 5.5 > W/2)
+  };
+  for (const Case& c : cases) {
+    SpeckleParams p = params(c.w, c.h, 13, c.radius, c.density, c.S);
+    p.radiusSpread = c.spread;
+    p.edgeWidth_px = c.edge;
+    p.periodic = true;
+    CAPTURE(c.w);
+    CAPTURE(c.radius);
+    CAPTURE(c.edge);
+    const GrayImage image = generateSpeckle(p);
+    const TorusOracle oracle = torusOracle(p);
+    int differ = 0, compared = 0;
+    double worst = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+      if (oracle.pixelDoubtful[i]) continue;
+      ++compared;
+      const double error = std::abs(image.pixels[i] - oracle.pixels[i]);
+      worst = std::max(worst, error);
+      // Hard edges: a fraction of samples, exact. Soft: smoothsteps of distances computed in double
+      // against long double, ≤ 1e-15 px each, times the slope 1.5/w ≤ 1 per px, over ≤ 25 disks per
+      // sample: 1e-12 is far above that and far below one sample's 1/S².
+      differ += error > (c.edge == 0 ? 0.0 : 1e-12) ? 1 : 0;
+    }
+    MESSAGE(c.w << " × " << c.h << " px, radius " << c.radius << ", edge " << c.edge << ": " << differ << " of " << compared
+                << " pixels differ from the torus oracle (worst " << worst << "), " << oracle.doubtful
+                << " samples within 1e-9 px of a rim left out");
+    CHECK(compared > int(image.pixels.size()) * 9 / 10);
+    CHECK(differ == 0);
+    // Not the non-periodic pattern (another span of centres), which the oracle would reject.
+    p.periodic = false;
+    CHECK(generateSpeckle(p).pixels != image.pixels);
+  }
+}
+
+TEST_CASE("speckle-periodic: a --periodic image tiles without a seam, the default one has one") {
+  for (const bool perlin : {false, true}) {
+    SpeckleParams p = params(256, 192, 3, 3.0, 0.5, 3);
+    if (perlin) {
+      p.pattern = SpecklePattern::Perlin;
+      p.perlinCell_px = 16;  // 16 × 12 cells
+      p.perlinOctaves = 2;
+    }
+    CAPTURE(perlin);
+    const int stride = perlin ? 16 : 1;
+    const SeamStats cut = seamStats(generateSpeckle(p), stride);
+    p.periodic = true;
+    const GrayImage periodic = generateSpeckle(p);
+    const SeamStats columns = seamStats(periodic, stride), rows = seamStats(transposed(periodic), stride);  // rows: H − 1 beside 0
+    MESSAGE(std::string(perlin ? "perlin" : "disks") << ": mean |Δ| across the wrap " << columns.seam << " (rows " << rows.seam
+                                          << ") against " << columns.interior << " (" << rows.interior
+                                          << ") between neighbours, standard error " << columns.standardError
+                                          << "; not periodic: " << cut.seam << " against " << cut.interior);
+    // The seam of a periodic image is one more neighbour pair: its mean over H pairs lies within 4
+    // standard errors of the interior's mean (a 6e-5 chance to fail if it is). The default image's
+    // columns W − 1 and 0 are unrelated: ~2p(1 − p) = 0.5 apart on average, many errors away.
+    CHECK(std::abs(columns.seam - columns.interior) <= 4 * columns.standardError);
+    CHECK(std::abs(rows.seam - rows.interior) <= 4 * rows.standardError);
+    CHECK(cut.seam - cut.interior > 4 * cut.standardError);
+  }
+}
+
+TEST_CASE("speckle-periodic: Perlin noise has the image's period, a size that is no whole number of cells is refused") {
+  SpeckleParams p = params(120, 72, 5);
+  p.pattern = SpecklePattern::Perlin;
+  p.perlinCell_px = 24;  // 5 × 3 cells
+  p.perlinOctaves = 3;
+  p.periodic = true;
+  CHECK(perlinPeriodCells(p, 120) == 5);
+  double worst = 0, notPeriodic = 0;
+  SpeckleParams plain = p;
+  plain.periodic = false;
+  for (std::uint32_t q = 0; q < 2000; ++q) {
+    const double x = 120 * ds_unit(ds_hash_combine(ds_hash(41), q)), y = 72 * ds_unit(ds_hash_combine(ds_hash(42), q));
+    const double n = perlinNoise(p, x, y);
+    // x + W and y + H round the lattice coordinate differently (≤ 2^-50 of a cell): the fade and the
+    // ramps move by ~1e-15; 1e-12 bounds it with room.
+    worst = std::max({worst, std::abs(perlinNoise(p, x + 120, y) - n), std::abs(perlinNoise(p, x, y + 72) - n),
+                      std::abs(perlinNoise(p, x - 120, y - 72) - n)});
+    notPeriodic = std::max(notPeriodic, std::abs(perlinNoise(plain, x + 120, y) - perlinNoise(plain, x, y)));
+  }
+  MESSAGE("periodic: |n(x + W, y) − n(x, y)| ≤ " << worst << "; not periodic: up to " << notPeriodic);
+  CHECK(worst <= 1e-12);
+  CHECK(notPeriodic > 0.1);
+  // Inside the image the periodic noise is the plain one wherever no corner wraps (x < W − c).
+  CHECK(perlinNoise(p, 10.5, 20.25) == perlinNoise(plain, 10.5, 20.25));
+  p.perlinCell_px = 25;  // 120 / 25 = 4.8 cells
+  CHECK_THROWS_WITH_AS(generateSpeckle(p),
+                       "speckle: --periodic with --pattern perlin needs the size to be a whole number of Perlin cells: "
+                       "120 px / 25 px = 4.8 (choose a cell that divides both 120 and 72)",
+                       InputError);
+  p.perlinCell_px = 120.0 / 7;  // 120 / (120/7) = 7 cells, 72 / (120/7) = 4.2: refused for the height
+  CHECK_THROWS_AS(generateSpeckle(p), InputError);
+  p.perlinCell_px = 24.0000000001;  // within 1e-9 of 5 and 3 cells: accepted
+  CHECK_NOTHROW(generateSpeckle(p));
+}
+
+TEST_CASE("speckle-periodic: the CLI's --periodic reaches the generator and its description") {
+  test::TempFolder folder;
+  const std::string out = folder.file("p.tif");
+  REQUIRE(test::runCli("speckle -o " + out + " --size 64 48 --radius 4 --seed 3 --periodic").exitCode == 0);
+  SpeckleParams p = params(64, 48, 3, 4.0);
+  p.periodic = true;
+  const GrayImage expected = generateSpeckle(p), got = readGrayImage(out);
+  for (std::size_t i = 0; i < expected.pixels.size(); ++i)
+    REQUIRE(got.pixels[i] == std::floor(expected.pixels[i] * 65535 + 0.5) / 65535);
+  std::string description;
+  {
+    auto in = OIIO::ImageInput::open(out);
+    REQUIRE(in);
+    description = in->spec().get_string_attribute("ImageDescription");
+  }
+  CHECK(description.find(" --periodic") != std::string::npos);
+  const std::string bad = folder.file("bad.tif");
+  CHECK(test::runCli("speckle -o " + bad + " --size 100 60 --pattern perlin --perlin-cell 8 --periodic").exitCode == 2);
+  CHECK(!std::filesystem::exists(bad));
+  CHECK(test::runCli("speckle -o " + bad + " --size 96 64 --pattern perlin --perlin-cell 8 --periodic").exitCode == 0);
 }

@@ -17,6 +17,9 @@ pipe = Object.Simple {
   shader = Shader.Lambert { color = 0.85; };
   -- u runs once around the circumference (12.6 cm), v along the 8 cm (aspect 0.64): a radius of
   -- 0.003 in u is 0.38 mm, 1.8 px at this distance (1 px = 0.5 m x 5 µm / 12 mm = 0.21 mm).
-  texture = Texture.Speckle { radius = 0.003; aspect = 0.64; seed = 7; };
+  -- The seam (u = 1 meets u = 0) faces away from the camera outside but is in view on the inner
+  -- wall through the top end: wrap = "repeatU" continues the disks across it (the radius rounded
+  -- to a whole number of cells around: 1/(2 x 167) = 0.002994).
+  texture = Texture.Speckle { radius = 0.003; aspect = 0.64; seed = 7; wrap = "repeatU"; };
   transform = rotate_x(degrees(35)) * rotate_y(degrees(frame * step_deg)); };
 lamp = Light.Point { position = {0.1, -0.15, 0.0}; intensity = 0.8; };

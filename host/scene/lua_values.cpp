@@ -85,6 +85,8 @@ Params::Params(lua_State* L, std::string constructor, const std::vector<const ch
     : L_(L), constructor_(std::move(constructor)) {
   std::string validKeys;
   for (const char* key : keys) validKeys += (validKeys.empty() ? "" : ", ") + std::string(key);
+  // What the messages below end with: the keys, or that there are none (not an empty list).
+  const std::string keysText = keys.size() == 0 ? constructor_ + " takes no parameters" : "valid keys: " + validKeys;
 
   // One table argument; none (Shape.Sphere()) reads as an empty table.
   const int arguments = lua_gettop(L);
@@ -107,8 +109,7 @@ Params::Params(lua_State* L, std::string constructor, const std::vector<const ch
       const std::string where = lua_type(L, -1) == LUA_TNUMBER
                                     ? "[" + formatNumber(lua_tonumber(L, -1)) + "]"
                                     : "a " + typeName(L, -1) + " key";
-      fail("parameters must be named (key = value), got a value at " + where +
-           "; valid keys: " + validKeys);
+      fail("parameters must be named (key = value), got a value at " + where + "; " + keysText);
     }
     std::string key = lua_tostring(L, -1);
     if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return key == k; }))
@@ -127,7 +128,7 @@ Params::Params(lua_State* L, std::string constructor, const std::vector<const ch
   if (unknown.size() == 1)
     if (const auto best = closestName(unknown[0], std::vector<std::string>(keys.begin(), keys.end())))
       message += " (did you mean '" + *best + "'?)";
-  fail(message + "; valid keys: " + validKeys);
+  fail(message + "; " + keysText);
 }
 
 void Params::fail(const std::string& message) const {

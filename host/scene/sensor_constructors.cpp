@@ -12,6 +12,7 @@
 // The order inside postProcessing does not matter: the pipeline's order is fixed (docs/sensor.md).
 #include "scene/sensor_constructors.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -25,6 +26,7 @@ namespace dicsynth::scene {
 struct PostProcessorValue {
   enum class Kind { Blur, Vignetting, Dust, Defects } kind = Kind::Blur;
   std::string constructor;  // "Blur.Gaussian", ... for messages
+  int line = 0;             // the scene line of its constructor: what the camera's checks name
   Blur blur;
   Vignetting vignetting;
   DustBlob dust;
@@ -38,7 +40,10 @@ inline constexpr const char* kUserdataName<PostProcessorValue> = "PostProcessor"
 
 namespace {
 
-void pushPostProcessor(lua_State* L, PostProcessorValue value) { pushUserdata(L, std::move(value)); }
+void pushPostProcessor(lua_State* L, PostProcessorValue value) {
+  value.line = LuaSandbox::currentLine(L);
+  pushUserdata(L, std::move(value));
+}
 
 /* ------------------------------------------------------------------------------------------------
 Sensor.Emva: the linear camera model of EMVA 1288 (docs/sensor.md has the formulas). Every value
@@ -49,16 +54,32 @@ values, then the derived ones).
   --------------------+------------+-------------------------------+-------------------------------
   preset              | string     | none                          | a name of sensor_presets.h
   quantumEfficiency   | e⁻/photon  | preset (0.65)                 | η, in (0, 1]
-  fullWell_e          | e⁻         | preset (10500)                | saturation capacity, > 0
-  readNoise_e         | e⁻ rms     | preset (2.4)                  | temporal dark noise σ_d, >= 0
+  fullWell_e          | e⁻         | preset (10500)                | saturation capacity, in
+                      |            |                               | [1, 1e9] (kMaxFullWell_e)
+  readNoise_e         | e⁻ rms     | preset (2.4)                  | temporal dark noise σ_d, in
+                      |            |                               | [0, 1e9]
   darkCurrent_e_per_s | e⁻/s       | preset (3)                    | >= 0
   exposureTime_s      | s          | preset (0.01)                 | integration of dark current
   photonsAtFullScale  | photons    | fullWell_e / η                | photons per pixel at
-                      |            |                               | exposure·radiance = 1
-  gain_DN_per_e       | DN/e⁻      | (2^b - 1 - offset)/fullWell_e | K, overall system gain, > 0
+                      |            |                               | exposure·radiance = 1, <= 1e15
+  gain_DN_per_e       | DN/e⁻      | (2^b - 1 - offset)/fullWell_e | K, overall system gain, in
+                      |            |                               | (0, 65535]
   darkOffset_DN       | DN         | floor((2^b - 1)/64)           | black level, >= 0, < 2^b - 1
   shotNoise           | boolean    | true                          | false: no Poisson noise
 ------------------------------------------------------------------------------------------------ */
+// The largest full well: the Poisson sampler's acceptance test (sensor/noise_sampling.cpp, PTRS)
+// compares log-probabilities of size ~μ ln μ, which double carries to ~μ ln μ · 2^-53: 2e-6 at
+// μ = 1e9 (a relative error of 2e-6 in an acceptance probability), 3e-3 at 1e12, and at 1e15 and
+// beyond the variance was measured wrong by −16 % to +65 % (the sensor trial of 2026-11-29; at 1e30
+// every pixel read the dark offset). The mean drawn is at most fullWell_e + 40 √fullWell_e + 1000
+// (sensor.cpp skips the draw beyond: saturation is certain), so bounding the well bounds every
+// draw. Real sensors hold 1e3 to ~2e6 e⁻. The read noise shares the bound (it is a count of
+// electrons too, and keeps K σ_d z finite); the gain is at most 65535 DN per electron (one electron
+// would span more than the whole 16-bit range); 1e15 photons at full scale keep η μ_p finite.
+constexpr double kMaxFullWell_e = 1e9;
+constexpr double kMaxGain_DN_per_e = 65535;
+constexpr double kMaxPhotonsAtFullScale = 1e15;
+
 int sensorEmva(lua_State* L) {
   Params p(L, "Sensor.Emva",
            {"preset", "quantumEfficiency", "fullWell_e", "readNoise_e", "darkCurrent_e_per_s", "exposureTime_s",
@@ -69,10 +90,6 @@ int sensorEmva(lua_State* L) {
       p.fail("unknown 'preset' \"" + *preset + "\"; the presets are " + sensorPresetNames());
     s.preset = *preset;
   }
-  auto positive = [&](const char* key, std::optional<double>& into) {
-    into = p.number(key);
-    if (into) p.require(*into > 0, key, "> 0", *into);
-  };
   auto nonNegative = [&](const char* key, std::optional<double>& into) {
     into = p.number(key);
     if (into) p.require(*into >= 0, key, ">= 0", *into);
@@ -81,14 +98,36 @@ int sensorEmva(lua_State* L) {
   if (s.quantumEfficiency)
     p.require(*s.quantumEfficiency > 0 && *s.quantumEfficiency <= 1, "quantumEfficiency", "in (0, 1]",
               *s.quantumEfficiency);
-  positive("fullWell_e", s.fullWell_e);
-  nonNegative("readNoise_e", s.readNoise_e);
+  s.fullWell_e = p.number("fullWell_e");
+  if (s.fullWell_e)
+    p.require(*s.fullWell_e >= 1 && *s.fullWell_e <= kMaxFullWell_e, "fullWell_e",
+              "in [1, 1e9] e⁻ (a well of less than one electron holds none; beyond 1e9 the shot-noise sampler loses "
+              "accuracy, and real sensors hold up to ~2e6)",
+              *s.fullWell_e);
+  s.readNoise_e = p.number("readNoise_e");
+  if (s.readNoise_e)
+    p.require(*s.readNoise_e >= 0 && *s.readNoise_e <= kMaxFullWell_e, "readNoise_e", "in [0, 1e9] e⁻ rms",
+              *s.readNoise_e);
   nonNegative("darkCurrent_e_per_s", s.darkCurrent_e_per_s);
   nonNegative("exposureTime_s", s.exposureTime_s);
-  positive("photonsAtFullScale", s.photonsAtFullScale);
-  positive("gain_DN_per_e", s.gain_DN_per_e);
+  s.photonsAtFullScale = p.number("photonsAtFullScale");
+  if (s.photonsAtFullScale)
+    p.require(*s.photonsAtFullScale > 0 && *s.photonsAtFullScale <= kMaxPhotonsAtFullScale, "photonsAtFullScale",
+              "in (0, 1e15] photons", *s.photonsAtFullScale);
+  s.gain_DN_per_e = p.number("gain_DN_per_e");
+  if (s.gain_DN_per_e)
+    p.require(*s.gain_DN_per_e > 0 && *s.gain_DN_per_e <= kMaxGain_DN_per_e, "gain_DN_per_e",
+              "in (0, 65535] DN/e⁻ (more would put one electron beyond the whole 16-bit range)", *s.gain_DN_per_e);
   nonNegative("darkOffset_DN", s.darkOffset_DN);
   s.shotNoise = p.boolean("shotNoise").value_or(true);
+  // The default photonsAtFullScale, fullWell_e / η, within its bound too (a tiny η).
+  if (!s.photonsAtFullScale) {
+    const SensorPreset& base = s.preset.empty() ? sensorPresets().front() : *findSensorPreset(s.preset);
+    const double derived = s.fullWell_e.value_or(base.fullWell_e) / s.quantumEfficiency.value_or(base.quantumEfficiency);
+    if (!(derived <= kMaxPhotonsAtFullScale))
+      p.fail("photonsAtFullScale = fullWell_e / quantumEfficiency = " + formatNumber(derived) +
+             " photons is over 1e15: give a larger quantumEfficiency or photonsAtFullScale itself");
+  }
   pushUserdata(L, std::move(s));
   return 1;
 }
@@ -218,7 +257,8 @@ int defectivePixels(lua_State* L) {
     d.seed = std::uint32_t(*seed);
   }
   d.hotSignal_DN = p.number("hotSignal_DN");
-  if (d.hotSignal_DN) p.require(*d.hotSignal_DN >= 0, "hotSignal_DN", ">= 0 (DN)", *d.hotSignal_DN);
+  if (d.hotSignal_DN)
+    p.require(*d.hotSignal_DN >= 0 && *d.hotSignal_DN <= 65535, "hotSignal_DN", "in 0..65535 (DN)", *d.hotSignal_DN);
   d.stuck_DN = p.number("stuck_DN");
   if (d.stuck_DN) p.require(*d.stuck_DN >= 0 && *d.stuck_DN <= 65535, "stuck_DN", "in 0..65535 (DN)", *d.stuck_DN);
   pushPostProcessor(L, std::move(v));
@@ -285,33 +325,57 @@ void readCameraSensor(lua_State* L, const Params& p, Camera& camera) {
   if (!sequence) p.fail(std::string(expected) + ", got a table with named or missing entries");
   if (!bad.empty()) p.fail(std::string(expected) + "; " + bad);
 
+  // The checks that need the camera run here, under the camera's constructor; each names the
+  // entry's own line too (the camera's line alone pointed several lines away from the mistake).
+  int blurLine = 0, vignettingLine = 0, defectsLine = 0;
+  const double fullScale_DN = double((1u << camera.bitsPerPixel) - 1u);
   for (const PostProcessorValue& v : values) {
-    auto once = [&](bool already, const char* what) {
-      if (already) p.fail("'postProcessing' has more than one " + std::string(what));
+    const std::string entry = v.constructor + " (line " + std::to_string(v.line) + ")";
+    auto once = [&](int& firstLine, const char* what) {
+      if (firstLine != 0)
+        p.fail("'postProcessing' has more than one " + std::string(what) + " (lines " + std::to_string(firstLine) +
+               " and " + std::to_string(v.line) + ")");
+      firstLine = v.line;
     };
     switch (v.kind) {
       case PostProcessorValue::Kind::Blur:
-        once(m.blur.has_value(), "Blur");
+        once(blurLine, "Blur");
         m.blur = v.blur;
         break;
       case PostProcessorValue::Kind::Vignetting:
-        once(m.vignetting.has_value(), "Vignetting");
+        once(vignettingLine, "Vignetting");
         if (v.vignetting.kind == VignettingKind::Cos4 && camera.kindInfo().telecentric)
-          p.fail("Vignetting.Cos4: a telecentric (orthographic) camera's chief rays are parallel to the axis, so it "
+          p.fail(entry + ": a telecentric (orthographic) camera's chief rays are parallel to the axis, so it "
                  "has no cos⁴ fall-off; use Vignetting.Radial");
         m.vignetting = v.vignetting;
         break;
-      case PostProcessorValue::Kind::Dust:
+      case PostProcessorValue::Kind::Dust: {
+        // A blob that reaches no pixel centre changes nothing: most likely a position in other
+        // units or of another image. The nearest pixel centre is the clamped, rounded centre.
+        const double nearestX = std::clamp(std::round(v.dust.x_px), 0.0, double(camera.width_px - 1));
+        const double nearestY = std::clamp(std::round(v.dust.y_px), 0.0, double(camera.height_px - 1));
+        if (std::hypot(v.dust.x_px - nearestX, v.dust.y_px - nearestY) >= v.dust.radius_px)
+          p.fail(entry + ": the blob at {" + formatNumber(v.dust.x_px) + ", " + formatNumber(v.dust.y_px) +
+                 "} px of radius " + formatNumber(v.dust.radius_px) + " px reaches no pixel of the " +
+                 std::to_string(camera.width_px) + "x" + std::to_string(camera.height_px) +
+                 " image (pixel centres 0.." + std::to_string(camera.width_px - 1) + ", 0.." +
+                 std::to_string(camera.height_px - 1) + "): it would change nothing");
         m.dust.push_back(v.dust);
         break;
+      }
       case PostProcessorValue::Kind::Defects:
-        once(m.defects.has_value(), "DefectivePixels");
+        once(defectsLine, "DefectivePixels");
         for (const auto* list : {&v.defects.dead, &v.defects.hot, &v.defects.stuck})
           for (const PixelPosition& px : *list)
             if (px.x_px >= camera.width_px || px.y_px >= camera.height_px)
-              p.fail("DefectivePixels: pixel {" + std::to_string(px.x_px) + ", " + std::to_string(px.y_px) +
+              p.fail(entry + ": pixel {" + std::to_string(px.x_px) + ", " + std::to_string(px.y_px) +
                      "} is outside the " + std::to_string(camera.width_px) + "x" + std::to_string(camera.height_px) +
                      " image");
+        // A stuck pixel reads its value as the sensor's output: above full scale it could not.
+        if (v.defects.stuck_DN && *v.defects.stuck_DN > fullScale_DN)
+          p.fail(entry + ": stuck_DN = " + formatNumber(*v.defects.stuck_DN) + " is above the full scale 2^" +
+                 std::to_string(camera.bitsPerPixel) + " - 1 = " + formatNumber(fullScale_DN) +
+                 " DN of this camera's bitsPerPixel");
         m.defects = v.defects;
         break;
     }

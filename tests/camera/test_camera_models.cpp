@@ -262,7 +262,7 @@ TEST_CASE("camera models: constructor errors name file:line") {
                        "c = Camera.Orthographic { " + base +
                            "magnification = 1; postProcessing = { Vignetting.Cos4 {} } }\n",
                        2,
-                       "Camera.Orthographic: Vignetting.Cos4: a telecentric (orthographic) camera's chief rays are "
+                       "Camera.Orthographic: Vignetting.Cos4 (line 2): a telecentric (orthographic) camera's chief rays are "
                        "parallel to the axis, so it has no cos⁴ fall-off; use Vignetting.Radial");
   test::checkBodyError(dir, "c = Camera.Orthographic { " + base + "magnification = -1 }\n", 2,
                        "Camera.Orthographic: 'magnification' must be > 0 (image size / object size), got -1");

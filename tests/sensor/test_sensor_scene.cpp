@@ -88,11 +88,53 @@ TEST_CASE("sensor: scene errors name the line") {
   checkBodyError(dir, "d = DefectivePixels { dead = {{1, 2.5}} }\n", 2,
                  "DefectivePixels: 'dead' must be a fraction in [0, 1] or a list {{x, y}, ...} of pixels; entry 1 "
                  "is not {x, y} with integers in 0..65535");
-  // A camera's errors name the line where its constructor call starts.
+  // A camera's errors name the line where its constructor call starts, and the entry's own line.
   checkBodyError(dir, "\n" + cam + "  postProcessing = { DefectivePixels { stuck = {{64, 0}} } } }\n", 3,
-                 "Camera.Pinhole: DefectivePixels: pixel {64, 0} is outside the 64x48 image");
-  checkBodyError(dir, cam + "  postProcessing = { Blur.Gaussian { sigma_px = 1 }, Blur.Disk { radius_px = 1 } } }\n", 2,
-                 "Camera.Pinhole: 'postProcessing' has more than one Blur");
+                 "Camera.Pinhole: DefectivePixels (line 4): pixel {64, 0} is outside the 64x48 image");
+  checkBodyError(dir, cam + "  postProcessing = { Blur.Gaussian { sigma_px = 1 },\n  Blur.Disk { radius_px = 1 } } }\n", 2,
+                 "Camera.Pinhole: 'postProcessing' has more than one Blur (lines 3 and 4)");
+  // The sensor trial of 2026-11-29: an entry three lines below the camera was named by the camera's
+  // line alone.
+  checkBodyError(dir, cam + "  bitsPerPixel = 12;\n  postProcessing = {\n    DefectivePixels { stuck = {{1, 1}}; stuck_DN = 5000 } } }\n", 2,
+                 "Camera.Pinhole: DefectivePixels (line 5): stuck_DN = 5000 is above the full scale 2^12 - 1 = 4095 DN "
+                 "of this camera's bitsPerPixel");
+  CHECK_NOTHROW(loadScene(dir.write("stuck.lua", cam + "  bitsPerPixel = 12; postProcessing = { DefectivePixels { stuck = {{1, 1}}; "
+                                                       "stuck_DN = 4095 } } }\n"), {}));
+  checkBodyError(dir, "d = DefectivePixels { hot = 0.1; hotSignal_DN = 1e6 }\n", 2,
+                 "DefectivePixels: 'hotSignal_DN' must be in 0..65535 (DN), got 1e+06");
+  // Dust that reaches no pixel centre (a position in other units, or of another image) changes nothing.
+  checkBodyError(dir, cam + "  postProcessing = { Dust { center_px = {1e6, 1e6}; radius_px = 40; opacity = 0.3 } } }\n", 2,
+                 "Camera.Pinhole: Dust (line 3): the blob at {1e+06, 1e+06} px of radius 40 px reaches no pixel of "
+                 "the 64x48 image (pixel centres 0..63, 0..47): it would change nothing");
+  checkBodyError(dir, cam + "  postProcessing = { Dust { center_px = {-10, 5}; radius_px = 10; opacity = 0.3 } } }\n", 2,
+                 "Camera.Pinhole: Dust (line 3): the blob at {-10, 5} px of radius 10 px reaches no pixel of the 64x48 "
+                 "image (pixel centres 0..63, 0..47): it would change nothing");
+  // Partly outside: the pixels it reaches are dimmed.
+  CHECK_NOTHROW(loadScene(dir.write("dust.lua", cam + "  postProcessing = { Dust { center_px = {-10, 5}; radius_px = 10.5; "
+                                                      "opacity = 0.3 } } }\n"), {}));
+  // Sensor.Emva's bounds (the sensor trial of 2026-11-29: a full well of 1e30 read the dark offset in
+  // every pixel while noiseFree said 2079; 1e300 read noise or gain made the layers infinite).
+  checkBodyError(dir, "s = Sensor.Emva { fullWell_e = 1e30 }\n", 2,
+                 "Sensor.Emva: 'fullWell_e' must be in [1, 1e9] e⁻ (a well of less than one electron holds none; beyond "
+                 "1e9 the shot-noise sampler loses accuracy, and real sensors hold up to ~2e6), got 1e+30");
+  checkBodyError(dir, "s = Sensor.Emva { fullWell_e = 0.5 }\n", 2,
+                 "Sensor.Emva: 'fullWell_e' must be in [1, 1e9] e⁻ (a well of less than one electron holds none; beyond "
+                 "1e9 the shot-noise sampler loses accuracy, and real sensors hold up to ~2e6), got 0.5");
+  checkBodyError(dir, "s = Sensor.Emva { readNoise_e = 1e300 }\n", 2,
+                 "Sensor.Emva: 'readNoise_e' must be in [0, 1e9] e⁻ rms, got 1e+300");
+  checkBodyError(dir, "s = Sensor.Emva { gain_DN_per_e = 1e300 }\n", 2,
+                 "Sensor.Emva: 'gain_DN_per_e' must be in (0, 65535] DN/e⁻ (more would put one electron beyond the "
+                 "whole 16-bit range), got 1e+300");
+  checkBodyError(dir, "s = Sensor.Emva { photonsAtFullScale = 1e16 }\n", 2,
+                 "Sensor.Emva: 'photonsAtFullScale' must be in (0, 1e15] photons, got 1e+16");
+  checkBodyError(dir, "s = Sensor.Emva { fullWell_e = 1e9; quantumEfficiency = 1e-7 }\n", 2,
+                 "Sensor.Emva: photonsAtFullScale = fullWell_e / quantumEfficiency = 1e+16 photons is over 1e15: give a "
+                 "larger quantumEfficiency or photonsAtFullScale itself");
+  CHECK_NOTHROW(loadScene(dir.write("well.lua", cam + "  sensor = Sensor.Emva { fullWell_e = 1e9; readNoise_e = 1e9; "
+                                                      "gain_DN_per_e = 65535 } }\n"), {}));
+  // A constructor without parameters says so (the message ended "valid keys: " and nothing).
+  checkBodyError(dir, "v = Vignetting.Cos4 { strength = 2 }\n", 2,
+                 "Vignetting.Cos4: unknown key 'strength'; Vignetting.Cos4 takes no parameters");
   checkBodyError(dir, cam + "  postProcessing = { Vignetting.Cos4 {}, 3 } }\n", 2,
                  "Camera.Pinhole: 'postProcessing' must be a list {Blur..., Vignetting..., Dust {...}, "
                  "DefectivePixels {...}}; entry 2 is a number");

@@ -35,4 +35,23 @@ std::optional<dvec3> worldPointOfMaterial(const PreparedObject& o, dvec2 materia
 // NURBS surface, which always has one): what a reference frame derived for itself alone needs.
 bool hasMaterialPoint(const PreparedObject& o, dvec2 material);
 
+// A material point's world position and the side of its surface a viewer sees.
+//
+// A surface of zero thickness (a rectangle, an open tube, a NURBS sheet) is seen from either side,
+// and both sides of one (u, v) are one material point here, where the specimen it stands for has two
+// faces: a camera that sees the other side sees another material point. The side is told by the
+// parametric normal n = ∂P/∂u × ∂P/∂v, whose orientation follows the material (a deformation that
+// does not turn the surface inside out keeps it): a viewer at O sees side sign(n · (P − O)).
+// Closed shapes (sphere, box, capped cylinder: their inside is never in view from outside) report
+// no normal, as do points where n vanishes (a sphere's pole).
+struct MaterialPointFrame {
+  dvec3 point_m{0};
+  std::optional<dvec3> normal;  // world frame, not normalized
+};
+std::optional<MaterialPointFrame> worldFrameOfMaterial(const PreparedObject& o, dvec2 material);
+
+// +1 or −1: the side of the surface a viewer at `viewer_m` sees at `frame`; 0 where that cannot be
+// told (no normal, or a ray within ~1e-9 rad of tangency).
+int sideSeen(const MaterialPointFrame& frame, dvec3 viewer_m);
+
 }  // namespace dicsynth

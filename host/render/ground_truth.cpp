@@ -100,6 +100,11 @@ dvec2 seenAt(const ImagePoint& p) { return p.inFront && !p.folded ? p.pixel_px :
 
 dvec2 projectPoint(const PreparedCamera& camera, dvec3 world_m) { return seenAt(projectToImage(camera, world_m)); }
 
+// Whether two views see the same side of a surface (sideSeen): a view of the other side of a
+// zero-thickness surface sees another material point of the specimen (its other face), so the
+// mask is 0 there whatever the ray meets first. Where either side is unknown (0), the ray decides.
+bool sameSide(int a, int b) { return a == 0 || b == 0 || a == b; }
+
 // Points of one camera whose visibility is to be traced, by pixel: object −1 where none is.
 struct VisibilityCandidates {
   std::vector<dvec3> point_m;
@@ -147,6 +152,7 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
     if (points) {
       v.material.assign(n, kNaN2);
       v.position_m.assign(n, dvec3(kNaN));
+      v.side.assign(n, 0);
     }
     if (otherFrames) v.pixel_px.assign(n, kNaN2);
     const PreparedCamera& camera = scene_.cameras[c];
@@ -159,12 +165,13 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
         if (hasMaterialPoint(obj, m)) v.object[i] = o;
         return;
       }
-      const auto p = worldPointOfMaterial(obj, m);
-      if (!p) return;
+      const auto f = worldFrameOfMaterial(obj, m);
+      if (!f) return;
       v.object[i] = o;
       v.material[i] = m;
-      v.position_m[i] = *p;
-      if (otherFrames) v.pixel_px[i] = projectPoint(camera, *p);
+      v.position_m[i] = f->point_m;
+      v.side[i] = std::int8_t(sideSeen(*f, chiefRayOrigin(camera.model, f->point_m)));
+      if (otherFrames) v.pixel_px[i] = projectPoint(camera, f->point_m);
     });
     views_.push_back(std::move(v));
   }
@@ -272,14 +279,15 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       }
       const int o = objectNow[std::size_t(view->object[i])];
       if (o < 0) return;
-      const auto p = worldPointOfMaterial(scene.objects[std::size_t(o)], view->material[i]);
-      if (!p) return;
-      truth.displacement_m[i] = *p - view->position_m[i];
+      const auto f = worldFrameOfMaterial(scene.objects[std::size_t(o)], view->material[i]);
+      if (!f) return;
+      truth.displacement_m[i] = f->point_m - view->position_m[i];
       if (!flow) return;  // its visibility is the costly part: traced only when asked for
-      const ImagePoint now = projectToImage(camera, *p);
+      const ImagePoint now = projectToImage(camera, f->point_m);
       truth.flow_px[i] = seenAt(now) - view->pixel_px[i];
       if (!now.inImage) return;  // mask 0
-      seen.point_m[i] = *p;
+      if (!sameSide(view->side[i], sideSeen(*f, chiefRayOrigin(camera.model, f->point_m)))) return;  // mask 0
+      seen.point_m[i] = f->point_m;
       seen.object[i] = o;
     });
     if (flow && !isReference) fillVisibilityMask(visibility, scene, cameraIndex, seen, truth.flowMask);
@@ -300,12 +308,15 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       if (image.objectId[i] == 0) return;
       const int o = int(image.objectId[i]) - 1;
       const PreparedObject& obj = scene.objects[std::size_t(o)];
-      const auto p = worldPointOfMaterial(obj, materialCoordinates(obj, image.uv[i], image.position_m[i]));
-      if (!p) return;
-      const ImagePoint there = projectToImage(otherCamera, *p);
-      truth.disparity_px[i] = seenAt(there) - projectPoint(camera, *p);
+      const auto f = worldFrameOfMaterial(obj, materialCoordinates(obj, image.uv[i], image.position_m[i]));
+      if (!f) return;
+      const ImagePoint there = projectToImage(otherCamera, f->point_m);
+      truth.disparity_px[i] = seenAt(there) - projectPoint(camera, f->point_m);
       if (!there.inImage) return;  // mask 0
-      seen.point_m[i] = *p;
+      if (!sameSide(sideSeen(*f, chiefRayOrigin(camera.model, f->point_m)),
+                    sideSeen(*f, chiefRayOrigin(otherCamera.model, f->point_m))))
+        return;  // mask 0
+      seen.point_m[i] = f->point_m;
       seen.object[i] = o;
     });
     fillVisibilityMask(visibility, scene, std::size_t(other), seen, truth.disparityMask);

@@ -17,7 +17,10 @@
 // centres' square [−0.5, w − 0.5] × [−0.5, h − 0.5]) through a distortion that is invertible there,
 // and the ray from the camera centre towards it first meets its own object within 1e-6 of the
 // distance (0.5 µm at 0.5 m: far closer than any occluder a scene can mean, far looser than the
-// 1e-12 relative accuracy of the traced hit).
+// 1e-12 relative accuracy of the traced hit), on the side of the surface the reference pixel saw
+// (sideSeen, geometry/material_point.h: the other side of a zero-thickness surface is another
+// face of the specimen).
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -85,6 +88,8 @@ class ReferenceFrame {
     std::vector<dvec2> material;   // material coordinates (geometry/material_point.h) (empty: see the constructor)
     std::vector<dvec3> position_m; // P_ref(m), recomputed in double from the material coordinates (empty: likewise)
     std::vector<dvec2> pixel_px;   // x_ref(m): its projection into the reference camera (empty: !otherFrames)
+    std::vector<std::int8_t> side;  // the side of the surface the reference camera sees there (sideSeen,
+                                    // geometry/material_point.h; empty: likewise)
   };
   const View* view(const std::string& camera) const;
   const PreparedScene& scene() const { return scene_; }

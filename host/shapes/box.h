@@ -97,6 +97,9 @@ struct Box {
     return true;
   }
 
+  // A closed surface: its inside is never in view from outside (geometry/material_point.h).
+  bool closedSurface() const { return true; }
+
   // Inverse of the atlas: the cell gives the face, the cell's (s, t) the point on it. Cells are
   // adjacent faces along their shared edges, so a (u, v) on a cell border names the same edge point
   // from either side.

@@ -144,6 +144,10 @@ struct Cylinder {
     return true;
   }
 
+  // Capped: a closed surface, whose inside is never in view from outside; open: a tube whose
+  // inside shows (geometry/material_point.h).
+  bool closedSurface() const { return capped; }
+
   // Inverse of (u, v); a (u, v) of a cap's cell outside its disk names no point.
   std::optional<dvec3> pointOfUV(dvec2 uv) const {
     const bool onSide = !capped || uv.y <= 0.5;

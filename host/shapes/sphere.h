@@ -77,6 +77,9 @@ struct Sphere {
     return true;
   }
 
+  // A closed surface: its inside is never in view from outside (geometry/material_point.h).
+  bool closedSurface() const { return true; }
+
   // Inverse of (u, v): with θ = vπ and φ = 2π(u − 1/2), y = −r cos θ, and the circle of radius
   // r sin θ at that height has x = r sin θ sin φ, −z = r sin θ cos φ.
   std::optional<dvec3> pointOfUV(dvec2 uv) const {

@@ -128,8 +128,15 @@ dmat4 lookAtPose(const Params& p, const dvec3& position, const dvec3& lookAt, co
   const dvec3 z = forward / distance;
   // The image's y axis points down, i.e. against the part of `up` across the viewing direction.
   const dvec3 upAcross = up - glm::dot(up, z) * z;
-  if (!(glm::length(upAcross) > 1e-9 * glm::length(up)))
-    p.fail("'up' must not be zero or parallel to the viewing direction (lookAt - position)");
+  // The values in the message: a camera made in a loop names no variable (the 360° trial of
+  // 2026-11-29 could not tell which of six cameras it was), and `up` may be the default.
+  if (!(glm::length(upAcross) > 1e-9 * glm::length(up))) {
+    const auto text = [](dvec3 v) {
+      return "{" + formatNumber(v.x) + ", " + formatNumber(v.y) + ", " + formatNumber(v.z) + "}";
+    };
+    p.fail("'up' must not be zero or parallel to the viewing direction (lookAt - position): up = " + text(up) +
+           (p.has("up") ? "" : " (the default)") + ", position = " + text(position) + ", lookAt = " + text(lookAt));
+  }
   const dvec3 y = glm::normalize(-upAcross);
   const dvec3 x = glm::cross(y, z);
   return dmat4(dvec4(x, 0), dvec4(y, 0), dvec4(z, 0), dvec4(position, 1));

@@ -358,6 +358,16 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
   for (const RigGlobal& rig : rigs) {
     checkRigCamerasNotGlobals(rig, cameraGlobals);
     StereoRig stereo{rig.name, rig.rig->where, rig.name + ".left", rig.name + ".right"};
+    // Only _G["rig.left"] = Camera.Pinhole { ... } can take a rig camera's name; outputs are named
+    // after cameras, so two cameras of one name would overwrite each other's files. Named at the
+    // rig's line and the global camera's (a camera's own line may be inside a helper function that
+    // made both: the 360° trial of 2026-11-29 was pointed at its `lens()` helper).
+    for (const std::string* side : {&stereo.left, &stereo.right})
+      for (const Camera& global : scene.cameras)
+        if (global.name == *side)
+          throw InputError(rig.rig->where, "Rig.Stereo '" + rig.name + "': its " + (side == &stereo.left ? "left" : "right") +
+                                               " camera is named '" + *side + "', and so is a global camera (made at line " +
+                                               std::to_string(global.where.line) + "): rename the global");
     scene.cameras.push_back(rig.rig->left);
     scene.cameras.back().name = stereo.left;
     scene.cameras.push_back(rig.rig->right);
@@ -368,13 +378,9 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
   sortByName(scene.rigs);
   sortByName(scene.objects);
   sortByName(scene.lights);
-  // Only _G["rig.left"] = Camera.Pinhole { ... } can collide with a rig's camera names; outputs are
-  // named after cameras, so two cameras of one name would overwrite each other's files.
+  // (Refused above, at the rig.)
   for (std::size_t i = 1; i < scene.cameras.size(); ++i)
-    if (scene.cameras[i].name == scene.cameras[i - 1].name)
-      throw InputError(scene.cameras[i].where,
-                       "two cameras are named '" + scene.cameras[i].name +
-                           "' (a rig names its cameras <rig>.left and <rig>.right): rename the global");
+    DS_CHECK(scene.cameras[i].name != scene.cameras[i - 1].name, "two cameras named '" + scene.cameras[i].name + "'");
   // Camera names become file names (<camera>_<frame>.exr plus a temporary suffix while written):
   // kMaxCameraNameBytes leaves room under the file systems' 255 bytes.
   for (const Camera& camera : scene.cameras)

@@ -3,8 +3,10 @@
 // shading_constructors.cpp; Target.*: target_constructors.cpp).
 #include <cmath>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "core/warning.h"
 #include "geometry/homography.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
@@ -25,6 +27,12 @@ int textureConstructor(lua_State* L) {
   Texture texture;
   texture.where = sandbox.here(L);
   texture.model = Kind::parse(p, sandbox.sceneDir());
+  // A kind that changed a value it was given says so once, where the scene is first evaluated (a
+  // periodic Texture.Speckle's radius rounded to whole cells).
+  if constexpr (requires(const Kind& k) { k.loadNote(); })
+    if (!sandbox.quiet())
+      if (const std::string text = std::get<Kind>(texture.model).loadNote(); !text.empty())
+        note(texture.where.str() + ": " + Kind::kConstructor + ": " + text);
   pushUserdata(L, std::move(texture));
   return 1;
 }

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "core/error.h"
 #include "core/math.h"
@@ -60,6 +62,30 @@ struct Speckle {
       p.fail(e.what());
     }
     return s;
+  }
+
+  // The radius a periodic axis rounded (analytic_speckle.h, "Periodic axes"), said on stderr when
+  // the scene loads: the value used is in no output file. Empty when nothing was rounded (to 1e-12).
+  std::string loadNote() const {
+    const AnalyticSpeckle& m = model;
+    if (m.periodU_cells == 0 && m.periodV_cells == 0) return {};
+    const double used = 1.0 / (2.0 * m.cellsPerUv.x);  // u units; the disks' radius is half a cell
+    if (std::abs(used - m.radius_uv) <= 1e-12 * m.radius_uv && (m.periodU_cells == 0 || m.periodV_cells == 0)) return {};
+    char text[320];
+    const auto number = [&](double v) {
+      std::snprintf(text, sizeof text, "%.9g", v);
+      return std::string(text);
+    };
+    std::string note = "wrap rounds the radius " + number(m.radius_uv) + " to " + number(used) + " u units: ";
+    if (m.periodU_cells > 0 && m.periodV_cells > 0)
+      note += std::to_string(m.periodU_cells) + " x " + std::to_string(m.periodV_cells) +
+              " disk diameters per unit u x v, the disks scaled by " + number(m.aspect * m.periodU_cells / m.periodV_cells) +
+              " in v";
+    else if (m.periodU_cells > 0)
+      note += std::to_string(m.periodU_cells) + " disk diameters around u";
+    else
+      note += std::to_string(m.periodV_cells) + " disk diameters along v";
+    return note;
   }
 
   double at(dvec2 uv) const { return speckleTextureValue(model, uv); }

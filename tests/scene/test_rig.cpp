@@ -208,6 +208,12 @@ TEST_CASE("rig: Rig.Stereo errors name the scene line") {
                  "direction, up)");
   // Output files are named after cameras: a global spelled like a rig camera is refused.
   checkBodyError(dir, "r = Rig.Stereo { " + both + "baseline = 0.2; vergence = 0 }; _G['r.left'] = " + c + "\n", 2,
-                 "two cameras are named 'r.left' (a rig names its cameras <rig>.left and "
-                 "<rig>.right): rename the global");
+                 "Rig.Stereo 'r': its left camera is named 'r.left', and so is a global camera (made at line 2): rename "
+                 "the global");
+  // Named at the rig's line and the global's, not inside the helper that made the cameras (the 360°
+  // trial of 2026-11-29).
+  checkBodyError(dir, "local function lens() return " + c + " end\nrig0 = Rig.Stereo { left = lens(); right = lens(); "
+                      "baseline = 0.2; vergence = 0 }\n\n_G['rig0.right'] = " + c + "\n", 3,
+                 "Rig.Stereo 'rig0': its right camera is named 'rig0.right', and so is a global camera (made at line 5): "
+                 "rename the global");
 }

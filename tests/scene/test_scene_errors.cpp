@@ -205,7 +205,10 @@ TEST_CASE("scene: camera pose errors") {
        1, "Camera.Pinhole: 'lookAt' must differ from 'position'"},
       {cam + "lookAt = {0, 5, 0} }\n",
        1, "Camera.Pinhole: 'up' must not be zero or parallel to the viewing direction (lookAt - "
-          "position)"},
+          "position): up = {0, -1, 0} (the default), position = {0, 0, 0}, lookAt = {0, 5, 0}"},
+      {cam + "position = {0.3, 0, 0}; lookAt = {0, 0, 0}; up = {2, 0, 0} }\n",
+       1, "Camera.Pinhole: 'up' must not be zero or parallel to the viewing direction (lookAt - "
+          "position): up = {2, 0, 0}, position = {0.3, 0, 0}, lookAt = {0, 0, 0}"},
       {cam + "up = {0, 0, 1} }\n",
        1, "Camera.Pinhole: 'up' needs 'lookAt' (it orients the viewing direction)"},
       {cam + "distortion = Shape.Sphere { radius = 1 } }\n",

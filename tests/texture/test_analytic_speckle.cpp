@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/warning.h"
 #include "cpu/reference_renderer.h"
 #include "geometry/prepared_scene.h"
 #include "gpu/buffer.h"
@@ -25,6 +26,7 @@
 #include "spirv/texture_probe_fp32.h"
 #include "spirv/texture_probe_fp64.h"
 #include "speckle_oracle.h"
+#include "temp_folder.h"
 #include "texture/analytic_speckle.h"
 #include "texture/bspline.h"
 
@@ -300,6 +302,32 @@ TEST_CASE("texture-speckle: a periodic pattern (wrap) is the model with cell ind
     interiorDiffer += speckleCovered(plain, uv) != speckleCovered(tiled, uv) ? 1 : 0;
   }
   CHECK(interiorDiffer == 0);
+}
+
+TEST_CASE("texture-speckle: the radius a periodic axis rounds is said on stderr when the scene loads") {
+  const test::TempFolder dir;
+  auto notes = [&](const std::string& texture) {
+    WarningCapture capture;
+    loadScene(dir.write("s.lua", std::string(test::kCameraLine) + "t = " + texture + "\n"), {});
+    std::vector<std::string> texts;
+    for (const WarningCapture::Message& m : capture.takeMessages())
+      if (!m.warning) texts.push_back(m.text);
+    return texts;
+  };
+  const std::string path = dir.file("s.lua");
+  // 1/(2 · 0.0081) = 61.73 → 62 cells: the radius used is 1/124.
+  CHECK(notes("Texture.Speckle { radius = 0.0081; wrap = \"repeatU\" }") ==
+        std::vector<std::string>{path + ":2: Texture.Speckle: wrap rounds the radius 0.0081 to 0.00806451613 u units: 62 disk "
+                                        "diameters around u"});
+  CHECK(notes("Texture.Speckle { radius = 0.047; aspect = 0.8; wrap = \"repeat\" }") ==
+        std::vector<std::string>{path + ":2: Texture.Speckle: wrap rounds the radius 0.047 to 0.0454545455 u units: 11 x 9 disk "
+                                        "diameters per unit u x v, the disks scaled by 0.977777778 in v"});
+  CHECK(notes("Texture.Speckle { radius = 0.021; aspect = 2.5; wrap = \"repeatV\" }") ==
+        std::vector<std::string>{path + ":2: Texture.Speckle: wrap rounds the radius 0.021 to 0.0208333333 u units: 60 disk "
+                                        "diameters along v"});
+  // Nothing rounded (1/(2 · 1/64) = 32 exactly), or nothing periodic: nothing said.
+  CHECK(notes("Texture.Speckle { radius = 0.015625; wrap = \"repeatU\" }").empty());
+  CHECK(notes("Texture.Speckle { radius = 0.0081 }").empty());
 }
 
 TEST_CASE("texture-speckle: scenes/analytic_speckle.lua, GPU fp64 = CPU to 1e-12 of full scale") {

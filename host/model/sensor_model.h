@@ -17,6 +17,9 @@ namespace dicsynth {
 //   photons μ_p = photonsAtFullScale · max(0, exposure · radiance)
 //   electrons μ_e = η μ_p + darkCurrent_e_per_s · exposureTime_s; n ~ Poisson(μ_e)
 //   y = K (min(n, fullWell_e) + σ_d z) + darkOffset_DN, z ~ N(0, 1);  DN = clamp(round(y), 0, 2^b-1)
+// and, when asked for, the spatial nonuniformities of the same standard (a fixed pattern: the same in
+// every frame), per pixel with z_p, z_o ~ N(0, 1) drawn once: photo-electrons η μ_p max(0, 1 + prnu z_p)
+// (PRNU), and the dark signal plus dsnu_e z_o electrons added with the read noise (DSNU).
 // Parameters left unset take their value from the preset, else the defaults in resolve() below.
 struct EmvaSensor {
   std::string preset;                         // name in sensor_presets.h, "" for none
@@ -29,6 +32,8 @@ struct EmvaSensor {
   std::optional<double> gain_DN_per_e;        // K, overall system gain, > 0
   std::optional<double> darkOffset_DN;        // black level added before quantization, >= 0
   bool shotNoise = true;                      // false: n = μ_e (to study read noise alone)
+  double prnu = 0;                            // photo-response nonuniformity: rms relative gain, [0, 0.25]
+  double dsnu_e = 0;                          // dark-signal nonuniformity: rms offset (e⁻), >= 0
 };
 
 // EmvaSensor with every value known, for a given bitsPerPixel (defaults depend on it).
@@ -36,6 +41,7 @@ struct ResolvedEmva {
   double quantumEfficiency, fullWell_e, readNoise_e, darkCurrent_e_per_s, exposureTime_s;
   double photonsAtFullScale, gain_DN_per_e, darkOffset_DN;
   bool shotNoise;
+  double prnu, dsnu_e;
   // Mean dark electrons per exposure: darkCurrent_e_per_s · exposureTime_s.
   double darkElectrons() const { return darkCurrent_e_per_s * exposureTime_s; }
 };

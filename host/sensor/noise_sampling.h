@@ -11,8 +11,9 @@ namespace dicsynth {
 inline constexpr std::uint32_t kDimSensorShot = 20;     // Poisson shot noise
 inline constexpr std::uint32_t kDimSensorRead = 21;     // Gaussian read noise
 inline constexpr std::uint32_t kDimSensorDefect = 22;   // defective-pixel draw
-// The frame number used for the defect map: defects belong to the sensor, not to one exposure, so
-// the map is the same in every frame.
+inline constexpr std::uint32_t kDimSensorFixedPattern = 23;  // PRNU and DSNU (with kDefectFrame)
+// The frame number used for the defect map and the fixed pattern (PRNU, DSNU): they belong to the
+// sensor, not to one exposure, so they are the same in every frame.
 inline constexpr std::uint32_t kDefectFrame = 0xffffffffu;
 
 // A stream of uniform numbers for one pixel and dimension: the k-th number uses hash counters 2k

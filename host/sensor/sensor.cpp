@@ -124,10 +124,21 @@ SensorImage applySensor(const std::vector<double>& radiance, const Camera& camer
       const double signal = std::max(0.0, camera.exposure * optical[i]);  // full scale = 1
       double clean, value;
       if (emva) {
+        // The fixed pattern (EMVA 1288's spatial nonuniformities), drawn per pixel with the frame
+        // fixed: this pixel's relative photo response and its dark-signal offset (e⁻).
+        double response = 1, offset_e = 0;
+        if (e.prnu > 0 || e.dsnu_e > 0) {
+          PixelRandom fixed(run.seed, kDefectFrame, run.cameraIndex, std::uint32_t(x), std::uint32_t(yIndex),
+                            kDimSensorFixedPattern);
+          const double zResponse = standardNormal(fixed), zOffset = standardNormal(fixed);
+          response = std::max(0.0, 1.0 + e.prnu * zResponse);
+          offset_e = e.dsnu_e * zOffset;
+        }
         // Electrons: photo-electrons plus dark electrons, both Poisson; a dead pixel collects none.
         double mean_e = 0;
         if (code != DefectCode::Dead)
-          mean_e = std::min(e.quantumEfficiency * e.photonsAtFullScale * signal + e.darkElectrons(), certainSaturation);
+          mean_e = std::min(e.quantumEfficiency * e.photonsAtFullScale * signal * response + e.darkElectrons(),
+                            certainSaturation);
         double electrons = mean_e;
         if (e.shotNoise && mean_e < certainSaturation) {
           PixelRandom shot(run.seed, std::uint32_t(run.frame), run.cameraIndex, std::uint32_t(x),
@@ -141,8 +152,10 @@ SensorImage applySensor(const std::vector<double>& radiance, const Camera& camer
                                  std::uint32_t(yIndex), kDimSensorRead);
           read = e.readNoise_e * standardNormal(readRandom);
         }
-        clean = e.gain_DN_per_e * std::min(mean_e, e.fullWell_e) + e.darkOffset_DN;
-        value = e.gain_DN_per_e * (electrons + read) + e.darkOffset_DN;
+        // The dark-signal offset is read out with the charge (after the well), like the read noise;
+        // being fixed, it is part of the noise-free value.
+        clean = e.gain_DN_per_e * (std::min(mean_e, e.fullWell_e) + offset_e) + e.darkOffset_DN;
+        value = e.gain_DN_per_e * (electrons + read + offset_e) + e.darkOffset_DN;
       } else {
         // The ideal sensor of digitize(), without its clipping (kept in the ground truth).
         clean = code == DefectCode::Dead ? 0.0 : std::min(signal, 1e12) * maxDigital;
@@ -172,7 +185,10 @@ std::string describeSensor(const SensorModel& m, int bitsPerPixel) {
         " readNoise_e=" + exactNumber(e.readNoise_e) + " darkCurrent_e_per_s=" + exactNumber(e.darkCurrent_e_per_s) +
         " exposureTime_s=" + exactNumber(e.exposureTime_s) + " photonsAtFullScale=" + exactNumber(e.photonsAtFullScale) +
         " gain_DN_per_e=" + exactNumber(e.gain_DN_per_e) + " darkOffset_DN=" + exactNumber(e.darkOffset_DN) +
-        " shotNoise=" + (e.shotNoise ? "true" : "false"));
+        " shotNoise=" + (e.shotNoise ? "true" : "false") +
+        // Listed only when set: the header of a sensor without them stays as it was.
+        (e.prnu > 0 ? " prnu=" + exactNumber(e.prnu) : std::string()) +
+        (e.dsnu_e > 0 ? " dsnu_e=" + exactNumber(e.dsnu_e) : std::string()));
   } else {
     add("ideal sensor");
   }

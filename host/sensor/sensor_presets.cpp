@@ -70,6 +70,8 @@ ResolvedEmva resolve(const EmvaSensor& s, int bitsPerPixel) {
   DS_CHECK(r.darkOffset_DN < maxDigital, "darkOffset_DN below full scale");
   r.gain_DN_per_e = s.gain_DN_per_e.value_or((maxDigital - r.darkOffset_DN) / r.fullWell_e);
   r.shotNoise = s.shotNoise;
+  r.prnu = s.prnu;  // the presets' classes are quoted without their nonuniformities: 0 unless given
+  r.dsnu_e = s.dsnu_e;
   return r;
 }
 

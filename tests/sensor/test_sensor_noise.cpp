@@ -340,6 +340,61 @@ TEST_CASE("sensor: shotNoise = false and readNoise 0 leave the noise-free image"
   }
 }
 
+TEST_CASE("sensor: PRNU and DSNU are a fixed pattern of the stated spread, the same in every frame") {
+  // EMVA 1288's spatial nonuniformities: noiseFree = K (η μ_p max(0, 1 + prnu z_p) + dsnu_e z_o) +
+  // offset per pixel, z drawn once per pixel (frame fixed). Over N = 200 × 150 pixels the sample
+  // standard deviation of a normal has a relative standard error 1/√(2N) = 0.41 %: 5 of them allowed.
+  const int w = 200, h = 150, n = w * h;
+  EmvaSensor sensor = flatFieldSensor(100);  // η 0.5, full well 1e4 e⁻, K 0.4 DN/e⁻
+  sensor.prnu = 0.02;
+  sensor.dsnu_e = 7;
+  const Camera camera = flatFieldCamera(w, h, sensor);
+  const ResolvedEmva e = resolve(sensor, camera.bitsPerPixel);
+  auto spread = [&](const std::vector<double>& v) {
+    double mean = 0, squares = 0;
+    for (double x : v) mean += x;
+    mean /= double(v.size());
+    for (double x : v) squares += (x - mean) * (x - mean);
+    return std::pair{mean, std::sqrt(squares / double(v.size() - 1))};
+  };
+  const double bound = 5 / std::sqrt(2.0 * n);
+  // Dark (no light): only the DSNU: noiseFree spread K · dsnu_e = 2.8 DN around the offset.
+  const SensorImage dark = applySensor(std::vector<double>(n, 0.0), camera, {3, 0, 0});
+  const auto [darkMean, darkSpread] = spread(dark.noiseFree_DN);
+  CHECK(std::abs(darkSpread / (e.gain_DN_per_e * 7) - 1) <= bound);
+  CHECK(std::abs(darkMean - 100) <= 5 * e.gain_DN_per_e * 7 / std::sqrt(double(n)));
+  // Lit to 5000 e⁻: PRNU's 100 e⁻ and DSNU's 7 e⁻ add in quadrature: K √(100² + 7²).
+  const double radiance = 5000 / (e.quantumEfficiency * e.photonsAtFullScale);
+  const SensorImage lit = applySensor(std::vector<double>(n, radiance), camera, {3, 0, 0});
+  const auto [litMean, litSpread] = spread(lit.noiseFree_DN);
+  MESSAGE("dark noiseFree spread " << darkSpread << " DN (expected " << e.gain_DN_per_e * 7 << "), lit " << litSpread
+                                   << " DN (expected " << e.gain_DN_per_e * std::hypot(100.0, 7.0) << ")");
+  CHECK(std::abs(litSpread / (e.gain_DN_per_e * std::hypot(100.0, 7.0)) - 1) <= bound);
+  CHECK(std::abs(litMean - (e.gain_DN_per_e * 5000 + 100)) <= 5 * litSpread / std::sqrt(double(n)));
+  // Fixed: the same pattern in every frame, another with another seed (another sensor) or camera.
+  CHECK(applySensor(std::vector<double>(n, radiance), camera, {3, 7, 0}).noiseFree_DN == lit.noiseFree_DN);
+  CHECK(applySensor(std::vector<double>(n, radiance), camera, {4, 0, 0}).noiseFree_DN != lit.noiseFree_DN);
+  CHECK(applySensor(std::vector<double>(n, radiance), camera, {3, 0, 1}).noiseFree_DN != lit.noiseFree_DN);
+  // The temporal noise is drawn apart (its own dimensions): without shot noise (which depends on the
+  // pixel's mean), the read noise is the same with and without the fixed pattern, up to the rounding
+  // of y − noiseFree (values ~2000 DN: ~1e-12 DN; 1e-9 bounds it).
+  EmvaSensor readOnly = sensor;
+  readOnly.shotNoise = false;
+  EmvaSensor uniform = readOnly;
+  uniform.prnu = 0;
+  uniform.dsnu_e = 0;
+  const std::vector<double> withPattern =
+      applySensor(std::vector<double>(n, radiance), flatFieldCamera(w, h, readOnly), {3, 0, 0}).noise_DN;
+  const std::vector<double> without = applySensor(std::vector<double>(n, radiance), flatFieldCamera(w, h, uniform), {3, 0, 0}).noise_DN;
+  double worst = 0;
+  for (std::size_t i = 0; i < without.size(); ++i) worst = std::max(worst, std::abs(withPattern[i] - without[i]));
+  CHECK(worst <= 1e-9);
+  CHECK(std::abs(spread(without).second / (e.gain_DN_per_e * 3) - 1) <= bound);  // the read noise, K σ_d
+  // The header names them only when set.
+  CHECK(describeSensor(camera.sensor, 12).find(" prnu=0.02 dsnu_e=7") != std::string::npos);
+  CHECK(describeSensor(flatFieldCamera(w, h, uniform).sensor, 12).find("prnu") == std::string::npos);
+}
+
 TEST_CASE("sensor: without a dark offset the read noise of dark pixels is clipped at 0, as modelled") {
   // Offset 0: about half of the dark pixels' values fall below 0 and read 0; the exact
   // distribution (with the d = 0 end taking the whole lower tail) predicts mean and variance.

@@ -29,7 +29,7 @@ TEST_CASE("sensor: scene syntax reads every parameter") {
   const std::string path = dir.write("scene.lua", R"(
 cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = {1e-5, 1e-5};
   sensor = Sensor.Emva { preset = "scientific-cmos"; readNoise_e = 1.2; gain_DN_per_e = 0.5;
-                         darkOffset_DN = 10; exposureTime_s = 0.02; shotNoise = false };
+                         darkOffset_DN = 10; exposureTime_s = 0.02; shotNoise = false; prnu = 0.015; dsnu_e = 2.5 };
   postProcessing = { Vignetting.Radial { coefficients = {-0.2, 0.01} }, Blur.Disk { radius_px = 2.5 },
                      Dust { center_px = {10, 20}; radius_px = 5; opacity = 0.25 },
                      Dust { center_px = {30, 20}; radius_px = 3; opacity = 1 },
@@ -46,6 +46,10 @@ plain = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.01; pixelSize = 
   CHECK(*m.emva->darkOffset_DN == 10);
   CHECK(*m.emva->exposureTime_s == 0.02);
   CHECK_FALSE(m.emva->shotNoise);
+  CHECK(m.emva->prnu == 0.015);
+  CHECK(m.emva->dsnu_e == 2.5);
+  CHECK(resolve(*m.emva, 8).prnu == 0.015);
+  CHECK(resolve(*m.emva, 8).dsnu_e == 2.5);
   CHECK_FALSE(m.emva->fullWell_e.has_value());  // from the preset, when resolved
   CHECK(resolve(*m.emva, 8).fullWell_e == 30000);
   REQUIRE(m.blur);
@@ -72,7 +76,7 @@ TEST_CASE("sensor: scene errors name the line") {
   checkBodyError(dir, "s = Sensor.Emva { readNoise = 2 }\n", 2,
                  "Sensor.Emva: unknown key 'readNoise' (did you mean 'readNoise_e'?); valid keys: preset, "
                  "quantumEfficiency, fullWell_e, readNoise_e, darkCurrent_e_per_s, exposureTime_s, "
-                 "photonsAtFullScale, gain_DN_per_e, darkOffset_DN, shotNoise");
+                 "photonsAtFullScale, gain_DN_per_e, darkOffset_DN, shotNoise, prnu, dsnu_e");
   checkBodyError(dir, "s = Sensor.Emva { preset = \"webcam\" }\n", 2,
                  "Sensor.Emva: unknown 'preset' \"webcam\"; the presets are \"machine-vision-cmos\", "
                  "\"small-pixel-cmos\", \"interline-ccd\", \"scientific-cmos\"");
@@ -132,6 +136,9 @@ TEST_CASE("sensor: scene errors name the line") {
                  "larger quantumEfficiency or photonsAtFullScale itself");
   CHECK_NOTHROW(loadScene(dir.write("well.lua", cam + "  sensor = Sensor.Emva { fullWell_e = 1e9; readNoise_e = 1e9; "
                                                       "gain_DN_per_e = 65535 } }\n"), {}));
+  checkBodyError(dir, "s = Sensor.Emva { prnu = 0.3 }\n", 2,
+                 "Sensor.Emva: 'prnu' must be in [0, 0.25] (a fraction: 0.01 is 1 % rms), got 0.3");
+  checkBodyError(dir, "s = Sensor.Emva { dsnu_e = -1 }\n", 2, "Sensor.Emva: 'dsnu_e' must be in [0, 1e9] e⁻ rms, got -1");
   // A constructor without parameters says so (the message ended "valid keys: " and nothing).
   checkBodyError(dir, "v = Vignetting.Cos4 { strength = 2 }\n", 2,
                  "Vignetting.Cos4: unknown key 'strength'; Vignetting.Cos4 takes no parameters");

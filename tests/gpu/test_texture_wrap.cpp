@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bspline_oracle.h"
@@ -22,6 +23,20 @@
 #include "temp_folder.h"
 
 using namespace dicsynth;
+
+namespace {
+
+// The scene at `path`, prepared, and the CPU reference's render of it at 1 spp.
+std::pair<PreparedScene, RenderResult> cpuReference(const std::string& path, RenderOptions& options) {
+  SceneParams params;
+  params.quiet = true;
+  PreparedScene scene = prepareScene(loadScene(path, params), {1});
+  options.samplesPerPixel = 1;
+  RenderResult reference = cpu::render(scene, options);
+  return {std::move(scene), std::move(reference)};
+}
+
+}  // namespace
 
 TEST_CASE("texture-wrap: a repeating texture has no seam on a tiled plane or around a cylinder, on every renderer") {
   test::TempFolder dir;
@@ -67,12 +82,8 @@ TEST_CASE("texture-wrap: a repeating texture has no seam on a tiled plane or aro
     test::writeBytes(path, camera + "plate = Object.Simple { " + c.object +
                                "; shader = Shader.Constant { color = 1 }; texture = Texture.File { fileName = \"noise.tif\"; "
                                "interpolation = \"" + c.interpolation + "\"; wrap = \"" + c.wrap + "\" } }\n");
-    SceneParams params;
-    params.quiet = true;
-    const PreparedScene scene = prepareScene(loadScene(path, params), {1});
     RenderOptions options;
-    options.samplesPerPixel = 1;
-    const RenderResult reference = cpu::render(scene, options);
+    const auto [scene, reference] = cpuReference(path, options);
     const CameraImage& image = reference.cameras[0];
     int hits = 0, wrong = 0, seamPixels = 0, clampedBreaks = 0;
     double worst = 0;
@@ -131,12 +142,8 @@ TEST_CASE("texture-wrap: a periodic Texture.Speckle has no seam on a tiled plane
     test::writeBytes(path, camera + "s = Object.Simple { " + c.object + "; shader = Shader.Constant { color = 1 }; " +
                                "texture = Texture.Speckle { radius = " + std::to_string(c.radius) + "; aspect = " +
                                std::to_string(c.aspect) + "; seed = 5; dark = 0.2; light = 0.9; wrap = \"" + wrap + "\" } }\n");
-    SceneParams params;
-    params.quiet = true;
-    const PreparedScene scene = prepareScene(loadScene(path, params), {1});
     RenderOptions options;
-    options.samplesPerPixel = 1;
-    const RenderResult reference = cpu::render(scene, options);
+    const auto [scene, reference] = cpuReference(path, options);
     const CameraImage& image = reference.cameras[0];
     // The oracle from the parameters as written into the scene (std::to_string's 6 decimals).
     const test::SpeckleOracle periodic(std::stod(std::to_string(c.radius)), 0.5, std::stod(std::to_string(c.aspect)), 5,

@@ -50,6 +50,17 @@ StereoRig rig(const std::string& left, const std::string& right) {
   return r;
 }
 
+// Whether camera `other`'s ray through reference pixel i + `disparity` meets that pixel's material
+// point first (the same object and (u, v)), traced by the CPU reference independently of the masks.
+bool reachedThrough(const Frame& f, std::size_t other, const CameraImage& img, std::size_t i, dvec2 disparity) {
+  const dvec2 there = dvec2(double(i % std::size_t(img.width_px)), double(i / std::size_t(img.width_px))) + disparity;
+  const auto& model = f.scene.cameras[other].model;
+  cpu::SurfaceHit hit;
+  return there.x >= -0.5 && there.x <= img.width_px - 0.5 && there.y >= -0.5 && there.y <= img.height_px - 0.5 &&
+         cpu::traceNearest(f.scene, model.centre, worldRayDirection(model, there), hit) &&
+         hit.object == int(img.objectId[i]) - 1 && glm::length(hit.uv - img.uv[i]) < 1e-9;
+}
+
 std::string camera(const std::string& extra = "") {
   std::string s = kCamera;
   s.replace(s.find("%s"), 2, extra);
@@ -316,17 +327,11 @@ TEST_CASE("ground truth: a rectangle seen from its two sides: no disparity, thou
   for (std::size_t c = 0; c < 2; ++c) {
     const DerivedTruth t = deriveTruth(reference, 0, f.scene, f.result, c);
     const CameraImage& img = f.result.cameras[c];
-    const auto& otherModel = f.scene.cameras[1 - c].model;
     int reachedFirst = 0;
     for (std::size_t i = 0; i < img.pixelCount(); ++i) {
       if (img.objectId[i] == 0) continue;
       // What the mask said before: the other camera's ray meets the same material point first.
-      const dvec2 there = dvec2(double(i % 160), double(i / 160)) + t.disparity_px[i];
-      cpu::SurfaceHit hit;
-      if (there.x >= -0.5 && there.x <= 159.5 && there.y >= -0.5 && there.y <= 119.5 &&
-          cpu::traceNearest(f.scene, otherModel.centre, worldRayDirection(otherModel, there), hit) &&
-          glm::length(hit.uv - img.uv[i]) < 1e-9)
-        ++reachedFirst;
+      reachedFirst += reachedThrough(f, 1 - c, img, i, t.disparity_px[i]);
       CHECK(t.disparityMask[i] == 0.0f);
     }
     MESSAGE("camera " << c << ": " << reachedFirst << " pixels whose point the other camera's ray reaches first, from the other side");
@@ -368,11 +373,7 @@ TEST_CASE("ground truth: an open tube's inner wall is not matched with its outer
       const dvec3 radial(P.x, 0, P.z);
       const bool leftInside = glm::dot(radial, P - leftModel.centre) > 0;
       const bool rightInside = glm::dot(radial, P - rightModel.centre) > 0;
-      const dvec2 there = dvec2(double(i % 160), double(i / 160)) + t.disparity_px[i];
-      cpu::SurfaceHit hit;
-      const bool reached = there.x >= -0.5 && there.x <= 159.5 && there.y >= -0.5 && there.y <= 119.5 &&
-                           cpu::traceNearest(f.scene, rightModel.centre, worldRayDirection(rightModel, there), hit) &&
-                           hit.object == 0 && glm::length(hit.uv - img.uv[i]) < 1e-9;
+      const bool reached = reachedThrough(f, 1, img, i, t.disparity_px[i]);
       otherSide += reached && leftInside != rightInside;
       const bool expected = reached && leftInside == rightInside;
       wrong += t.disparityMask[i] != (expected ? 1.0f : 0.0f);

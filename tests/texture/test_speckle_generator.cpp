@@ -41,6 +41,13 @@ SpeckleParams params(int width, int height, std::uint32_t seed = 1, double radiu
   return p;
 }
 
+// The TIFF's ImageDescription (the command that makes the same pixels again).
+std::string tiffDescription(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  REQUIRE(in);
+  return in->spec().get_string_attribute("ImageDescription");
+}
+
 double meanCoverage(const GrayImage& image) {
   double uncovered = 0;
   for (double v : image.pixels) uncovered += v;
@@ -434,12 +441,7 @@ TEST_CASE("speckle-options: the CLI options reach the generator and bad values e
   // Its description is a command that runs and writes the same file (it named --radius, which the
   // perlin pattern now refuses).
   {
-    std::string description;
-    {
-      auto in = OIIO::ImageInput::open(b);
-      REQUIRE(in);
-      description = in->spec().get_string_attribute("ImageDescription");
-    }
+    const std::string description = tiffDescription(b);
     const auto command = description.find("speckle "), note = description.find(" (");
     REQUIRE((command != std::string::npos && note != std::string::npos));
     const std::string again = folder.file("again.tif");
@@ -679,13 +681,7 @@ TEST_CASE("speckle-periodic: the CLI's --periodic reaches the generator and its 
   const GrayImage expected = generateSpeckle(p), got = readGrayImage(out);
   for (std::size_t i = 0; i < expected.pixels.size(); ++i)
     REQUIRE(got.pixels[i] == std::floor(expected.pixels[i] * 65535 + 0.5) / 65535);
-  std::string description;
-  {
-    auto in = OIIO::ImageInput::open(out);
-    REQUIRE(in);
-    description = in->spec().get_string_attribute("ImageDescription");
-  }
-  CHECK(description.find(" --periodic") != std::string::npos);
+  CHECK(tiffDescription(out).find(" --periodic") != std::string::npos);
   const std::string bad = folder.file("bad.tif");
   CHECK(test::runCli("speckle -o " + bad + " --size 100 60 --pattern perlin --perlin-cell 8 --periodic").exitCode == 2);
   CHECK(!std::filesystem::exists(bad));

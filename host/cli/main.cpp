@@ -1,6 +1,9 @@
 // dicsynth: synthetic images with exact ground truth for experimental mechanics.
 // Maps every failure to a one-line message on stderr and a documented exit code (commands.h).
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 
 #include "cli/commands.h"
@@ -15,6 +18,10 @@ int main(int argc, char** argv) {
   using namespace dicsynth;
   phaseDone(nullptr);  // DICSYNTH_TIMINGS=1: phases are timed from here
   removeTemporariesOnTermination();  // before any thread: SIGTERM, SIGINT, SIGHUP clean up first
+  // A file-size limit (`ulimit -f`, common in CI sandboxes) raises SIGXFSZ, whose default kills the
+  // process mid-write and left its temporary files (exit 153; the CI trial of 2026-11-29). Ignored,
+  // the write fails with EFBIG instead, which every writer reports: exit 3, temporaries removed.
+  std::signal(SIGXFSZ, SIG_IGN);
   // stdout line by line also into a file or pipe (a Slurm log, `> run.log`): each "written" line is
   // out once its files are complete. Fully buffered, a run ended by SIGTERM lost the lines of its
   // last finished frames and cut the last one mid-path (4 KB blocks; the new-user trial of
@@ -45,7 +52,17 @@ int main(int argc, char** argv) {
     return cli::kExitBadInput;
   }
   try {
-    return run ? run() : cli::kExitBadInput;
+    const int code = run ? run() : cli::kExitBadInput;
+    // What a run printed on stdout (the files it wrote) must have arrived: a full device or a closed
+    // stdout lost the list silently with exit 0 (the CI trial of 2026-11-29).
+    const bool flushed = std::fflush(stdout) == 0;
+    const int flushError = errno;
+    if (!flushed || std::ferror(stdout)) {
+      std::fprintf(stderr, "dicsynth: error: could not write to stdout%s%s (the lines listing what was written are lost)\n",
+                   flushed ? "" : ": ", flushed ? "" : std::strerror(flushError));
+      return code == cli::kExitOk ? cli::kExitFailure : code;
+    }
+    return code;
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return cli::kExitBadInput;

@@ -1,5 +1,7 @@
 #include "core/parallel.h"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -9,7 +11,15 @@
 
 namespace dicsynth {
 
-unsigned hardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }
+// The CPUs this process may run on: its affinity mask (taskset, a Slurm or container CPU set), not
+// the machine's count, which std::thread::hardware_concurrency gives (the CI trial of 2026-11-29:
+// "2 threads" under taskset -c 0, one CPU).
+unsigned hardwareThreads() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return unsigned(std::max(1, CPU_COUNT(&set)));
+  return std::max(1u, std::thread::hardware_concurrency());
+}
 
 void parallelFor(std::size_t n, const std::function<void(std::size_t)>& body) {
   const std::size_t workers = std::min<std::size_t>(hardwareThreads(), n);

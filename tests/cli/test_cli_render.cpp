@@ -1,6 +1,7 @@
 // The render and compare commands end to end, as a user runs them: outputs, frames, exit codes,
 // and bad input (one-line message with file:line, exit code 2, no output file at all).
 #include <doctest/doctest.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <atomic>
@@ -306,4 +307,43 @@ TEST_CASE("cli: a texture replaced while the frames of a run render stops the ru
   CHECK(r.err.find(": the texture file changed during the run (frame ") != std::string::npos);
   CHECK(r.err.find("): the run is undone; run it again once the file is as you want it") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.file("out")));  // no frame of either content is left
+}
+
+// Unattended runs (the CI trial of 2026-11-29): a file-size limit killed the process by SIGXFSZ
+// (exit 153, temporaries left); a stdout on a full device lost the list of files with exit 0; the
+// CPU reference counted the machine's CPUs, not the ones the process may use.
+TEST_CASE("cli: a file-size limit, a full stdout and a CPU set are what a run reports") {
+  test::TempFolder dir;
+  const std::string scene = std::string(DS_SOURCE_DIR) + "/scenes/rigid_motion.lua";
+  const std::string options = " --frames 0:3 --downscale 4 --spp 1 --backend cpu";
+  // `ulimit -f 20` (10 KiB), SIGXFSZ left at its default: the write fails, the run ends with exit 3
+  // and removes what it wrote (the frames' EXRs are ~100 KiB).
+  const std::string limited = "sh -c 'ulimit -f 20; exec " + std::string(DS_BINARY) + " render " + scene + " -o " +
+                              dir.file("limited") + options + "' >" + dir.file("out") + " 2>" + dir.file("err");
+  const int status = std::system(limited.c_str());
+  INFO(test::readBytes(dir.file("err")));
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 3);
+  CHECK(test::readBytes(dir.file("err")).find("File too large") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("limited")));  // a failed run keeps none of its files
+  // stdout on a full device: the files are complete, the lines listing them lost: exit 3, said.
+  const std::string full = std::string(DS_BINARY) + " render " + scene + " -o " + dir.file("full") + options +
+                           " >/dev/full 2>" + dir.file("err2");
+  const int fullStatus = std::system(full.c_str());
+  REQUIRE(WIFEXITED(fullStatus));
+  CHECK(WEXITSTATUS(fullStatus) == 3);
+  CHECK(test::readBytes(dir.file("err2")).find("dicsynth: error: could not write to stdout") != std::string::npos);
+  CHECK(std::filesystem::exists(dir.file("full/camera_0003.exr")));
+  // One CPU allowed (taskset, where util-linux has it): the CPU reference uses, and says, 1 thread.
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  REQUIRE(sched_getaffinity(0, sizeof allowed, &allowed) == 0);
+  int first = 0;
+  while (first < CPU_SETSIZE && !CPU_ISSET(first, &allowed)) ++first;  // a CPU this test may use
+  if (std::system("command -v taskset >/dev/null 2>&1") == 0) {
+    const std::string pinned = "taskset -c " + std::to_string(first) + " " + std::string(DS_BINARY) + " render " + scene + " -o " + dir.file("pinned") +
+                               " --downscale 8 --spp 1 --backend cpu >" + dir.file("out3") + " 2>&1";
+    REQUIRE(std::system(pinned.c_str()) == 0);
+    CHECK(test::readBytes(dir.file("out3")).find("CPU reference (1 thread)") != std::string::npos);
+  }
 }

@@ -378,6 +378,29 @@ Scene collectGlobals(lua_State* L, const std::string& path) {
   sortByName(scene.rigs);
   sortByName(scene.objects);
   sortByName(scene.lights);
+  // A rig camera in the pose and resolution of another camera is most likely one camera made twice
+  // (a ring of Rig.Stereo whose right camera is the next one's left: the 360° trial of 2026-11-29):
+  // rendered twice, with other samples and noise (the camera index differs), so not even the same
+  // image. (Two global cameras in one pose: an alias is warned above, a deliberate pair is allowed.)
+  const auto inRig = [&](const Camera& camera) {
+    return std::any_of(scene.rigs.begin(), scene.rigs.end(),
+                       [&](const StereoRig& r) { return r.left == camera.name || r.right == camera.name; });
+  };
+  for (std::size_t a = 0; a < scene.cameras.size(); ++a)
+    for (std::size_t b = a + 1; b < scene.cameras.size(); ++b) {
+      const Camera &first = scene.cameras[a], &second = scene.cameras[b];
+      if (!inRig(first) && !inRig(second)) continue;
+      double difference = 0;
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+          difference = std::max(difference, std::abs(first.worldFromCamera[c][r] - second.worldFromCamera[c][r]));
+      if (difference <= 1e-12 && first.width_px == second.width_px && first.height_px == second.height_px)
+        warnAtMost("scene cameras in one pose", 10,
+                   first.where.str() + ": the cameras '" + first.name + "' and '" + second.name +
+                       "' have the same pose and resolution: one camera rendered twice, each with its own samples and "
+                       "noise? (a ring of rigs sharing cameras: docs/scene-language.md, \"More than two cameras\")",
+                   " (further cameras in one pose not reported)");
+    }
   // (Refused above, at the rig.)
   for (std::size_t i = 1; i < scene.cameras.size(); ++i)
     DS_CHECK(scene.cameras[i].name != scene.cameras[i - 1].name, "two cameras named '" + scene.cameras[i].name + "'");

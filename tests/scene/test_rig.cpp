@@ -5,10 +5,12 @@
 #include <cmath>
 #include <random>
 
+#include "core/warning.h"
 #include "io/calibration_files.h"
 #include "scene/scene.h"
 #include "scene/stereo_rig.h"
 #include "scene_test_util.h"
+#include "temp_folder.h"
 
 using namespace dicsynth;
 using test::checkBodyError;
@@ -216,4 +218,26 @@ TEST_CASE("rig: Rig.Stereo errors name the scene line") {
                       "baseline = 0.2; vergence = 0 }\n\n_G['rig0.right'] = " + c + "\n", 3,
                  "Rig.Stereo 'rig0': its right camera is named 'rig0.right', and so is a global camera (made at line 5): "
                  "rename the global");
+}
+
+TEST_CASE("rig: a rig camera in another camera's pose is warned (one camera rendered twice)") {
+  const test::TempFolder dir;
+  const std::string c = "Camera.Pinhole { resolution = {8, 8}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }";
+  auto warnings = [&](const std::string& body) {
+    WarningCapture capture;
+    loadScene(dir.write("s.lua", body), {});
+    return capture.take();
+  };
+  // Two parallel rigs 0.2 m apart with a 0.2 m baseline: rig0.right and rig1.left both sit at the
+  // origin looking along +z (the 360° trial's ring of rigs sharing cameras).
+  const std::string ring = "rig0 = Rig.Stereo { left = " + c + "; right = " + c +
+                           "; baseline = 0.2; vergence = 0; position = {-0.1, 0, 0} }\n"
+                           "rig1 = Rig.Stereo { left = " + c + "; right = " + c +
+                           "; baseline = 0.2; vergence = 0; position = {0.1, 0, 0} }\n";
+  const std::vector<std::string> said = warnings(ring);
+  REQUIRE(said.size() == 1);
+  CHECK(said[0].find("the cameras 'rig0.right' and 'rig1.left' have the same pose and resolution") != std::string::npos);
+  // Rigs that share no pose, and two global cameras in one pose (allowed: a deliberate pair), say nothing.
+  CHECK(warnings("rig0 = Rig.Stereo { left = " + c + "; right = " + c + "; baseline = 0.2; vergence = 0 }\n").empty());
+  CHECK(warnings("a = " + c + "\nb = " + c + "\n").empty());
 }

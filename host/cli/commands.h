@@ -13,6 +13,7 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitCompareFailed = 1;  // compare: a difference exceeds its tolerance
 inline constexpr int kExitBadInput = 2;       // scene/parameter/file errors (InputError, CLI errors)
 inline constexpr int kExitFailure = 3;        // Vulkan, I/O or internal failure (Error)
+inline constexpr int kExitStrictWarnings = 4;  // --strict: the run finished, with warnings
 
 using RunFn = std::function<int()>;
 

@@ -7,11 +7,13 @@
 #include <exception>
 
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "cli/suggestion.h"
 #include "core/error.h"
 #include "core/phase_timer.h"
 #include "core/termination.h"
 #include "core/version.h"
+#include "core/warning.h"
 #include "io/zip_deflate.h"
 
 int main(int argc, char** argv) {
@@ -61,6 +63,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "dicsynth: error: could not write to stdout%s%s (the lines listing what was written are lost)\n",
                    flushed ? "" : ": ", flushed ? "" : std::strerror(flushError));
       return code == cli::kExitOk ? cli::kExitFailure : code;
+    }
+    if (code == cli::kExitOk && cli::strictWarnings() && warningsWritten() > 0) {
+      std::fprintf(stderr, "dicsynth: error: --strict: the run said %zu warning%s (its files are written)\n",
+                   warningsWritten(), warningsWritten() == 1 ? "" : "s");
+      return cli::kExitStrictWarnings;
     }
     return code;
   } catch (const InputError& e) {

@@ -31,6 +31,17 @@ void addFramesOption(CLI::App& app, std::string& frames, const std::string& help
           [](const std::string& v) { return v.empty() ? std::string("expected A:B or N, got nothing") : std::string(); }, ""));
 }
 
+namespace {
+bool strict = false;  // set by --strict of the one subcommand that runs
+}  // namespace
+
+void addStrictFlag(CLI::App& app) {
+  app.add_flag("--strict", strict,
+               "Warnings fail the run: exit 4 once its work is done (the files are written), for unattended jobs");
+}
+
+bool strictWarnings() { return strict; }
+
 void addLayersOption(CLI::App& app, std::string& layers) {
   // The names from the layer schema (model/layers.h), so the help cannot miss one.
   std::string names;

@@ -22,6 +22,11 @@ void addFramesOption(CLI::App& app, std::string& frames, const std::string& help
 // --layers: which outputs are computed and written (render, sweep; model/layers.h).
 void addLayersOption(CLI::App& app, std::string& layers);
 
+// --strict (render, sweep): a run that said a warning ends with exit 4 once its work is done, so
+// that an unattended job cannot pass with, e.g., a camera that saw nothing. main() judges it.
+void addStrictFlag(CLI::App& app);
+bool strictWarnings();
+
 // --sweep, --random, --random-seed (sweep/sweep_points.h). `effect` ends the --sweep help text: what
 // the subcommand does with the points.
 void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect);

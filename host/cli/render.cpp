@@ -61,6 +61,7 @@ void addRenderCommand(CLI::App& root, RunFn& run) {
   addFramesOption(*sub, cmd->frames, "Frames A:B (both included) or N; sets the scene global `frame` and numbers the files");
   addExrCompressionOption(*sub, cmd->exrCompression);
   addLayersOption(*sub, cmd->layers);
+  addStrictFlag(*sub);
   sub->add_option("--reference-frame", cmd->referenceFrame,
                   "Frame whose pixels the motion ground truth (disp, flow) starts from; one of --frames "
                   "(default: the first)");

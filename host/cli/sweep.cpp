@@ -22,6 +22,7 @@ void addSweepCommand(CLI::App& root, RunFn& run) {
                   "--frames (default: the first)");
   addExrCompressionOption(*sub, cmd->exrCompression);
   addLayersOption(*sub, cmd->layers);
+  addStrictFlag(*sub);
   addSweepOptions(*sub, cmd->sweep, "; replaces the scene's `sweep`");
   sub->add_option("--shard", cmd->shard,
                   "I/N: render the points whose index mod N is I (default: from SLURM_ARRAY_TASK_ID/COUNT/MIN)");

@@ -1,6 +1,7 @@
 #include "core/warning.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <map>
 #include <mutex>
@@ -24,7 +25,10 @@ std::optional<std::string> counted(int& count, int most, const std::string& text
   return count == most ? text + lastNote : text;
 }
 
+std::atomic<std::size_t> written{0};  // warnings written on stderr
+
 void writeLine(bool warning, const std::string& text) {
+  if (warning) ++written;
   // One write of the whole line (a scene's print may hold any byte), flushed at once.
   const std::string line = (warning ? "dicsynth: warning: " : "") + text + "\n";
   std::fwrite(line.data(), 1, line.size(), stderr);
@@ -68,6 +72,8 @@ void warnAtMost(const std::string& kind, int most, const std::string& text, cons
 }
 
 void note(const std::string& line) { say(false, line); }
+
+std::size_t warningsWritten() { return written; }
 
 WarningCapture::WarningCapture() {
   Captures& c = captures();

@@ -10,6 +10,7 @@
 // shows and `warnings` filters, and writes notes to sys.stderr, where lines on the process's stderr
 // would be lost. They may come from any thread; every capture alive when one is said receives it
 // (two renders running at once in one process each see the other's).
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,6 +24,8 @@ void warn(const std::string& text);
 void warnAtMost(const std::string& kind, int most, const std::string& text, const std::string& lastNote = "");
 // `line` without its newline.
 void note(const std::string& line);
+// How many warnings this process wrote on stderr (not those a capture took): what --strict judges.
+std::size_t warningsWritten();
 
 class WarningCapture {
  public:

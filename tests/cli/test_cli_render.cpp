@@ -347,3 +347,28 @@ TEST_CASE("cli: a file-size limit, a full stdout and a CPU set are what a run re
     CHECK(test::readBytes(dir.file("out3")).find("CPU reference (1 thread)") != std::string::npos);
   }
 }
+
+TEST_CASE("cli: --strict fails a run that said a warning with exit 4, its files written") {
+  // The CI trial of 2026-11-29: a camera that saw nothing was a warning and exit 0, so a nightly job
+  // shipped blank images as a pass.
+  test::TempFolder dir;
+  const std::string blank = dir.write("blank.lua",
+      "camera = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-5, 1e-5} }\n"
+      "behind = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, -1} } }\n");
+  const test::CliResult loose = test::runCli("render " + blank + " -o " + dir.file("loose") + " --backend cpu --spp 1");
+  CHECK(loose.exitCode == 0);
+  CHECK(loose.err.find("dicsynth: warning: ") != std::string::npos);
+  const test::CliResult strict = test::runCli("render " + blank + " -o " + dir.file("strict") + " --backend cpu --spp 1 --strict");
+  INFO(strict.err);
+  CHECK(strict.exitCode == 4);
+  CHECK(strict.err.find("dicsynth: error: --strict: the run said 1 warning (its files are written)") != std::string::npos);
+  CHECK(std::filesystem::exists(dir.file("strict/camera.tif")));
+  // A run without warnings passes; the sweep takes the flag too.
+  const std::string seen = std::string(DS_SOURCE_DIR) + "/scenes/rectangle.lua";
+  CHECK(test::runCli("render " + seen + " -o " + dir.file("seen") + " --downscale 8 --backend cpu --spp 1 --strict").exitCode == 0);
+  const std::string swept = dir.write("swept.lua", test::readBytes(blank) + "radius = x\n");
+  const test::CliResult sweep = test::runCli("sweep " + swept + " -o " + dir.file("sweep") + " --sweep x=1,2 --backend cpu --spp 1 --strict");
+  INFO(sweep.err);
+  CHECK(sweep.exitCode == 4);
+  CHECK(std::filesystem::exists(dir.file("sweep/manifest.csv")));
+}

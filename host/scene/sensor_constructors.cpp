@@ -94,35 +94,24 @@ int sensorEmva(lua_State* L) {
       p.fail("unknown 'preset' \"" + *preset + "\"; the presets are " + sensorPresetNames());
     s.preset = *preset;
   }
-  auto nonNegative = [&](const char* key, std::optional<double>& into) {
+  // Each value, when given, must satisfy `ok`; `condition` says which values do.
+  auto checked = [&](const char* key, std::optional<double>& into, auto ok, const char* condition) {
     into = p.number(key);
-    if (into) p.require(*into >= 0, key, ">= 0", *into);
+    if (into) p.require(ok(*into), key, condition, *into);
   };
-  s.quantumEfficiency = p.number("quantumEfficiency");
-  if (s.quantumEfficiency)
-    p.require(*s.quantumEfficiency > 0 && *s.quantumEfficiency <= 1, "quantumEfficiency", "in (0, 1]",
-              *s.quantumEfficiency);
-  s.fullWell_e = p.number("fullWell_e");
-  if (s.fullWell_e)
-    p.require(*s.fullWell_e >= 1 && *s.fullWell_e <= kMaxFullWell_e, "fullWell_e",
-              "in [1, 1e9] e⁻ (a well of less than one electron holds none; beyond 1e9 the shot-noise sampler loses "
-              "accuracy, and real sensors hold up to ~2e6)",
-              *s.fullWell_e);
-  s.readNoise_e = p.number("readNoise_e");
-  if (s.readNoise_e)
-    p.require(*s.readNoise_e >= 0 && *s.readNoise_e <= kMaxFullWell_e, "readNoise_e", "in [0, 1e9] e⁻ rms",
-              *s.readNoise_e);
-  nonNegative("darkCurrent_e_per_s", s.darkCurrent_e_per_s);
-  nonNegative("exposureTime_s", s.exposureTime_s);
-  s.photonsAtFullScale = p.number("photonsAtFullScale");
-  if (s.photonsAtFullScale)
-    p.require(*s.photonsAtFullScale > 0 && *s.photonsAtFullScale <= kMaxPhotonsAtFullScale, "photonsAtFullScale",
-              "in (0, 1e15] photons", *s.photonsAtFullScale);
-  s.gain_DN_per_e = p.number("gain_DN_per_e");
-  if (s.gain_DN_per_e)
-    p.require(*s.gain_DN_per_e > 0 && *s.gain_DN_per_e <= kMaxGain_DN_per_e, "gain_DN_per_e",
-              "in (0, 65535] DN/e⁻ (more would put one electron beyond the whole 16-bit range)", *s.gain_DN_per_e);
-  nonNegative("darkOffset_DN", s.darkOffset_DN);
+  const auto nonNegative = [](double v) { return v >= 0; };
+  checked("quantumEfficiency", s.quantumEfficiency, [](double v) { return v > 0 && v <= 1; }, "in (0, 1]");
+  checked("fullWell_e", s.fullWell_e, [](double v) { return v >= 1 && v <= kMaxFullWell_e; },
+          "in [1, 1e9] e⁻ (a well of less than one electron holds none; beyond 1e9 the shot-noise sampler loses "
+          "accuracy, and real sensors hold up to ~2e6)");
+  checked("readNoise_e", s.readNoise_e, [](double v) { return v >= 0 && v <= kMaxFullWell_e; }, "in [0, 1e9] e⁻ rms");
+  checked("darkCurrent_e_per_s", s.darkCurrent_e_per_s, nonNegative, ">= 0");
+  checked("exposureTime_s", s.exposureTime_s, nonNegative, ">= 0");
+  checked("photonsAtFullScale", s.photonsAtFullScale, [](double v) { return v > 0 && v <= kMaxPhotonsAtFullScale; },
+          "in (0, 1e15] photons");
+  checked("gain_DN_per_e", s.gain_DN_per_e, [](double v) { return v > 0 && v <= kMaxGain_DN_per_e; },
+          "in (0, 65535] DN/e⁻ (more would put one electron beyond the whole 16-bit range)");
+  checked("darkOffset_DN", s.darkOffset_DN, nonNegative, ">= 0");
   s.shotNoise = p.boolean("shotNoise").value_or(true);
   // The relative response 1 + prnu z is clipped at 0 for a fraction Φ(−1/prnu) of the pixels: 3e-5
   // at 0.25, 2.3 % at 0.5, no longer the normal spread it stands for. Sensors show 0.5–3 %.
@@ -132,8 +121,7 @@ int sensorEmva(lua_State* L) {
   p.require(s.dsnu_e >= 0 && s.dsnu_e <= kMaxFullWell_e, "dsnu_e", "in [0, 1e9] e⁻ rms", s.dsnu_e);
   // The default photonsAtFullScale, fullWell_e / η, within its bound too (a tiny η).
   if (!s.photonsAtFullScale) {
-    const SensorPreset& base = s.preset.empty() ? sensorPresets().front() : *findSensorPreset(s.preset);
-    const double derived = s.fullWell_e.value_or(base.fullWell_e) / s.quantumEfficiency.value_or(base.quantumEfficiency);
+    const double derived = photonsAtFullScale(s);
     if (!(derived <= kMaxPhotonsAtFullScale))
       p.fail("photonsAtFullScale = fullWell_e / quantumEfficiency = " + formatNumber(derived) +
              " photons is over 1e15: give a larger quantumEfficiency or photonsAtFullScale itself");

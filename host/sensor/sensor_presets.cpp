@@ -44,15 +44,30 @@ std::string sensorPresetNames() {
   return names;
 }
 
+namespace {
+
+// The preset whose values fill what a Sensor.Emva leaves unset. Without a preset: the
+// machine-vision class's values, so that Sensor.Emva {} is realistic.
+const SensorPreset& basePreset(const EmvaSensor& s) {
+  if (s.preset.empty()) return sensorPresets().front();
+  const SensorPreset* preset = findSensorPreset(s.preset);
+  DS_CHECK(preset != nullptr, "unknown sensor preset '" + s.preset + "'");
+  return *preset;
+}
+
+}  // namespace
+
+double photonsAtFullScale(const EmvaSensor& s) {
+  const SensorPreset& base = basePreset(s);
+  // Full scale of the ideal sensor (exposure·radiance = 1) fills the well: the same radiance
+  // reaches the top of the range with or without a sensor model.
+  return s.photonsAtFullScale.value_or(s.fullWell_e.value_or(base.fullWell_e) /
+                                       s.quantumEfficiency.value_or(base.quantumEfficiency));
+}
+
 ResolvedEmva resolve(const EmvaSensor& s, int bitsPerPixel) {
   DS_CHECK(bitsPerPixel >= 1 && bitsPerPixel <= 16, "bitsPerPixel must be in 1..16");
-  const SensorPreset* preset = nullptr;
-  if (!s.preset.empty()) {
-    preset = findSensorPreset(s.preset);
-    DS_CHECK(preset != nullptr, "unknown sensor preset '" + s.preset + "'");
-  }
-  // Without a preset: the machine-vision class's values, so that Sensor.Emva {} is realistic.
-  const SensorPreset& base = preset ? *preset : sensorPresets().front();
+  const SensorPreset& base = basePreset(s);
   const double maxDigital = double((1u << bitsPerPixel) - 1u);
   ResolvedEmva r{};
   r.quantumEfficiency = s.quantumEfficiency.value_or(base.quantumEfficiency);
@@ -60,9 +75,7 @@ ResolvedEmva resolve(const EmvaSensor& s, int bitsPerPixel) {
   r.readNoise_e = s.readNoise_e.value_or(base.readNoise_e);
   r.darkCurrent_e_per_s = s.darkCurrent_e_per_s.value_or(base.darkCurrent_e_per_s);
   r.exposureTime_s = s.exposureTime_s.value_or(base.exposureTime_s);
-  // Full scale of the ideal sensor (exposure·radiance = 1) fills the well: the same radiance
-  // reaches the top of the range with or without a sensor model.
-  r.photonsAtFullScale = s.photonsAtFullScale.value_or(r.fullWell_e / r.quantumEfficiency);
+  r.photonsAtFullScale = photonsAtFullScale(s);
   // A black level of 1/64 of the range keeps the read noise of dark pixels from being clipped.
   r.darkOffset_DN = s.darkOffset_DN.value_or(std::floor(maxDigital / 64.0));
   // The gain maps a full well onto the rest of the range: the well and the ADC saturate together.

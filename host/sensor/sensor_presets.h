@@ -10,6 +10,8 @@
 
 namespace dicsynth {
 
+struct EmvaSensor;  // model/sensor_model.h
+
 struct SensorPreset {
   const char* name;
   const char* description;   // sensor class and the basis of the numbers
@@ -26,5 +28,10 @@ const std::vector<SensorPreset>& sensorPresets();
 const SensorPreset* findSensorPreset(const std::string& name);
 // "a", "b", ... for messages.
 std::string sensorPresetNames();
+
+// A Sensor.Emva's photons per pixel at full scale: as given, else fullWell_e / η (each as given or
+// from its preset, else the first preset's), so that full scale fills the well. resolve() takes it
+// from here; the scene checks its bound with it before a camera exists.
+double photonsAtFullScale(const EmvaSensor& sensor);
 
 }  // namespace dicsynth

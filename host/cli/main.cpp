@@ -64,9 +64,9 @@ int main(int argc, char** argv) {
                    flushed ? "" : ": ", flushed ? "" : std::strerror(flushError));
       return code == cli::kExitOk ? cli::kExitFailure : code;
     }
-    if (code == cli::kExitOk && cli::strictWarnings() && warningsWritten() > 0) {
-      std::fprintf(stderr, "dicsynth: error: --strict: the run said %zu warning%s (its files are written)\n",
-                   warningsWritten(), warningsWritten() == 1 ? "" : "s");
+    if (const std::size_t warnings = warningsWritten(); code == cli::kExitOk && cli::strictWarnings() && warnings > 0) {
+      std::fprintf(stderr, "dicsynth: error: --strict: the run said %zu warning%s (its files are written)\n", warnings,
+                   warnings == 1 ? "" : "s");
       return cli::kExitStrictWarnings;
     }
     return code;

@@ -105,6 +105,11 @@ dvec2 projectPoint(const PreparedCamera& camera, dvec3 world_m) { return seenAt(
 // mask is 0 there whatever the ray meets first. Where either side is unknown (0), the ray decides.
 bool sameSide(int a, int b) { return a == 0 || b == 0 || a == b; }
 
+// The side of the surface `camera` sees at the material point (sideSeen from its chief ray's origin).
+int sideSeenBy(const PreparedCamera& camera, const MaterialPointFrame& frame) {
+  return sideSeen(frame, chiefRayOrigin(camera.model, frame.point_m));
+}
+
 // Points of one camera whose visibility is to be traced, by pixel: object −1 where none is.
 struct VisibilityCandidates {
   std::vector<dvec3> point_m;
@@ -170,7 +175,7 @@ ReferenceFrame::ReferenceFrame(int frame, PreparedScene scene, const RenderResul
       v.object[i] = o;
       v.material[i] = m;
       v.position_m[i] = f->point_m;
-      v.side[i] = std::int8_t(sideSeen(*f, chiefRayOrigin(camera.model, f->point_m)));
+      v.side[i] = std::int8_t(sideSeenBy(camera, *f));
       if (otherFrames) v.pixel_px[i] = projectPoint(camera, f->point_m);
     });
     views_.push_back(std::move(v));
@@ -286,7 +291,7 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       const ImagePoint now = projectToImage(camera, f->point_m);
       truth.flow_px[i] = seenAt(now) - view->pixel_px[i];
       if (!now.inImage) return;  // mask 0
-      if (!sameSide(view->side[i], sideSeen(*f, chiefRayOrigin(camera.model, f->point_m)))) return;  // mask 0
+      if (!sameSide(view->side[i], sideSeenBy(camera, *f))) return;  // mask 0
       seen.point_m[i] = f->point_m;
       seen.object[i] = o;
     });
@@ -313,9 +318,7 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
       const ImagePoint there = projectToImage(otherCamera, f->point_m);
       truth.disparity_px[i] = seenAt(there) - projectPoint(camera, f->point_m);
       if (!there.inImage) return;  // mask 0
-      if (!sameSide(sideSeen(*f, chiefRayOrigin(camera.model, f->point_m)),
-                    sideSeen(*f, chiefRayOrigin(otherCamera.model, f->point_m))))
-        return;  // mask 0
+      if (!sameSide(sideSeenBy(camera, *f), sideSeenBy(otherCamera, *f))) return;  // mask 0
       seen.point_m[i] = f->point_m;
       seen.object[i] = o;
     });

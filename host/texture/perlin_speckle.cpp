@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "shared/rng.h"
+#include "texture/bspline.h"
 
 namespace dicsynth {
 namespace {
@@ -26,8 +27,8 @@ double ramp(std::uint32_t h, double dx, double dy) {
   return a + b;
 }
 
-// Lattice index k modulo `period` (0: not periodic).
-int wrapLattice(int k, int period) { return period == 0 ? k : ((k % period) + period) % period; }
+// Lattice index k modulo `period` (0: not periodic), by the B-spline textures' periodic index.
+int wrapLattice(int k, int period) { return period == 0 ? k : wrapIndex(k, period); }
 
 // One octave at lattice coordinates (x, y); periodic with `periodX` × `periodY` lattice cells
 // (0: not periodic): the corner gradients are those of the indices modulo the period.

@@ -11,6 +11,7 @@ namespace dicsynth::cli {
 // Exit codes, documented in docs/commands.md.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitCompareFailed = 1;  // compare: a difference exceeds its tolerance
+inline constexpr int kExitIncomplete = 1;     // sweep --merge-only: points missing (a check that found a gap, as compare's)
 inline constexpr int kExitBadInput = 2;       // scene/parameter/file errors (InputError, CLI errors)
 inline constexpr int kExitFailure = 3;        // Vulkan, I/O or internal failure (Error)
 inline constexpr int kExitStrictWarnings = 4;  // --strict: the run finished, with warnings

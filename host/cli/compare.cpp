@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "cli/compare_items.h"
+#include "cli/error_line.h"
 #include "cli/options.h"
 #include "core/error.h"
 #include "core/json.h"
@@ -234,7 +235,7 @@ ItemOutcome erroredItem(const CompareCommand& cmd, const CompareItem& item, bool
                         bool inputError) {
   const std::string named =
       several && message.rfind(item.scenePath, 0) != 0 ? item.label + ": " + message : message;
-  std::fprintf(stderr, "%s%s\n", inputError ? "" : "dicsynth: error: ", named.c_str());
+  std::fprintf(stderr, "%s\n", errorLine(named).c_str());
   if (cmd.json) {
     Json::Value o = itemJson(item);
     o["error"] = message;

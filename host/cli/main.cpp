@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "cli/suggestion.h"
+#include "cli/error_line.h"
 #include "core/error.h"
 #include "core/phase_timer.h"
 #include "core/termination.h"
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "dicsynth: %s%s\n", e.what(), cli::suggestion(app, argc, argv).c_str());
+    std::fprintf(stderr, "dicsynth: error: %s%s\n", e.what(), cli::suggestion(app, argc, argv).c_str());
     return cli::kExitBadInput;
   }
   try {
@@ -71,10 +72,10 @@ int main(int argc, char** argv) {
     }
     return code;
   } catch (const InputError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s\n", cli::errorLine(e.what()).c_str());
     return cli::kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "dicsynth: error: %s\n", e.what());
+    std::fprintf(stderr, "%s\n", cli::errorLine(e.what()).c_str());
     return cli::kExitFailure;
   }
 }

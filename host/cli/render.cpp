@@ -22,6 +22,7 @@ struct RenderCommand {
   std::string exrCompression = "zip";
   std::string layers = "all";
   bool preview = false;
+  bool check = false;
 };
 
 int runRender(const RenderCommand& cmd) {
@@ -43,6 +44,7 @@ int runRender(const RenderCommand& cmd) {
   job.exrCompression = cmd.exrCompression;
   job.layers = layers;
   job.preview = cmd.preview;
+  job.checkOnly = cmd.check;
   runRenderJob(session, job);
   return kExitOk;
 }
@@ -67,6 +69,10 @@ void addRenderCommand(CLI::App& root, RunFn& run) {
                   "(default: the first)");
   sub->add_flag("--preview", cmd->preview,
                 "Also write PNG pictures of each EXR's layers into DIR/preview/ (as `dicsynth preview`)");
+  sub->add_flag("--check", cmd->check,
+                "Make every check the render makes before its work (every frame's scene, the options, the output "
+                "folder and names, the layers, memory, the device's limits), print what it would render, and stop: "
+                "nothing is rendered or written (exit 0, or 2 naming the problem)");
   sub->callback([cmd, &run] { run = [cmd] { return runRender(*cmd); }; });
 }
 

@@ -1,4 +1,5 @@
 // `dicsynth sweep SCENE.lua -o DIR`: the options of the sweep runner (sweep/sweep_runner.h).
+#include <cstdio>
 #include <memory>
 
 #include "cli/commands.h"
@@ -31,7 +32,15 @@ void addSweepCommand(CLI::App& root, RunFn& run) {
   sub->add_flag("--merge-only", cmd->mergeOnly, "Only rebuild the manifest from the finished points' records");
   sub->add_flag("--list", cmd->list, "Print the points (index, folder, parameters) and exit");
   sub->callback([cmd, &run] { run = [cmd] {
-    runSweep(*cmd);
+    const SweepOutcome outcome = runSweep(*cmd);
+    // The merge is a sweep's last step (after shards, GNU parallel, a Slurm array): a manifest that
+    // lists fewer points than the sweep has is not its result, and exit 0 let a script go on to
+    // analyse a partial sweep (the CI trial of 2026-11-29). The manifest is written all the same.
+    if (cmd->mergeOnly && outcome.complete < outcome.total) {
+      std::fprintf(stderr, "dicsynth: error: sweep --merge-only: %lld of %lld points missing or damaged (the manifest lists the %lld complete; run the sweep again to render the others)\n",
+                   outcome.total - outcome.complete, outcome.total, outcome.complete);
+      return kExitIncomplete;
+    }
     return kExitOk;
   }; });
 }

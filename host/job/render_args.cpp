@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/warning.h"
+#include "gpu/device_cache.h"
 #include "render/precision_calibration.h"
 
 namespace dicsynth {
@@ -110,9 +111,14 @@ Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::R
   // Said before measuring: seconds, with the shaders compiled the first time (a fresh machine's first
   // render: 13 s for Figure 1, 27 s for the new-user trial's stereo scene, lavapipe on 2 cores),
   // which passed in silence.
+  // Without a cache folder nothing keeps the measurement: every process measures again (the message
+  // said "kept in the cache folder" there too: the CI trial of 2026-11-29).
   if (!cachedCalibration(context))
-    note("precision auto: measuring the error and speed of each precision on " + context.info().name +
-         " (once per device and driver; kept in the cache folder)");
+    note("dicsynth: note: precision auto: measuring the error and speed of each precision on " + context.info().name +
+         (gpu::deviceCachePath(context, "precision-calibration").empty()
+              ? " (no cache folder: DICSYNTH_CACHE_DIR, XDG_CACHE_HOME and HOME are unset, so every run measures "
+                "again; name one, or give --precision)"
+              : " (once per device and driver; kept in the cache folder)"));
   const PrecisionCalibration calibration = calibratePrecisions(context, renderer);
   const Precision chosen = choosePrecision(calibration, args.maxErrorPx);
   // Said when measured now (the run took seconds for it); from the cache the choice is silent, so
@@ -121,7 +127,7 @@ Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::R
   if (!calibration.fromCache) {
     char maxError[32];
     std::snprintf(maxError, sizeof maxError, "%g", args.maxErrorPx);
-    note("precision auto: " + std::string(toString(chosen)) + " (max error " + maxError +
+    note("dicsynth: note: precision auto: " + std::string(toString(chosen)) + " (max error " + maxError +
          " px; calibration measured on " + context.info().name + ", " + context.info().driver + ": " +
          describeCalibration(calibration) + ")");
   }

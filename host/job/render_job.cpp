@@ -271,6 +271,24 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   return out;
 }
 
+// render --check's line: what the run would render, once every check before work has passed.
+std::string checkSummary(RenderSession& session, const RenderJob& job, const FramesChecked& checked) {
+  const Scene first = loadFrameScene(job, job.frames.front(), true);
+  const int k = std::max(1, session.args().downscale);
+  std::string cameras;
+  for (const Camera& camera : first.cameras)
+    cameras += (cameras.empty() ? "" : ", ") + camera.name + " " + std::to_string(std::max(1, camera.width_px / k)) + "x" +
+               std::to_string(std::max(1, camera.height_px / k));
+  const std::size_t n = job.frames.size();
+  const auto [lo, hi] = std::minmax_element(job.frames.begin(), job.frames.end());
+  std::string frames = n == 1 ? "frame " + std::to_string(job.frames.front())
+                              : std::to_string(n) + " frames " + std::to_string(*lo) + ".." + std::to_string(*hi);
+  return "check: " + job.sceneFile + ": " + frames + "; " + std::to_string(first.cameras.size()) + " camera" +
+         (first.cameras.size() == 1 ? "" : "s") + (checked.calibrationPerFrame ? " in the first frame (they change between frames)" : "") +
+         ": " + cameras + "; " + std::to_string(checked.maxPixelsPerFrame) + " px per frame at most; layers " +
+         job.layers.text() + "; nothing rendered or written (-o " + job.outputDir + ")\n";
+}
+
 RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Scene& sceneOfFrame, int frame,
                           RenderJobResult& summary, InputContents& contents) {
   const RenderArgs& args = session.args();
@@ -685,6 +703,12 @@ class OutputRollback {
 RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   renderOptions(session.args(), 0);  // validate the sampling options before any work
   checkOutputWritable(job.outputDir);
+  if (job.checkOnly) {
+    session.startDevice();  // its limits are part of checking the frames
+    const FramesChecked checked = checkFrames(session, job);
+    std::fputs(checkSummary(session, job, checked).c_str(), stdout);
+    return {};
+  }
   if (std::filesystem::is_directory(job.outputDir)) removeStaleTemporaries(job.outputDir);
   // Where --preview writes too (a killed run's pictures in the making stayed there: the faults
   // audit of 2026-11-28; so they did beside `preview`, `speckle` and `compare --junit` outputs).

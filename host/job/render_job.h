@@ -85,6 +85,9 @@ struct RenderJob {
   std::string exrCompression = "zip";  // --exr-compression (io/outputs.h, kExrCompressions)
   LayerSet layers = LayerSet::all();   // --layers (model/layers.h)
   bool preview = false;           // --preview: PNGs of each EXR into <outputDir>/preview (io/preview.h)
+  // --check: every check runRenderJob makes before its work, then one line on stdout saying what the
+  // run would render; nothing is rendered, created, removed or written.
+  bool checkOnly = false;
   // Set by another thread to stop renderJob early (the Python module's Ctrl-C), which then throws
   // Interrupted: polled before each frame and by the render (RenderOptions::stop). Null in the CLI.
   const StopFlag* stop = nullptr;

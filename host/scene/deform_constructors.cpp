@@ -241,7 +241,7 @@ int nurbsDeform(lua_State* L) {
                   report.maxError_m, tolerance, report.checkU, report.checkV, report.controlPoints, report.refinements);
     // A reused fit's evaluations are the reuse check's own (docs/nurbs.md: its check grid), not a
     // refit's: said so, lest a user take a reused fit for a fresh one.
-    note(where.str() + ": " + line + (deformation->fromCache ? ", reused from an earlier frame or sweep point" : "") +
+    note(where.str() + ": note: " + line + (deformation->fromCache ? ", reused from an earlier frame or sweep point" : "") +
          (function ? ", " + std::to_string(function->calls()) + " field evaluations" +
                          (deformation->fromCache ? " to check it" : "")
                    : ""));

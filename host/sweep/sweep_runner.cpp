@@ -163,7 +163,7 @@ class Progress {
 
 }  // namespace
 
-void runSweep(const SweepRun& cmd) {
+SweepOutcome runSweep(const SweepRun& cmd) {
   const auto defines = parseDefines(cmd.args.defines);
   renderOptions(cmd.args, 0);  // validate the sampling options before any work
   const LayerSet layers = LayerSet::parse(cmd.layers);
@@ -182,7 +182,7 @@ void runSweep(const SweepRun& cmd) {
       for (const auto& [name, value] : p.values) std::printf(" %s=%s", name.c_str(), value.defineText().c_str());
       std::printf("\n");
     }
-    return;
+    return {};
   }
 
   // The key of a point: everything that determines its files. The scene enters by its content
@@ -280,7 +280,7 @@ void runSweep(const SweepRun& cmd) {
         });
     std::printf("manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
                 (long long)summary.complete, (long long)summary.total, cmd.outputDir.c_str());
-    return;
+    return {summary.complete, summary.total};
   }
   const fs::path lockDir = fs::path(cmd.outputDir) / ".locks";
   std::error_code ec;
@@ -446,7 +446,7 @@ void runSweep(const SweepRun& cmd) {
                               : "",
               (long long)rendered, replacedText.c_str(), (long long)skipped, (long long)busy, (long long)summary.complete,
               (long long)summary.total, cmd.outputDir.c_str());
-  return;
+  return {summary.complete, summary.total};
 }
 
 

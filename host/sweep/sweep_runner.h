@@ -28,8 +28,14 @@ struct SweepRun {
   bool list = false;           // print the points (index, folder, parameters) and render nothing
 };
 
+// How many of the sweep's points the manifest lists as complete, of how many (0 of 0 for --list).
+struct SweepOutcome {
+  long long complete = 0;
+  long long total = 0;
+};
+
 // Runs it, printing a summary line (or the list) on stdout and progress on stderr. Throws
 // InputError for bad input (before any point renders), Error for a failure.
-void runSweep(const SweepRun& run);
+SweepOutcome runSweep(const SweepRun& run);
 
 }  // namespace dicsynth

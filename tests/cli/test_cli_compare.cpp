@@ -158,7 +158,10 @@ TEST_CASE("cli: compare reports a broken scene as a JUnit error and goes on, exi
   CHECK(cases[0].outcome == "pass");
   CHECK(cases[1].classname == "broken");
   CHECK(cases[1].outcome == "error");
-  CHECK(cases[1].message + "\n" == r.err);
+  // The report holds the message; stderr its line with the kind after the place (cli/error_line.h).
+  const std::string place = dir.file("scenes/broken.lua") + ":1: ";
+  REQUIRE(cases[1].message.rfind(place, 0) == 0);
+  CHECK(place + "error: " + cases[1].message.substr(place.size()) + "\n" == r.err);
   CHECK(cases[2].outcome == "pass");  // the scene after the broken one was still compared
 
   // With --json, one object per scene, the broken one's with its error (it printed none: the
@@ -200,7 +203,7 @@ TEST_CASE("cli: compare's bad options give one line, exit code 2 and no report")
     INFO(args << "\n" << r.err);
     CHECK(r.exitCode == 2);
     CHECK(oneLine(r.err));
-    CHECK(r.err.rfind(prefix, 0) == 0);
+    CHECK(r.err.rfind("dicsynth: error: " + prefix, 0) == 0);
   }
   CHECK_FALSE(std::filesystem::exists(report));
 }
@@ -257,6 +260,6 @@ TEST_CASE("cli: compare over a sweep has a JUnit case per point and camera") {
     const test::CliResult bad = runCli("compare " + args + kFast);
     INFO(args << "\n" << bad.err);
     CHECK(bad.exitCode == 2);
-    CHECK(bad.err.rfind(prefix, 0) == 0);
+    CHECK(bad.err.rfind("dicsynth: error: " + prefix, 0) == 0);
   }
 }

@@ -54,7 +54,7 @@ TEST_CASE("cli: a reference frame outside --frames is bad input: exit code 2, no
     const test::CliResult r = runCli("render " + scene + " -o " + dir.file("out") + args + " --backend cpu");
     INFO(args << "\n" << r.err);
     CHECK(r.exitCode == 2);
-    CHECK(r.err.rfind("--reference-frame", 0) == 0);
+    CHECK(r.err.rfind("dicsynth: error: --reference-frame", 0) == 0);
     CHECK(r.err.find('\n') == r.err.size() - 1);
     CHECK_FALSE(std::filesystem::exists(dir.file("out")));
   }

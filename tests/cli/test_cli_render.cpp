@@ -148,7 +148,7 @@ TEST_CASE("cli: a define read only in some frames is accepted when a rendered fr
   const test::CliResult both = runCli("render " + scene + " -o " + dir.file("both") + " --backend cpu --frames 0:1 -D growth=0.2");
   INFO(both.err);
   CHECK(both.exitCode == 0);
-  expectBadInput(dir, scene + " --backend cpu --frames 0 -D growth=0.2", "-D growth: the scene never reads 'growth'");
+  expectBadInput(dir, scene + " --backend cpu --frames 0 -D growth=0.2", "dicsynth: error: -D growth: the scene never reads 'growth'");
   const test::CliResult sweep =
       runCli("sweep " + scene + " -o " + dir.file("sweep") + " --backend cpu --frames 0:1 --sweep growth=0.1,0.2");
   INFO(sweep.err);
@@ -162,14 +162,14 @@ TEST_CASE("cli: a define read only in some frames is accepted when a rendered fr
 TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
   TempFolder dir;
   const std::string scene = kScenes + "rectangle.lua";
-  expectBadInput(dir, scene + " --device no-such-gpu", "--device 'no-such-gpu'");
-  expectBadInput(dir, scene + " -D shift", "-D shift: expected name=value");
-  expectBadInput(dir, scene + " -D nonsense=1", "-D nonsense: the scene never reads 'nonsense'");
-  expectBadInput(dir, scene + " --frames 5:2", "--frames 5:2");
-  expectBadInput(dir, scene + " --spp 0", "--spp 0");
-  expectBadInput(dir, scene + " --downscale 0", "--downscale");
-  expectBadInput(dir, dir.file("no_such_scene.lua"), dir.file("no_such_scene.lua"));
-  expectBadInput(dir, scene + " --exr-compression dwaa", "dicsynth: --exr-compression");  // lossy: not offered
+  expectBadInput(dir, scene + " --device no-such-gpu", "dicsynth: error: --device 'no-such-gpu'");
+  expectBadInput(dir, scene + " -D shift", "dicsynth: error: -D shift: expected name=value");
+  expectBadInput(dir, scene + " -D nonsense=1", "dicsynth: error: -D nonsense: the scene never reads 'nonsense'");
+  expectBadInput(dir, scene + " --frames 5:2", "dicsynth: error: --frames 5:2");
+  expectBadInput(dir, scene + " --spp 0", "dicsynth: error: --spp 0");
+  expectBadInput(dir, scene + " --downscale 0", "dicsynth: error: --downscale");
+  expectBadInput(dir, dir.file("no_such_scene.lua"), "dicsynth: error: " + dir.file("no_such_scene.lua"));
+  expectBadInput(dir, scene + " --exr-compression dwaa", "dicsynth: error: --exr-compression");  // lossy: not offered
   const test::CliResult r = runCli("render " + scene + " --backend vulkan");  // CLI11's own check
   CHECK(r.exitCode == 2);
   CHECK(oneLine(r.err));

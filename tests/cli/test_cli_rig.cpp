@@ -108,7 +108,7 @@ TEST_CASE("cli: a rig error in one frame stops the run before any file, as does 
   // Frame 5's negative baseline: exit 2, the scene's line, no output folder.
   const test::CliResult bad = runCli("render " + scene + " -o " + dir.file("bad") + " --frames 4:5 --spp 1 --backend cpu");
   CHECK(bad.exitCode == 2);
-  CHECK(bad.err.rfind(scene + ":4: Rig.Stereo: 'baseline' must be > 0 (metres), got -1", 0) == 0);
+  CHECK(bad.err.rfind(scene + ":4: error: Rig.Stereo: 'baseline' must be > 0 (metres), got -1", 0) == 0);
   CHECK_FALSE(std::filesystem::exists(dir.file("bad")));
 
   // A folder in the way of rig.yml: refused before any work (exit 2; until 2026-11-28 the write

@@ -208,6 +208,7 @@ TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered ag
   std::filesystem::remove(out + "/manifest.csv");
   const test::CliResult merged = runCli("sweep " + scene + " -o " + out + kFast + " --merge-only");
   CHECK(merged.out == "manifest: 6 of 6 points complete (" + out + "/manifest.csv, manifest.json)\n");
+  CHECK(merged.exitCode == 0);
   CHECK(readText(out + "/manifest.csv") == manifest);
   // A damaged file of the same size: --merge-only verifies the checksums too (the sweep audit of
   // 2026-11-27: it listed such a point, and a Slurm merge job passed on corrupted data), and a
@@ -221,6 +222,11 @@ TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered ag
     std::ofstream(stale) << "index,folder\n0,point_";
     const test::CliResult checked = runCli("sweep " + scene + " -o " + out + kFast + " --merge-only");
     CHECK(checked.out == "manifest: 5 of 6 points complete (" + out + "/manifest.csv, manifest.json)\n");
+    // Incomplete: the manifest is written, and the exit code says so (exit 0 let a script analyse a
+    // partial sweep: the CI trial of 2026-11-29).
+    CHECK(checked.exitCode == 1);
+    CHECK(checked.err == "dicsynth: error: sweep --merge-only: 1 of 6 points missing or damaged (the manifest lists the 5 "
+                         "complete; run the sweep again to render the others)\n");
     CHECK(readText(out + "/manifest.csv").find("point_00005") == std::string::npos);
     CHECK(!std::filesystem::exists(stale));
     std::ofstream(out + "/point_00005/cam.tif", std::ios::binary) << tif;  // mended: listed again
@@ -354,17 +360,17 @@ TEST_CASE("cli: sweep bad input: one line, exit code 2") {
     CHECK(r.err == expected + "\n");
   };
   bad(scene + " -o " + dir.file("o1") + " --sweep typo=1,2",
-      scene + ": sweep parameter 'typo': the scene never reads 'typo' (a typo in the sweep, or a scene that ignores it)");
+      "dicsynth: error: " + scene + ": sweep parameter 'typo': the scene never reads 'typo' (a typo in the sweep, or a scene that ignores it)");
   CHECK_FALSE(std::filesystem::exists(dir.file("o1/point_00000/point.json")));
   bad(scene + " -o " + dir.file("o2") + " --sweep shift=0:1:0",
-      "--sweep shift=0:1:0: N = 0 gives an empty range (N must be >= 1)");
+      "dicsynth: error: --sweep shift=0:1:0: N = 0 gives an empty range (N must be >= 1)");
   const std::string randomZero = dir.write("random.lua", kScene + "sweep = random { n = 0, shift = {0, 1} }\n");
   bad(randomZero + " -o " + dir.file("o3"),
-      randomZero + ":7: random: 'n' must be >= 1 (a sweep needs at least one point), got 0");
+      randomZero + ":7: error: random: 'n' must be >= 1 (a sweep needs at least one point), got 0");
   dir.write("afile", "x");
   bad(scene + " -o " + dir.file("afile/sub"),
-      "-o " + dir.file("afile/sub") + ": cannot create the output folder: " + dir.file("afile") + " is not a folder");
-  bad(scene + " -o " + dir.file("o4") + " --shard 3/3", "--shard 3/3: expected I/N with 0 <= I < N");
+      "dicsynth: error: -o " + dir.file("afile/sub") + ": cannot create the output folder: " + dir.file("afile") + " is not a folder");
+  bad(scene + " -o " + dir.file("o4") + " --shard 3/3", "dicsynth: error: --shard 3/3: expected I/N with 0 <= I < N");
   // A layer the first point cannot produce (its value turns the sensor off): the point is named,
   // as a later point's error is (the calibration trial of 2026-11-28 read it as the sweep's).
   const std::string sensor = dir.write(
@@ -373,7 +379,7 @@ TEST_CASE("cli: sweep bad input: one line, exit code 2") {
                     "  sensor = shift > 0 and Sensor.Emva { preset = 'machine-vision-cmos' } or nil }\n"
                     "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {shift, 0, 0.5} } }\n");
   bad(sensor + " -o " + dir.file("o5") + " --sweep shift=0,0.5 --layers image,noise",
-      "--layers: layer 'noise' cannot be produced: no camera of the scene has a sensor model (a camera's sensor = "
+      "dicsynth: error: --layers: layer 'noise' cannot be produced: no camera of the scene has a sensor model (a camera's sensor = "
       "Sensor.Emva { ... } or postProcessing) (sweep point point_00000: shift=0, evaluated before any work)");
   CHECK_FALSE(std::filesystem::exists(dir.file("o5")));
 }

@@ -104,7 +104,7 @@ TEST_CASE("hostile: non-finite and negative texels are refused with the scene li
       const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") + " --backend " + backend);
       INFO(backend << ": " << r.err);
       CHECK(r.exitCode == 2);
-      CHECK(r.err.find(scene + ":3: Texture.File: " + texture + ": " + cases[k].expected) != std::string::npos);
+      CHECK(r.err.find(scene + ":3: error: Texture.File: " + texture + ": " + cases[k].expected) != std::string::npos);
       CHECK(!std::filesystem::exists(dir.file("out")));
     }
   }
@@ -158,7 +158,7 @@ TEST_CASE("hostile: images declaring more pixels than the limit are refused befo
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     INFO(r.err);
     CHECK(r.exitCode == 2);
-    CHECK(r.err.find(scene + ":3: Texture.File: " + file + ": the image declares ") != std::string::npos);
+    CHECK(r.err.find(scene + ":3: error: Texture.File: " + file + ": the image declares ") != std::string::npos);
     CHECK(r.err.find("pixels, over the limit of 268435456 (16384 x 16384)") != std::string::npos);
     CHECK(seconds < 20);  // refused from the header, not after reading (a generous bound on a loaded machine)
   }
@@ -195,9 +195,9 @@ TEST_CASE("hostile: frame ranges, device files, big scenes, long names, extreme 
       {"render " + scene + " -o " + out + " --frames 0:1000000", "1000001 frames, over the limit of 1000000 per run"},
       {"render /dev/zero -o " + out, "/dev/zero: cannot read the scene file: not a regular file"},
       {"render " + big + " -o " + out, "big.lua: cannot read the scene file: 16777217 bytes, over the limit of 16777216"},
-      {"render " + device + " -o " + out, "device.lua:3: Texture.File: cannot read '/dev/zero': not a regular file"},
-      {"render " + longName + " -o " + out, "long.lua:1: the camera name 'cccc"},
-      {"render " + aspect + " -o " + out, "aspect.lua:1: Camera.Pinhole: 'pixelSize' = {2e-04, 2000}: the pixel aspect sx / sy = "},
+      {"render " + device + " -o " + out, "device.lua:3: error: Texture.File: cannot read '/dev/zero': not a regular file"},
+      {"render " + longName + " -o " + out, "long.lua:1: error: the camera name 'cccc"},
+      {"render " + aspect + " -o " + out, "aspect.lua:1: error: Camera.Pinhole: 'pixelSize' = {2e-04, 2000}: the pixel aspect sx / sy = "},
       {"render " + huge + " -o " + out, "huge.lua: a frame of 4294836225 pixels (all cameras) needs about"},
       {"render " + scene + " -o /proc/dicsynth-test", "-o /proc/dicsynth-test: /proc is not writable"},
       {"render " + scene + " -o " + scene + "/sub", "is not a folder"},
@@ -246,16 +246,16 @@ TEST_CASE("hostile: names that would write outside the output folder or break it
     std::string body, expected;
   };
   const std::vector<Case> cases = {
-      {"cam = " + pinhole + "\n_G['../evil'] = " + pinhole + "\n", ":2: the camera name '../evil' begins with '.'"},
-      {"cam = " + pinhole + "\n_G['sub/evil'] = " + pinhole + "\n", ":2: the camera name 'sub/evil' holds '/'"},
-      {"_G[''] = " + pinhole + "\n", ":1: the camera name '' is empty"},
-      {"_G['.hidden'] = " + pinhole + "\n", ":1: the camera name '.hidden' begins with '.'"},
+      {"cam = " + pinhole + "\n_G['../evil'] = " + pinhole + "\n", ":2: error: the camera name '../evil' begins with '.'"},
+      {"cam = " + pinhole + "\n_G['sub/evil'] = " + pinhole + "\n", ":2: error: the camera name 'sub/evil' holds '/'"},
+      {"_G[''] = " + pinhole + "\n", ":1: error: the camera name '' is empty"},
+      {"_G['.hidden'] = " + pinhole + "\n", ":1: error: the camera name '.hidden' begins with '.'"},
       {"local c = " + pinhole + "\n_G['../r'] = Rig.Stereo { left = c; right = c; baseline = 0.1; target = {0, 0, 1} }\n",
-       ":2: the rig name '../r' begins with '.'"},
-      {"cam = " + pinhole + "\n_G['a,b'] = " + object + "\n", ":2: the object name 'a,b' holds ','"},
-      {"cam = " + pinhole + "\n_G['a\"b'] = " + object + "\n", ":2: the object name 'a\"b' holds '\"'"},
+       ":2: error: the rig name '../r' begins with '.'"},
+      {"cam = " + pinhole + "\n_G['a,b'] = " + object + "\n", ":2: error: the object name 'a,b' holds ','"},
+      {"cam = " + pinhole + "\n_G['a\"b'] = " + object + "\n", ":2: error: the object name 'a\"b' holds '\"'"},
       {"cam = " + pinhole + "\n_G['lamp\\n2'] = Light.Point { position = {0, 0, 0} }\n",
-       ":2: the light name 'lamp\\x0a2' holds a control character"},
+       ":2: error: the light name 'lamp\\x0a2' holds a control character"},
   };
   const std::string out = dir.file("run/out");
   std::filesystem::create_directories(dir.file("run"));
@@ -280,7 +280,7 @@ TEST_CASE("hostile: scene evaluation is bounded in time, and pattern matching by
   unsetenv("DICSYNTH_SCENE_SECONDS");
   INFO(r.err);
   CHECK(r.exitCode == 2);
-  CHECK(r.err.find("slow.lua:2: scene exceeded the time limit (1 s of evaluation; DICSYNTH_SCENE_SECONDS sets another)") !=
+  CHECK(r.err.find("slow.lua:2: error: scene exceeded the time limit (1 s of evaluation; DICSYNTH_SCENE_SECONDS sets another)") !=
         std::string::npos);
   CHECK(seconds < 15);
   setenv("DICSYNTH_SCENE_SECONDS", "zero", 1);
@@ -295,9 +295,9 @@ TEST_CASE("hostile: scene evaluation is bounded in time, and pattern matching by
   const test::CliResult p = test::runCli("render " + pattern + " -o " + dir.file("out"));
   INFO(p.err);
   CHECK(p.exitCode == 2);
-  CHECK(p.err.find("pattern.lua:5: string.find: a pattern with 3 quantifiers (* + - ?, %b, %1..%9) on a subject of 100000 characters") != std::string::npos);
+  CHECK(p.err.find("pattern.lua:5: error: string.find: a pattern with 3 quantifiers (* + - ?, %b, %1..%9) on a subject of 100000 characters") != std::string::npos);
   const std::string gsub = dir.write("gsub.lua", kCamera + "local s = string.rep('ab', 50000)\nlocal t = s:gsub('(a*)*b', 'x')\n");
-  CHECK(test::runCli("render " + gsub + " -o " + dir.file("out")).err.find("gsub.lua:3: string.gsub: a pattern with 2 quantifiers") !=
+  CHECK(test::runCli("render " + gsub + " -o " + dir.file("out")).err.find("gsub.lua:3: error: string.gsub: a pattern with 2 quantifiers") !=
         std::string::npos);
 }
 
@@ -415,7 +415,7 @@ TEST_CASE("hostile: an output name held by a folder or a FIFO is refused before 
   };
   const test::CliResult r = test::runCli("render " + scene + " --frames 0:1 -o " + out + " --spp 1 --precision fp32");
   CHECK(r.exitCode == 2);
-  CHECK(r.err == out + "/cam_0001.exr is a folder, where this run writes camera cam's ground truth "
+  CHECK(r.err == "dicsynth: error: " + out + "/cam_0001.exr is a folder, where this run writes camera cam's ground truth "
                  "(remove or rename it, or choose another -o)\n");
   CHECK(r.out.empty());
   CHECK(names() == std::set<std::string>{"cam_0001.exr"});
@@ -694,7 +694,7 @@ TEST_CASE("hostile: NURBS data over the device's storage-buffer limit is exit 2 
   }
   // Refused with the line of the surface, before its preparation (a lower bound: fp32 points).
   CHECK(r.exitCode == 2);
-  CHECK(r.err.find(scene + ":2: the NURBS surface of object 'big' (640000 Bézier patches) needs at least ") != std::string::npos);
+  CHECK(r.err.find(scene + ":2: error: the NURBS surface of object 'big' (640000 Bézier patches) needs at least ") != std::string::npos);
   CHECK(r.err.find("use fewer knot spans, or --backend cpu") != std::string::npos);
   CHECK(!std::filesystem::exists(dir.file("out")));
 }
@@ -706,16 +706,16 @@ TEST_CASE("hostile: a mistyped command or option is answered with the nearest na
     std::string args, expected;
   };
   const Case cases[] = {
-      {"rendr " + scene, "dicsynth: A subcommand is required (did you mean 'render'? The commands: render, compare, devices, "
+      {"rendr " + scene, "dicsynth: error: A subcommand is required (did you mean 'render'? The commands: render, compare, devices, "
                          "speckle, preview, bench, sweep)"},
-      {"xyz", "dicsynth: A subcommand is required ('xyz' is no command; the commands: render, compare, devices, speckle, "
+      {"xyz", "dicsynth: error: A subcommand is required ('xyz' is no command; the commands: render, compare, devices, speckle, "
               "preview, bench, sweep)"},
-      {"render " + scene + " --frame 1", "dicsynth: The following arguments were not expected: 1 --frame (did you mean "
+      {"render " + scene + " --frame 1", "dicsynth: error: The following arguments were not expected: 1 --frame (did you mean "
                                          "--frames for --frame?)"},
-      {"render " + scene + " --downscal=4", "dicsynth: The following argument was not expected: --downscal=4 (did you mean "
+      {"render " + scene + " --downscal=4", "dicsynth: error: The following argument was not expected: --downscal=4 (did you mean "
                                             "--downscale for --downscal?)"},
       {"sweep " + scene + " -o x --sweeep a=1", "(did you mean --sweep for --sweeep?)"},
-      {"render " + scene + " --zzzzzz", "dicsynth: The following argument was not expected: --zzzzzz"}};
+      {"render " + scene + " --zzzzzz", "dicsynth: error: The following argument was not expected: --zzzzzz"}};
   for (const Case& c : cases) {
     CAPTURE(c.args);
     const test::CliResult r = test::runCli(c.args);

@@ -5,6 +5,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/warning.h"
 #include "cpu/reference_renderer.h"
@@ -171,7 +174,7 @@ TEST_CASE("calibration: render --precision auto says it measures, names its choi
   else unsetenv("DICSYNTH_CACHE_DIR");
   REQUIRE(first.exitCode == 0);
   INFO(first.err);
-  const std::size_t measuring = first.err.find("precision auto: measuring the error and speed of each precision on ");
+  const std::size_t measuring = first.err.find("dicsynth: note: precision auto: measuring the error and speed of each precision on ");
   const std::size_t chosen = first.err.find("calibration measured on");
   CHECK(measuring == 0);
   CHECK(chosen != std::string::npos);
@@ -179,4 +182,20 @@ TEST_CASE("calibration: render --precision auto says it measures, names its choi
   REQUIRE(second.exitCode == 0);
   CHECK(second.err.empty());
   CHECK(second.out.find("gpu fp") != std::string::npos);  // the choice is still on stdout
+  CHECK(first.err.find("(once per device and driver; kept in the cache folder)") != std::string::npos);
+
+  // No cache folder at all: nothing keeps the measurement, and the message says so (it said "kept in
+  // the cache folder" there too: the CI trial of 2026-11-29).
+  std::vector<std::pair<std::string, std::string>> saved;
+  for (const char* name : {"DICSYNTH_CACHE_DIR", "XDG_CACHE_HOME", "HOME"}) {
+    if (const char* v = std::getenv(name)) saved.emplace_back(name, v);
+    unsetenv(name);
+  }
+  const test::CliResult bare = test::runCli(args + dir.file("bare"));
+  for (const auto& [name, value] : saved) setenv(name.c_str(), value.c_str(), 1);
+  INFO(bare.err);
+  CHECK(bare.exitCode == 0);
+  CHECK(bare.err.find("(no cache folder: DICSYNTH_CACHE_DIR, XDG_CACHE_HOME and HOME are unset, so every run measures "
+                      "again; name one, or give --precision)") != std::string::npos);
+  CHECK(bare.err.find("kept in the cache folder") == std::string::npos);
 }

@@ -210,7 +210,7 @@ TEST_CASE("field-load: a field affine in x and y goes through Nurbs.deform exact
   const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") + " --frames 0:1 --spp 1 --backend cpu");
   INFO(r.err);
   REQUIRE(r.exitCode == 0);
-  CHECK(r.err.find("affine.lua:3: Nurbs.deform: fit error") != std::string::npos);
+  CHECK(r.err.find("affine.lua:3: note: Nurbs.deform: fit error") != std::string::npos);
   const test::ExrContents ref = test::readExr(dir.file("out/cam_0000.exr"));
   const test::ExrContents now = test::readExr(dir.file("out/cam_0001.exr"));
   CHECK(ref.floats.count("fieldError.X") == 0);  // frame 0 has no Nurbs.deform surface
@@ -261,8 +261,8 @@ TEST_CASE("field-load: unreadable, malformed and unsuitable meshes, and points o
       "cam = Camera.Pinhole { resolution = {16, 12}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n"
       "ref = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"Field.load { fileName = 'missing.vtu' }", ":3: Field.load: " + dir.file("missing.vtu") + ": cannot read the mesh: no such file"},
-      {"Field.load { fileName = '/dev/null' }", ":3: Field.load: /dev/null: cannot read the mesh: not a regular file"},
+      {"Field.load { fileName = 'missing.vtu' }", ":3: error: Field.load: " + dir.file("missing.vtu") + ": cannot read the mesh: no such file"},
+      {"Field.load { fileName = '/dev/null' }", ":3: error: Field.load: /dev/null: cannot read the mesh: not a regular file"},
       {"Field.load { fileName = 'mesh.stl' }", "mesh.stl: unknown mesh format '.stl'"},
       {"Field.load { fileName = 'broken.vtu' }", "broken.vtu: "},
       {"Field.load { fileName = 'named.vtu' }", "named.vtu: no point array 'displacement'; its point arrays are 'U'"},
@@ -270,8 +270,8 @@ TEST_CASE("field-load: unreadable, malformed and unsuitable meshes, and points o
       {"Field.load { fileName = 'nan.vtu' }", "nan.vtu: point array 'displacement' is not finite at point 1"},
       {"Field.load { fileName = 'lines.vtu' }", "lines.vtu: cells of kind Line (2) cannot interpolate"},
       {"Field.load { fileName = 'good.vtu'; step = 1 }", "good.vtu: step 1 does not exist"},
-      {"Field.load { fileName = 'good.vtu'; scale = 0 }", ":3: Field.load: 'scale'"},
-      {"Field.load { fileName = 'good.vtu'; colour = 1 }", ":3: Field.load: unknown key 'colour'"},
+      {"Field.load { fileName = 'good.vtu'; scale = 0 }", ":3: error: Field.load: 'scale'"},
+      {"Field.load { fileName = 'good.vtu'; colour = 1 }", ":3: error: Field.load: unknown key 'colour'"},
       {"Field.load { fileName = 'small.vtu' }", "small.vtu: "},
       {"Field.load { fileName = 'badid.vtu' }", "badid.vtu: cell 0 names point 99999999, but the mesh has 4 points (0..3)"},
       {"Field.load { fileName = 'badid.vtk' }", "badid.vtk: cell 0 names point 999999, but the mesh has 3 points (0..2)"},
@@ -424,7 +424,7 @@ writer.Write()
                     "f = Field.load { fileName = 'steps.e'; array = 'DISPL'; step = 3 }\n");
   const test::CliResult e = test::runCli("render " + beyond + " -o " + dir.file("no") + " --backend cpu");
   CHECK(e.exitCode == 2);
-  CHECK(e.err.find("beyond.lua:2: Field.load: " + dir.file("steps.e") + ": step 3 does not exist: the file has 3 time step(s), 0..2") !=
+  CHECK(e.err.find("beyond.lua:2: error: Field.load: " + dir.file("steps.e") + ": step 3 does not exist: the file has 3 time step(s), 0..2") !=
         std::string::npos);
 }
 

@@ -191,7 +191,7 @@ TEST_CASE("nurbs-deform: the scene constructor fits, reports on stderr, and refu
   const test::CliResult r = test::runCli("render " + good + " -o " + dir.file("out") + " --spp 1 --backend cpu");
   INFO(r.err);
   CHECK(r.exitCode == 0);
-  CHECK(r.err.find(good + ":3: Nurbs.deform: fit error") != std::string::npos);
+  CHECK(r.err.find(good + ":3: note: Nurbs.deform: fit error") != std::string::npos);
   // Frames evaluate the scene again: an unchanged field is not refitted, a changed one is.
   const std::string frames = dir.write(
       "frames.lua", head +
@@ -226,14 +226,14 @@ TEST_CASE("nurbs-deform: the scene constructor fits, reports on stderr, and refu
   }
 
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {"w = Nurbs.deform { surface = plate }\n", ":3: Nurbs.deform: missing required 'displacement'"},
+      {"w = Nurbs.deform { surface = plate }\n", ":3: error: Nurbs.deform: missing required 'displacement'"},
       {"w = Nurbs.deform { surface = Shape.Sphere { radius = 1 }; displacement = function() return 0, 0, 0 end }\n",
-       ":3: Nurbs.deform: 'surface' must be a NURBS shape"},
+       ":3: error: Nurbs.deform: 'surface' must be a NURBS shape"},
       {"w = Nurbs.deform { surface = plate; displacement = function(x) return 0, 'a', 0 end }\n",
-       ":3: Nurbs.deform: 'displacement' must return three numbers"},
+       ":3: error: Nurbs.deform: 'displacement' must return three numbers"},
       {"w = Nurbs.deform { surface = plate; displacement = function(x) error('boom') end }\n", "boom"},
       {"w = Nurbs.deform { surface = plate; tolerance = 0; displacement = function() return 0, 0, 0 end }\n",
-       ":3: Nurbs.deform: 'tolerance'"},
+       ":3: error: Nurbs.deform: 'tolerance'"},
       {"w = Nurbs.deform { surface = plate; tolerance = 1e-15; maxControlPoints = 64;\n"
        "  displacement = function(x) return 0, 0, 1e-4 * math.sin(900 * x) end }\n",
        "best reached"},

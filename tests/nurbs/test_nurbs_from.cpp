@@ -142,14 +142,14 @@ TEST_CASE("nurbs-from: box faces, a rectangle, a sphere and an open cylinder ren
   const std::string bad = dir.write("bad.lua", head + "s = Nurbs.from { shape = Shape.Box { size = {1, 1, 1} } }\n");
   const test::CliResult e = test::runCli("render " + bad + " -o " + dir.file("no") + " --backend cpu");
   CHECK(e.exitCode == 2);
-  CHECK(e.err.find("bad.lua:2: Nurbs.from: missing required 'face'") != std::string::npos);
+  CHECK(e.err.find("bad.lua:2: error: Nurbs.from: missing required 'face'") != std::string::npos);
   const std::string plane = dir.write("plane.lua", head + "s = Nurbs.from { shape = Shape.Plane { tileSize = {1, 1} } }\n");
   const test::CliResult p = test::runCli("render " + plane + " -o " + dir.file("no") + " --backend cpu");
   INFO(p.err);
-  CHECK(p.err.find("plane.lua:2: Nurbs.from: a Shape.Plane is infinite") != std::string::npos);
+  CHECK(p.err.find("plane.lua:2: error: Nurbs.from: a Shape.Plane is infinite") != std::string::npos);
   const std::string rod = dir.write("rod.lua", head + "s = Nurbs.from { shape = Shape.Cylinder { radius = 1; height = 1 } }\n");
   const test::CliResult c = test::runCli("render " + rod + " -o " + dir.file("no") + " --backend cpu");
   INFO(c.err);
-  CHECK(c.err.find("rod.lua:2: Nurbs.from: a capped Shape.Cylinder has no NURBS form here (its caps): give capped = false for its side") !=
+  CHECK(c.err.find("rod.lua:2: error: Nurbs.from: a capped Shape.Cylinder has no NURBS form here (its caps): give capped = false for its side") !=
         std::string::npos);
 }

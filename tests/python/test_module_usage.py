@@ -97,7 +97,7 @@ def test_what_a_render_says_reaches_sys_stderr(capsys, tmp_path):
     assert len(said) == 4, said
     for frame in [0, 1]:
         assert said[2 * frame] == path + ":4: frame\t%d\tsays hello" % frame, said
-        assert re.match(re.escape(path) + r":6: Nurbs\.deform: fit error \S+ m \(tolerance 1e-09 m\)", said[2 * frame + 1]), said
+        assert re.match(re.escape(path) + r":6: note: Nurbs\.deform: fit error \S+ m \(tolerance 1e-09 m\)", said[2 * frame + 1]), said
     # capsys sees sys.stderr only: a line written to fd 2, as before, is not in `said`.
 
 

@@ -254,7 +254,7 @@ TEST_CASE("cli: sweep refusals before work leave nothing, a later point's error 
   const std::string spaced = plateScene("spaced.lua", "_G['left cam']", "0");
   const test::CliResult space = runCli("render " + spaced + " -o " + dir.file("spaced") + " --backend cpu");
   CHECK(space.exitCode == 2);
-  CHECK(space.err.find(spaced + ":1: the camera name 'left cam' holds a space") != std::string::npos);
+  CHECK(space.err.find(spaced + ":1: error: the camera name 'left cam' holds a space") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.file("spaced")));
 
   // A scene error at the third point: the points before it stay complete, the message names the
@@ -273,7 +273,7 @@ TEST_CASE("cli: sweep refusals before work leave nothing, a later point's error 
   const test::CliResult bad =
       runCli("sweep " + failing + " -o " + dir.file("failing") + common + " --sweep shift=0,0.001,-0.5,0.002");
   CHECK(bad.exitCode == 2);
-  CHECK(bad.err.find(failing + ":2: negative shift (sweep point point_00002: gain=0.5, shift=-0.5; the points rendered "
+  CHECK(bad.err.find(failing + ":2: error: negative shift (sweep point point_00002: gain=0.5, shift=-0.5; the points rendered "
                                "before it are complete, and a rerun resumes after the fix)") != std::string::npos);
   CHECK(std::filesystem::exists(dir.file("failing/point_00001/point.json")));
 }

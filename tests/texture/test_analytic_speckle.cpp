@@ -317,13 +317,13 @@ TEST_CASE("texture-speckle: the radius a periodic axis rounds is said on stderr 
   const std::string path = dir.file("s.lua");
   // 1/(2 · 0.0081) = 61.73 → 62 cells: the radius used is 1/124.
   CHECK(notes("Texture.Speckle { radius = 0.0081; wrap = \"repeatU\" }") ==
-        std::vector<std::string>{path + ":2: Texture.Speckle: wrap rounds the radius 0.0081 to 0.00806451613 u units: 62 disk "
+        std::vector<std::string>{path + ":2: note: Texture.Speckle: wrap rounds the radius 0.0081 to 0.00806451613 u units: 62 disk "
                                         "diameters around u"});
   CHECK(notes("Texture.Speckle { radius = 0.047; aspect = 0.8; wrap = \"repeat\" }") ==
-        std::vector<std::string>{path + ":2: Texture.Speckle: wrap rounds the radius 0.047 to 0.0454545455 u units: 11 x 9 disk "
+        std::vector<std::string>{path + ":2: note: Texture.Speckle: wrap rounds the radius 0.047 to 0.0454545455 u units: 11 x 9 disk "
                                         "diameters per unit u x v, the disks scaled by 0.977777778 in v"});
   CHECK(notes("Texture.Speckle { radius = 0.021; aspect = 2.5; wrap = \"repeatV\" }") ==
-        std::vector<std::string>{path + ":2: Texture.Speckle: wrap rounds the radius 0.021 to 0.0208333333 u units: 60 disk "
+        std::vector<std::string>{path + ":2: note: Texture.Speckle: wrap rounds the radius 0.021 to 0.0208333333 u units: 60 disk "
                                         "diameters along v"});
   // Nothing rounded (1/(2 · 1/64) = 32 exactly), or nothing periodic: nothing said.
   CHECK(notes("Texture.Speckle { radius = 0.015625; wrap = \"repeatU\" }").empty());

@@ -1,0 +1,71 @@
+// `render --check`: every check a render makes before its work, then one line saying what it would
+// render; nothing rendered, created, removed or written (the CI trial of 2026-11-29: a scene could
+// be checked only by rendering it, or from Python).
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "run_cli.h"
+
+using namespace dicsynth;
+
+namespace {
+
+// A plate filling the view of a 32 x 24 camera; `extra` is appended (line 4 on).
+std::string plate(const std::string& extra = "") {
+  return "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.012; pixelSize = {2e-4, 2e-4} }\n"
+         "plate = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} };\n"
+         "  texture = Texture.Constant { value = 0.5 } }\n" +
+         extra;
+}
+
+}  // namespace
+
+TEST_CASE("render --check: what the run would render, every frame checked, nothing written") {
+  test::TempFolder dir;
+  const std::string scene = dir.write("s.lua", plate());
+  const std::string out = dir.file("out");
+  const test::CliResult r = test::runCli("render " + scene + " -o " + out + " --frames 0:2 --downscale 2 --check");
+  INFO(r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(r.out == "check: " + scene + ": 3 frames 0..2; 1 camera: cam 16x12; 192 px per frame at most; layers all; nothing "
+                 "rendered or written (-o " + out + ")\n");
+  CHECK(r.err.empty());
+  CHECK_FALSE(std::filesystem::exists(out));
+
+  // A frame other than the first that fails is found without rendering the first: file:line, exit 2.
+  const std::string late = dir.write("late.lua", plate("if frame == 2 then error('frame 2 is bad') end\n"));
+  const test::CliResult bad = test::runCli("render " + late + " -o " + out + " --frames 0:2 --check");
+  CHECK(bad.exitCode == 2);
+  CHECK(bad.err == late + ":4: error: frame 2 is bad\n");
+  CHECK(bad.out.empty());
+  CHECK_FALSE(std::filesystem::exists(out));
+
+  // The checks on the output folder: an entry where a file goes is refused; a killed run's
+  // temporary file, which a render would remove, is left as it is.
+  std::filesystem::create_directories(out + "/cam.tif");
+  const std::string stale = out + "/.cam.exr.tmp999999998_0.exr";
+  std::ofstream(stale) << "x";
+  const test::CliResult taken = test::runCli("render " + scene + " -o " + out + " --check");
+  CHECK(taken.exitCode == 2);
+  CHECK(taken.err.find("cam.tif is a folder, where this run writes camera cam's image") != std::string::npos);
+  std::filesystem::remove(out + "/cam.tif");
+  const test::CliResult free = test::runCli("render " + scene + " -o " + out + " --check --backend cpu");
+  CHECK(free.exitCode == 0);
+  CHECK(free.out == "check: " + scene + ": frame 0; 1 camera: cam 32x24; 768 px per frame at most; layers all; nothing "
+                    "rendered or written (-o " + out + ")\n");
+  CHECK(std::filesystem::exists(stale));
+  CHECK(std::distance(std::filesystem::directory_iterator(out), std::filesystem::directory_iterator()) == 1);
+
+  // A layer the scene cannot produce (no rig: no disparity), as the render refuses it.
+  const test::CliResult layer = test::runCli("render " + scene + " -o " + out + " --layers disparity --check");
+  CHECK(layer.exitCode == 2);
+  CHECK(layer.err.find("disparity") != std::string::npos);
+
+  // Named layers are said as asked.
+  const test::CliResult image = test::runCli("render " + scene + " -o " + out + " --layers image,depth --check");
+  CHECK(image.exitCode == 0);
+  CHECK(image.out.find("; layers image,depth; ") != std::string::npos);
+}

@@ -30,14 +30,13 @@ int runRender(const RenderCommand& cmd) {
   if (cmd.preview && !layers.anyGroundTruth())
     warn("--preview draws the EXR's layers, and --layers " + cmd.layers + " writes no EXR: no picture will be drawn");
   const bool numbered = !cmd.frames.empty();
-  const std::vector<int> frames =
-      referenceFirst(numbered ? parseFrames(cmd.frames) : std::vector<int>{0}, cmd.referenceFrame, "--reference-frame",
-                     numbered ? "--frames " + cmd.frames : "frame 0");
+  const FrameOrder order = referenceFirst(numbered ? parseFrames(cmd.frames) : std::vector<int>{0}, cmd.referenceFrame);
   RenderSession session(cmd.args, cmd.backend);
   RenderJob job;
   job.sceneFile = cmd.args.scenePath;
   job.outputDir = cmd.outputDir;
-  job.frames = frames;
+  job.frames = order.frames;
+  job.writeReference = order.referenceWritten;
   job.numbered = numbered;
   job.defines = parseDefines(cmd.args.defines);
   job.progressLabel = "rendering";
@@ -65,8 +64,9 @@ void addRenderCommand(CLI::App& root, RunFn& run) {
   addLayersOption(*sub, cmd->layers);
   addStrictFlag(*sub);
   sub->add_option("--reference-frame", cmd->referenceFrame,
-                  "Frame whose pixels the motion ground truth (disp, flow) starts from; one of --frames "
-                  "(default: the first)");
+                  "Frame whose pixels the motion ground truth (disp, flow) starts from (default: the first of "
+                  "--frames); a frame not among --frames is traced for it and not written (render a sequence in "
+                  "chunks, each measured from one frame)");
   sub->add_flag("--preview", cmd->preview,
                 "Also write PNG pictures of each EXR's layers into DIR/preview/ (as `dicsynth preview`)");
   sub->add_flag("--check", cmd->check,

@@ -19,8 +19,8 @@ void addSweepCommand(CLI::App& root, RunFn& run) {
       ->capture_default_str();
   addFramesOption(*sub, cmd->frames, "Frames A:B or N of every point (as render --frames)");
   sub->add_option("--reference-frame", cmd->referenceFrame,
-                  "Frame whose pixels the motion ground truth (disp, flow) starts from, in every point; one of "
-                  "--frames (default: the first)");
+                  "Frame whose pixels the motion ground truth (disp, flow) starts from, in every point (default: "
+                  "the first of --frames); a frame not among --frames is traced for it and not written");
   addExrCompressionOption(*sub, cmd->exrCompression);
   addLayersOption(*sub, cmd->layers);
   addStrictFlag(*sub);

@@ -56,22 +56,29 @@ void say(bool warning, const std::string& text) {
 
 void warn(const std::string& text) { say(true, text); }
 
-void warnAtMost(const std::string& kind, int most, const std::string& text, const std::string& lastNote) {
+// say(), at most `most` times for a `kind` (per process, or per capture while one lives).
+void sayAtMost(bool warning, const std::string& kind, int most, const std::string& text, const std::string& lastNote) {
   Captures& c = captures();
   std::optional<std::string> line;
   {
     std::lock_guard<std::mutex> lock(c.mutex);
     if (!c.live.empty()) {
       for (WarningCapture* capture : c.live)
-        if (const auto said = counted(capture->said_[kind], most, text, lastNote)) capture->messages_.push_back({true, *said});
+        if (const auto said = counted(capture->said_[kind], most, text, lastNote)) capture->messages_.push_back({warning, *said});
       return;
     }
     line = counted(c.said[kind], most, text, lastNote);
   }
-  if (line) writeLine(true, *line);
+  if (line) writeLine(warning, *line);
+}
+
+void warnAtMost(const std::string& kind, int most, const std::string& text, const std::string& lastNote) {
+  sayAtMost(true, kind, most, text, lastNote);
 }
 
 void note(const std::string& line) { say(false, line); }
+
+void noteOnce(const std::string& line) { sayAtMost(false, "note: " + line, 1, line, ""); }
 
 std::size_t warningsWritten() { return written; }
 

@@ -24,6 +24,10 @@ void warn(const std::string& text);
 void warnAtMost(const std::string& kind, int most, const std::string& text, const std::string& lastNote = "");
 // `line` without its newline.
 void note(const std::string& line);
+// note(line), once per process (per capture while one lives) for each `line`: what a scene says
+// where it is evaluated again for every frame (a periodic speckle's rounded radius was said six
+// times by a six-frame run: the docs walk of 2026-11-29).
+void noteOnce(const std::string& line);
 // How many warnings this process wrote on stderr (not those a capture took): what --strict judges.
 std::size_t warningsWritten();
 
@@ -45,7 +49,8 @@ class WarningCapture {
 
  private:
   friend void say(bool warning, const std::string& text);
-  friend void warnAtMost(const std::string& kind, int most, const std::string& text, const std::string& lastNote);
+  // warnAtMost and noteOnce (warning.cpp).
+  friend void sayAtMost(bool warning, const std::string& kind, int most, const std::string& text, const std::string& lastNote);
   // Guarded by the registry's mutex (warning.cpp).
   std::vector<Message> messages_;
   std::map<std::string, int> said_;  // warnAtMost's counts while this capture lives

@@ -122,7 +122,7 @@ void checkDistortionInvertible(const PreparedCamera& pc) {
     if (corner > 10 && pc.camera.kind() == CameraKind::Orthographic)
       msg << " (the image's corner lies " << corner << " m from the axis on the object side: fx = " << m.fx
           << " and fy = " << m.fy
-          << " px per metre; check magnification and pixelSize (in metres), then the coefficients, which are in metres too)";
+          << " px per metre; check magnification and pixelSize (in metres), then the coefficients, whose units are metres' (k1 in m^-2, k2 in m^-4, p1 and p2 in m^-1))";
     else if (corner > 10)
       msg << " (the image's corner lies at a normalized radius of " << corner << ", " << std::atan(corner) * 180 / kPi
           << " degrees off the axis: fx = " << m.fx << " px, fy = " << m.fy

@@ -83,14 +83,15 @@ std::vector<int> parseFrames(const std::string& text) {
   return frames;
 }
 
-std::vector<int> referenceFirst(std::vector<int> frames, std::optional<int> reference, const std::string& option,
-                                const std::string& what) {
+FrameOrder referenceFirst(std::vector<int> frames, std::optional<int> reference) {
   const int wanted = reference.value_or(frames.front());
   const auto at = std::find(frames.begin(), frames.end(), wanted);
-  if (at == frames.end())
-    throw InputError(option + " " + std::to_string(wanted) + " is not among the frames rendered (" + what + ")");
+  if (at == frames.end()) {
+    frames.insert(frames.begin(), wanted);
+    return {std::move(frames), false};
+  }
   std::rotate(frames.begin(), at, at + 1);
-  return frames;
+  return {std::move(frames), true};
 }
 
 RenderOptions renderOptions(const RenderArgs& args, int frame) {
@@ -127,7 +128,7 @@ Precision resolvePrecision(const RenderArgs& args, gpu::Context& context, gpu::R
   if (!calibration.fromCache) {
     char maxError[32];
     std::snprintf(maxError, sizeof maxError, "%g", args.maxErrorPx);
-    note("dicsynth: note: precision auto: " + std::string(toString(chosen)) + " (max error " + maxError +
+    note("dicsynth: note: precision auto: " + std::string(toString(chosen)) + " (the fastest within " + optionName("--max-error-px") + " " + maxError +
          " px; calibration measured on " + context.info().name + ", " + context.info().driver + ": " +
          describeCalibration(calibration) + ")");
   }

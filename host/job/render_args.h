@@ -37,11 +37,17 @@ inline constexpr long long kMaxFrameNumber = 999'999'999;
 inline constexpr long long kMaxFramesPerRun = 1'000'000;
 std::vector<int> parseFrames(const std::string& text);
 
-// `frames` with the reference frame first (a job renders it first: every frame's motion truth is
-// measured from it): `reference`, else the first. Throws InputError("OPTION N is not among the frames
-// rendered (WHAT)") when it is not one of them.
-std::vector<int> referenceFirst(std::vector<int> frames, std::optional<int> reference, const std::string& option,
-                                const std::string& what);
+// The frames of a job, the reference frame first (a job renders it first: every frame's motion
+// truth is measured from it): `reference`, else the first of `frames`.
+struct FrameOrder {
+  std::vector<int> frames;
+  // false: the reference is not among the frames asked for. It is traced for the motion truth (its
+  // pixel centres, no samples) and not written, so that a sequence rendered in chunks measures every
+  // chunk from one frame (the DIC-developer and docs trials of 2026-11-29: a chunk's flow was
+  // relative to its own first frame, or `--frames 1` alone wrote a flow of 0).
+  bool referenceWritten = true;
+};
+FrameOrder referenceFirst(std::vector<int> frames, std::optional<int> reference);
 
 // Validates spp and seed, returns RenderOptions (precision resolved by resolvePrecision).
 RenderOptions renderOptions(const RenderArgs& args, int frame);

@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <future>
 #include <limits>
 #include <map>
@@ -249,7 +251,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     const Scene scene = loadFrameScene(job, job.frames[fi], false);
     if (fi == 0) out.sceneCrc32 = job.sceneCrc32.value_or(scene.sourceCrc32);
     checkSameContent(job, scene, job.frames[fi], out.sceneCrc32);
-    checkOutputNames(job, scene, job.frames[fi], unwritable);
+    if (fi > 0 || job.writeReference) checkOutputNames(job, scene, job.frames[fi], unwritable);
     warnUnlit(scene, job.frames[fi]);
     unread.add(scene);
     checkNurbsFitsDevice(session, scene);
@@ -262,6 +264,13 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   if (bar) bar->update(std::int64_t(job.frames.size()));
   if (job.requireDefinesRead) unread.check(job.sceneFile, job.sweepParameters);
   checkLayersProducible(job.layers, sources);
+  // One frame, its own reference: the motion layers asked for by name are 0 everywhere (`--frames 1
+  // --layers flow` for "the deformed frame", the docs and DIC-developer trials of 2026-11-29).
+  if (job.frames.size() == 1 && !job.layers.isAll() && (job.layers.has(Layer::Disp) || job.layers.has(Layer::Flow)))
+    warnAtMost("motion of one frame", 1,
+               "frame " + std::to_string(job.frames.front()) + " is rendered alone and is its own reference frame: its " +
+                   (job.layers.has(Layer::Flow) ? "flow" : "disp") + " is 0 everywhere (" +
+                   optionName("--reference-frame") + " R measures the motion from frame R, traced, not written)");
   // A frame is written while the next renders: two frames' worth.
   const std::uint64_t need = 2 * out.maxPixelsPerFrame * kBytesPerPixelInFlight;
   if (const auto available = availableMemoryBytes(); available && need > *available)
@@ -279,10 +288,11 @@ std::string checkSummary(RenderSession& session, const RenderJob& job, const Fra
   for (const Camera& camera : first.cameras)
     cameras += (cameras.empty() ? "" : ", ") + camera.name + " " + std::to_string(std::max(1, camera.width_px / k)) + "x" +
                std::to_string(std::max(1, camera.height_px / k));
-  const std::size_t n = job.frames.size();
-  const auto [lo, hi] = std::minmax_element(job.frames.begin(), job.frames.end());
-  std::string frames = n == 1 ? "frame " + std::to_string(job.frames.front())
-                              : std::to_string(n) + " frames " + std::to_string(*lo) + ".." + std::to_string(*hi);
+  const auto written = job.frames.begin() + (job.writeReference ? 0 : 1);
+  const std::size_t n = std::size_t(job.frames.end() - written);
+  const auto [lo, hi] = std::minmax_element(written, job.frames.end());
+  std::string frames = n == 1 ? "frame " + std::to_string(*lo) : std::to_string(n) + " frames " + std::to_string(*lo) + ".." + std::to_string(*hi);
+  if (!job.writeReference) frames += " (motion from frame " + std::to_string(job.frames.front()) + ", traced, not written)";
   return "check: " + job.sceneFile + ": " + frames + "; " + std::to_string(first.cameras.size()) + " camera" +
          (first.cameras.size() == 1 ? "" : "s") + (checked.calibrationPerFrame ? " in the first frame (they change between frames)" : "") +
          ": " + cameras + "; " + std::to_string(checked.maxPixelsPerFrame) + " px per frame at most; layers " +
@@ -324,8 +334,20 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   RenderOptions options = renderOptions(args, frame);
   if (job.seed) options.seed = *job.seed;
   if (job.spp) options.samplesPerPixel = *job.spp;
-  options.geometry = job.layers.needsGeometry();
+  // A thin lens's blur check (warnAboutThinLensBlur) reads the depth of the pixel centres: the GPU
+  // hands it back for such a scene whatever --layers asks (the CPU reference computes it anyway).
+  // With `--layers image` alone the GPU said nothing where the CPU warned (the optics trial of
+  // 2026-11-29: a lens in millimetres, a black image, exit 0 on the default backend).
+  const bool thinLens = std::any_of(out.scene.cameras.begin(), out.scene.cameras.end(), [](const PreparedCamera& pc) {
+    return std::holds_alternative<cameras::ThinLens>(pc.camera.model);
+  });
+  options.geometry = job.layers.needsGeometry() || thinLens;
   options.radiance = job.layers.needsRadiance();
+  // A reference frame not asked for: its pixel centres only (what ReferenceFrame reads), no samples.
+  if (!job.writeReference && frame == job.frames.front()) {
+    options.geometry = true;
+    options.radiance = false;
+  }
   options.precision = session.precision();  // resolved after the first frame is prepared (its errors first)
   options.stop = job.stop;
   phaseDone("precision");
@@ -365,10 +387,12 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
   const RenderResult& result = rendered.result;
   const RenderOptions& options = rendered.options;
   const PreparedScene& scene = frameScene(job, rendered, first, reference);
+  if (first && !job.writeReference) return "";  // traced for the motion truth only (FrameOrder)
+  const bool firstWritten = first || (!job.writeReference && job.frames.size() > 1 && frame == job.frames[1]);
   const OutputInfo info = frameInfo(job, rendered, scene);
   std::string lines;
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
-  if (first || calibrationPerFrame) {
+  if (firstWritten || calibrationPerFrame) {
     const std::string line = writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "");
     if (job.verbose) lines += line;
   }
@@ -473,8 +497,8 @@ namespace {
 // but the chief ray missing it (the camera trial of 2026-11-29). The blur diameter of a point at
 // depth d is A fx |1/u - 1/d| px (cameras/thin_lens.h); the widest over the pixel centres that see
 // an object is compared with the image's diagonal. Said, not refused (a deliberately blurred
-// backdrop is a few tens of pixels); at most 3 per run. Needs the depth layer's rays (not traced
-// for --layers image alone).
+// backdrop is a few tens of pixels); at most 3 per run. Reads the pixel centres' depth, which
+// renderFrame asks of either backend for a scene with a thin lens, whatever --layers.
 void warnAboutThinLensBlur(const PreparedCamera& pc, const CameraImage& image, int frame) {
   const auto* lens = std::get_if<cameras::ThinLens>(&pc.camera.model);
   if (!lens || image.depth_m.size() != image.pixelCount()) return;
@@ -513,8 +537,11 @@ CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, co
   if (std::none_of(objectId.begin(), objectId.end(), [](std::uint32_t id) { return id != 0; }))
     warnAtMost("image of background only", 10,
                "camera " + cam.name + ", frame " + std::to_string(rendered.frame) +
-                   ": no pixel centre sees an object (the image is all background): check the camera's pose and the "
-                   "objects' locations",
+                   (scene.objects.empty()
+                        ? ": the scene has no objects (the image is all background): an object is a global "
+                          "Object.Simple { ... } (a `local` one is not collected)"
+                        : ": no pixel centre sees an object (the image is all background): check the camera's pose and "
+                          "the objects' locations (all in metres)"),
                " (further images of background only are not reported)");
   warnAboutThinLensBlur(scene.cameras[c], rendered.result.cameras[c], rendered.frame);
   out.truth = deriveTruth(reference, rendered.frame, scene, rendered.result, c, job.layers, rendered.visibility);
@@ -656,6 +683,12 @@ Precision RenderSession::precision() {
 // compared after it took another run's files in the same folder for its own (faults audit of
 // 2026-11-28).
 class OutputRollback {
+  // A small file's bytes ("" when it cannot be read).
+  static std::string textOf(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+
  public:
   explicit OutputRollback(std::string dir) : dir_(std::move(dir)), watch_(dir_) {
     std::error_code ec;
@@ -663,7 +696,13 @@ class OutputRollback {
     created_ = watch_.folder();  // as the kernel resolves it: -o LINK/../out is LINK's target's out
     existing_ = nearestExistingFolder(created_);  // the run creates the folders below it
     if (existed_)
-      for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) before_.insert(entry.path().filename().string());
+      for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) {
+        const std::string name = entry.path().filename().string();
+        before_.insert(name);
+        // The calibration files an earlier run left (a few kB each): mixedRunsNote compares them.
+        if ((name.ends_with(".yml") || name.ends_with(".dice.xml")) && entry.is_regular_file(ec) && entry.file_size(ec) < (1u << 20))
+          calibrationBefore_.emplace(name, textOf(entry.path()));
+      }
   }
   ~OutputRollback() {
     if (kept_) return;
@@ -692,12 +731,45 @@ class OutputRollback {
   }
   void keep() { kept_ = true; }
 
+  // After a successful run: when it replaced a calibration file with another camera (another
+  // resolution, pose, lens) while images or ground truth of the earlier run stay beside it, the
+  // folder holds two runs that no longer fit together (the docs walk of 2026-11-29: a rerun at
+  // another --downscale with --layers image rewrote rig.yml and the TIFFs, and kept the earlier
+  // EXRs and frame 1). A folder of chunks of one sequence (same cameras) is not said.
+  std::string mixedRunsNote() const {
+    std::set<std::string> mine;
+    for (const CommitWatch::Committed& c : watch_.committed())
+      if (c.path.parent_path() == created_) mine.insert(c.path.filename().string());
+    std::string changed;
+    for (const auto& [name, old] : calibrationBefore_) {
+      if (!mine.count(name)) continue;
+      if (textOf(std::filesystem::path(dir_) / name) != old) {
+        changed = name;
+        break;
+      }
+    }
+    if (changed.empty()) return "";
+    std::vector<std::string> stale;
+    for (const std::string& name : before_)
+      if (!mine.count(name) && (name.ends_with(".tif") || name.ends_with(".exr") || name.ends_with(".features.csv") ||
+                                name.ends_with(".features.json") || name.ends_with(".yml") || name.ends_with(".dice.xml")))
+        stale.push_back(name);
+    if (stale.empty()) return "";
+    std::string examples;
+    for (std::size_t i = 0; i < std::min<std::size_t>(3, stale.size()); ++i) examples += (i ? ", " : "") + stale[i];
+    return "-o " + dir_ + ": this run replaced " + changed + " with other cameras, and " + std::to_string(stale.size()) +
+           " file" + (stale.size() == 1 ? "" : "s") + " of an earlier run stay beside it (" + examples +
+           (stale.size() > 3 ? ", ..." : "") +
+           "), which that calibration no longer describes: the folder mixes two runs (write each run into a folder of its own)";
+  }
+
  private:
   std::string dir_;
   CommitWatch watch_;
   std::filesystem::path created_, existing_;  // the output folder (absolute), and the folder above it that existed
   bool existed_ = false, kept_ = false;
   std::set<std::string> before_;  // the names in the output folder before the run
+  std::map<std::string, std::string> calibrationBefore_;  // its calibration files' content then
 };
 
 RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
@@ -773,6 +845,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   finishWriting();
   if (bar) bar->update(std::int64_t(job.frames.size()));
   rollback.keep();
+  if (const std::string note = rollback.mixedRunsNote(); !note.empty()) warn(note);
   return summary;
 }
 

@@ -71,7 +71,8 @@ class RenderSession {
 struct RenderJob {
   std::string sceneFile;          // recorded in the files' metadata
   std::string outputDir;
-  std::vector<int> frames;        // the reference frame first (runRender rotates it there)
+  std::vector<int> frames;        // the reference frame first (referenceFirst puts it there)
+  bool writeReference = true;     // false: frames[0] is traced for the motion truth only, not written (FrameOrder)
   bool numbered = false;          // --frames given: files carry _<frame>
   std::vector<std::pair<std::string, std::string>> defines;  // -D (and a sweep point's values)
   std::vector<std::string> sweepParameters;                  // which defines come from a sweep

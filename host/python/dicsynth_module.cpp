@@ -408,7 +408,7 @@ class PyRenderer {
   }
 
   py::dict render(const PyScene& scene, std::vector<int> frames, int spp, const std::vector<std::string>& layers,
-                  std::optional<int> referenceFrame) {
+                  std::optional<int> referenceFrame, std::optional<std::uint32_t> seed) {
     if (frames.empty()) throw InputError("frames: at least one frame");
     for (std::size_t i = 0; i < frames.size(); ++i) {
       if (std::find(frames.begin(), frames.begin() + std::ptrdiff_t(i), frames[i]) != frames.begin() + std::ptrdiff_t(i))
@@ -423,9 +423,12 @@ class PyRenderer {
     job.defines = scene.defines;
     job.layers = LayerSet::parse(layerText);
     job.spp = spp;
+    job.seed = seed;
     job.verbose = false;
     job.numbered = true;
-    job.frames = referenceFirst(frames, referenceFrame, "reference_frame", "frames");
+    const FrameOrder order = referenceFirst(frames, referenceFrame);
+    job.frames = order.frames;
+    job.writeReference = order.referenceWritten;
     job.stop = &stop;
 
     struct CameraResult {
@@ -445,6 +448,7 @@ class PyRenderer {
       for (std::size_t fi = 0; fi < rendered.frames.size(); ++fi) {
         RenderedFrame& frame = rendered.frames[fi];
         const PreparedScene& prepared = frameScene(job, frame, fi == 0, referenceData);
+        if (fi == 0 && !job.writeReference) continue;  // traced for the motion truth only, not asked for
         for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
           stopIfAsked(&stop);
           CameraFrame derived = deriveCamera(job, frame, prepared, c, *referenceData);
@@ -584,7 +588,8 @@ PYBIND11_MODULE(dicsynth, m) {
            py::arg("downscale") = 1, py::arg("max_error_px") = 1e-6)
       .def("render",
            [](PyRenderer& r, const PyScene& scene, const py::object& frames, const py::object& spp,
-              const std::variant<std::string, std::vector<std::string>>& layers, const py::object& referenceFrame) {
+              const std::variant<std::string, std::vector<std::string>>& layers, const py::object& referenceFrame,
+              const py::object& seed) {
              // One layer may be given as a str ("image"), as the CLI's --layers image.
              const std::vector<std::string> names = std::holds_alternative<std::string>(layers)
                                                         ? std::vector<std::string>{std::get<std::string>(layers)}
@@ -593,12 +598,16 @@ PYBIND11_MODULE(dicsynth, m) {
                  referenceFrame.is_none() ? std::nullopt
                                           : std::optional<int>(frameNumber(referenceFrame, "reference_frame"));
              const int samples = int(integerIn(spp, 1, 65536, "spp"));
+             // One seed per call (a Monte-Carlo loop over seeds on one warm Renderer: a new Renderer per
+             // seed cost ~1 s against ~0.16 s per render, the DIC-developer trial of 2026-11-29).
+             const std::optional<std::uint32_t> seedOfCall =
+                 seed.is_none() ? std::nullopt : std::optional<std::uint32_t>(std::uint32_t(integerIn(seed, 0, 0xffffffffLL, "seed")));
              std::vector<int> frameNumbers = frameList(frames);
-             return withWarnings([&] { return r.render(scene, std::move(frameNumbers), samples, names, reference); });
+             return withWarnings([&] { return r.render(scene, std::move(frameNumbers), samples, names, reference, seedOfCall); });
            },
            py::arg("scene"), py::arg("frames") = std::vector<int>{0},
            py::arg("spp") = 4, py::arg("layers") = std::vector<std::string>{"all"},
-           py::arg("reference_frame") = py::none(),
+           py::arg("reference_frame") = py::none(), py::arg("seed") = py::none(),
            "Renders the frames; returns {(camera, frame): {name: numpy array}} (module docstring)")
       .def(
           "calibration",

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/warning.h"
 #include "scene/constructors.h"
 #include "scene/lua_values.h"
 #include "scene/sensor_constructors.h"
@@ -178,6 +179,22 @@ camera sits at the origin looking down +z and its frame is the world frame. With
 Without lookAt the camera at `position` keeps the world's orientation.
 ------------------------------------------------------------------------------------------------ */
 
+// A length far outside what cameras have is nearly always another unit typed as metres: a 16 mm lens
+// as focalLength = 16 framed 0.02 degrees of the plate, pixelSize = {5, 5} (um) 180 degrees, both
+// rendered without a word (the docs walk and the optics trial of 2026-11-29). Said, not refused:
+// the renderer renders such a camera as asked. Real lenses: ~1 mm (phones, endoscopes) to ~1 m
+// (telephoto); real pixels: ~0.5 to ~30 um; the bounds leave a decade on each side. Once per line.
+// `perMetre` and `unit` name the unit the value was probably meant in (1e3, "mm").
+bool warnImplausibleLength(const SourceLoc& where, const char* key, double value_m, double lo_m, double hi_m,
+                           double perMetre, const char* unit) {
+  if (value_m >= lo_m && value_m <= hi_m) return false;
+  const std::string text = where.str() + ": " + key + " = " + formatNumber(value_m) + " m is outside " + formatNumber(lo_m) +
+                           " .. " + formatNumber(hi_m) + " m, where cameras have it: lengths are metres (" +
+                           formatNumber(value_m / perMetre) + " m for " + formatNumber(value_m) + " " + unit + ")";
+  warnAtMost("implausible camera length: " + text, 1, text);
+  return true;
+}
+
 // The keys every Camera.* constructor reads through readCommonCamera.
 const std::vector<const char*> kCommonCameraKeys = {
     "resolution", "principalPoint", "pixelSize", "fillFactor", "bitsPerPixel", "exposure",
@@ -210,6 +227,8 @@ Camera readCommonCamera(lua_State* L, const Params& p, const cameras::Model& kin
     p.fail("'pixelSize' = {" + formatNumber(pixelSize->x) + ", " + formatNumber(pixelSize->y) +
            "}: the pixel aspect sx / sy = " + formatNumber(aspect) + " must be in 1e-3..1e3");
   camera.pixelSize_m = *pixelSize;
+  for (const double size_m : {pixelSize->x, pixelSize->y})
+    if (warnImplausibleLength(camera.where, "pixelSize", size_m, 1e-7, 1e-3, 1e6, "um")) break;
   camera.fillFactor = p.number("fillFactor", 1.0);
   p.require(camera.fillFactor > 0 && camera.fillFactor <= 1, "fillFactor", "in (0, 1]",
             camera.fillFactor);
@@ -251,7 +270,9 @@ int cameraConstructor(lua_State* L) {
   keys.insert(keys.end(), Kind::kKeys.begin(), Kind::kKeys.end());
   Params p(L, std::string("Camera.") + Kind::kName, keys);
   Camera camera = readCommonCamera(L, p, Kind{});
-  camera.model = Kind::parse(p);
+  const Kind kind = Kind::parse(p);
+  if constexpr (requires { kind.focalLength_m; }) warnImplausibleLength(camera.where, "focalLength", kind.focalLength_m, 1e-4, 2, 1e3, "mm");
+  camera.model = kind;
   pushUserdata(L, std::move(camera));
   return 1;
 }

@@ -531,8 +531,12 @@ void LuaSandbox::run(const std::string& sourceText) {
   if (status != LUA_OK) {
     std::size_t length = 0;
     const char* text = lua_type(L, -1) == LUA_TSTRING ? lua_tolstring(L, -1, &length) : nullptr;
-    const std::string message = text ? std::string(text, length) : "cannot load";
+    std::string message = text ? std::string(text, length) : "cannot load";
     lua_settop(L, 0);
+    // Lua's "'}' expected (to close '{' at line 2) near 'target'" is nearly always a separator
+    // forgotten between two fields of a constructor's table (the docs walk of 2026-11-29).
+    if (message.find("'}' expected") != std::string::npos && message.find(" near ") != std::string::npos)
+      message += " (a missing ',' or ';' between two fields of the table?)";
     throw InputError(formatMessage(message, std::max(1, reader.lines)));
   }
 

@@ -14,16 +14,21 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
+#include <optional>
 #include <set>
 #include <utility>
 
+#include "core/closest_name.h"
 #include "core/crc32.h"
 #include "core/option_names.h"
 #include "core/warning.h"
@@ -174,12 +179,37 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
   lua_settop(L, values - 1);
 }
 
+// The name of the scene's text nearest to an unread define's: `-D strian=0.003` said only that the
+// scene never reads 'strian' (the docs walk of 2026-11-29). Every identifier of the file is a
+// candidate (the globals it reads are among them); "" when none is near.
+std::string nearestIdentifier(const std::string& scenePath, const std::string& name) {
+  std::ifstream in(scenePath, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::set<std::string> seen;
+  std::vector<std::string> identifiers;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (!(std::isalpha(c) || c == '_')) {
+      ++i;
+      continue;
+    }
+    std::size_t end = i;
+    while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_')) ++end;
+    std::string word = text.substr(i, end - i);
+    if (word != name && !isLuaKeyword(word) && seen.insert(word).second) identifiers.push_back(std::move(word));
+    i = end;
+  }
+  const std::optional<std::string> near = closestName(name, identifiers);
+  return near ? " (did you mean '" + *near + "'?)" : "";
+}
+
 [[noreturn]] void refuseUnreadDefine(const std::string& scenePath, const std::string& name,
                                      const std::vector<std::string>& sweepParameters) {
+  const std::string hint = nearestIdentifier(scenePath, name);
   if (std::find(sweepParameters.begin(), sweepParameters.end(), name) != sweepParameters.end())
-    throw InputError(scenePath + ": sweep parameter '" + name + "': the scene never reads '" + name +
-                     "' (a typo in the sweep, or a scene that ignores it)");
-  throw InputError(defineName(name) + ": the scene never reads '" + name + "'");
+    throw InputError(scenePath + ": sweep parameter '" + name + "': the scene never reads '" + name + "'" + hint +
+                     " (a typo in the sweep, or a scene that ignores it)");
+  throw InputError(defineName(name) + ": the scene never reads '" + name + "'" + hint);
 }
 
 // The defines the evaluation did not read, in the order given.

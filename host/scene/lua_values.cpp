@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
+#include <string>
+#include <optional>
 
 #include "core/closest_name.h"
 #include "core/math.h"
@@ -56,12 +59,44 @@ void setConstructorTable(lua_State* L, const char* name,
   setConstructorTable(L, name, std::vector<luaL_Reg>(functions));
 }
 
+namespace {
+
+// A constructor table's __index (upvalue 1: the table's name): a name it does not hold is a typo.
+// `Texture.Speckel { ... }` said Lua's "attempt to call a nil value (field 'Speckel')" (the docs
+// walk of 2026-11-29), where a key's typo gets "did you mean".
+int missingConstructor(lua_State* L) {
+  const std::string table = lua_tostring(L, lua_upvalueindex(1));
+  // Only a string key is named: converting another could run a __tostring, which may raise.
+  const std::string key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "[" + typeName(L, 2) + "]";
+  std::vector<std::string> names;
+  lua_pushnil(L);
+  while (lua_next(L, 1) != 0) {
+    if (lua_type(L, -2) == LUA_TSTRING) names.emplace_back(lua_tostring(L, -2));
+    lua_pop(L, 1);
+  }
+  std::sort(names.begin(), names.end());
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + table + "." + n;
+  const std::optional<std::string> near = closestName(key, names);
+  throw ScriptError(table + "." + key + ": no such constructor" + (near ? " (did you mean " + table + "." + *near + "?)" : "") +
+                    "; " + table + " has " + list);
+}
+
+}  // namespace
+
 void setConstructorTable(lua_State* L, const char* name, const std::vector<luaL_Reg>& functions) {
   lua_createtable(L, 0, static_cast<int>(functions.size()));
   for (const luaL_Reg& function : functions) {
     lua_pushcfunction(L, function.func);
     lua_setfield(L, -2, function.name);
   }
+  lua_createtable(L, 0, 2);  // its metatable
+  lua_pushstring(L, name);
+  lua_pushcclosure(L, &protectedCall<missingConstructor>, 1);
+  lua_setfield(L, -2, "__index");
+  lua_pushboolean(L, 0);
+  lua_setfield(L, -2, "__metatable");  // the scene cannot replace or inspect it
+  lua_setmetatable(L, -2);
   lua_setglobal(L, name);
 }
 

@@ -32,7 +32,7 @@ int textureConstructor(lua_State* L) {
   if constexpr (requires(const Kind& k) { k.loadNote(); })
     if (!sandbox.quiet())
       if (const std::string text = std::get<Kind>(texture.model).loadNote(); !text.empty())
-        note(texture.where.str() + ": note: " + Kind::kConstructor + ": " + text);
+        noteOnce(texture.where.str() + ": note: " + Kind::kConstructor + ": " + text);
   pushUserdata(L, std::move(texture));
   return 1;
 }

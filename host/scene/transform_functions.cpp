@@ -1,9 +1,12 @@
 // Transform values (4x4 homographies) and degrees().
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "core/warning.h"
 #include "scene/constructors.h"
+#include "scene/lua_sandbox.h"
 #include "scene/lua_values.h"
 
 namespace dicsynth::scene {
@@ -78,6 +81,23 @@ template <int Axis>
 int rotate(lua_State* L) {
   static const char* const kNames[] = {"rotate_x", "rotate_y", "rotate_z"};
   const double angle = numberArguments(L, kNames[Axis], 1, false, "one angle in radians")[0];
+  // More than a turn is nearly always degrees typed as radians: rotate_y(30) turned a plate 30 rad
+  // = 1718.87°, nearly edge-on, without a word (the docs walk of 2026-11-29). Said, not refused: a
+  // spin over many frames (rotate_z(frame * degrees(10))) passes a turn legitimately, and
+  // math.fmod(a, 2 * math.pi) keeps it quiet.
+  if (std::abs(angle) > 2 * kPi) {
+    const LuaSandbox& sandbox = LuaSandbox::of(L);
+    char degreesText[32];
+    std::snprintf(degreesText, sizeof degreesText, "%.6g", angle * 180 / kPi);
+    if (!sandbox.quiet())
+      warnAtMost("angle beyond a turn", 3,
+                 sandbox.here(L).str() + ": " + kNames[Axis] + "(" + formatNumber(angle) + "): " + formatNumber(angle) +
+                     " rad is " + std::string(degreesText) + " degrees, more than a turn: " + kNames[Axis] +
+                     "(degrees(" + formatNumber(angle) + ")) for " + formatNumber(angle) +
+                     " degrees? (angles are radians; a spin past a turn on purpose: math.fmod(angle, 2 * math.pi) "
+                     "says so)",
+                 " (further such angles are not reported)");
+  }
   const double c = std::cos(angle), s = std::sin(angle);
   const int i = (Axis + 1) % 3, j = (Axis + 2) % 3;  // the rotated plane, in right-handed order
   dmat4 m(1.0);  // m[col][row]: e_i → c e_i + s e_j, e_j → -s e_i + c e_j

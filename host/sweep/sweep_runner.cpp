@@ -168,9 +168,8 @@ SweepOutcome runSweep(const SweepRun& cmd) {
   renderOptions(cmd.args, 0);  // validate the sampling options before any work
   const LayerSet layers = LayerSet::parse(cmd.layers);
   const bool numbered = !cmd.frames.empty();
-  const std::vector<int> frames =
-      referenceFirst(numbered ? parseFrames(cmd.frames) : std::vector<int>{0}, cmd.referenceFrame, "--reference-frame",
-                     numbered ? "--frames " + cmd.frames : "frame 0");
+  const FrameOrder order = referenceFirst(numbered ? parseFrames(cmd.frames) : std::vector<int>{0}, cmd.referenceFrame);
+  const std::vector<int>& frames = order.frames;
   const SweepPlan plan = planSweep(cmd.args.scenePath, defines, cmd.sweep);
   const Shard shard = resolveShard(cmd.shard);
 
@@ -203,7 +202,9 @@ SweepOutcome runSweep(const SweepRun& cmd) {
                                    : std::to_string(given.front()) + ":" + std::to_string(given.back());
     if (cmd.referenceFrame && *cmd.referenceFrame != given.front())
       framesText += " reference " + std::to_string(*cmd.referenceFrame);
-  }  // without --frames, frame 0 is the only frame and the reference
+  } else if (cmd.referenceFrame && *cmd.referenceFrame != 0) {
+    framesText = "0 reference " + std::to_string(*cmd.referenceFrame);
+  }  // without --frames and --reference-frame, frame 0 is the only frame and the reference
   const KeyFields commonFields = {
       {"scene_crc32", std::to_string(sceneCrc32)},
       {"spp", std::to_string(cmd.args.spp)},
@@ -358,6 +359,7 @@ SweepOutcome runSweep(const SweepRun& cmd) {
     job->sceneFile = cmd.args.scenePath;
     job->outputDir = folder;
     job->frames = frames;
+    job->writeReference = order.referenceWritten;
     job->numbered = numbered;
     job->defines = pointDefines(defines, p);
     job->sweepParameters = plan.names;
@@ -382,7 +384,8 @@ SweepOutcome runSweep(const SweepRun& cmd) {
       collectWritten(true);  // the points being written still complete (a writer's error, if any, wins)
       throw;
     }
-    for (const RenderedFrame& f : result.frames) images += std::int64_t(f.result.cameras.size());
+    for (std::size_t fi = order.referenceWritten ? 0 : 1; fi < result.frames.size(); ++fi)
+      images += std::int64_t(result.frames[fi].result.cameras.size());
     collectWritten(false);
     // Not complete: the point starts from an empty folder (a killed run may have left part of it).
     std::error_code ec;

@@ -2,8 +2,11 @@
 // and the bad input around them.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "exr_test_util.h"
 #include "run_cli.h"
@@ -47,17 +50,52 @@ TEST_CASE("cli: render writes disp, flow and distortion layers measured from --r
   }
 }
 
-TEST_CASE("cli: a reference frame outside --frames is bad input: exit code 2, no output") {
+TEST_CASE("cli: a reference frame outside --frames is traced for the motion truth and not written") {
+  // A sequence rendered in chunks measures every chunk from one frame (the DIC-developer and docs
+  // trials of 2026-11-29: the reference had to be among --frames, so a chunk's motion started from
+  // its own first frame). The chunk's files are those of the whole run, byte for byte.
   TempFolder dir;
   const std::string scene = dir.write("moving.lua", kMovingScene);
-  for (const std::string& args : {std::string(" --frames 0:2 --reference-frame 5"), std::string(" --reference-frame 1")}) {
-    const test::CliResult r = runCli("render " + scene + " -o " + dir.file("out") + args + " --backend cpu");
-    INFO(args << "\n" << r.err);
-    CHECK(r.exitCode == 2);
-    CHECK(r.err.rfind("dicsynth: error: --reference-frame", 0) == 0);
-    CHECK(r.err.find('\n') == r.err.size() - 1);
-    CHECK_FALSE(std::filesystem::exists(dir.file("out")));
+  const std::string common = " --spp 1 --backend cpu";
+  REQUIRE(runCli("render " + scene + " -o " + dir.file("whole") + " --frames 0:2" + common).exitCode == 0);
+  const test::CliResult chunk = runCli("render " + scene + " -o " + dir.file("chunk") + " --frames 1:2 --reference-frame 0" + common);
+  INFO(chunk.err);
+  REQUIRE(chunk.exitCode == 0);
+  CHECK(chunk.err.empty());
+  CHECK(chunk.out.find("cam_0000") == std::string::npos);
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir.file("chunk"))) files.push_back(e.path().filename().string());
+  std::sort(files.begin(), files.end());
+  CHECK(files == std::vector<std::string>{"cam.yml", "cam_0001.exr", "cam_0001.tif", "cam_0002.exr", "cam_0002.tif"});
+  for (const std::string& name : files)
+    CHECK_MESSAGE(test::readBytes(dir.file("chunk/" + name)) == test::readBytes(dir.file("whole/" + name)), name);
+  // The values: 0.2 px per frame from frame 0 (float32 of 0.2 · k: relative 2^-24), on the GPU too.
+  const test::CliResult gpu = runCli("render " + scene + " -o " + dir.file("gpu") +
+                                     " --frames 2 --reference-frame 0 --spp 1 --backend gpu --precision fp64");
+  INFO(gpu.err);
+  REQUIRE(gpu.exitCode == 0);
+  CHECK_FALSE(std::filesystem::exists(dir.file("gpu/cam_0000.exr")));
+  const test::ExrContents exr = test::readExr(dir.file("gpu/cam_0002.exr"));
+  CHECK(exr.spec.get_string_attribute("dicsynth:reference_frame") == "0");
+  for (std::size_t i = 0; i < 40 * 30; ++i) {
+    CHECK(std::abs(exr.floats.at("flow.X")[i] - 0.4) < 1e-6);
+    CHECK(std::abs(exr.floats.at("disp.X")[i] - 2e-3) < 1e-9);
   }
+  // Without --frames: frame 0, unnumbered, measured from frame 1.
+  REQUIRE(runCli("render " + scene + " -o " + dir.file("single") + " --reference-frame 1" + common).exitCode == 0);
+  const test::ExrContents single = test::readExr(dir.file("single/cam.exr"));
+  CHECK(std::abs(single.floats.at("flow.X")[0] + 0.2) < 1e-6);
+  CHECK_FALSE(std::filesystem::exists(dir.file("single/cam_0001.exr")));
+  // --check says what it would do.
+  const test::CliResult check = runCli("render " + scene + " -o " + dir.file("c") + " --frames 1:2 --reference-frame 0 --check");
+  CHECK(check.out.find(": 2 frames 1..2 (motion from frame 0, traced, not written); ") != std::string::npos);
+  // One frame alone with its motion asked for by name: said that it is its own reference.
+  const test::CliResult alone = runCli("render " + scene + " -o " + dir.file("alone") + " --frames 1 --layers flow" + common);
+  CHECK(alone.exitCode == 0);
+  CHECK(alone.err == "dicsynth: warning: frame 1 is rendered alone and is its own reference frame: its flow is 0 everywhere "
+                     "(--reference-frame R measures the motion from frame R, traced, not written)\n");
+  CHECK(runCli("render " + scene + " -o " + dir.file("alone2") + " --frames 1 --layers flow --reference-frame 0" + common)
+            .err.empty());
 }
 
 TEST_CASE("cli: a rig whose cameras share no view warns and writes an empty disparity mask") {

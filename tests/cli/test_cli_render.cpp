@@ -165,6 +165,9 @@ TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
   expectBadInput(dir, scene + " --device no-such-gpu", "dicsynth: error: --device 'no-such-gpu'");
   expectBadInput(dir, scene + " -D shift", "dicsynth: error: -D shift: expected name=value");
   expectBadInput(dir, scene + " -D nonsense=1", "dicsynth: error: -D nonsense: the scene never reads 'nonsense'");
+  // A define near a name of the scene's text says it (`-D strian`, the docs walk of 2026-11-29).
+  const std::string strained = dir.write("strained.lua", "strain = strain or 0.002\n" + kCamera);
+  expectBadInput(dir, strained + " -D strian=0.003", "dicsynth: error: -D strian: the scene never reads 'strian' (did you mean 'strain'?)");
   expectBadInput(dir, scene + " --frames 5:2", "dicsynth: error: --frames 5:2");
   expectBadInput(dir, scene + " --spp 0", "dicsynth: error: --spp 0");
   expectBadInput(dir, scene + " --downscale 0", "dicsynth: error: --downscale");

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -121,4 +122,61 @@ TEST_CASE("cli: a rig error in one frame stops the run before any file, as does 
   std::vector<std::string> files;
   for (const auto& e : std::filesystem::directory_iterator(dir.file("out"))) files.push_back(e.path().filename().string());
   CHECK(files == std::vector<std::string>{"rig.yml"});
+}
+
+TEST_CASE("cli: scenes/stereo_plate.lua -D calibration=true calibrates the rig of stereo_plate and stereo_sinusoid") {
+  // The docs walk of 2026-11-29 calibrated with scenes/stereo_calibration.lua, a rig of its own, and
+  // ran DIC on stereo_plate.lua's: the calibration set of the specimen's rig is that scene's own
+  // mode. Its calibration files are the plate's and the chirp's, byte for byte, and all 15 poses
+  // show every corner to both cameras. (The full-size set, 1600 x 1200, 4 spp, calibrated with
+  // findChessboardCornersSB + calibrateCamera + stereoCalibrate here: 15 of 15 pairs found, stereo
+  // RMS 0.041 px, |T - T_true| 0.03 mm, R within 0.07 degrees; docs/examples.md.)
+  TempFolder dir;
+  const std::string scenes = std::string(DS_SOURCE_DIR) + "/scenes/";
+  const std::string common = " --downscale 8 --spp 1 --backend cpu --layers image";
+  const test::CliResult board =
+      runCli("render " + scenes + "stereo_plate.lua -D calibration=true --frames 0:14 -o " + dir.file("calib") + common);
+  INFO(board.err);
+  REQUIRE(board.exitCode == 0);
+  REQUIRE(runCli("render " + scenes + "stereo_plate.lua -o " + dir.file("plate") + common).exitCode == 0);
+  REQUIRE(runCli("render " + scenes + "stereo_sinusoid.lua -o " + dir.file("chirp") + common).exitCode == 0);
+  for (const char* file : {"rig.yml", "rig.dice.xml", "rig.left.yml", "rig.right.yml"}) {
+    CAPTURE(file);
+    const std::string calibration = test::readBytes(dir.file(std::string("calib/") + file));
+    CHECK(!calibration.empty());
+    CHECK(calibration == test::readBytes(dir.file(std::string("plate/") + file)));
+    CHECK(calibration == test::readBytes(dir.file(std::string("chirp/") + file)));
+  }
+  for (int frame = 0; frame <= 14; ++frame)
+    for (const char* camera : {"rig.left", "rig.right"}) {
+      char name[64];
+      std::snprintf(name, sizeof name, "calib/%s_%04d.features.csv", camera, frame);
+      const std::string csv = test::readBytes(dir.file(name));
+      CAPTURE(name);
+      // 54 inner corners, each row ending in its visibility flags "...,1,1,1,1".
+      CHECK(std::count(csv.begin(), csv.end(), '\n') == 55);
+      std::size_t visible = 0;
+      for (std::size_t at = csv.find(",1,1,1,1\n"); at != std::string::npos; at = csv.find(",1,1,1,1\n", at + 1)) ++visible;
+      CHECK(visible == 54);
+    }
+}
+
+TEST_CASE("cli: a rerun with other cameras into a folder of an earlier run says the folder mixes two runs") {
+  // The docs walk of 2026-11-29: a rerun at another --downscale with --layers image rewrote rig.yml
+  // and the TIFFs, kept the earlier EXRs and frame 1, without a word. Chunks of one sequence into
+  // one folder (the same cameras) are not said.
+  TempFolder dir;
+  const std::string scene = dir.write("rig.lua", kRigScene);
+  const std::string out = dir.file("out");
+  const std::string common = " --spp 1 --backend cpu";
+  REQUIRE(runCli("render " + scene + " -o " + out + " --frames 0:1 --downscale 2" + common).exitCode == 0);
+  const test::CliResult chunk = runCli("render " + scene + " -o " + out + " --frames 2:3 --reference-frame 0 --downscale 2" + common);
+  CHECK(chunk.exitCode == 0);
+  CHECK(chunk.err.empty());
+  const test::CliResult rerun = runCli("render " + scene + " -o " + out + " --frames 0 --downscale 4 --layers image" + common);
+  CHECK(rerun.exitCode == 0);
+  CHECK(rerun.err == "dicsynth: warning: -o " + out + ": this run replaced rig.dice.xml with other cameras, and 14 files of "
+                     "an earlier run stay beside it (rig.left_0000.exr, rig.left_0001.exr, rig.left_0001.tif, ...), which "
+                     "that calibration no longer describes: the folder mixes two runs (write each run into a folder of "
+                     "its own)\n");
 }

@@ -614,7 +614,27 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
   const std::string behind = dir.write("behind.lua", kCamera + "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, -1} } }\n");
   const test::CliResult empty = test::runCli("render " + behind + " -o " + dir.file("behind") + " --backend cpu");
   CHECK(empty.exitCode == 0);
-  CHECK(empty.err.find("warning: camera cam, frame 0: no pixel centre sees an object") != std::string::npos);
+  CHECK(empty.err.find("warning: camera cam, frame 0: no pixel centre sees an object (the image is all background): check "
+                       "the camera's pose and the objects' locations (all in metres)") != std::string::npos);
+  // A scene without any object says so (a `local` object is not collected: the docs walk of 2026-11-29).
+  const std::string none = dir.write("none.lua", kCamera + "local p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }\n");
+  const test::CliResult noObject = test::runCli("render " + none + " -o " + dir.file("none") + " --backend cpu");
+  CHECK(noObject.exitCode == 0);
+  CHECK(noObject.err == "dicsynth: warning: camera cam, frame 0: the scene has no objects (the image is all background): an "
+                        "object is a global Object.Simple { ... } (a `local` one is not collected)\n");
+  // Lengths in other units than metres: a 16 mm lens as 16, 5 um pixels as 5 (the docs walk and the
+  // optics trial of 2026-11-29: both rendered without a word). Said with the line, once; sane ones not.
+  const std::string units = dir.write(
+      "units.lua", "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 16; pixelSize = {5, 5} }\n"
+                   "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }\n");
+  const test::CliResult mm = test::runCli("render " + units + " -o " + dir.file("units") + " --backend cpu --frames 0:1");
+  CHECK(mm.exitCode == 0);
+  CHECK(mm.err.find("dicsynth: warning: " + units + ":1: pixelSize = 5 m is outside 1e-07 .. 0.001 m, where cameras have "
+                    "it: lengths are metres (5e-06 m for 5 um)\n") != std::string::npos);
+  CHECK(mm.err.find("dicsynth: warning: " + units + ":1: focalLength = 16 m is outside 1e-04 .. 2 m, where cameras have "
+                    "it: lengths are metres (0.016 m for 16 mm)\n") != std::string::npos);
+  CHECK(mm.err.find("focalLength = 16 m") == mm.err.rfind("focalLength = 16 m"));  // once, though two frames evaluate it
+  CHECK(empty.err.find("where cameras have it") == std::string::npos);
   // Said at most 10 times a run: a long run whose object leaves the view printed it for every frame
   // (a million lines in the sweep audit of 2026-11-27).
   const test::CliResult many = test::runCli("render " + behind + " -o " + dir.file("behind12") + " --backend cpu --frames 0:11");
@@ -768,6 +788,15 @@ TEST_CASE("hostile inputs: a thin lens in millimetres whose blur disk is wider t
   CHECK(wrong.err.find("warning: camera cam, frame 0: Camera.ThinLens blurs the point seen at pixel (") != std::string::npos);
   CHECK(wrong.err.find("px across, wider than the image (80 px diagonal; aperture 6.25 m, focus distance 500 m): check "
                        "focalLength, focusDistance and fNumber or aperture, in metres") != std::string::npos);
+  // With --layers image alone, on both backends: the GPU did not hand back the depth the check
+  // reads and said nothing where the CPU warned (the optics trial of 2026-11-29).
+  for (const char* backend : {"cpu", "gpu"}) {
+    const test::CliResult image = test::runCli("render " + mm + " -o " + dir.file(std::string("img_") + backend) +
+                                               " --layers image --spp 1 --backend " + backend);
+    INFO(backend << ": " << image.err);
+    CHECK(image.exitCode == 0);
+    CHECK(image.err.find("warning: camera cam, frame 0: Camera.ThinLens blurs the point seen at pixel (") != std::string::npos);
+  }
   // The same lens in metres, the plate at the focus distance: sharp, nothing said.
   const std::string metres = lensScene("m.lua", "focalLength = 0.05; fNumber = 8; focusDistance = 0.5");
   const test::CliResult right = test::runCli("render " + metres + " -o " + dir.file("m") + " --backend cpu --spp 1");

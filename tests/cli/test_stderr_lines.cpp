@@ -40,6 +40,13 @@ TEST_CASE("stderr lines: error, note and a scene's print are told apart, and an 
                                                   "0.00806451613 u units: 62 x 62 disk diameters per unit u x v, the "
                                                   "disks scaled by 1 in v\n");
 
+  // A note of the scene is said once, though every frame evaluates it (pipe.lua's six frames said
+  // the rounded radius six times: the docs walk of 2026-11-29).
+  const test::CliResult frames3 = test::runCli("render " + good + " -o " + dir.file("three") + " --backend cpu --frames 0:2");
+  CHECK(frames3.exitCode == 0);
+  const std::string hello = good + ":1: hello\t2\n";  // a print is the scene's own: every frame
+  CHECK(frames3.err == ok.err + hello + hello);
+
   // "--frames 0:99999999: ..." has the shape "PATH:LINE: " but names no file: the tool's own error.
   const test::CliResult frames = test::runCli("render " + scene + " -o " + dir.file("f") + " --frames 0:99999999");
   CHECK(frames.exitCode == 2);

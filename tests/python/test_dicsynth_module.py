@@ -383,3 +383,43 @@ def test_one_gpu_renderer_shared_by_threads_renders_one_at_a_time():
     serial = next(iter(renderer.render(scene, spp=1, layers="image").values()))["image"]
     for image in results:
         np.testing.assert_array_equal(image, serial)
+
+
+def test_a_reference_frame_outside_the_frames_is_traced_not_returned():
+    """Chunks of a sequence measured from one frame (the DIC-developer trial of 2026-11-29: frames=[2, 3]
+    measured frame 3 from frame 2, frames=[1] alone gave a flow of 0, without a word)."""
+    renderer = dicsynth.Renderer(backend="cpu")
+    with tempfile.TemporaryDirectory() as folder:
+        # fx = 0.016 / 2e-4 = 80 px; 1 mm per frame at Z = 0.4 m: 0.2 px per frame.
+        moving = write_scene(folder, "moving.lua",
+            "cam = Camera.Pinhole { resolution = {40, 30}; focalLength = 0.016; pixelSize = {2e-4, 2e-4} }\n"
+            "obj = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {frame * 1e-3, 0, 0.4} } }\n")
+        scene = dicsynth.Scene(moving)
+        chunk = renderer.render(scene, frames=[2, 3], spp=1, layers=["image", "flow"], reference_frame=0)
+        assert sorted(chunk.keys()) == [("cam", 2), ("cam", 3)]
+        whole = renderer.render(scene, frames=[0, 1, 2, 3], spp=1, layers=["image", "flow"])
+        for frame in (2, 3):
+            assert np.array_equal(chunk["cam", frame]["flow"], whole["cam", frame]["flow"])
+            assert np.array_equal(chunk["cam", frame]["image"], whole["cam", frame]["image"])
+            assert np.abs(chunk["cam", frame]["flow"][:, :, 0] - 0.2 * frame).max() < 1e-6
+        with pytest.warns(dicsynth.DicsynthWarning, match="frame 1 is rendered alone and is its own reference frame: "
+                                                          r"its flow is 0 everywhere \(reference_frame R"):
+            renderer.render(scene, frames=[1], spp=1, layers="flow")
+
+
+def test_a_seed_per_render_call():
+    """render(seed=...) replaces the Renderer's seed for one call (the DIC-developer trial of 2026-11-29:
+    a Monte-Carlo loop needed a new Renderer per seed, ~1 s each). The same seed is the same image."""
+    renderer = dicsynth.Renderer(backend="cpu", downscale=8, seed=1)
+    scene = dicsynth.Scene(os.path.join(SCENES, "noisy_speckle.lua"))
+    default = renderer.render(scene, layers="image")
+    one = renderer.render(scene, layers="image", seed=1)
+    two = renderer.render(scene, layers="image", seed=2)
+    again = renderer.render(scene, layers="image")
+    key = next(iter(default))
+    assert np.array_equal(default[key]["image"], one[key]["image"])
+    assert np.array_equal(default[key]["image"], again[key]["image"])  # the Renderer's own seed is kept
+    assert not np.array_equal(default[key]["image"], two[key]["image"])
+    assert np.array_equal(two[key]["image"], dicsynth.Renderer(backend="cpu", downscale=8, seed=2).render(scene, layers="image")[key]["image"])
+    with pytest.raises(dicsynth.InputError, match=r"seed 4294967296: must be in 0\.\.4294967295"):
+        renderer.render(scene, layers="image", seed=2**32)

@@ -159,7 +159,7 @@ TEST_CASE("cli: a layer the scene cannot produce, or an unknown one, is refused 
     const test::CliResult r = runCli("render " + kScenes + args + " -o " + outDir + " --downscale 8 --spp 1");
     INFO(args << "\nstderr: " << r.err);
     CHECK(r.exitCode == 2);
-    CHECK(r.err.rfind(prefix, 0) == 0);
+    CHECK(r.err.rfind("dicsynth: error: " + prefix, 0) == 0);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
     CHECK_FALSE(std::filesystem::exists(outDir));
   }

@@ -447,6 +447,30 @@ assert(getmetatable(cam) == "Camera")
 )");
 }
 
+TEST_CASE("scene: a rotation by more than a turn is a warning naming the line and the degrees meant") {
+  // rotate_y(30) (degrees meant) turned a plate 30 rad, nearly edge-on, without a word (the docs
+  // walk of 2026-11-29). A turn or less, degrees(), and math.fmod are quiet.
+  test::TempFolder dir;
+  const std::string path = dir.write(
+      "turn.lua", std::string(kCameraLine) +
+                      "a = Object.Simple { shape = Shape.Sphere { radius = 1 }; transform = rotate_y(30) }\n"
+                      "b = Object.Simple { shape = Shape.Sphere { radius = 1 }; transform = rotate_x(-2 * math.pi - 1e-9) }\n"
+                      "c = Object.Simple { shape = Shape.Sphere { radius = 1 }; transform = rotate_z(2 * math.pi) * "
+                      "rotate_y(degrees(30)) * rotate_x(math.fmod(40, 2 * math.pi)) }\n");
+  WarningCapture capture;
+  const Scene scene = loadScene(path, {});
+  CHECK(scene.objects.size() == 3);
+  const std::vector<std::string> said = capture.take();
+  REQUIRE(said.size() == 2);
+  CHECK(said[0] == path + ":2: rotate_y(30): 30 rad is 1718.87 degrees, more than a turn: rotate_y(degrees(30)) for 30 "
+                          "degrees? (angles are radians; a spin past a turn on purpose: math.fmod(angle, 2 * math.pi) says so)");
+  CHECK(said[1].rfind(path + ":3: rotate_x(-6.283185308", 0) == 0);
+  // The rotation itself is as asked: 30 rad about y.
+  const dmat4& m = scene.objects[0].transform;
+  CHECK(m[0][0] == doctest::Approx(std::cos(30.0)).epsilon(1e-15));
+  CHECK(m[0][2] == doctest::Approx(-std::sin(30.0)).epsilon(1e-15));
+}
+
 TEST_CASE("scene: a global alias of an object, light or camera is a warning naming both globals, once") {
   // Every global is collected: `plate2 = plate` rendered the plate twice (coincident surfaces) and
   // `lamp2 = lamp` doubled the light, without a word (the new-user trial of 2026-11-28).

@@ -69,6 +69,9 @@ TEST_CASE("scene: syntax errors name their line") {
        4, "unfinished string near '\"unfinished'"},
       {"#!/usr/bin/env dicsynth\nx = (\n",
        3, "unexpected symbol near <eof>"},
+      // A separator forgotten between two fields says so (the docs walk of 2026-11-29).
+      {"r = {\n  left = 1;\n  right = 2\n  target = 3 }\n",
+       4, "'}' expected (to close '{' at line 1) near 'target' (a missing ',' or ';' between two fields of the table?)"},
   });
 }
 
@@ -242,7 +245,7 @@ TEST_CASE("scene: runtime errors and error() calls") {
       {"x = 1\nlocal y = nil + 1\n",
        2, "attempt to perform arithmetic on a nil value"},
       {"x = 1\nShape.Spere { radius = 1 }\n",
-       2, "attempt to call a nil value (field 'Spere')"},
+       2, "Shape.Spere: no such constructor (did you mean Shape.Sphere?); Shape has Shape.Box, Shape.Cylinder, Shape.Nurbs, Shape.Plane, Shape.Rectangle, Shape.Sphere, Shape.Triangle"},
       {"\nlocal ok = pcall(Shape.Sphere, {})\nerror(select(2, pcall(Shape.Sphere, {})), 0)\n",
        3, "Shape.Sphere: missing required 'radius'"},
   });
@@ -533,4 +536,26 @@ TEST_CASE("scene: control characters in errors and prints are escaped, a NUL kee
                                                   std::string(300, ')') + "\n");
   const std::string message = loadError(deep, {});
   CHECK(message.rfind(deep + ":3: ", 0) == 0);
+}
+
+TEST_CASE("scene: a mistyped constructor name says the nearest one and what the table holds") {
+  // `Texture.Speckel { ... }` said Lua's "attempt to call a nil value (field 'Speckel')" (the docs
+  // walk of 2026-11-29). The lists are the registries' (host/textures, host/shapes).
+  TempFolder dir;
+  std::string textures;
+  for (const char* kind : {"Constant", "File", "Speckle"}) textures += std::string(textures.empty() ? "" : ", ") + "Texture." + kind;
+  checkErrors(dir, {
+      {std::string(kCameraLine) + "t = Texture.Speckel { radius = 0.01 }\n", 2,
+       "Texture.Speckel: no such constructor (did you mean Texture.Speckle?); Texture has " + textures},
+      {std::string(kCameraLine) + "local x = 1\nt = Texture.Noise\n", 3, "Texture.Noise: no such constructor; Texture has " + textures},
+      {std::string(kCameraLine) + "t = Shape.Spere { radius = 1 }\n", 2,
+       "Shape.Spere: no such constructor (did you mean Shape.Sphere?); Shape has Shape.Box, Shape.Cylinder, Shape.Nurbs, Shape.Plane, "
+       "Shape.Rectangle, Shape.Sphere, Shape.Triangle"},
+  });
+  // The tables themselves still work: a constructor found, pairs() over them, their metatable hidden.
+  const std::string path = dir.write("ok.lua", std::string(kCameraLine) +
+                                                   "local n = 0\nfor k, v in pairs(Texture) do n = n + 1 end\n"
+                                                   "assert(n == 3)\nassert(getmetatable(Texture) == false)\n"
+                                                   "t = Texture.Constant { value = 0.5 }\n");
+  CHECK_NOTHROW(loadScene(path, {}));
 }

@@ -51,7 +51,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "dicsynth: error: %s%s\n", e.what(), cli::suggestion(app, argc, argv).c_str());
+    std::string hint = cli::suggestion(app, argc, argv);
+    // "files is required" alone (`dicsynth preview --width 600`, the docs walk of 2026-11-29): where
+    // the command's arguments are listed.
+    if (hint.empty() && dynamic_cast<const CLI::RequiredError*>(&e) && argc >= 2)
+      for (CLI::App* sub : app.get_subcommands({}))
+        if (sub->get_name() == argv[1]) hint = std::string(" (dicsynth ") + argv[1] + " --help lists its arguments)";
+    std::fprintf(stderr, "dicsynth: error: %s%s\n", e.what(), hint.c_str());
     return cli::kExitBadInput;
   }
   try {

@@ -415,8 +415,13 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
     if (job.verbose && written.empty())
       lines += "camera " + cam.name + ": no layer of --layers " + job.layers.text() + " exists for it: nothing written\n";
     else if (job.verbose) {
-      char timing[64];
-      std::snprintf(timing, sizeof timing, "%.2f s", result.renderSeconds);
+      // The render's time is the frame's, all cameras at once: each camera's line repeating "9.41 s"
+      // read as that camera's own (the docs walk of 2026-11-29).
+      char timing[96];
+      if (scene.cameras.size() > 1)
+        std::snprintf(timing, sizeof timing, "%.2f s for the frame's %zu cameras", result.renderSeconds, scene.cameras.size());
+      else
+        std::snprintf(timing, sizeof timing, "%.2f s", result.renderSeconds);
       // Without a radiance layer no sample is traced: "N spp" would claim work not done.
       lines += written + ": " + std::to_string(cam.width_px) + "x" + std::to_string(cam.height_px) + ", " +
                (options.radiance ? std::to_string(options.samplesPerPixel) + " spp"

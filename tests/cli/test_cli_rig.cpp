@@ -40,6 +40,8 @@ TEST_CASE("cli: a rig renders rig.left and rig.right with calibration files writ
   INFO(r.err);
   REQUIRE(r.exitCode == 0);
   CHECK(r.out.find("calibration: ") != std::string::npos);
+  // The time is the frame's, both cameras at once (the docs walk of 2026-11-29 read it per camera).
+  CHECK(r.out.find(" s for the frame's 2 cameras\n") != std::string::npos);
   std::vector<std::string> files;
   for (const auto& e : std::filesystem::directory_iterator(dir.file("out"))) files.push_back(e.path().filename().string());
   CHECK(sorted(files) == std::vector<std::string>{

@@ -735,7 +735,10 @@ TEST_CASE("hostile: a mistyped command or option is answered with the nearest na
       {"render " + scene + " --downscal=4", "dicsynth: error: The following argument was not expected: --downscal=4 (did you mean "
                                             "--downscale for --downscal?)"},
       {"sweep " + scene + " -o x --sweeep a=1", "(did you mean --sweep for --sweeep?)"},
-      {"render " + scene + " --zzzzzz", "dicsynth: error: The following argument was not expected: --zzzzzz"}};
+      {"render " + scene + " --zzzzzz", "dicsynth: error: The following argument was not expected: --zzzzzz"},
+      // A missing argument says where the command's arguments are listed (the docs walk of 2026-11-29).
+      {"preview --width 600", "dicsynth: error: files is required (dicsynth preview --help lists its arguments)"},
+      {"render", "dicsynth: error: scene is required (dicsynth render --help lists its arguments)"}};
   for (const Case& c : cases) {
     CAPTURE(c.args);
     const test::CliResult r = test::runCli(c.args);

@@ -23,6 +23,7 @@ struct RenderCommand {
   std::string layers = "all";
   bool preview = false;
   bool check = false;
+  bool json = false;
 };
 
 int runRender(const RenderCommand& cmd) {
@@ -44,6 +45,7 @@ int runRender(const RenderCommand& cmd) {
   job.layers = layers;
   job.preview = cmd.preview;
   job.checkOnly = cmd.check;
+  job.json = cmd.json;
   runRenderJob(session, job);
   return kExitOk;
 }
@@ -73,6 +75,9 @@ void addRenderCommand(CLI::App& root, RunFn& run) {
                 "Make every check the render makes before its work (every frame's scene, the options, the output "
                 "folder and names, the layers, memory, the device's limits), print what it would render, and stop: "
                 "nothing is rendered or written (exit 0, or 2 naming the problem)");
+  sub->add_flag("--json", cmd->json,
+                "The lines on stdout as JSON objects, one per line: per camera and frame its files (null when not "
+                "written), size, spp, backend, precision, device; the calibration files (docs/commands.md)");
   sub->callback([cmd, &run] { run = [cmd] { return runRender(*cmd); }; });
 }
 

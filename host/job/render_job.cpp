@@ -28,6 +28,7 @@
 #include "core/commit_watch.h"
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/json.h"
 #include "core/option_names.h"
 #include "core/phase_timer.h"
 #include "core/progress.h"
@@ -97,11 +98,19 @@ void checkOutputNames(const RenderJob& job, const Scene& scene, int frame,
 }
 
 // Writes the calibration files (io/calibration_files.h) of a frame, with `suffix` ("" or "_0003");
-// returns the line naming them.
-std::string writeCalibration(const std::string& dir, const PreparedScene& prepared, const std::string& suffix) {
+// returns the line naming them (`json`: as a JSON object; `frame` null when written once).
+std::string writeCalibration(const std::string& dir, const PreparedScene& prepared, const std::string& suffix, bool json,
+                             std::optional<int> frame) {
+  const std::vector<std::string> paths = writeCalibrationFiles(dir, calibrationFiles(prepared, suffix));
+  if (json) {
+    Json::Value o(Json::objectValue);
+    o["calibration"] = Json::Value(Json::arrayValue);
+    for (const std::string& path : paths) o["calibration"].append(path);
+    o["frame"] = frame ? Json::Value(*frame) : Json::Value();
+    return json::write(o, false);
+  }
   std::string list;
-  for (const std::string& path : writeCalibrationFiles(dir, calibrationFiles(prepared, suffix)))
-    list += (list.empty() ? "" : ", ") + path;
+  for (const std::string& path : paths) list += (list.empty() ? "" : ", ") + path;
   return "calibration: " + list + "\n";
 }
 
@@ -393,7 +402,8 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
   std::string lines;
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
   if (firstWritten || calibrationPerFrame) {
-    const std::string line = writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "");
+    const std::string line = writeCalibration(job.outputDir, scene, calibrationPerFrame ? outputStem("", true, frame) : "",
+                                              job.json, calibrationPerFrame ? std::optional<int>(frame) : std::nullopt);
     if (job.verbose) lines += line;
   }
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
@@ -404,7 +414,7 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
     const OutputFiles files =
         writeCameraOutputs(job.outputDir, stem, cam, image, derived.sensed.digital, info, &derived.truth, &derived.sensed);
     phaseDone("write");
-    writeFeatureFiles(job.outputDir, stem, scene, c, frame);
+    const FeatureFiles features = writeFeatureFiles(job.outputDir, stem, scene, c, frame);
     if (job.preview && !files.groundTruth.empty()) {
       const std::string previewDir = (std::filesystem::path(job.outputDir) / "preview").string();
       createOutputDir(previewDir);
@@ -412,7 +422,28 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
     }
     const std::string written =
         files.image + (files.image.empty() || files.groundTruth.empty() ? "" : ", ") + files.groundTruth;
-    if (job.verbose && written.empty())
+    if (job.verbose && job.json) {
+      // Every path whole, whatever it holds (", " or a newline in -o made the text lines ambiguous:
+      // the CI trial of 2026-11-29); null for a file not written.
+      const auto path = [](const std::string& p) { return p.empty() ? Json::Value() : Json::Value(p); };
+      Json::Value o(Json::objectValue);
+      o["camera"] = cam.name;
+      o["frame"] = frame;
+      o["numbered"] = job.numbered;
+      o["image"] = path(files.image);
+      o["ground_truth"] = path(files.groundTruth);
+      o["features_csv"] = path(features.csv);
+      o["features_json"] = path(features.json);
+      o["width_px"] = cam.width_px;
+      o["height_px"] = cam.height_px;
+      o["spp"] = options.radiance ? Json::Value(options.samplesPerPixel) : Json::Value();  // null: no sample traced
+      o["backend"] = result.backend;
+      o["precision"] = result.precision;
+      o["device"] = result.device;
+      o["frame_render_seconds"] = json::value(result.renderSeconds);  // the frame's, all its cameras
+      o["reference_frame"] = reference->frame();
+      lines += json::write(o, false);
+    } else if (job.verbose && written.empty())
       lines += "camera " + cam.name + ": no layer of --layers " + job.layers.text() + " exists for it: nothing written\n";
     else if (job.verbose) {
       // The render's time is the frame's, all cameras at once: each camera's line repeating "9.41 s"

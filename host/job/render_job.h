@@ -82,6 +82,7 @@ struct RenderJob {
   std::optional<std::uint32_t> seed;                         // overrides --seed (sweep --seed-per-point)
   std::optional<int> spp;                                    // overrides --spp (the Python module)
   bool verbose = true;            // print one line per written camera and the calibration files
+  bool json = false;              // --json: those lines as JSON objects, one per line (docs/commands.md)
   std::string progressLabel;      // prefix of the terminal progress (render: "rendering"); "" = none
   std::string exrCompression = "zip";  // --exr-compression (io/outputs.h, kExrCompressions)
   LayerSet layers = LayerSet::all();   // --layers (model/layers.h)

@@ -9,6 +9,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -374,4 +378,39 @@ TEST_CASE("cli: --strict fails a run that said a warning with exit 4, its files 
   INFO(sweep.err);
   CHECK(sweep.exitCode == 4);
   CHECK(std::filesystem::exists(dir.file("sweep/manifest.csv")));
+}
+
+TEST_CASE("cli: render --json says every written file whole, one JSON object per line") {
+  // The text lines join paths with ", ": an -o holding ", " made them ambiguous (the CI trial of
+  // 2026-11-29). Each JSON line names its files whole, null for one not written; together they
+  // name every file of the folder.
+  TempFolder dir;
+  const std::string out = dir.file("a, b");
+  const test::CliResult r = runCli("render " + kScenes + "stereo_calibration.lua -o '" + out +
+                                   "' --frames 0:1 --downscale 8 --spp 1 --backend cpu --layers image --json");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  std::set<std::string> named;
+  std::size_t cameraLines = 0;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    const std::optional<Json::Value> o = json::parse(line);
+    REQUIRE(o);
+    if (o->isMember("calibration")) {
+      CHECK((*o)["frame"].isNull());  // the rig does not move: written once
+      for (const Json::Value& path : (*o)["calibration"]) named.insert(path.asString());
+      continue;
+    }
+    ++cameraLines;
+    CHECK((*o)["ground_truth"].isNull());  // --layers image: no EXR
+    CHECK((*o)["spp"].asInt() == 1);
+    CHECK((*o)["width_px"].asInt() == 200);
+    CHECK((*o)["reference_frame"].asInt() == 0);
+    for (const char* key : {"image", "features_csv", "features_json"}) named.insert((*o)[key].asString());
+  }
+  CHECK(cameraLines == 4);
+  std::set<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(out)) files.insert(e.path().string());
+  CHECK(named == files);
+  CHECK(files.size() == 4 + 4 * 3);
 }

@@ -24,6 +24,7 @@ packages=(
   fonts-dejavu-core                  # the labels of `dicsynth preview` pictures
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
   python3-openimageio                # tests: an independent reader of the CLI's files from Python
+  locales                            # tests: a German locale made with localedef (scenes read numbers in "C")
   python3-opencv python3-matplotlib  # examples/: the worked DIC study (run by the tests too)
   libopencv-calib3d-dev libopencv-features2d-dev libopencv-video-dev  # tests only: OpenCV calibrates
                                                                       # our images, ECC registers them

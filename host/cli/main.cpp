@@ -11,6 +11,7 @@
 #include "cli/suggestion.h"
 #include "cli/error_line.h"
 #include "core/error.h"
+#include "core/module_folder.h"
 #include "core/phase_timer.h"
 #include "core/termination.h"
 #include "core/version.h"
@@ -33,7 +34,12 @@ int main(int argc, char** argv) {
   CLI::App app{"dicsynth: ray-traced synthetic images and ground truth for stereo DIC", "dicsynth"};
   app.require_subcommand(1);
   // With the deflate that compresses zip EXRs (io/zip_deflate.h): it decides their writing time.
-  app.set_version_flag("--version", [] { return std::string("dicsynth ") + kVersion + " (EXR zip: " + zipDeflateEngine() + ")"; });
+  // The build ID too: the version alone names many builds, and the files record the build
+  // (dicsynth:build; the reproducibility trial of 2026-11-29).
+  app.set_version_flag("--version", [] {
+    return std::string("dicsynth ") + kVersion + " (build " + (codeBuildId().empty() ? "none" : codeBuildId()) +
+           "; EXR zip: " + zipDeflateEngine() + ")";
+  });
   cli::RunFn run;
   cli::addRenderCommand(app, run);
   cli::addCompareCommand(app, run);
@@ -72,8 +78,8 @@ int main(int argc, char** argv) {
       return code == cli::kExitOk ? cli::kExitFailure : code;
     }
     if (const std::size_t warnings = warningsWritten(); code == cli::kExitOk && cli::strictWarnings() && warnings > 0) {
-      std::fprintf(stderr, "dicsynth: error: --strict: the run said %zu warning%s (its files are written)\n", warnings,
-                   warnings == 1 ? "" : "s");
+      std::fprintf(stderr, "dicsynth: error: --strict: the run said %zu warning%s (%s)\n", warnings,
+                   warnings == 1 ? "" : "s", cli::nothingWritten() ? "it writes no file" : "its files are written");
       return cli::kExitStrictWarnings;
     }
     return code;

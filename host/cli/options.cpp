@@ -42,6 +42,13 @@ void addStrictFlag(CLI::App& app) {
 
 bool strictWarnings() { return strict; }
 
+namespace {
+bool writesNothing = false;
+}  // namespace
+
+void markNothingWritten() { writesNothing = true; }
+bool nothingWritten() { return writesNothing; }
+
 void addLayersOption(CLI::App& app, std::string& layers) {
   // The names from the layer schema (model/layers.h), so the help cannot miss one.
   std::string names;

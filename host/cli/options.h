@@ -26,6 +26,10 @@ void addLayersOption(CLI::App& app, std::string& layers);
 // that an unattended job cannot pass with, e.g., a camera that saw nothing. main() judges it.
 void addStrictFlag(CLI::App& app);
 bool strictWarnings();
+// A run that writes no file (render --check): --strict's message then says so (it said "its files
+// are written": the review of 2026-11-29).
+void markNothingWritten();
+bool nothingWritten();
 
 // --sweep, --random, --random-seed (sweep/sweep_points.h). `effect` ends the --sweep help text: what
 // the subcommand does with the points.

@@ -27,6 +27,7 @@ struct RenderCommand {
 };
 
 int runRender(const RenderCommand& cmd) {
+  if (cmd.check) markNothingWritten();
   const LayerSet layers = LayerSet::parse(cmd.layers);  // before any work
   if (cmd.preview && !layers.anyGroundTruth())
     warn("--preview draws the EXR's layers, and --layers " + cmd.layers + " writes no EXR: no picture will be drawn");

@@ -162,7 +162,7 @@ int runSpeckle(SpeckleOptions options) {
   // Disks as large as the image are few: their coverage is a coin toss, not the density asked for.
   if (p.pattern == SpecklePattern::Disks && p.disksPerPx2 == 0 && std::abs(coverage - p.density) > 0.05)
     std::fprintf(stderr,
-                 "speckle: warning: the measured coverage %.4f differs from --density %.4f by more than 0.05: "
+                 "dicsynth: warning: speckle: the measured coverage %.4f differs from --density %.4f by more than 0.05: "
                  "with disks of radius %s px on %d x %d px the image holds too few of them (use a smaller radius)\n",
                  coverage, p.density, shortest(p.radius_px).c_str(), p.width_px, p.height_px);
   std::printf("speckle: wrote %s (%d x %d, %d-bit, measured coverage %.4f)\n", options.output.c_str(),

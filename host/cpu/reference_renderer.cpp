@@ -58,8 +58,8 @@ RenderResult render(const PreparedScene& scene, const RenderOptions& options) {
   RenderResult result;
   result.backend = "cpu";
   result.precision = "fp64";
-  const unsigned threads = hardwareThreads();
-  result.device = "CPU reference (" + std::to_string(threads) + (threads == 1 ? " thread)" : " threads)");
+  result.device = "CPU reference";
+  result.threads = hardwareThreads();
   const auto start = std::chrono::steady_clock::now();
   result.cameras.resize(scene.cameras.size());
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) renderCamera(scene, c, options, result.cameras[c]);

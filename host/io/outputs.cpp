@@ -9,6 +9,8 @@
 // Header attributes, all strings; numbers are written with 17 significant digits, so every double
 // parses back exactly; lists are separated by single spaces:
 //   dicsynth:version, :scene, :frame, :seed, :spp, :backend, :precision, :device, :camera,
+//   dicsynth:scene_crc32, :defines, :downscale, :precision_asked[, :max_error_px], :build
+//                                     what else makes the file (provenance(), also in the TIFF)
 //   dicsynth:objects                  comma-separated object names, objectId order
 //   dicsynth:camera_matrix            fx 0 cx 0 fy cy 0 0 1 (row-major, pixels, OpenCV)
 //   dicsynth:distortion_coefficients  k1 k2 p1 p2 k3 (OpenCV order)
@@ -54,6 +56,8 @@
 #include "core/env_count.h"
 #include "core/error.h"
 #include "core/exact_number.h"
+#include "core/json.h"
+#include "core/module_folder.h"
 #include "core/parallel.h"
 #include "core/termination.h"
 #include "core/version.h"
@@ -73,12 +77,38 @@ std::string formatNumbers(const Container& values) {
   return text;
 }
 
+// What makes a file beyond the camera, in both files' metadata: with the scene's own content
+// (its CRC-32, the scene being `dicsynth:scene`), the defines, the options that change values and
+// the code's build, a file says how to make it again (the reproducibility trial of 2026-11-29 found
+// the defines, the scene's content, the downscale, the precision asked and the build in no header,
+// and the TIFF without spp, backend, precision or device).
+std::vector<std::pair<std::string, std::string>> provenance(const OutputInfo& info) {
+  char crc[16];
+  std::snprintf(crc, sizeof crc, "%08x", unsigned(info.sceneCrc32));
+  Json::Value defines(Json::objectValue);
+  for (const auto& [name, value] : info.defines) defines[name] = value;  // as given: the -D text
+  std::string definesText = json::write(defines, false);
+  if (!definesText.empty() && definesText.back() == '\n') definesText.pop_back();
+  std::vector<std::pair<std::string, std::string>> out = {
+      {"scene_crc32", crc},
+      {"defines", definesText},
+      {"downscale", std::to_string(info.downscale)},
+      {"precision_asked", info.precisionAsked}};
+  if (info.precisionAsked == "auto") out.emplace_back("max_error_px", exactNumber(info.maxErrorPx));
+  out.emplace_back("build", codeBuildId().empty() ? "none" : codeBuildId());
+  return out;
+}
+
 std::string tiffDescription(const Camera& camera, const OutputInfo& info) {
   const int bits = camera.bitsPerPixel;
   const std::string container = bits <= 8 ? "an 8-bit container" : "a 16-bit container";
-  return "dicsynth: raw " + std::to_string(bits) + "-bit digital numbers in " + container +
-         "; camera " + camera.name + "; frame " + std::to_string(info.frame) + "; scene " +
-         info.sceneFile + "; seed " + std::to_string(info.seed) + "; dicsynth " + kVersion;
+  std::string text = "dicsynth: raw " + std::to_string(bits) + "-bit digital numbers in " + container +
+                     "; camera " + camera.name + "; frame " + std::to_string(info.frame) + "; scene " +
+                     info.sceneFile + "; seed " + std::to_string(info.seed) + "; spp " +
+                     std::to_string(info.samplesPerPixel) + "; backend " + info.backend + "; precision " +
+                     info.precision + "; device " + info.device;
+  for (const auto& [name, value] : provenance(info)) text += "; " + name + " " + value;
+  return text + "; dicsynth " + kVersion;
 }
 
 // One EXR channel: its name, its type and how to fill it. fill(first, count, out, stride) writes the
@@ -186,6 +216,7 @@ void addMetadata(Imf::Header& header, const Camera& camera, const OutputInfo& in
   attribute("dicsynth:backend", info.backend);
   attribute("dicsynth:precision", info.precision);
   attribute("dicsynth:device", info.device);
+  for (const auto& [name, value] : provenance(info)) attribute(("dicsynth:" + name).c_str(), value);
   attribute("dicsynth:camera", camera.name);
   attribute("dicsynth:objects", objects);
   for (const auto& [object, text] : info.deformations) attribute(("dicsynth:deformation:" + object).c_str(), text);

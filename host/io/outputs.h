@@ -21,6 +21,11 @@ struct OutputInfo {
   std::uint32_t seed = 0;
   int samplesPerPixel = 0;
   std::string backend, precision, device;
+  std::uint32_t sceneCrc32 = 0;   // of the scene file's content: dicsynth:scene_crc32
+  int downscale = 1;              // dicsynth:downscale
+  std::string precisionAsked;     // --precision as given: dicsynth:precision_asked ("" : not written)
+  double maxErrorPx = 0;          // with precisionAsked "auto": dicsynth:max_error_px
+  std::vector<std::pair<std::string, std::string>> defines;  // -D (a sweep point's values included): dicsynth:defines
   std::vector<std::string> objectNames;  // objectNames[id - 1] is the object with objectId == id
   // Objects whose surface is a Nurbs.deform fit: name → describeDeformation(), stored in the EXR
   // header as dicsynth:deformation:<name>.

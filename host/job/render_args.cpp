@@ -84,6 +84,11 @@ std::vector<int> parseFrames(const std::string& text) {
 }
 
 FrameOrder referenceFirst(std::vector<int> frames, std::optional<int> reference) {
+  // Its range as --frames' (it was checked as one of them until it could lie outside: a reference
+  // frame -1 was then rendered and recorded, the review of 2026-11-29).
+  if (reference && (*reference < 0 || *reference > kMaxFrameNumber))
+    throw InputError(optionName("--reference-frame") + " " + std::to_string(*reference) + ": expected a frame number in 0.." +
+                     std::to_string(kMaxFrameNumber));
   const int wanted = reference.value_or(frames.front());
   const auto at = std::find(frames.begin(), frames.end(), wanted);
   if (at == frames.end()) {

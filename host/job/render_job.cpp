@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -241,6 +242,15 @@ namespace {
 FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   FramesChecked out;
   const std::map<std::string, std::string> unwritable = unwritableEntries(job.outputDir);
+  // --preview writes into DIR/preview/: a file there failed the run after its work (the review of
+  // 2026-11-29).
+  if (job.preview) {
+    std::error_code ec;
+    const std::filesystem::path previews = std::filesystem::path(job.outputDir) / "preview";
+    if (std::filesystem::exists(std::filesystem::symlink_status(previews, ec)) && !std::filesystem::is_directory(previews, ec))
+      throw InputError(previews.string() + " is not a folder, where --preview writes its pictures (remove or rename it, or "
+                                           "choose another -o)");
+  }
   LayerSources sources;
   UnreadDefines unread;  // a define may be read in some frames only (`frame >= 1 and ...`)
   std::vector<std::string> firstCalibration;
@@ -291,7 +301,9 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
 
 // render --check's line: what the run would render, once every check before work has passed.
 std::string checkSummary(RenderSession& session, const RenderJob& job, const FramesChecked& checked) {
-  const Scene first = loadFrameScene(job, job.frames.front(), true);
+  // The first frame written (not a reference traced only: the review of 2026-11-29).
+  const int firstWritten = job.frames.size() > 1 && !job.writeReference ? job.frames[1] : job.frames.front();
+  const Scene first = loadFrameScene(job, firstWritten, true);
   const int k = std::max(1, session.args().downscale);
   std::string cameras;
   for (const Camera& camera : first.cameras)
@@ -379,6 +391,10 @@ RenderedFrame renderFrame(RenderSession& session, const RenderJob& job, const Sc
   }
   if (session.context()) failOnValidationMessages(*session.context());  // before any file of this frame is written
   out.options = options;
+  out.sceneCrc32 = sceneOfFrame.sourceCrc32;
+  out.downscale = args.downscale;
+  out.precisionAsked = args.precision;
+  out.maxErrorPx = args.maxErrorPx;
   out.visibility = session.visibilityTracer();
   summary.renderSeconds += out.result.renderSeconds;
   summary.backend = out.result.backend;
@@ -457,7 +473,9 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
       lines += written + ": " + std::to_string(cam.width_px) + "x" + std::to_string(cam.height_px) + ", " +
                (options.radiance ? std::to_string(options.samplesPerPixel) + " spp"
                                  : std::string("no radiance traced (ground truth only)")) +
-               ", " + result.backend + " " + result.precision + " on " + result.device + ", " + timing + "\n";
+               ", " + result.backend + " " + result.precision + " on " + result.device +
+               (result.threads > 0 ? " (" + std::to_string(result.threads) + (result.threads == 1 ? " thread)" : " threads)") : "") +
+               ", " + timing + "\n";
     }
   }
   return lines;
@@ -516,6 +534,13 @@ OutputInfo frameInfo(const RenderJob& job, const RenderedFrame& rendered, const 
   info.backend = rendered.result.backend;
   info.precision = rendered.result.precision;
   info.device = rendered.result.device;
+  // What else makes the file (the reproducibility trial of 2026-11-29: the defines, the scene's
+  // content, the downscale and the precision asked were in no header).
+  info.sceneCrc32 = rendered.sceneCrc32;
+  info.downscale = rendered.downscale;
+  info.precisionAsked = rendered.precisionAsked;
+  info.maxErrorPx = rendered.maxErrorPx;
+  info.defines = job.defines;
   info.exrCompression = job.exrCompression;
   info.layers = job.layers;
   for (const auto& o : scene.objects) {
@@ -724,6 +749,13 @@ class OutputRollback {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
+  // "cam_0007.yml", "rig_0012.dice.xml": a calibration file of one frame (outputStem's numbering).
+  static bool perFrameName(const std::string& name) {
+    const std::size_t dot = name.ends_with(".dice.xml") ? name.size() - 9 : name.rfind('.');
+    std::size_t digits = dot;
+    while (digits > 0 && std::isdigit(static_cast<unsigned char>(name[digits - 1]))) --digits;
+    return dot - digits >= 4 && digits > 0 && name[digits - 1] == '_';
+  }
 
  public:
   explicit OutputRollback(std::string dir) : dir_(std::move(dir)), watch_(dir_) {
@@ -735,8 +767,12 @@ class OutputRollback {
       for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) {
         const std::string name = entry.path().filename().string();
         before_.insert(name);
-        // The calibration files an earlier run left (a few kB each): mixedRunsNote compares them.
-        if ((name.ends_with(".yml") || name.ends_with(".dice.xml")) && entry.is_regular_file(ec) && entry.file_size(ec) < (1u << 20))
+        // The calibration files an earlier run wrote once for all its frames (a few kB each):
+        // mixedRunsNote compares them. Not those written per frame (NAME_0007.yml: a chunked
+        // sequence of moving cameras holds 4 per frame of a rig, which every chunk would read),
+        // and at most 256 (100 000 of them took 3.5 s and 127 MB: the review of 2026-11-29).
+        if ((name.ends_with(".yml") || name.ends_with(".dice.xml")) && !perFrameName(name) && calibrationBefore_.size() < 256 &&
+            entry.is_regular_file(ec) && entry.file_size(ec) < (1u << 20))
           calibrationBefore_.emplace(name, textOf(entry.path()));
       }
   }
@@ -814,6 +850,14 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   if (job.checkOnly) {
     session.startDevice();  // its limits are part of checking the frames
     const FramesChecked checked = checkFrames(session, job);
+    // And what the render does before its first file: the first frame written prepared (textures,
+    // distortion, --downscale) and the precision resolved (--precision auto measures it once per
+    // device: seconds, kept in the cache folder). --check said exit 0 where the render refused
+    // these before any file (the review of 2026-11-29).
+    const int firstWritten = job.frames.size() > 1 && !job.writeReference ? job.frames[1] : job.frames.front();
+    const PreparedScene prepared = prepareScene(loadFrameScene(job, firstWritten, true), {session.args().downscale, &session.textures()});
+    (void)prepared;
+    session.precision();
     std::fputs(checkSummary(session, job, checked).c_str(), stdout);
     return {};
   }

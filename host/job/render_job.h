@@ -110,6 +110,10 @@ struct RenderedFrame {
   PreparedScene scene;
   RenderResult result;
   RenderOptions options;
+  std::uint32_t sceneCrc32 = 0;  // CRC-32 of the scene file's content evaluated for this frame
+  int downscale = 1;             // --downscale
+  std::string precisionAsked;    // --precision as given ("auto", "fp32", ...)
+  double maxErrorPx = 0;         // --max-error-px
   VisibilityTracer visibility;  // RenderSession::visibilityTracer(): safe on the writer thread
 };
 

@@ -32,7 +32,11 @@ struct RenderResult {
   std::vector<CameraImage> cameras;  // same order as PreparedScene::cameras
   std::string backend;               // "cpu" | "gpu"
   std::string precision;             // "fp64" for the CPU; toString(Precision) on the GPU
-  std::string device;                // "name [driver]" of the Vulkan device ("CPU reference (N threads)" for the CPU)
+  // "name [driver]" of the Vulkan device; "CPU reference" for the CPU, whose thread count (`threads`)
+  // changes no value and so is not recorded in the files (a Slurm CPU set of another size wrote other
+  // bytes: the reproducibility trial of 2026-11-29), only said on stdout.
+  std::string device;
+  unsigned threads = 0;              // the CPU reference's threads; 0 on the GPU
   double renderSeconds = 0;          // wall time of the render itself (no set-up, no I/O)
 };
 

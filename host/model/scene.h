@@ -150,6 +150,9 @@ struct Scene {
   // The -D defines (and sweep parameters) this evaluation did not read, in the order given; filled
   // only when SceneParams::requireDefinesRead is false (a run then checks them over its frames).
   std::vector<std::string> unreadDefines;
+  // The globals this evaluation read while they were unset (nil: `strain = strain or 0.002`), sorted,
+  // at most 256: what an unread define is likely a typo of ("did you mean 'strain'?").
+  std::vector<std::string> unsetGlobalsRead;
   // CRC-32 of the scene file's bytes this evaluation ran: a run checks that every evaluation of its
   // frames (and a sweep, of its points) read one content (job/render_job.cpp).
   std::uint32_t sourceCrc32 = 0;

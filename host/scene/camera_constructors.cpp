@@ -191,7 +191,9 @@ bool warnImplausibleLength(const SourceLoc& where, const char* key, double value
   const std::string text = where.str() + ": " + key + " = " + formatNumber(value_m) + " m is outside " + formatNumber(lo_m) +
                            " .. " + formatNumber(hi_m) + " m, where cameras have it: lengths are metres (" +
                            formatNumber(value_m / perMetre) + " m for " + formatNumber(value_m) + " " + unit + ")";
-  warnAtMost("implausible camera length: " + text, 1, text);
+  // Once per line and key, whatever the value (a focal length changing with the frame said it for
+  // every frame: the review of 2026-11-29).
+  warnAtMost("implausible camera length: " + where.str() + " " + key, 1, text);
   return true;
 }
 

@@ -2,6 +2,7 @@
 // restricted library set and the one-line error format. See lua_sandbox.h for the rules.
 #include "scene/lua_sandbox.h"
 
+#include "core/c_locale.h"
 #include "core/exact_number.h"
 #include "core/warning.h"
 
@@ -496,6 +497,7 @@ std::string LuaSandbox::formatMessage(const std::string& luaMessage, int fallbac
 }
 
 void LuaSandbox::run(const std::string& sourceText) {
+  const CLocaleScope cLocale;  // "0.25", never "0,25" (core/c_locale.h)
   lua_State* L = L_;
   // Like luaL_loadfile: skip a UTF-8 byte-order mark and a first line starting with '#'
   // (keeping its newline so that line numbers stay right).
@@ -592,6 +594,7 @@ void LuaSandbox::checkClockAtEnd() {
 
 void LuaSandbox::callAfterRun(const std::function<void()>& body) {
   std::lock_guard<std::mutex> lock(afterRun_);
+  const CLocaleScope cLocale;  // numbers as in the scene's evaluation, whatever the thread's locale
   lua_State* L = L_;
   struct Limits {
     LuaSandbox& s;

@@ -14,20 +14,18 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
 #include <utility>
 
+#include "core/c_locale.h"
 #include "core/closest_name.h"
 #include "core/crc32.h"
 #include "core/option_names.h"
@@ -60,6 +58,7 @@ void registerSceneLanguage(lua_State* L) {
 namespace {
 
 constexpr const char* kDefinesReadKey = "dicsynth.definesRead";  // registry: set of names read
+constexpr const char* kUnsetReadKey = "dicsynth.unsetRead";      // registry: globals read unset
 
 std::string readSceneFile(const std::string& path) {
   std::error_code ec;
@@ -123,10 +122,28 @@ int assignGlobal(lua_State* L) {
   return 0;
 }
 
-// _G.__index: serves a define (upvalue 1: name → value) and records the read (upvalue 2).
+constexpr int kMaxUnsetRecorded = 256;
+
+// _G.__index: serves a define (upvalue 1: name → value) and records the read (upvalue 2); a name
+// that is no define is recorded in upvalue 3 (at most kMaxUnsetRecorded, counted in upvalue 4), the
+// globals read unset that an unread define may be a typo of.
 int readDefine(lua_State* L) {
   lua_pushvalue(L, 2);
-  if (lua_rawget(L, lua_upvalueindex(1)) == LUA_TNIL) return 1;
+  if (lua_rawget(L, lua_upvalueindex(1)) == LUA_TNIL) {
+    const lua_Integer recorded = lua_tointeger(L, lua_upvalueindex(4));
+    if (lua_type(L, 2) == LUA_TSTRING && recorded < kMaxUnsetRecorded) {
+      lua_pushvalue(L, 2);
+      if (lua_rawget(L, lua_upvalueindex(3)) == LUA_TNIL) {
+        lua_pushvalue(L, 2);
+        lua_pushboolean(L, 1);
+        lua_rawset(L, lua_upvalueindex(3));
+        lua_pushinteger(L, recorded + 1);
+        lua_replace(L, lua_upvalueindex(4));
+      }
+      lua_pop(L, 1);
+    }
+    return 1;  // the nil
+  }
   lua_pushvalue(L, 2);
   lua_pushboolean(L, 1);
   lua_rawset(L, lua_upvalueindex(2));
@@ -164,12 +181,17 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
   lua_newtable(L);  // names read
   lua_pushvalue(L, -1);
   lua_setfield(L, LUA_REGISTRYINDEX, kDefinesReadKey);
+  lua_newtable(L);  // globals read unset
+  lua_pushvalue(L, -1);
+  lua_setfield(L, LUA_REGISTRYINDEX, kUnsetReadKey);
 
   lua_pushglobaltable(L);
   lua_createtable(L, 0, 3);  // _G's metatable
   lua_pushvalue(L, values);
   lua_pushvalue(L, values + 1);
-  lua_pushcclosure(L, &readDefine, 2);
+  lua_pushvalue(L, values + 2);
+  lua_pushinteger(L, 0);
+  lua_pushcclosure(L, &readDefine, 4);
   lua_setfield(L, -2, "__index");
   lua_pushcfunction(L, &assignGlobal);
   lua_setfield(L, -2, "__newindex");
@@ -179,37 +201,34 @@ void installDefines(lua_State* L, const std::vector<std::pair<std::string, std::
   lua_settop(L, values - 1);
 }
 
-// The name of the scene's text nearest to an unread define's: `-D strian=0.003` said only that the
-// scene never reads 'strian' (the docs walk of 2026-11-29). Every identifier of the file is a
-// candidate (the globals it reads are among them); "" when none is near.
-std::string nearestIdentifier(const std::string& scenePath, const std::string& name) {
-  std::ifstream in(scenePath, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::set<std::string> seen;
-  std::vector<std::string> identifiers;
-  for (std::size_t i = 0; i < text.size();) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (!(std::isalpha(c) || c == '_')) {
-      ++i;
-      continue;
-    }
-    std::size_t end = i;
-    while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_')) ++end;
-    std::string word = text.substr(i, end - i);
-    if (word != name && !isLuaKeyword(word) && seen.insert(word).second) identifiers.push_back(std::move(word));
-    i = end;
-  }
-  const std::optional<std::string> near = closestName(name, identifiers);
-  return near ? " (did you mean '" + *near + "'?)" : "";
-}
-
+// `unsetRead`: the globals the scene read unset (Scene::unsetGlobalsRead), the names a define may
+// have been meant as: `-D strian=0.003` said only that the scene never reads 'strian' (the docs walk
+// of 2026-11-29).
 [[noreturn]] void refuseUnreadDefine(const std::string& scenePath, const std::string& name,
-                                     const std::vector<std::string>& sweepParameters) {
-  const std::string hint = nearestIdentifier(scenePath, name);
+                                     const std::vector<std::string>& sweepParameters,
+                                     const std::vector<std::string>& unsetRead) {
+  const std::optional<std::string> near = closestName(name, unsetRead);
+  const std::string hint = near ? " (did you mean '" + *near + "'?)" : "";
   if (std::find(sweepParameters.begin(), sweepParameters.end(), name) != sweepParameters.end())
     throw InputError(scenePath + ": sweep parameter '" + name + "': the scene never reads '" + name + "'" + hint +
                      " (a typo in the sweep, or a scene that ignores it)");
   throw InputError(defineName(name) + ": the scene never reads '" + name + "'" + hint);
+}
+
+// The globals the evaluation read unset, sorted.
+std::vector<std::string> unsetGlobalsRead(lua_State* L) {
+  std::vector<std::string> names;
+  lua_getfield(L, LUA_REGISTRYINDEX, kUnsetReadKey);
+  if (lua_istable(L, -1)) {
+    lua_pushnil(L);
+    while (lua_next(L, -2) != 0) {
+      if (lua_type(L, -2) == LUA_TSTRING) names.emplace_back(lua_tostring(L, -2));
+      lua_pop(L, 1);
+    }
+  }
+  lua_pop(L, 1);
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 // The defines the evaluation did not read, in the order given.
@@ -477,6 +496,7 @@ Scene loadScene(const std::string& path, const SceneParams& params) {
 
 Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& params,
                                  const std::function<void(lua_State*)>& inspect) {
+  const CLocaleScope cLocale;  // the -D values converted, the scene run, in the "C" locale (core/c_locale.h)
   const std::string source = scene::readSceneFile(path);
   // Shared: a Nurbs.deform field keeps a weak_ptr to call it again, the Scene the owning pointer.
   const auto sandbox = std::make_shared<scene::LuaSandbox>(
@@ -496,10 +516,13 @@ Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& par
   sandbox->run(source);
 
   std::vector<std::string> unread = scene::unreadDefines(L, params.defines);
-  if (params.requireDefinesRead && !unread.empty()) scene::refuseUnreadDefine(path, unread.front(), params.sweepParameters);
+  std::vector<std::string> unsetRead = scene::unsetGlobalsRead(L);
+  if (params.requireDefinesRead && !unread.empty())
+    scene::refuseUnreadDefine(path, unread.front(), params.sweepParameters, unsetRead);
   if (inspect) inspect(L);
   Scene scene = scene::collectGlobals(L, path);
   scene.unreadDefines = std::move(unread);
+  scene.unsetGlobalsRead = std::move(unsetRead);
   scene.sourceCrc32 = crc32Of(source);
   for (const Object& object : scene.objects)
     if (object.shape.deformation && !scene.keepAlive) scene.keepAlive = sandbox;
@@ -509,6 +532,9 @@ Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& par
 }
 
 void UnreadDefines::add(const Scene& scene) {
+  for (const std::string& name : scene.unsetGlobalsRead)
+    if (unsetRead_.size() < 256 && std::find(unsetRead_.begin(), unsetRead_.end(), name) == unsetRead_.end())
+      unsetRead_.push_back(name);
   if (!std::exchange(any_, true)) {
     unread_ = scene.unreadDefines;
     return;
@@ -519,7 +545,7 @@ void UnreadDefines::add(const Scene& scene) {
 }
 
 void UnreadDefines::check(const std::string& scenePath, const std::vector<std::string>& sweepParameters) const {
-  if (!unread_.empty()) scene::refuseUnreadDefine(scenePath, unread_.front(), sweepParameters);
+  if (!unread_.empty()) scene::refuseUnreadDefine(scenePath, unread_.front(), sweepParameters, unsetRead_);
 }
 
 }  // namespace dicsynth

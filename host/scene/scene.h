@@ -65,6 +65,7 @@ class UnreadDefines {
  private:
   bool any_ = false;                // a scene was added
   std::vector<std::string> unread_;  // unread by every scene added, in the order given
+  std::vector<std::string> unsetRead_;  // globals any scene added read unset (Scene::unsetGlobalsRead)
 };
 
 }  // namespace dicsynth

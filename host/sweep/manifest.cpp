@@ -140,6 +140,7 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
              ", \"device\": " + json::quote(record->device) + ", \"render_seconds\": " +
              seconds(record->renderSeconds) + ", \"files\": [" + filesJson + "]}");
     ++summary.complete;
+    ++summary.renderedWith[record->precision + " on " + record->device];
   }
   // points_complete after the list: it is counted while the list is written.
   js.write(std::string(summary.complete ? "\n  ],\n" : "],\n") + "  \"points_complete\": " +

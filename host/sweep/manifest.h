@@ -6,6 +6,7 @@
 // process, except for the per-run column render_seconds.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 
 #include "sweep/point_record.h"
@@ -15,6 +16,10 @@ namespace dicsynth::sweep {
 
 struct ManifestSummary {
   std::int64_t complete = 0, total = 0;
+  // The complete points by "PRECISION on DEVICE": more than one when shards ran on other machines or
+  // drivers (--precision auto chooses per device; the reproducibility trial of 2026-11-29 merged
+  // fp32 and fp64 points without a word).
+  std::map<std::string, std::int64_t> renderedWith;
 };
 
 // `keyOf` gives each point's key (a record with another key is not complete); `assets` checks the

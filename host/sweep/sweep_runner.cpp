@@ -161,6 +161,19 @@ class Progress {
   ProgressBar bar_;
 };
 
+// A manifest whose points were rendered with several precisions or devices says so: shards on other
+// machines (or drivers) each resolve --precision auto on their own device, and fp32 differs between
+// devices in the last bits.
+void warnMixedDevices(const sweep::ManifestSummary& summary) {
+  if (summary.renderedWith.size() < 2) return;
+  std::string list;
+  for (const auto& [what, count] : summary.renderedWith)
+    list += (list.empty() ? "" : "; ") + what + ": " + std::to_string(count) + " point" + (count == 1 ? "" : "s");
+  warn("the manifest's points were rendered with " + std::to_string(summary.renderedWith.size()) +
+       " precisions or devices (" + list + "): --precision auto chooses per device; give --precision (and the same "
+       "device or driver to every shard) to render them alike");
+}
+
 }  // namespace
 
 SweepOutcome runSweep(const SweepRun& cmd) {
@@ -281,6 +294,7 @@ SweepOutcome runSweep(const SweepRun& cmd) {
         });
     std::printf("manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
                 (long long)summary.complete, (long long)summary.total, cmd.outputDir.c_str());
+    warnMixedDevices(summary);
     return {summary.complete, summary.total};
   }
   const fs::path lockDir = fs::path(cmd.outputDir) / ".locks";
@@ -439,6 +453,7 @@ SweepOutcome runSweep(const SweepRun& cmd) {
   }
   collectWritten(true);
   const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets, false);
+  warnMixedDevices(summary);
   const std::string replacedText =
       replaced ? " (" + std::to_string(replaced) + " of them replacing points rendered with other inputs)" : "";
   std::printf("sweep: %lld points%s: rendered %lld%s, already complete %lld, in progress elsewhere %lld; "

@@ -1,11 +1,14 @@
 // The render and compare commands end to end, as a user runs them: outputs, frames, exit codes,
 // and bad input (one-line message with file:line, exit code 2, no output file at all).
 #include <doctest/doctest.h>
+#include <OpenImageIO/imageio.h>
 #include <sched.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -16,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/exact_number.h"
 #include "core/json.h"
 #include "exr_test_util.h"
 #include "files/image_io.h"
@@ -172,6 +176,10 @@ TEST_CASE("cli: bad options give one line, exit code 2 and no output") {
   // A define near a name of the scene's text says it (`-D strian`, the docs walk of 2026-11-29).
   const std::string strained = dir.write("strained.lua", "strain = strain or 0.002\n" + kCamera);
   expectBadInput(dir, strained + " -D strian=0.003", "dicsynth: error: -D strian: the scene never reads 'strian' (did you mean 'strain'?)");
+  // Only globals the scene reads unset are offered: a table key of the same spelling is none (the
+  // review of 2026-11-29: -D radiu suggested 'radius', a key of a constructor's table).
+  const std::string keyed = dir.write("keyed.lua", kCamera + "o = Object.Simple { shape = Shape.Sphere { radius = 0.1; location = {0, 0, 1} } }\n");
+  expectBadInput(dir, keyed + " -D radiu=1", "dicsynth: error: -D radiu: the scene never reads 'radiu'\n");
   expectBadInput(dir, scene + " --frames 5:2", "dicsynth: error: --frames 5:2");
   expectBadInput(dir, scene + " --spp 0", "dicsynth: error: --spp 0");
   expectBadInput(dir, scene + " --downscale 0", "dicsynth: error: --downscale");
@@ -413,4 +421,44 @@ TEST_CASE("cli: render --json says every written file whole, one JSON object per
   for (const auto& e : std::filesystem::directory_iterator(out)) files.insert(e.path().string());
   CHECK(named == files);
   CHECK(files.size() == 4 + 4 * 3);
+}
+
+TEST_CASE("cli: a file's metadata says how to make it again: scene content, defines, options, build") {
+  // The reproducibility trial of 2026-11-29: the defines, the scene's content, the downscale, the
+  // precision asked and the build were in no header, the TIFF held neither spp nor precision nor
+  // device, and the CPU reference's thread count made other bytes on another CPU set.
+  TempFolder dir;
+  const std::string scene = dir.write("plate.lua", "gain = gain or 0.5\nlabel = label or 'a'\n" + kCamera +
+                                                       "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} };\n"
+                                                       "  shader = Shader.Constant { color = gain } }\n");
+  const test::CliResult r = runCli("render " + scene + " -o " + dir.file("out") +
+                                   " --backend cpu --spp 2 --downscale 2 -D gain=0.25 -D label=\"x y\"");
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const std::string bytes = test::readBytes(scene);
+  char crc[16];
+  std::snprintf(crc, sizeof crc, "%08lx", crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), uInt(bytes.size())));
+  const std::string version = runCli("--version").out;
+  const std::size_t at = version.find("(build ");
+  REQUIRE(at != std::string::npos);
+  const std::string build = version.substr(at + 7, version.find(';', at) - at - 7);
+  CHECK(build.size() == 40);  // a GNU build ID (SHA-1)
+  const test::ExrContents exr = test::readExr(dir.file("out/cam.exr"));
+  const auto text = [&](const char* name) { return exr.spec.get_string_attribute(name); };
+  CHECK(text("dicsynth:scene_crc32") == crc);
+  CHECK(text("dicsynth:defines") == "{\"gain\": \"0.25\",\"label\": \"x y\"}");
+  CHECK(text("dicsynth:downscale") == "2");
+  CHECK(text("dicsynth:precision_asked") == "auto");
+  CHECK(text("dicsynth:max_error_px") == exactNumber(1e-6));
+  CHECK(text("dicsynth:build") == build);
+  CHECK(text("dicsynth:device") == "CPU reference");  // the thread count only on stdout
+  CHECK(r.out.find("on CPU reference (") != std::string::npos);
+  // The TIFF says as much.
+  auto tiff = OIIO::ImageInput::open(dir.file("out/cam.tif"));
+  REQUIRE(tiff);
+  const std::string description = tiff->spec().get_string_attribute("ImageDescription");
+  for (const std::string& part : {std::string("; spp 2; backend cpu; precision fp64; device CPU reference; scene_crc32 ") + crc +
+                                      "; defines {\"gain\": \"0.25\",\"label\": \"x y\"}; downscale 2; precision_asked auto; "
+                                      "max_error_px " + exactNumber(1e-6) + "; build " + build + "; dicsynth "})
+    CHECK_MESSAGE(description.find(part) != std::string::npos, description);
 }

@@ -579,3 +579,24 @@ TEST_CASE("cli: a scene file edited while a sweep runs stops it and no point of 
   CHECK(recorded >= 1);
   CHECK(recorded < 40);
 }
+
+TEST_CASE("cli: a manifest whose points were rendered on several devices or precisions says so") {
+  // Shards on other machines or drivers each resolve --precision auto on their own device: the
+  // reproducibility trial of 2026-11-29 merged fp32 and fp64 points without a word. A shard on
+  // another machine is stood in for by one point's record naming another device.
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  const std::string out = dir.file("out");
+  const std::string options = " --backend cpu --spp 1 --sweep shift=0,0.01";
+  REQUIRE(runCli("sweep " + scene + " -o " + out + options).err.empty());
+  std::string record = readText(out + "/point_00001/point.json");
+  const std::size_t at = record.find("\"CPU reference\"");
+  REQUIRE(at != std::string::npos);
+  record.replace(at, 15, "\"CPU reference of another machine\"");
+  std::ofstream(out + "/point_00001/point.json", std::ios::binary) << record;
+  const test::CliResult merged = runCli("sweep " + scene + " -o " + out + options + " --merge-only");
+  CHECK(merged.exitCode == 0);
+  CHECK(merged.err == "dicsynth: warning: the manifest's points were rendered with 2 precisions or devices (fp64 on CPU "
+                      "reference: 1 point; fp64 on CPU reference of another machine: 1 point): --precision auto chooses per "
+                      "device; give --precision (and the same device or driver to every shard) to render them alike\n");
+}

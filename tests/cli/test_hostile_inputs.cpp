@@ -513,7 +513,7 @@ TEST_CASE("hostile: the smaller inconsistencies of the probe") {
   // A disk radius far beyond the image: the density cannot be met, and the user is told.
   const test::CliResult huge = test::runCli("speckle -o " + dir.file("s.tif") + " --size 16 16 --radius 1e9");
   CHECK(huge.exitCode == 0);
-  CHECK(huge.err.find("warning: the measured coverage") != std::string::npos);
+  CHECK(huge.err.find("dicsynth: warning: speckle: the measured coverage") != std::string::npos);
   // --max-error-px nan: refused with the options, before the precision calibration.
   const test::CliResult nan = test::runCli("render " + scene + " -o " + dir.file("out") + " --max-error-px nan");
   CHECK(nan.exitCode == 2);
@@ -634,6 +634,15 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
   CHECK(mm.err.find("dicsynth: warning: " + units + ":1: focalLength = 16 m is outside 1e-04 .. 2 m, where cameras have "
                     "it: lengths are metres (0.016 m for 16 mm)\n") != std::string::npos);
   CHECK(mm.err.find("focalLength = 16 m") == mm.err.rfind("focalLength = 16 m"));  // once, though two frames evaluate it
+  // Once per line and key, though the value changes with the frame (it was said for every frame:
+  // the review of 2026-11-29).
+  const std::string zoom = dir.write(
+      "zoom.lua", "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 12 + 0.1 * frame; pixelSize = {2e-4, 2e-4} }\n"
+                  "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }\n");
+  const test::CliResult zoomed = test::runCli("render " + zoom + " -o " + dir.file("zoom") + " --backend cpu --frames 0:9 --check");
+  CHECK(zoomed.exitCode == 0);
+  CHECK(zoomed.err == "dicsynth: warning: " + zoom + ":1: focalLength = 12 m is outside 1e-04 .. 2 m, where cameras have it: "
+                      "lengths are metres (0.012 m for 12 mm)\n");
   CHECK(empty.err.find("where cameras have it") == std::string::npos);
   // Said at most 10 times a run: a long run whose object leaves the view printed it for every frame
   // (a million lines in the sweep audit of 2026-11-27).

@@ -68,4 +68,45 @@ TEST_CASE("render --check: what the run would render, every frame checked, nothi
   const test::CliResult image = test::runCli("render " + scene + " -o " + out + " --layers image,depth --check");
   CHECK(image.exitCode == 0);
   CHECK(image.out.find("; layers image,depth; ") != std::string::npos);
+
+  // What the render refuses before its first file, --check refuses too (the review of 2026-11-29:
+  // exit 0 for each): the first frame prepared (--downscale leaving no pixel, a distortion that
+  // cannot be inverted), and a file where --preview writes its pictures.
+  const test::CliResult tiny = test::runCli("render " + scene + " -o " + dir.file("t") + " --downscale 100 --check");
+  CHECK(tiny.exitCode == 2);
+  CHECK(tiny.err.find("without pixels") != std::string::npos);
+  const std::string folded = dir.write(
+      "folded.lua", "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.012; pixelSize = {2e-4, 2e-4};\n"
+                    "  distortion = Distortion.Brown { radial = {-5, 0, 0} } }\n"
+                    "plate = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }\n");
+  const test::CliResult fold = test::runCli("render " + folded + " -o " + dir.file("f") + " --check --backend cpu");
+  CHECK(fold.exitCode == 2);
+  CHECK(fold.err.find("cannot be inverted") != std::string::npos);
+  const std::string pv = dir.file("pv");
+  std::filesystem::create_directories(pv);
+  std::ofstream(pv + "/preview") << "x";
+  for (const char* check : {" --check", ""}) {
+    const test::CliResult preview = test::runCli("render " + scene + " -o " + pv + " --preview --backend cpu" + check);
+    CHECK(preview.exitCode == 2);
+    CHECK(preview.err == "dicsynth: error: " + pv + "/preview is not a folder, where --preview writes its pictures (remove "
+                         "or rename it, or choose another -o)\n");
+  }
+  // --strict with a warning (a lit object without a light): exit 4, and it says nothing was written.
+  const std::string unlit = dir.write("unlit.lua", plate("ball = Object.Simple { shape = Shape.Sphere { radius = 0.05; "
+                                                       "location = {0, 0, 0.5} }; shader = Shader.Lambert {} }\n"));
+  const test::CliResult strict = test::runCli("render " + unlit + " -o " + dir.file("u") + " --check --strict --backend cpu");
+  CHECK(strict.exitCode == 4);
+  CHECK(strict.err.find("dicsynth: error: --strict: the run said 1 warning (it writes no file)\n") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("u")));
+  // The summary describes the frames written, not a reference frame traced only: frame 0 here has
+  // a second camera the written frames lack.
+  const std::string second = dir.write("second.lua", plate("if frame == 0 then cam2 = Camera.Pinhole { resolution = {64, 48}; "
+                                                           "focalLength = 0.012; pixelSize = {2e-4, 2e-4} } end\n"));
+  const test::CliResult ref = test::runCli("render " + second + " -o " + dir.file("r") + " --frames 1:2 --reference-frame 0 --check");
+  CHECK(ref.exitCode == 0);
+  CHECK(ref.out.find("; 1 camera in the first frame (they change between frames): cam 32x24; ") != std::string::npos);
+  // A reference frame out of range is refused as --frames' numbers are (it was rendered as frame -1).
+  const test::CliResult negative = test::runCli("render " + scene + " -o " + dir.file("n") + " --frames 1:2 --reference-frame -1 --check");
+  CHECK(negative.exitCode == 2);
+  CHECK(negative.err == "dicsynth: error: --reference-frame -1: expected a frame number in 0..999999999\n");
 }

@@ -68,7 +68,7 @@ TEST_CASE("startup: the dicsynth binary deflates zip EXRs by libdeflate, and say
   CHECK(exported.find(" T compress2") != std::string::npos);
   const dicsynth::test::CliResult r = runCli("--version");
   CHECK(r.exitCode == 0);
-  CHECK(r.out.find("(EXR zip: libdeflate ") != std::string::npos);
+  CHECK(r.out.find("; EXR zip: libdeflate ") != std::string::npos);
 }
 
 TEST_CASE("startup: a PNG texture is read through the module, and without the module the error names it") {

@@ -2,8 +2,13 @@
 // Errors and the sandbox are tested in test_scene_errors.cpp.
 #include <doctest/doctest.h>
 
+#include <clocale>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <numbers>
+#include <string>
 
 #include "core/warning.h"
 #include "scene/scene.h"
@@ -469,6 +474,39 @@ TEST_CASE("scene: a rotation by more than a turn is a warning naming the line an
   const dmat4& m = scene.objects[0].transform;
   CHECK(m[0][0] == doctest::Approx(std::cos(30.0)).epsilon(1e-15));
   CHECK(m[0][2] == doctest::Approx(-std::sin(30.0)).epsilon(1e-15));
+}
+
+TEST_CASE("scene: numbers read and write with a decimal point whatever locale the process set") {
+  // A Python process may set a locale (locale.setlocale(LC_ALL, "de_DE.UTF-8")): Lua then wrote
+  // tostring(0.25) as "0,25", so "tex_" .. 0.5 named 'tex_0,5.tif', and -D x=0,5 arrived as the
+  // number 0.5 (the reproducibility trial of 2026-11-29). The scene runs in "C" (core/c_locale.h).
+  TempFolder dir;
+  // A German locale of our own (the 'locales' package's sources; scripts/install-deps.sh).
+  const std::string locales = (dir.path() / "locales").string();
+  std::filesystem::create_directories(locales);
+  REQUIRE_MESSAGE(std::system(("localedef -i de_DE -f UTF-8 " + locales + "/de_DE.UTF-8 >/dev/null 2>&1").c_str()) == 0,
+                  "localedef de_DE failed: install Debian's 'locales' (scripts/install-deps.sh)");
+  setenv("LOCPATH", locales.c_str(), 1);
+  REQUIRE(std::setlocale(LC_ALL, "de_DE.UTF-8") != nullptr);
+  char comma[16];
+  std::snprintf(comma, sizeof comma, "%g", 0.5);
+  const std::string inGerman = comma;  // the locale is in force: the C library writes "0,5"
+  const std::string path = dir.write("numbers.lua", std::string(kCameraLine) +
+                                                      "assert(tostring(0.25) == '0.25', tostring(0.25))\n"
+                                                      "assert(string.format('%.3f', 0.25) == '0.250')\n"
+                                                      "assert(tonumber('0,5') == nil and tonumber('0.5') == 0.5)\n"
+                                                      "assert(type(x) == 'string' and x == '0,5', tostring(x))\n"
+                                                      "assert(type(y) == 'number' and y == 0.25)\n");
+  std::string error;
+  try {
+    loadScene(path, {{{"x", "0,5"}, {"y", "0.25"}}, 0});
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  std::setlocale(LC_ALL, "C");
+  unsetenv("LOCPATH");
+  CHECK(inGerman == "0,5");
+  CHECK(error == "");
 }
 
 TEST_CASE("scene: a global alias of an object, light or camera is a warning naming both globals, once") {

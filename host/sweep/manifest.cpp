@@ -12,7 +12,9 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/module_folder.h"
 #include "core/termination.h"
+#include "core/version.h"
 #include "sweep/point_record.h"
 
 namespace dicsynth::sweep {
@@ -80,7 +82,8 @@ void removeManifest(const std::string& outputDir) {
   fs::remove(manifestPath(outputDir, "json"), ec);
 }
 
-ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
+ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath,
+                              const std::vector<std::pair<std::string, std::string>>& run, const SweepPlan& plan,
                               const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets,
                               bool verifyChecksums,
                               const std::function<void(const SweepPoint&, const PointRecord&)>& otherKey) {
@@ -101,8 +104,10 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
   }
   head += ",seed,spp,backend,precision,device,render_seconds,files\n";
   csv.write(head);
-  head = "{\n  \"scene\": " + json::quote(scenePath) + ",\n  \"sweep\": " + json::quote(kindName(plan.declaration.kind)) +
-         ",\n  \"parameters\": [";
+  head = "{\n  \"scene\": " + json::quote(scenePath) + ",\n  \"run\": {\"version\": " + json::quote(kVersion) +
+         ", \"build\": " + json::quote(codeBuildId().empty() ? "none" : codeBuildId());
+  for (const auto& [name, value] : run) head += ", " + json::quote(name) + ": " + json::quote(value);
+  head += "},\n  \"sweep\": " + json::quote(kindName(plan.declaration.kind)) + ",\n  \"parameters\": [";
   for (std::size_t i = 0; i < plan.names.size(); ++i) head += (i ? ", " : "") + json::quote(plan.names[i]);
   head += "],\n  \"points_total\": " + std::to_string(summary.total) + ",\n  \"points\": [";
   js.write(head);

@@ -27,8 +27,12 @@ struct ManifestSummary {
 // their recorded CRC-32 too, not only their sizes (sweep --merge-only, the merge after shards;
 // a run's own rebuild lists what it has just checked or written). `otherKey`, when given, is called for each point whose record
 // holds another key, before the manifest is replaced: it may throw, and the manifest already there
-// then stays as it was. Throws Error naming a file that cannot be written.
-ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath, const SweepPlan& plan,
+// then stays as it was. Throws Error naming a file that cannot be written. `run`: what every point
+// shares (the scene's CRC-32, spp, precision, downscale, defines, ...; name → text), written as
+// manifest.json's "run" object beside the version and build, so that the manifest says how to make
+// the sweep again (the reproducibility trial of 2026-11-29 found none of it there).
+ManifestSummary writeManifest(const std::string& outputDir, const std::string& scenePath,
+                              const std::vector<std::pair<std::string, std::string>>& run, const SweepPlan& plan,
                               const std::function<std::string(const SweepPoint&)>& keyOf, AssetChecksums& assets,
                               bool verifyChecksums,
                               const std::function<void(const SweepPoint&, const PointRecord&)>& otherKey = {});

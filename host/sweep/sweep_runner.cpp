@@ -232,6 +232,16 @@ SweepOutcome runSweep(const SweepRun& cmd) {
       {"exr_compression", cmd.exrCompression},
       {"layers", layers.text()}};
   const std::string commonKey = joinKey(commonFields);
+  // The manifest's "run": the common fields, and the random draw when --random gave the points.
+  KeyFields runFields = commonFields;
+  for (auto& [name, value] : runFields)  // as the EXR and TIFF write it (the key keeps its decimal)
+    if (name == "scene_crc32") {
+      char hex[16];
+      std::snprintf(hex, sizeof hex, "%08x", unsigned(sceneCrc32));
+      value = hex;
+    }
+  if (cmd.sweep.randomCount)
+    runFields.emplace_back("random", std::to_string(*cmd.sweep.randomCount) + " points, seed " + std::to_string(cmd.sweep.randomSeed));
   auto seedOf = [&](const SweepPoint& p) {
     return cmd.seedPerPoint ? ds_hash_combine(ds_hash(cmd.args.seed), std::uint32_t(p.index)) : cmd.args.seed;
   };
@@ -286,7 +296,7 @@ SweepOutcome runSweep(const SweepRun& cmd) {
     // the manifest, and a good manifest be replaced by a shorter one: refused, the manifest untouched.
     // Checksums verified: a merge after shards (a Slurm job's last step) must not list a damaged point.
     const auto summary = sweep::writeManifest(
-        cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets, true, [&](const SweepPoint& p, const sweep::PointRecord& r) {
+        cmd.outputDir, cmd.args.scenePath, runFields, plan, keyOf, assets, true, [&](const SweepPoint& p, const sweep::PointRecord& r) {
           throw InputError("sweep --merge-only: " + pointFolderName(p.index) + " was rendered with other inputs: " +
                            keyDifference(r.key, keyFieldsOf(p)) +
                            ". Give the options the sweep was run with (the manifest is left as it was), or run the "
@@ -452,7 +462,7 @@ SweepOutcome runSweep(const SweepRun& cmd) {
     });
   }
   collectWritten(true);
-  const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, plan, keyOf, assets, false);
+  const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, runFields, plan, keyOf, assets, false);
   warnMixedDevices(summary);
   const std::string replacedText =
       replaced ? " (" + std::to_string(replaced) + " of them replacing points rendered with other inputs)" : "";

@@ -7,14 +7,17 @@
 #include <sys/mount.h>
 #include <fcntl.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
+#include "core/json.h"
 #include "exr_test_util.h"
 #include "files/image_io.h"
 #include "run_cli.h"
@@ -92,6 +95,26 @@ TEST_CASE("cli: sweep renders every point into its folder, as render -D does, wi
   CHECK(manifestWithoutTimes(dir.file("out")).rfind("index,folder,gray,shift,seed,spp,backend,precision,device,files\n", 0) == 0);
   const std::string json = readText(dir.file("out/manifest.json"));
   CHECK(json.find("\"points_total\": 6") != std::string::npos);
+  // How the sweep was made (the reproducibility trial of 2026-11-29 found none of it in the manifest):
+  // the version and build (as --version says), the scene's content, the options every point shares.
+  {
+    const std::optional<Json::Value> doc = json::parse(json);
+    REQUIRE(doc);
+    const Json::Value& run = (*doc)["run"];
+    const std::string version = runCli("--version").out;
+    CHECK(version.find("(build " + run["build"].asString() + ";") != std::string::npos);
+    CHECK(run["version"].asString() == "0.1.0");
+    const std::string bytes = readText(scene);
+    char crc[16];
+    std::snprintf(crc, sizeof crc, "%08lx", crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), uInt(bytes.size())));
+    CHECK(run["scene_crc32"].asString() == crc);  // as the EXR's dicsynth:scene_crc32
+    CHECK(run["spp"].asString() == "1");
+    CHECK(run["precision"].asString() == "fp32");
+    CHECK(run["layers"].asString() == "all");
+    CHECK(run["exr_compression"].asString() == "zip");
+    CHECK(run.isMember("defines"));
+    CHECK(run.isMember("downscale"));
+  }
   CHECK(json.find("\"points_complete\": 6") != std::string::npos);
   CHECK(json.find("{\"index\": 5, \"folder\": \"point_00005\", \"parameters\": {\"gray\": 0.75, \"shift\": 0.040000000000000001}") !=
         std::string::npos);

@@ -199,6 +199,9 @@ void warnUnlit(const Scene& scene, int frame) {
 // evaluation is deterministic; a Nurbs.deform fit is then reused from the fit memory).
 struct FramesChecked {
   bool calibrationPerFrame = false;
+  // The calibration files the run may write (each camera's and rig's, unnumbered and numbered), over
+  // its first 1000 frames: what OutputRollback::mixedRunsNote compares.
+  std::set<std::string> calibrationNames;
   std::uint64_t maxPixelsPerFrame = 0;  // over the frames: all cameras' pixels, after --downscale
   std::uint32_t sceneCrc32 = 0;         // the scene file's content every evaluation read
 };
@@ -271,6 +274,14 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     if (fi == 0) out.sceneCrc32 = job.sceneCrc32.value_or(scene.sourceCrc32);
     checkSameContent(job, scene, job.frames[fi], out.sceneCrc32);
     if (fi > 0 || job.writeReference) checkOutputNames(job, scene, job.frames[fi], unwritable);
+    if (fi < 1000) {
+      const std::string numbered = outputStem("", true, job.frames[fi]);
+      for (const std::string& suffix : {std::string(), numbered}) {
+        for (const Camera& camera : scene.cameras) out.calibrationNames.insert(camera.name + suffix + ".yml");
+        for (const StereoRig& rig : scene.rigs)
+          for (const char* ext : {".yml", ".dice.xml"}) out.calibrationNames.insert(rig.name + suffix + ext);
+      }
+    }
     warnUnlit(scene, job.frames[fi]);
     unread.add(scene);
     checkNurbsFitsDevice(session, scene);
@@ -312,6 +323,29 @@ std::string checkSummary(RenderSession& session, const RenderJob& job, const Fra
   const auto written = job.frames.begin() + (job.writeReference ? 0 : 1);
   const std::size_t n = std::size_t(job.frames.end() - written);
   const auto [lo, hi] = std::minmax_element(written, job.frames.end());
+  if (job.json) {  // --json: this line as a JSON object too (the second review of 2026-11-29)
+    Json::Value o(Json::objectValue);
+    o["check"] = job.sceneFile;
+    o["frames"] = Json::Value(Json::objectValue);
+    o["frames"]["count"] = Json::UInt64(n);
+    o["frames"]["first"] = *lo;
+    o["frames"]["last"] = *hi;
+    o["reference_frame"] = job.frames.front();
+    o["reference_written"] = job.writeReference;
+    o["cameras_change_between_frames"] = checked.calibrationPerFrame;
+    o["cameras"] = Json::Value(Json::arrayValue);
+    for (const Camera& camera : first.cameras) {
+      Json::Value c(Json::objectValue);
+      c["name"] = camera.name;
+      c["width_px"] = std::max(1, camera.width_px / k);
+      c["height_px"] = std::max(1, camera.height_px / k);
+      o["cameras"].append(c);
+    }
+    o["max_pixels_per_frame"] = Json::UInt64(checked.maxPixelsPerFrame);
+    o["layers"] = job.layers.text();
+    o["output"] = job.outputDir;
+    return json::write(o, false);
+  }
   std::string frames = n == 1 ? "frame " + std::to_string(*lo) : std::to_string(n) + " frames " + std::to_string(*lo) + ".." + std::to_string(*hi);
   if (!job.writeReference) frames += " (motion from frame " + std::to_string(job.frames.front()) + ", traced, not written)";
   return "check: " + job.sceneFile + ": " + frames + "; " + std::to_string(first.cameras.size()) + " camera" +
@@ -431,10 +465,11 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
         writeCameraOutputs(job.outputDir, stem, cam, image, derived.sensed.digital, info, &derived.truth, &derived.sensed);
     phaseDone("write");
     const FeatureFiles features = writeFeatureFiles(job.outputDir, stem, scene, c, frame);
+    PreviewFiles previews;
     if (job.preview && !files.groundTruth.empty()) {
       const std::string previewDir = (std::filesystem::path(job.outputDir) / "preview").string();
       createOutputDir(previewDir);
-      previewExr(files.groundTruth, previewDir, stem);
+      previews = previewExr(files.groundTruth, previewDir, stem);
     }
     const std::string written =
         files.image + (files.image.empty() || files.groundTruth.empty() ? "" : ", ") + files.groundTruth;
@@ -450,6 +485,8 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
       o["ground_truth"] = path(files.groundTruth);
       o["features_csv"] = path(features.csv);
       o["features_json"] = path(features.json);
+      o["previews"] = Json::Value(Json::arrayValue);  // --preview's PNGs of this EXR
+      for (const std::string& png : previews.written) o["previews"].append(png);
       o["width_px"] = cam.width_px;
       o["height_px"] = cam.height_px;
       o["spp"] = options.radiance ? Json::Value(options.samplesPerPixel) : Json::Value();  // null: no sample traced
@@ -749,13 +786,7 @@ class OutputRollback {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  // "cam_0007.yml", "rig_0012.dice.xml": a calibration file of one frame (outputStem's numbering).
-  static bool perFrameName(const std::string& name) {
-    const std::size_t dot = name.ends_with(".dice.xml") ? name.size() - 9 : name.rfind('.');
-    std::size_t digits = dot;
-    while (digits > 0 && std::isdigit(static_cast<unsigned char>(name[digits - 1]))) --digits;
-    return dot - digits >= 4 && digits > 0 && name[digits - 1] == '_';
-  }
+
 
  public:
   explicit OutputRollback(std::string dir) : dir_(std::move(dir)), watch_(dir_) {
@@ -765,15 +796,7 @@ class OutputRollback {
     existing_ = nearestExistingFolder(created_);  // the run creates the folders below it
     if (existed_)
       for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) {
-        const std::string name = entry.path().filename().string();
-        before_.insert(name);
-        // The calibration files an earlier run wrote once for all its frames (a few kB each):
-        // mixedRunsNote compares them. Not those written per frame (NAME_0007.yml: a chunked
-        // sequence of moving cameras holds 4 per frame of a rig, which every chunk would read),
-        // and at most 256 (100 000 of them took 3.5 s and 127 MB: the review of 2026-11-29).
-        if ((name.ends_with(".yml") || name.ends_with(".dice.xml")) && !perFrameName(name) && calibrationBefore_.size() < 256 &&
-            entry.is_regular_file(ec) && entry.file_size(ec) < (1u << 20))
-          calibrationBefore_.emplace(name, textOf(entry.path()));
+        before_.insert(entry.path().filename().string());
       }
   }
   ~OutputRollback() {
@@ -802,6 +825,20 @@ class OutputRollback {
     if (!existed_) removeCreatedFolders(created_, existing_);
   }
   void keep() { kept_ = true; }
+
+  // Before the run writes: the content of those of `names` (the calibration files it may write,
+  // FramesChecked) that an earlier run left, a few kB each, for mixedRunsNote. Only these: reading
+  // every calibration file of the folder took 3.5 s and 127 MB for 100 000 of them (the review of
+  // 2026-11-29).
+  void rememberCalibration(const std::set<std::string>& names) {
+    std::error_code ec;
+    for (const std::string& name : names) {
+      if (!before_.count(name)) continue;
+      const std::filesystem::path path = std::filesystem::path(dir_) / name;
+      if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) < (1u << 20))
+        calibrationBefore_.emplace(name, textOf(path));
+    }
+  }
 
   // After a successful run: when it replaced a calibration file with another camera (another
   // resolution, pose, lens) while images or ground truth of the earlier run stay beside it, the
@@ -854,9 +891,11 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
     // distortion, --downscale) and the precision resolved (--precision auto measures it once per
     // device: seconds, kept in the cache folder). --check said exit 0 where the render refused
     // these before any file (the review of 2026-11-29).
-    const int firstWritten = job.frames.size() > 1 && !job.writeReference ? job.frames[1] : job.frames.front();
-    const PreparedScene prepared = prepareScene(loadFrameScene(job, firstWritten, true), {session.args().downscale, &session.textures()});
-    (void)prepared;
+    // A reference frame traced only is prepared and rendered before the first file too (the second
+    // review of 2026-11-29: its unreadable texture passed --check).
+    const std::size_t prepareCount = job.frames.size() > 1 && !job.writeReference ? 2 : 1;
+    for (std::size_t fi = 0; fi < prepareCount; ++fi)
+      (void)prepareScene(loadFrameScene(job, job.frames[fi], true), {session.args().downscale, &session.textures()});
     session.precision();
     std::fputs(checkSummary(session, job, checked).c_str(), stdout);
     return {};
@@ -872,6 +911,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   phaseDone("device");
   // Calibration files: once and unnumbered when every frame has the same cameras, else per frame.
   const FramesChecked checked = checkFrames(session, job);
+  rollback.rememberCalibration(checked.calibrationNames);
   const bool calibrationPerFrame = checked.calibrationPerFrame;
   phaseDone("scenes");
   RenderJobResult summary;

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "job/render_job.h"
+#include "core/c_locale.h"
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/interruption.h"
@@ -221,6 +222,9 @@ void raiseWarnings(WarningCapture& capture) {
 // throws: a warning said before the error may explain it.
 template <class Work>
 auto withWarnings(Work&& work) {
+  // Numbers in messages with a decimal point whatever locale Python set (the review of 2026-11-29:
+  // "max_error_px 0,5 px" under a German locale); the render's own thread sets it too (interruptible).
+  const CLocaleScope cLocale;
   WarningCapture capture;
   try {
     auto result = work();
@@ -328,6 +332,7 @@ void interruptible(StopFlag& stop, Work&& work) {
   {
     py::gil_scoped_release release;
     std::thread worker([&] {
+      const CLocaleScope cLocale;  // as withWarnings: this thread's numbers in "C"
       try {
         work();
       } catch (...) {

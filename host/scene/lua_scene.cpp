@@ -131,7 +131,9 @@ int readDefine(lua_State* L) {
   lua_pushvalue(L, 2);
   if (lua_rawget(L, lua_upvalueindex(1)) == LUA_TNIL) {
     const lua_Integer recorded = lua_tointeger(L, lua_upvalueindex(4));
-    if (lua_type(L, 2) == LUA_TSTRING && recorded < kMaxUnsetRecorded) {
+    // Names of identifiers' length only: a scene reading _G[two megabytes .. i] kept those strings
+    // alive and passed the memory limit (the review of 2026-11-29).
+    if (lua_type(L, 2) == LUA_TSTRING && lua_rawlen(L, 2) <= 64 && recorded < kMaxUnsetRecorded) {
       lua_pushvalue(L, 2);
       if (lua_rawget(L, lua_upvalueindex(3)) == LUA_TNIL) {
         lua_pushvalue(L, 2);

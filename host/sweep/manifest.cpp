@@ -145,7 +145,9 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
              ", \"device\": " + json::quote(record->device) + ", \"render_seconds\": " +
              seconds(record->renderSeconds) + ", \"files\": [" + filesJson + "]}");
     ++summary.complete;
-    ++summary.renderedWith[record->precision + " on " + record->device];
+    // Records before 2026-11-29 named the CPU reference with its thread count, which changes no value.
+    const std::string device = record->device.rfind("CPU reference (", 0) == 0 ? "CPU reference" : record->device;
+    ++summary.renderedWith[record->precision + " on " + device];
   }
   // points_complete after the list: it is counted while the list is written.
   js.write(std::string(summary.complete ? "\n  ],\n" : "],\n") + "  \"points_complete\": " +

@@ -421,6 +421,25 @@ TEST_CASE("cli: render --json says every written file whole, one JSON object per
   for (const auto& e : std::filesystem::directory_iterator(out)) files.insert(e.path().string());
   CHECK(named == files);
   CHECK(files.size() == 4 + 4 * 3);
+  // --preview's pictures are named too (the second review of 2026-11-29: left out).
+  const test::CliResult previews = runCli("render " + kScenes + "rectangle.lua -o " + dir.file("pv") +
+                                          " --downscale 8 --spp 1 --backend cpu --preview --json");
+  REQUIRE(previews.exitCode == 0);
+  std::istringstream previewLines(previews.out);
+  std::size_t pngs = 0;
+  for (std::string line; std::getline(previewLines, line);) {
+    const std::optional<Json::Value> o = json::parse(line);
+    REQUIRE(o);
+    if (!o->isMember("previews")) continue;
+    for (const Json::Value& png : (*o)["previews"]) {
+      CHECK(std::filesystem::exists(png.asString()));
+      ++pngs;
+    }
+  }
+  std::size_t written = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir.file("pv/preview"))) written += e.path().extension() == ".png";
+  CHECK(pngs == written);
+  CHECK(pngs > 0);
 }
 
 TEST_CASE("cli: a file's metadata says how to make it again: scene content, defines, options, build") {

@@ -182,3 +182,26 @@ TEST_CASE("cli: a rerun with other cameras into a folder of an earlier run says 
                      "that calibration no longer describes: the folder mixes two runs (write each run into a folder of "
                      "its own)\n");
 }
+
+TEST_CASE("cli: a rerun with other moving cameras, or a camera named like a frame, says the folder mixes two runs") {
+  // The second review of 2026-11-29: per-frame calibration files (moving cameras) and a camera
+  // named cam_0001 were left out of the comparison, and the note stayed silent.
+  TempFolder dir;
+  const std::string moving = dir.write(
+      "moving.lua", "camera = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4};\n"
+                    "  transform = translate(frame * 0.001, 0, 0) }\n"
+                    "plate = Object.Simple { shape = Shape.Rectangle { size = {0.5, 0.5}; location = {0, 0, 1} } }\n");
+  const std::string out = dir.file("out");
+  REQUIRE(runCli("render " + moving + " -o " + out + " --frames 0:1 --spp 1 --backend cpu").exitCode == 0);
+  CHECK(std::filesystem::exists(out + "/camera_0001.yml"));
+  const test::CliResult rerun = runCli("render " + moving + " -o " + out + " --frames 0:1 --spp 1 --backend cpu --downscale 2 --layers image");
+  CHECK(rerun.exitCode == 0);
+  CHECK(rerun.err.find("dicsynth: warning: -o " + out + ": this run replaced camera_0000.yml with other cameras") != std::string::npos);
+  const std::string named = dir.write("named.lua", "_G['cam_0001'] = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; "
+                                                   "pixelSize = {1e-4, 1e-4} }\n"
+                                                   "plate = Object.Simple { shape = Shape.Rectangle { size = {0.5, 0.5}; location = {0, 0, 1} } }\n");
+  const std::string out2 = dir.file("out2");
+  REQUIRE(runCli("render " + named + " -o " + out2 + " --spp 1 --backend cpu").exitCode == 0);
+  const test::CliResult again = runCli("render " + named + " -o " + out2 + " --spp 1 --backend cpu --downscale 2 --layers image");
+  CHECK(again.err.find("this run replaced cam_0001.yml with other cameras") != std::string::npos);
+}

@@ -617,6 +617,10 @@ TEST_CASE("cli: a manifest whose points were rendered on several devices or prec
   REQUIRE(at != std::string::npos);
   record.replace(at, 15, "\"CPU reference of another machine\"");
   std::ofstream(out + "/point_00001/point.json", std::ios::binary) << record;
+  // A record of before 2026-11-29 names the CPU reference with its thread count: the same device.
+  std::string old = readText(out + "/point_00000/point.json");
+  old.replace(old.find("\"CPU reference\""), 15, "\"CPU reference (2 threads)\"");
+  std::ofstream(out + "/point_00000/point.json", std::ios::binary) << old;
   const test::CliResult merged = runCli("sweep " + scene + " -o " + out + options + " --merge-only");
   CHECK(merged.exitCode == 0);
   CHECK(merged.err == "dicsynth: warning: the manifest's points were rendered with 2 precisions or devices (fp64 on CPU "

@@ -109,4 +109,21 @@ TEST_CASE("render --check: what the run would render, every frame checked, nothi
   const test::CliResult negative = test::runCli("render " + scene + " -o " + dir.file("n") + " --frames 1:2 --reference-frame -1 --check");
   CHECK(negative.exitCode == 2);
   CHECK(negative.err == "dicsynth: error: --reference-frame -1: expected a frame number in 0..999999999\n");
+
+  // A reference frame traced only is prepared before the first file too: its unreadable texture
+  // passed --check (the second review of 2026-11-29).
+  dir.write("bad.tif", "not an image");
+  const std::string reftex = dir.write("reftex.lua", plate("p2 = Object.Simple { shape = Shape.Rectangle { size = {0.1, 0.1}; "
+                                                               "location = {0, 0, 0.9} }; texture = Texture.File { fileName = "
+                                                               "frame == 0 and 'bad.tif' or '" + std::string(DS_SOURCE_DIR) +
+                                                               "/scenes/speckle.tif' } }\n"));
+  const test::CliResult badRef = test::runCli("render " + reftex + " -o " + dir.file("rt") + " --frames 1:2 --reference-frame 0 --check --backend cpu");
+  CHECK(badRef.exitCode == 2);
+  CHECK(badRef.err.find("bad.tif") != std::string::npos);
+  // --json: the check's line as a JSON object.
+  const test::CliResult json = test::runCli("render " + scene + " -o " + out + " --frames 0:2 --reference-frame 5 --json --check");
+  CHECK(json.exitCode == 0);
+  CHECK(json.out == "{\"cameras\": [{\"height_px\": 24,\"name\": \"cam\",\"width_px\": 32}],\"cameras_change_between_frames\": "
+                    "false,\"check\": \"" + scene + "\",\"frames\": {\"count\": 3,\"first\": 0,\"last\": 2},\"layers\": \"all\","
+                    "\"max_pixels_per_frame\": 768,\"output\": \"" + out + "\",\"reference_frame\": 5,\"reference_written\": false}\n");
 }

@@ -476,6 +476,17 @@ TEST_CASE("scene: a rotation by more than a turn is a warning naming the line an
   CHECK(m[0][2] == doctest::Approx(-std::sin(30.0)).epsilon(1e-15));
 }
 
+TEST_CASE("scene: reading unset globals by long names keeps no memory (the -D hint records identifiers only)") {
+  // The globals a scene reads unset are recorded for "did you mean" (lua_scene.cpp, readDefine): a
+  // scene reading _G[two megabytes .. i] 200 times kept those names alive and passed the 256 MiB
+  // limit (the second review of 2026-11-29).
+  TempFolder dir;
+  const std::string path = dir.write("long.lua", std::string(kCameraLine) +
+                                                   "local big = string.rep('x', 2e6)\n"
+                                                   "for i = 1, 200 do local v = _G[big .. i] end\n");
+  CHECK_NOTHROW(loadScene(path, {}));
+}
+
 TEST_CASE("scene: numbers read and write with a decimal point whatever locale the process set") {
   // A Python process may set a locale (locale.setlocale(LC_ALL, "de_DE.UTF-8")): Lua then wrote
   // tostring(0.25) as "0,25", so "tex_" .. 0.5 named 'tex_0,5.tif', and -D x=0,5 arrived as the

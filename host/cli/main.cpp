@@ -7,9 +7,9 @@
 #include <exception>
 
 #include "cli/commands.h"
+#include "cli/error_line.h"
 #include "cli/options.h"
 #include "cli/suggestion.h"
-#include "cli/error_line.h"
 #include "core/error.h"
 #include "core/module_folder.h"
 #include "core/phase_timer.h"
@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   // The build ID too: the version alone names many builds, and the files record the build
   // (dicsynth:build; the reproducibility trial of 2026-11-29).
   app.set_version_flag("--version", [] {
-    return std::string("dicsynth ") + kVersion + " (build " + (codeBuildId().empty() ? "none" : codeBuildId()) +
+    return std::string("dicsynth ") + kVersion + " (build " + codeBuildIdText() +
            "; EXR zip: " + zipDeflateEngine() + ")";
   });
   cli::RunFn run;

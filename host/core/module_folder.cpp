@@ -73,6 +73,11 @@ std::string codeBuildId() {
   return id;
 }
 
+std::string codeBuildIdText() {
+  const std::string id = codeBuildId();
+  return id.empty() ? "none" : id;
+}
+
 void* LoadableModule::symbol(const char* name, std::string& failure) {
   std::call_once(once_, [this] {
     path_ = (codeFolder() / fileName_).string();

@@ -15,6 +15,9 @@ std::filesystem::path codeFolder();
 // files that only this exact code may read back (core/cache_dir.h's caches) are keyed by it. ""
 // when the binary carries none (linked without --build-id).
 std::string codeBuildId();
+// codeBuildId(), or "none": as --version says it and the files record it (dicsynth:build, a sweep
+// manifest's "build").
+std::string codeBuildIdText();
 
 class LoadableModule {
  public:

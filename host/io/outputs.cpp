@@ -95,7 +95,7 @@ std::vector<std::pair<std::string, std::string>> provenance(const OutputInfo& in
       {"downscale", std::to_string(info.downscale)},
       {"precision_asked", info.precisionAsked}};
   if (info.precisionAsked == "auto") out.emplace_back("max_error_px", exactNumber(info.maxErrorPx));
-  out.emplace_back("build", codeBuildId().empty() ? "none" : codeBuildId());
+  out.emplace_back("build", codeBuildIdText());
   return out;
 }
 

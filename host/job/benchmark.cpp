@@ -77,7 +77,7 @@ std::vector<BenchmarkRow> runBenchmark(const BenchmarkOptions& options) {
       if (run == 0) reference = std::move(r);
     }
     // The thread count beside the CPU's timings (the files' device names no longer carry it).
-    BenchmarkRow cpuRow = baseRow("cpu", "fp64", reference.device + " (" + std::to_string(reference.threads) + " threads)");
+    BenchmarkRow cpuRow = baseRow("cpu", "fp64", reference.deviceWithThreads());
     cpuRow.secondsPerFrame = median(cpuTimes);
     cpuRow.mraysPerSecond = rays / cpuRow.secondsPerFrame / 1e6;
     rows.push_back(cpuRow);  // the reference: errors 0 by definition

@@ -272,7 +272,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     const Scene scene = loadFrameScene(job, job.frames[fi], false);
     if (fi == 0) out.sceneCrc32 = job.sceneCrc32.value_or(scene.sourceCrc32);
     checkSameContent(job, scene, job.frames[fi], out.sceneCrc32);
-    if (fi > 0 || job.writeReference) checkOutputNames(job, scene, job.frames[fi], unwritable);
+    if (fi >= job.firstWrittenIndex()) checkOutputNames(job, scene, job.frames[fi], unwritable);
     if (fi < 1000) {
       const std::string numbered = outputStem("", true, job.frames[fi]);
       for (const std::string& suffix : {std::string(), numbered}) {
@@ -312,14 +312,13 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
 // render --check's line: what the run would render, once every check before work has passed.
 std::string checkSummary(RenderSession& session, const RenderJob& job, const FramesChecked& checked) {
   // The first frame written (not a reference traced only: the review of 2026-11-29).
-  const int firstWritten = job.frames.size() > 1 && !job.writeReference ? job.frames[1] : job.frames.front();
-  const Scene first = loadFrameScene(job, firstWritten, true);
+  const Scene first = loadFrameScene(job, job.frames[job.firstWrittenIndex()], true);
   const int k = std::max(1, session.args().downscale);
   std::string cameras;
   for (const Camera& camera : first.cameras)
     cameras += (cameras.empty() ? "" : ", ") + camera.name + " " + std::to_string(std::max(1, camera.width_px / k)) + "x" +
                std::to_string(std::max(1, camera.height_px / k));
-  const auto written = job.frames.begin() + (job.writeReference ? 0 : 1);
+  const auto written = job.frames.begin() + std::ptrdiff_t(job.firstWrittenIndex());
   const std::size_t n = std::size_t(job.frames.end() - written);
   const auto [lo, hi] = std::minmax_element(written, job.frames.end());
   if (job.json) {  // --json: this line as a JSON object too (the second review of 2026-11-29)
@@ -446,7 +445,7 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
   const RenderOptions& options = rendered.options;
   const PreparedScene& scene = frameScene(job, rendered, first, reference);
   if (first && !job.writeReference) return "";  // traced for the motion truth only (FrameOrder)
-  const bool firstWritten = first || (!job.writeReference && job.frames.size() > 1 && frame == job.frames[1]);
+  const bool firstWritten = frame == job.frames[job.firstWrittenIndex()];
   const OutputInfo info = frameInfo(job, rendered, scene);
   std::string lines;
   createOutputDir(job.outputDir);  // only now: a run that fails earlier leaves nothing behind
@@ -509,9 +508,7 @@ std::string writeFrame(const RenderJob& job, RenderedFrame& rendered, bool first
       lines += written + ": " + std::to_string(cam.width_px) + "x" + std::to_string(cam.height_px) + ", " +
                (options.radiance ? std::to_string(options.samplesPerPixel) + " spp"
                                  : std::string("no radiance traced (ground truth only)")) +
-               ", " + result.backend + " " + result.precision + " on " + result.device +
-               (result.threads > 0 ? " (" + std::to_string(result.threads) + (result.threads == 1 ? " thread)" : " threads)") : "") +
-               ", " + timing + "\n";
+               ", " + result.backend + " " + result.precision + " on " + result.deviceWithThreads() + ", " + timing + "\n";
     }
   }
   return lines;
@@ -786,7 +783,6 @@ class OutputRollback {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
 
-
  public:
   explicit OutputRollback(std::string dir) : dir_(std::move(dir)), watch_(dir_) {
     std::error_code ec;
@@ -794,9 +790,7 @@ class OutputRollback {
     created_ = watch_.folder();  // as the kernel resolves it: -o LINK/../out is LINK's target's out
     existing_ = nearestExistingFolder(created_);  // the run creates the folders below it
     if (existed_)
-      for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) {
-        before_.insert(entry.path().filename().string());
-      }
+      for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) before_.insert(entry.path().filename().string());
   }
   ~OutputRollback() {
     if (kept_) return;
@@ -892,8 +886,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
     // these before any file (the review of 2026-11-29).
     // A reference frame traced only is prepared and rendered before the first file too (the second
     // review of 2026-11-29: its unreadable texture passed --check).
-    const std::size_t prepareCount = job.frames.size() > 1 && !job.writeReference ? 2 : 1;
-    for (std::size_t fi = 0; fi < prepareCount; ++fi)
+    for (std::size_t fi = 0; fi <= job.firstWrittenIndex(); ++fi)
       (void)prepareScene(loadFrameScene(job, job.frames[fi], true), {session.args().downscale, &session.textures()});
     session.precision();
     std::fputs(checkSummary(session, job, checked).c_str(), stdout);

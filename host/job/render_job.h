@@ -73,6 +73,9 @@ struct RenderJob {
   std::string outputDir;
   std::vector<int> frames;        // the reference frame first (referenceFirst puts it there)
   bool writeReference = true;     // false: frames[0] is traced for the motion truth only, not written (FrameOrder)
+  // The index in `frames` of the first frame written: 1 after a reference traced only, else 0
+  // (such a reference always comes with the frames asked for).
+  std::size_t firstWrittenIndex() const { return writeReference ? 0 : 1; }
   bool numbered = false;          // --frames given: files carry _<frame>
   std::vector<std::pair<std::string, std::string>> defines;  // -D (and a sweep point's values)
   std::vector<std::string> sweepParameters;                  // which defines come from a sweep

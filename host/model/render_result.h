@@ -37,6 +37,12 @@ struct RenderResult {
   // bytes: the reproducibility trial of 2026-11-29), only said on stdout.
   std::string device;
   unsigned threads = 0;              // the CPU reference's threads; 0 on the GPU
+  // `device` with the thread count where there is one ("CPU reference (2 threads)"): what stdout
+  // and bench.csv say beside a time.
+  std::string deviceWithThreads() const {
+    if (threads == 0) return device;
+    return device + " (" + std::to_string(threads) + (threads == 1 ? " thread)" : " threads)");
+  }
   double renderSeconds = 0;          // wall time of the render itself (no set-up, no I/O)
 };
 

@@ -453,7 +453,7 @@ class PyRenderer {
       for (std::size_t fi = 0; fi < rendered.frames.size(); ++fi) {
         RenderedFrame& frame = rendered.frames[fi];
         const PreparedScene& prepared = frameScene(job, frame, fi == 0, referenceData);
-        if (fi == 0 && !job.writeReference) continue;  // traced for the motion truth only, not asked for
+        if (fi < job.firstWrittenIndex()) continue;  // traced for the motion truth only, not asked for
         for (std::size_t c = 0; c < prepared.cameras.size(); ++c) {
           stopIfAsked(&stop);
           CameraFrame derived = deriveCamera(job, frame, prepared, c, *referenceData);

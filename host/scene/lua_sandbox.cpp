@@ -497,7 +497,6 @@ std::string LuaSandbox::formatMessage(const std::string& luaMessage, int fallbac
 }
 
 void LuaSandbox::run(const std::string& sourceText) {
-  const CLocaleScope cLocale;  // "0.25", never "0,25" (core/c_locale.h)
   lua_State* L = L_;
   // Like luaL_loadfile: skip a UTF-8 byte-order mark and a first line starting with '#'
   // (keeping its newline so that line numbers stay right).

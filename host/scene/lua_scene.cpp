@@ -535,7 +535,8 @@ Scene scene::loadSceneInspecting(const std::string& path, const SceneParams& par
 
 void UnreadDefines::add(const Scene& scene) {
   for (const std::string& name : scene.unsetGlobalsRead)
-    if (unsetRead_.size() < 256 && std::find(unsetRead_.begin(), unsetRead_.end(), name) == unsetRead_.end())
+    if (unsetRead_.size() < std::size_t(scene::kMaxUnsetRecorded) &&
+        std::find(unsetRead_.begin(), unsetRead_.end(), name) == unsetRead_.end())
       unsetRead_.push_back(name);
   if (!std::exchange(any_, true)) {
     unread_ = scene.unreadDefines;

@@ -105,7 +105,7 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
   head += ",seed,spp,backend,precision,device,render_seconds,files\n";
   csv.write(head);
   head = "{\n  \"scene\": " + json::quote(scenePath) + ",\n  \"run\": {\"version\": " + json::quote(kVersion) +
-         ", \"build\": " + json::quote(codeBuildId().empty() ? "none" : codeBuildId());
+         ", \"build\": " + json::quote(codeBuildIdText());
   for (const auto& [name, value] : run) head += ", " + json::quote(name) + ": " + json::quote(value);
   head += "},\n  \"sweep\": " + json::quote(kindName(plan.declaration.kind)) + ",\n  \"parameters\": [";
   for (std::size_t i = 0; i < plan.names.size(); ++i) head += (i ? ", " : "") + json::quote(plan.names[i]);

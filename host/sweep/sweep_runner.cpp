@@ -408,7 +408,7 @@ SweepOutcome runSweep(const SweepRun& cmd) {
       collectWritten(true);  // the points being written still complete (a writer's error, if any, wins)
       throw;
     }
-    for (std::size_t fi = order.referenceWritten ? 0 : 1; fi < result.frames.size(); ++fi)
+    for (std::size_t fi = job->firstWrittenIndex(); fi < result.frames.size(); ++fi)
       images += std::int64_t(result.frames[fi].result.cameras.size());
     collectWritten(false);
     // Not complete: the point starts from an empty folder (a killed run may have left part of it).

@@ -3,8 +3,8 @@
 // parsers and a reader tell it from the other lines a run says:
 //   "PATH:LINE: error: MESSAGE"  the message names a line of a file (a scene's line), or
 //   "dicsynth: error: MESSAGE"   anything else (an option, a file without a line, a device).
-// The other lines carry their kind likewise ("dicsynth: warning: ...", "PATH:LINE: note: ...",
-// "dicsynth: note: ..."), and a scene's print is "PATH:LINE: TEXT" with no kind: before 2026-11-29
+// The other lines carry their kind likewise ("PATH:LINE: warning: ...", "dicsynth: warning: ...",
+// "PATH:LINE: note: ...", "dicsynth: note: ..."; core/source_place.h), and a scene's print is "PATH:LINE: TEXT" with no kind: before 2026-11-29
 // an input error was "PATH:LINE: MESSAGE" too, so `print("boom")` and error("boom") wrote the same
 // line (the CI trial).
 #include <string>

@@ -1,5 +1,7 @@
 #include "core/warning.h"
 
+#include "core/source_place.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -29,8 +31,10 @@ std::atomic<std::size_t> written{0};  // warnings written on stderr
 
 void writeLine(bool warning, const std::string& text) {
   if (warning) ++written;
-  // One write of the whole line (a scene's print may hold any byte), flushed at once.
-  const std::string line = (warning ? "dicsynth: warning: " : "") + text + "\n";
+  // One write of the whole line (a scene's print may hold any byte), flushed at once. A warning that
+  // names a scene line carries its word after the place, as an error does: "PATH:LINE: warning: ..."
+  // (it was "dicsynth: warning: PATH:LINE: ...", a line editors did not take for a place).
+  const std::string line = (warning ? withKind("warning", text) : text) + "\n";
   std::fwrite(line.data(), 1, line.size(), stderr);
   std::fflush(stderr);
 }

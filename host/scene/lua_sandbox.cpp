@@ -376,6 +376,14 @@ int LuaSandbox::print(lua_State* L) {
   // Only Lua values and luaL_Buffer here: a __tostring may raise, a longjmp past C++ objects.
   LuaSandbox& sandbox = of(L);
   const int n = lua_gettop(L);
+  // Every value made a string in its own slot first (its __tostring runs here), and only then the
+  // buffer: a luaL_Buffer grown past LUAL_BUFFERSIZE (1 KB) keeps a to-be-closed box on the stack,
+  // which no lua_insert or lua_remove may move; moving the slots around it made a print longer than
+  // 1 KB fail with "attempt to call a nil value" (the hostile-input trial of 2026-11-29).
+  for (int i = 1; i <= n; ++i) {
+    luaL_tolstring(L, i, nullptr);
+    lua_replace(L, i);
+  }
   luaL_Buffer b;
   luaL_buffinit(L, &b);
   luaL_addstring(&b, sandbox.scenePath_.c_str());
@@ -387,11 +395,9 @@ int LuaSandbox::print(lua_State* L) {
     // \u{2028}, ...), so that scene output can never look like a line of its own (an error line,
     // say), nor move the terminal's cursor.
     std::size_t length = 0;
-    const char* value = luaL_tolstring(L, i, &length);
-    lua_insert(L, -2);  // the value below the buffer's own slot (luaL_Buffer keeps the top)
+    const char* value = lua_tolstring(L, i, &length);  // a string: stays in its slot, below the buffer
     escapeControlsTo(std::string_view(value, length),
                      [&b](const char* piece, std::size_t size) { luaL_addlstring(&b, piece, size); });
-    lua_remove(L, -2);
   }
   luaL_pushresult(&b);
   std::size_t length = 0;

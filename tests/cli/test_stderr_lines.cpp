@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/error_line.h"
+#include "core/source_place.h"
 #include "run_cli.h"
 
 using namespace dicsynth;
@@ -65,4 +66,34 @@ TEST_CASE("stderr lines: errorLine puts the word after a place only where the pl
   CHECK(cli::errorLine("-D a: 1: x") == "dicsynth: error: -D a: 1: x");
   CHECK(cli::errorLine(plain + ":x: y") == "dicsynth: error: " + plain + ":x: y");
   CHECK(cli::errorLine("") == "dicsynth: error: ");
+}
+
+TEST_CASE("stderr lines: a warning that names a scene line has its word after the place, as an error") {
+  // It read "dicsynth: warning: PATH:LINE: ...", a line that editors and CI log parsers do not take
+  // for a place (the review of the stderr grammar, 2026-11-29).
+  test::TempFolder dir;
+  const std::string scene = dir.write(
+      "mm.lua", "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 16; pixelSize = {2e-4, 2e-4} }\n"
+                "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }\n");
+  const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") + " --backend cpu --device 1 --check");
+  CHECK(r.exitCode == 0);
+  CHECK(r.err.find(scene + ":1: warning: focalLength = 16 m is outside 1e-04 .. 2 m") != std::string::npos);
+  CHECK(r.err.find("dicsynth: warning: --device 1 is not used") != std::string::npos);  // no place: the tool's word
+  CHECK(r.err.find("dicsynth: warning: " + scene) == std::string::npos);
+  // withKind, the one rule of both: the word after a place only where the place is a file.
+  CHECK(withKind("warning", scene + ":3: x") == scene + ":3: warning: x");
+  CHECK(withKind("warning", dir.file("none.lua") + ":3: x") == "dicsynth: warning: " + dir.file("none.lua") + ":3: x");
+}
+
+TEST_CASE("stderr lines: a scene's print longer than the Lua buffer's 1 KB is written whole") {
+  // It failed with "attempt to call a nil value" past ~1 KB (the buffer's box moved on the stack:
+  // the hostile-input trial of 2026-11-29), in the CLI and in Python.
+  test::TempFolder dir;
+  const std::string scene = dir.write(
+      "long.lua", "local t = setmetatable({}, {__tostring = function() return ('y'):rep(2000) end})\n"
+                  "print(('x'):rep(3000), t, 7)\n" +
+                      kScene);
+  const test::CliResult r = test::runCli("render " + scene + " -o " + dir.file("out") + " --backend cpu --check");
+  CHECK(r.exitCode == 0);
+  CHECK(r.err.rfind(scene + ":2: " + std::string(3000, 'x') + "\t" + std::string(2000, 'y') + "\t7\n", 0) == 0);
 }

@@ -30,6 +30,9 @@ void addSweepCommand(CLI::App& root, RunFn& run) {
   sub->add_flag("--seed-per-point", cmd->seedPerPoint,
                 "Point i renders with seed hash(--seed, i) instead of --seed (independent samples per point)");
   sub->add_flag("--merge-only", cmd->mergeOnly, "Only rebuild the manifest from the finished points' records");
+  sub->add_flag("--keep-finished", cmd->keepFinished,
+                "Refuse (exit 2, before any point) when a finished point was rendered with other inputs, instead of "
+                "rendering it again: for resubmitted batch jobs");
   sub->add_flag("--list", cmd->list, "Print the points (index, folder, parameters) and exit");
   sub->callback([cmd, &run] { run = [cmd] {
     const SweepOutcome outcome = runSweep(*cmd);

@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 
@@ -96,13 +97,21 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
   AtomicFile jsonFile(manifestPath(outputDir, "json"));
   TextWriter csv(csvFile), js(jsonFile);
 
-  std::string head = "index,folder";
   // (+= piecewise: GCC 12 warns -Wrestrict, wrongly, on "," + std::string temporaries)
+  std::string head;
+  for (const char* c : kManifestLeadColumns) {
+    if (!head.empty()) head += ',';
+    head += c;
+  }
   for (const std::string& n : plan.names) {
     head += ',';
     head += csvField(n);
   }
-  head += ",seed,spp,backend,precision,device,render_seconds,files\n";
+  for (const char* c : kManifestTrailColumns) {
+    head += ',';
+    head += c;
+  }
+  head += '\n';
   csv.write(head);
   head = "{\n  \"scene\": " + json::quote(scenePath) + ",\n  \"run\": {\"version\": " + json::quote(kVersion) +
          ", \"build\": " + json::quote(codeBuildIdText());
@@ -121,8 +130,10 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
     // The point's own files by size, and by checksum when asked (a run verified the checksums of
     // the points it skipped and wrote the others; --merge-only has seen none of them); its assets
     // by checksum, computed once per file and run.
-    if (!record || record->index != p.index || !pointFilesIntact(folder, *record, keyOf(p), verifyChecksums, assets))
+    if (!record || record->index != p.index || !pointFilesIntact(folder, *record, keyOf(p), verifyChecksums, assets)) {
+      if (summary.missing.size() < kMissingNamed) summary.missing.push_back(p.index);
       continue;
+    }
     std::string files, filesJson;
     for (const PointFile& f : record->files) {
       files += (files.empty() ? "" : " ") + folderName + "/" + f.name;
@@ -142,12 +153,13 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
              ", \"folder\": " + json::quote(folderName) + ", \"parameters\": " + parametersJson(p) +
              ", \"seed\": " + std::to_string(record->seed) + ", \"spp\": " + std::to_string(record->samplesPerPixel) +
              ", \"backend\": " + json::quote(record->backend) + ", \"precision\": " + json::quote(record->precision) +
-             ", \"device\": " + json::quote(record->device) + ", \"render_seconds\": " +
-             seconds(record->renderSeconds) + ", \"files\": [" + filesJson + "]}");
+             ", \"device\": " + json::quote(record->device) + ", \"build\": " + json::quote(record->build) +
+             ", \"render_seconds\": " + seconds(record->renderSeconds) + ", \"files\": [" + filesJson + "]}");
     ++summary.complete;
     // Records before 2026-11-29 named the CPU reference with its thread count, which changes no value.
     const std::string device = record->device.rfind("CPU reference (", 0) == 0 ? "CPU reference" : record->device;
     ++summary.renderedWith[record->precision + " on " + device];
+    ++summary.builds[record->build];
   }
   // points_complete after the list: it is counted while the list is written.
   js.write(std::string(summary.complete ? "\n  ],\n" : "],\n") + "  \"points_complete\": " +
@@ -158,6 +170,36 @@ ManifestSummary writeManifest(const std::string& outputDir, const std::string& s
   csvFile.commit();
   jsonFile.commit();
   return summary;
+}
+
+std::string PointsBeyond::text() const {
+  std::string t;
+  for (std::size_t i = 0; i < lowest.size(); ++i)
+    t += (i == 0 ? "" : i + 1 == lowest.size() && std::int64_t(lowest.size()) == count ? " and " : ", ") + lowest[i];
+  if (count > std::int64_t(lowest.size())) t += " and " + std::to_string(count - std::int64_t(lowest.size())) + " more";
+  return t;
+}
+
+PointsBeyond finishedPointsBeyond(const std::string& outputDir, std::int64_t count) {
+  PointsBeyond beyond;
+  std::vector<std::int64_t> indices;
+  std::error_code ec;
+  for (fs::directory_iterator it(outputDir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    // pointFolderName's form: "point_" and digits (5 or more).
+    if (name.rfind("point_", 0) != 0 || name.size() < 11 || name.size() > 24 ||
+        name.find_first_not_of("0123456789", 6) != std::string::npos)
+      continue;
+    const std::int64_t index = std::stoll(name.substr(6));
+    std::error_code e;
+    if (index < count || pointFolderName(index) != name || !fs::is_regular_file(it->path() / kPointRecordName, e)) continue;
+    ++beyond.count;
+    indices.push_back(index);
+    std::sort(indices.begin(), indices.end());
+    if (indices.size() > 3) indices.pop_back();
+  }
+  for (const std::int64_t i : indices) beyond.lowest.push_back(pointFolderName(i));
+  return beyond;
 }
 
 }  // namespace dicsynth::sweep

@@ -20,7 +20,24 @@ struct ManifestSummary {
   // drivers (--precision auto chooses per device; the reproducibility trial of 2026-11-29 merged
   // fp32 and fp64 points without a word).
   std::map<std::string, std::int64_t> renderedWith;
+  // The complete points by the build that rendered them ("" for records that do not say).
+  std::map<std::string, std::int64_t> builds;
+  // The indices of the first kMissingNamed points not complete (--merge-only names them).
+  std::vector<std::int64_t> missing;
 };
+inline constexpr std::size_t kMissingNamed = 10;
+
+// The finished points (folders point_N holding a record) of `outputDir` whose index is `count` or
+// more: of another, larger sweep into the same folder, which a manifest of `count` points would
+// silently lose (the cluster trial of 2026-11-29: a 3-point --merge-only into a 6-point sweep's
+// folder replaced its manifest with "3 of 3 points complete"). Their number, and the lowest few
+// folder names in order.
+struct PointsBeyond {
+  std::int64_t count = 0;
+  std::vector<std::string> lowest;  // at most 3
+  std::string text() const;  // "point_00003, point_00004 and 1 more"
+};
+PointsBeyond finishedPointsBeyond(const std::string& outputDir, std::int64_t count);
 
 // `keyOf` gives each point's key (a record with another key is not complete); `assets` checks the
 // records' assets (point_record.h). `verifyChecksums`: a point is listed only when its files have

@@ -85,6 +85,7 @@ void writePointRecord(const std::string& folder, const PointRecord& r) {
   d["render_seconds"] = json::value(r.renderSeconds);
   d["host"] = r.host;
   d["finished_utc"] = r.finishedUtc;
+  d["build"] = r.build;
   auto list = [](const std::vector<PointFile>& files) {
     Json::Value a(Json::arrayValue);
     for (const PointFile& f : files) {
@@ -132,6 +133,8 @@ std::optional<PointRecord> readPointRecord(const std::string& folder) {
   r.renderSeconds = seconds.isNull() ? 0.0 : seconds.asDouble();
   r.host = *host;
   r.finishedUtc = *finished;
+  // Optional: records written before 2026-11-29 lack it (they stay complete).
+  r.build = json::stringMember(*d, "build").value_or("");
   // [{"name": ..., "bytes": N, "crc32": "xxxxxxxx"}, ...]
   auto readList = [](const Json::Value& list, std::vector<PointFile>& out) {
     if (!list.isArray()) return false;

@@ -34,6 +34,11 @@ struct PointRecord {
   std::string backend, precision, device;
   double renderSeconds = 0;      // per run: differs between runs
   std::string host, finishedUtc; // per run
+  // The dicsynth build that rendered it (core/version.h's GNU build ID; "" in records written before
+  // 2026-11-29): not part of the key (a rebuild renders nothing again), but a manifest whose points
+  // several builds rendered says so (a sweep resumed with a newer binary mixed builds unnoticed, the
+  // manifest naming only the newest: the cluster trial of 2026-11-29).
+  std::string build;
   std::vector<PointFile> files;  // sorted by name
   std::vector<PointFile> assets; // files the scene loaded, by absolute path, sorted by name
 };

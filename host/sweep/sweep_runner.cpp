@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "core/exact_number.h"
 #include "core/progress.h"
+#include "core/module_folder.h"
 #include "core/warning.h"
 #include "core/worker_pool.h"
 #include "job/output_writers.h"
@@ -65,12 +66,22 @@ Shard resolveShard(const std::string& option) {
   const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
   if (id == nullptr || count == nullptr) return s;
   const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+  const char* max = std::getenv("SLURM_ARRAY_TASK_MAX");
+  const char* step = std::getenv("SLURM_ARRAY_TASK_STEP");
   const auto i = parseInteger(id), n = parseInteger(count), m = min ? parseInteger(min) : std::optional<std::int64_t>(0);
-  const std::string origin = std::string("SLURM_ARRAY_TASK_ID=") + id + " SLURM_ARRAY_TASK_COUNT=" + count +
-                             " SLURM_ARRAY_TASK_MIN=" + (min ? min : "(unset)");
-  // Arrays may start at 1 (--array=1-8): the shard is the task's offset from the array's first.
-  if (!i || !n || !m || *n < 1 || *i - *m < 0 || *i - *m >= *n)
-    throw InputError(origin + ": cannot shard by these (expected a contiguous array, step 1; or give --shard I/N)");
+  std::string origin = std::string("SLURM_ARRAY_TASK_ID=") + id + " SLURM_ARRAY_TASK_COUNT=" + count +
+                       " SLURM_ARRAY_TASK_MIN=" + (min ? min : "(unset)");
+  if (max) origin += std::string(" SLURM_ARRAY_TASK_MAX=") + max;
+  if (step) origin += std::string(" SLURM_ARRAY_TASK_STEP=") + step;
+  // Arrays may start at 1 (--array=1-8): the shard is the task's offset from the array's first. An
+  // array with a step (--array=0-6:2) or gaps (--array=0,2,5) is refused where Slurm says so: its
+  // tasks' offsets are not 0..N-1, and shards went unrendered in silence (the cluster trial of
+  // 2026-11-29: tasks 0 and 2 rendered shards 0/4 and 2/4, tasks 4 and 6 failed, 1 and 3 never ran).
+  const auto st = step ? parseInteger(step) : std::optional<std::int64_t>(1);
+  const auto mx = max ? parseInteger(max) : std::nullopt;
+  const bool contiguous = st && *st == 1 && (!max || (mx && m && n && *mx - *m + 1 == *n));
+  if (!i || !n || !m || *n < 1 || *i - *m < 0 || *i - *m >= *n || !contiguous)
+    throw InputError(origin + ": cannot shard by these (expected a contiguous array, step 1, such as --array=0-7; or give --shard I/N)");
   return {*i - *m, *n, origin};
 }
 
@@ -174,6 +185,30 @@ void warnMixedDevices(const sweep::ManifestSummary& summary) {
        "device or driver to every shard) to render them alike");
 }
 
+// Likewise for the builds of dicsynth that rendered the points: a sweep resumed with a rebuilt or
+// updated binary (manifest.json's "run" names the build that wrote the manifest; each point's
+// "build" its own).
+void warnMixedBuilds(const sweep::ManifestSummary& summary) {
+  if (summary.builds.size() < 2) return;
+  std::string list;
+  for (const auto& [build, count] : summary.builds)
+    list += (list.empty() ? "" : "; ") + (build.empty() ? std::string("not recorded") : build.substr(0, 12)) + ": " +
+            std::to_string(count) + " point" + (count == 1 ? "" : "s");
+  warn("the manifest's points were rendered by " + std::to_string(summary.builds.size()) +
+       " builds of dicsynth (" + list + "; each point's \"build\" in manifest.json): values may differ between "
+       "builds; render the sweep with one binary to have them alike");
+}
+
+// The merge's line for the points not complete: "; missing or damaged: point_00003, point_00004".
+std::string missingText(const sweep::ManifestSummary& summary) {
+  if (summary.complete == summary.total) return "";
+  std::string t = "; missing or damaged: ";
+  for (std::size_t k = 0; k < summary.missing.size(); ++k) t += (k ? ", " : "") + pointFolderName(summary.missing[k]);
+  const std::int64_t more = summary.total - summary.complete - std::int64_t(summary.missing.size());
+  if (more > 0) t += " and " + std::to_string(more) + " more";
+  return t;
+}
+
 }  // namespace
 
 SweepOutcome runSweep(const SweepRun& cmd) {
@@ -240,6 +275,10 @@ SweepOutcome runSweep(const SweepRun& cmd) {
       std::snprintf(hex, sizeof hex, "%08x", unsigned(sceneCrc32));
       value = hex;
     }
+  // The seed options: each point's seed is listed, but not how it came (the cluster trial of
+  // 2026-11-29: the manifest is to say how to make the sweep again).
+  runFields.emplace_back("seed", std::to_string(cmd.args.seed));
+  runFields.emplace_back("seed_per_point", cmd.seedPerPoint ? "true" : "false");
   if (cmd.sweep.randomCount)
     runFields.emplace_back("random", std::to_string(*cmd.sweep.randomCount) + " points, seed " + std::to_string(cmd.sweep.randomSeed));
   auto seedOf = [&](const SweepPoint& p) {
@@ -291,7 +330,16 @@ SweepOutcome runSweep(const SweepRun& cmd) {
   // when a point is rendered again, these here.
   removeStaleTemporaries(cmd.outputDir);
   sweep::AssetChecksums assets;
+  const sweep::PointsBeyond beyond = sweep::finishedPointsBeyond(cmd.outputDir, plan.count);
+  const std::string beyondText = "-o " + cmd.outputDir + " holds " + std::to_string(beyond.count) + " finished point" +
+                                 (beyond.count == 1 ? "" : "s") + " beyond this sweep's " + std::to_string(plan.count) +
+                                 " (" + beyond.text() + "), of a larger sweep";
   if (cmd.mergeOnly) {
+    // A smaller sweep's manifest would not list them: refused like points of other inputs.
+    if (beyond.count > 0)
+      throw InputError("sweep --merge-only: " + beyondText +
+                       ": a manifest of these points would not list them. Give the --sweep options (or the scene) the "
+                       "sweep was run with (the manifest is left as it was)");
     // A point made with other options (a forgotten --spp, another scene) would silently drop out of
     // the manifest, and a good manifest be replaced by a shorter one: refused, the manifest untouched.
     // Checksums verified: a merge after shards (a Slurm job's last step) must not list a damaged point.
@@ -302,9 +350,10 @@ SweepOutcome runSweep(const SweepRun& cmd) {
                            ". Give the options the sweep was run with (the manifest is left as it was), or run the "
                            "sweep without --merge-only to render such points again");
         });
-    std::printf("manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)\n",
-                (long long)summary.complete, (long long)summary.total, cmd.outputDir.c_str());
+    std::printf("manifest: %lld of %lld points complete (%s/manifest.csv, manifest.json)%s\n",
+                (long long)summary.complete, (long long)summary.total, cmd.outputDir.c_str(), missingText(summary).c_str());
     warnMixedDevices(summary);
+    warnMixedBuilds(summary);
     return {summary.complete, summary.total};
   }
   const fs::path lockDir = fs::path(cmd.outputDir) / ".locks";
@@ -325,8 +374,29 @@ SweepOutcome runSweep(const SweepRun& cmd) {
   std::snprintf(fingerprint, sizeof fingerprint, "%08x", unsigned(crc32Of(runKey)));
   const sweep::RunLock runLock(lockDir, fingerprint, cmd.outputDir);
 
+  // A larger sweep's points stay where they are, but the manifest lists this sweep's: said before
+  // any point (the cluster trial of 2026-11-29 reran an 8-point sweep into a 300-point folder: an
+  // "8 of 8 complete" manifest beside 292 unlisted points, without a word).
+  if (beyond.count > 0)
+    warn(beyondText + ", which stay and which the manifest does not list: the folder mixes two sweeps (write each "
+         "sweep into a folder of its own)");
+
   // This shard's points: index ≡ shard.index (mod shard.count).
   const std::int64_t mine = plan.count > shard.index ? (plan.count - shard.index + shard.count - 1) / shard.count : 0;
+
+  // --keep-finished: a finished point made with other inputs stops the run before any point renders
+  // (a resubmitted cluster job with a forgotten option replaced every finished point, --strict only
+  // failing afterwards: the cluster trial of 2026-11-29).
+  if (cmd.keepFinished)
+    for (std::int64_t index = shard.index; index < plan.count; index += shard.count) {
+      const SweepPoint p = plan.point(index);
+      const auto recorded = sweep::readPointRecord((fs::path(cmd.outputDir) / pointFolderName(p.index)).string());
+      if (recorded && recorded->index == p.index && recorded->key != keyOf(p))
+        throw InputError("sweep --keep-finished: " + pointFolderName(p.index) + " was rendered with other inputs (" +
+                         keyDifference(recorded->key, keyFieldsOf(p)) +
+                         "): nothing is rendered. Give the options the sweep was run with, or run without "
+                         "--keep-finished to render such points again");
+    }
 
   RenderSession session(cmd.args, cmd.backend);
   Progress progress(mine, stderrIsTerminal());
@@ -425,6 +495,7 @@ SweepOutcome runSweep(const SweepRun& cmd) {
     record->device = result.summary.device;
     record->renderSeconds = result.summary.renderSeconds;
     record->host = host;
+    record->build = codeBuildIdText();
     // The textures it rendered with, so that a rerun notices when they change: the CRC-32 of the
     // bytes each was decoded from (PreparedTexture::contentCrc32), not of the file after the render.
     // A texture whose content changed while the point rendered stops the run, the point unrecorded:
@@ -464,6 +535,7 @@ SweepOutcome runSweep(const SweepRun& cmd) {
   collectWritten(true);
   const auto summary = sweep::writeManifest(cmd.outputDir, cmd.args.scenePath, runFields, plan, keyOf, assets, false);
   warnMixedDevices(summary);
+  warnMixedBuilds(summary);
   const std::string replacedText =
       replaced ? " (" + std::to_string(replaced) + " of them replacing points rendered with other inputs)" : "";
   std::printf("sweep: %lld points%s: rendered %lld%s, already complete %lld, in progress elsewhere %lld; "

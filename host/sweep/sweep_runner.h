@@ -25,6 +25,7 @@ struct SweepRun {
   std::string layers = "all";
   bool seedPerPoint = false;   // point i renders with seed hash(seed, i)
   bool mergeOnly = false;      // only rebuild the manifest from the finished points' records
+  bool keepFinished = false;   // a finished point of other inputs stops the run before any point
   bool list = false;           // print the points (index, folder, parameters) and render nothing
 };
 

@@ -113,6 +113,8 @@ TEST_CASE("cli: sweep renders every point into its folder, as render -D does, wi
     CHECK(run["layers"].asString() == "all");
     CHECK(run["exr_compression"].asString() == "zip");
     CHECK(run.isMember("defines"));
+    CHECK(run["seed"].asString() == "1");  // and how the points' seeds came (the cluster trial)
+    CHECK(run["seed_per_point"].asString() == "false");
     CHECK(run.isMember("downscale"));
   }
   CHECK(json.find("\"points_complete\": 6") != std::string::npos);
@@ -251,7 +253,7 @@ TEST_CASE("cli: sweep resumes: only damaged or unfinished points are rendered ag
     const std::string stale = out + "/.manifest.csv.tmp999999998_0.csv";  // no such process
     std::ofstream(stale) << "index,folder\n0,point_";
     const test::CliResult checked = runCli("sweep " + scene + " -o " + out + kFast + " --merge-only");
-    CHECK(checked.out == "manifest: 5 of 6 points complete (" + out + "/manifest.csv, manifest.json)\n");
+    CHECK(checked.out == "manifest: 5 of 6 points complete (" + out + "/manifest.csv, manifest.json); missing or damaged: point_00005\n");
     // Incomplete: the manifest is written, and the exit code says so (exit 0 let a script analyse a
     // partial sweep: the CI trial of 2026-11-29).
     CHECK(checked.exitCode == 1);
@@ -505,7 +507,8 @@ TEST_CASE("cli: sweep points that switch textures render exactly as render does 
   // --merge-only agrees: with b.tif changed once more, its two points are not complete.
   REQUIRE(runCli("speckle -o " + dir.file("b.tif") + " --size 64 64 --seed 4 --bits 8").exitCode == 0);
   CHECK(runCli("sweep " + scene + " -o " + dir.file("out") + kFast + " --merge-only").out ==
-        "manifest: 3 of 5 points complete (" + dir.file("out") + "/manifest.csv, manifest.json)\n");
+        "manifest: 3 of 5 points complete (" + dir.file("out") +
+            "/manifest.csv, manifest.json); missing or damaged: point_00002, point_00003\n");
 }
 
 TEST_CASE("cli: a texture written again with the same bytes while a sweep renders does not stop it") {
@@ -626,4 +629,89 @@ TEST_CASE("cli: a manifest whose points were rendered on several devices or prec
   CHECK(merged.err == "dicsynth: warning: the manifest's points were rendered with 2 precisions or devices (fp64 on CPU "
                       "reference: 1 point; fp64 on CPU reference of another machine: 1 point): --precision auto chooses per "
                       "device; give --precision (and the same device or driver to every shard) to render them alike\n");
+}
+
+TEST_CASE("cli: sweep in a folder of a larger sweep, resubmitted with other options, and Slurm arrays with a step") {
+  // The cluster trial of 2026-11-29: a smaller sweep's --merge-only replaced a 6-point manifest with
+  // "3 of 3 points complete", a rerun left points beyond it unlisted in silence, a resubmitted job
+  // with a forgotten option replaced every finished point, a merge did not say which points were
+  // missing, points of two builds were merged under the newest's name, a parameter named like a
+  // manifest column doubled the column, and an array with a step rendered half the shards.
+  TempFolder dir;
+  const std::string scene = dir.write("scene.lua", kScene);
+  const std::string out = dir.file("out");
+  const std::string six = " --backend cpu --spp 1 --sweep shift=0,0.01,0.02 --sweep gray=0.25,0.75";
+  const std::string three = " --backend cpu --spp 1 --sweep shift=0,0.01,0.02 --sweep gray=0.25";
+  REQUIRE(runCli("sweep " + scene + " -o " + out + six).exitCode == 0);
+  const std::string manifest = readText(out + "/manifest.json");
+  // Merged as a 3-point sweep: refused, the manifest as it was.
+  const test::CliResult merged = runCli("sweep " + scene + " -o " + out + three + " --merge-only");
+  CHECK(merged.exitCode == 2);
+  CHECK(merged.err == "dicsynth: error: sweep --merge-only: -o " + out + " holds 3 finished points beyond this sweep's 3 "
+                      "(point_00003, point_00004 and point_00005), of a larger sweep: a manifest of these points would not "
+                      "list them. Give the --sweep options (or the scene) the sweep was run with (the manifest is left as it was)\n");
+  CHECK(readText(out + "/manifest.json") == manifest);
+  // Rendered as a 3-point sweep: said before any point, the points beyond left.
+  const std::string copy = dir.file("copy");
+  std::filesystem::copy(out, copy, std::filesystem::copy_options::recursive);
+  const test::CliResult smaller = runCli("sweep " + scene + " -o " + copy + three);
+  CHECK(smaller.exitCode == 0);
+  CHECK(smaller.err.rfind("dicsynth: warning: -o " + copy + " holds 3 finished points beyond this sweep's 3 (point_00003, "
+                          "point_00004 and point_00005), of a larger sweep, which stay and which the manifest does not "
+                          "list: the folder mixes two sweeps",
+                          0) == 0);
+  CHECK(std::filesystem::exists(copy + "/point_00005/point.json"));
+
+  // A merge names the missing points.
+  std::filesystem::remove(out + "/point_00001/point.json");
+  REQUIRE(std::filesystem::remove(out + "/point_00004/cam.exr"));
+  const test::CliResult missing = runCli("sweep " + scene + " -o " + out + six + " --merge-only");
+  CHECK(missing.exitCode == 1);
+  CHECK(missing.out == "manifest: 4 of 6 points complete (" + out + "/manifest.csv, manifest.json); missing or damaged: "
+                       "point_00001, point_00004\n");
+  REQUIRE(runCli("sweep " + scene + " -o " + out + six).exitCode == 0);
+
+  // --keep-finished: a forgotten option stops the run before any point, the points untouched.
+  const std::string before = readText(out + "/point_00000/point.json");
+  const std::string forgotten = " --backend cpu --spp 2 --sweep shift=0,0.01,0.02 --sweep gray=0.25,0.75";
+  const test::CliResult kept = runCli("sweep " + scene + " -o " + out + forgotten + " --keep-finished");
+  CHECK(kept.exitCode == 2);
+  CHECK(kept.err == "dicsynth: error: sweep --keep-finished: point_00000 was rendered with other inputs (spp 1 (now 2)): "
+                    "nothing is rendered. Give the options the sweep was run with, or run without --keep-finished to "
+                    "render such points again\n");
+  CHECK(readText(out + "/point_00000/point.json") == before);
+  // With the options the sweep was made with, it resumes as ever.
+  CHECK(runCli("sweep " + scene + " -o " + out + six + " --keep-finished").exitCode == 0);
+
+  // Each point records its build; points of two builds are said at the merge.
+  const auto record = json::readFile(out + "/point_00002/point.json");
+  REQUIRE(record);
+  const std::string build = (*record)["build"].asString();
+  CHECK(build.size() >= 8);
+  std::string other = readText(out + "/point_00002/point.json");
+  other.replace(other.find("\"" + build + "\""), build.size() + 2, "\"0123456789abcdef\"");
+  std::ofstream(out + "/point_00002/point.json", std::ios::binary) << other;
+  const test::CliResult builds = runCli("sweep " + scene + " -o " + out + six + " --merge-only");
+  CHECK(builds.exitCode == 0);
+  CHECK(builds.err.find("dicsynth: warning: the manifest's points were rendered by 2 builds of dicsynth (") == 0);
+  CHECK(builds.err.find("0123456789ab: 1 point") != std::string::npos);
+  CHECK(builds.err.find(build.substr(0, 12) + ": 5 points") != std::string::npos);
+  CHECK(readText(out + "/manifest.json").find("\"build\": \"0123456789abcdef\"") != std::string::npos);
+
+  // A parameter named like a manifest.csv column is refused.
+  const test::CliResult column = runCli("sweep " + scene + " -o " + dir.file("col") + " --backend cpu --sweep seed=1,2");
+  CHECK(column.exitCode == 2);
+  CHECK(column.err.find("sweep parameter 'seed': the name of a column manifest.csv writes for every point (index, "
+                        "folder, seed, spp, backend, precision, device, render_seconds, files)") != std::string::npos);
+
+  // A Slurm array with a step (--array=0-6:2) or with gaps: refused, not half rendered.
+  for (const std::string env : {"SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=4 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=6 SLURM_ARRAY_TASK_STEP=2",
+                                "SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=3 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=5 SLURM_ARRAY_TASK_STEP=1"}) {
+    CAPTURE(env);
+    const std::string log = dir.file("step.log");
+    const int rc = std::system((env + " " + std::string(DS_BINARY) + " sweep " + scene + " -o " + dir.file("step") + six +
+                                " --list > " + log + " 2>&1").c_str());
+    CHECK(WEXITSTATUS(rc) == 2);
+    CHECK(readText(log).find(": cannot shard by these (expected a contiguous array, step 1") != std::string::npos);
+  }
 }

@@ -28,7 +28,8 @@ Run runScript(const TempFolder& dir, const std::string& env, const std::string& 
   std::string args = kSweep;
   args.replace(args.find("OUT"), 3, dir.file("sweep"));
   const std::string log = dir.file("log");
-  const std::string command = "env -u SLURM_ARRAY_TASK_ID -u SLURM_ARRAY_TASK_COUNT -u SLURM_ARRAY_TASK_MIN " + env +
+  const std::string command = "env -u SLURM_ARRAY_TASK_ID -u SLURM_ARRAY_TASK_COUNT -u SLURM_ARRAY_TASK_MIN "
+                              "-u SLURM_ARRAY_TASK_MAX -u SLURM_ARRAY_TASK_STEP " + env +
                               " DICSYNTH=" + DS_BINARY + " bash " + kSource + "/scripts/slurm/" + script + " " + args +
                               " >" + log + " 2>&1";
   const int status = std::system(command.c_str());

@@ -17,6 +17,10 @@
 strain = strain or 0.002
 curvature = curvature or 1
 calibration = calibration or false
+-- Any value but false and nil is true in Lua: -D calibration=0 (or =no) rendered the board.
+if type(calibration) ~= "boolean" then
+  error("-D calibration=" .. tostring(calibration) .. ": give true or false")
+end
 local e = frame >= 1 and strain or 0
 local k = frame >= 1 and curvature or 0
 local function camera(k1)

@@ -1,5 +1,8 @@
 // dicsynth: synthetic images with exact ground truth for experimental mechanics.
 // Maps every failure to a one-line message on stderr and a documented exit code (commands.h).
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -18,8 +21,30 @@
 #include "core/warning.h"
 #include "io/zip_deflate.h"
 
+namespace {
+
+// A standard descriptor the caller closed (`>&-`, `2>&-`, some daemons and job schedulers) is the
+// lowest free number, which the next open() takes: a writer thread's temporary file became fd 1 and
+// the run's own listing lines landed inside an output TIFF (and on the GPU, inside lavapipe's
+// device memory; the hostile-input trial of 2026-11-29). Each closed one is held by /dev/null,
+// opened read-only for 1 and 2 so that writing there still fails (a closed stdout stays exit 3,
+// docs/commands.md), and for reading for 0.
+void holdClosedStandardDescriptors() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    const int opened = ::open("/dev/null", O_RDONLY);
+    if (opened >= 0 && opened != fd) {  // fd was free, so open() took it unless it raced: make sure
+      ::dup2(opened, fd);
+      ::close(opened);
+    }
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace dicsynth;
+  holdClosedStandardDescriptors();  // before anything opens a file
   phaseDone(nullptr);  // DICSYNTH_TIMINGS=1: phases are timed from here
   removeTemporariesOnTermination();  // before any thread: SIGTERM, SIGINT, SIGHUP clean up first
   // A file-size limit (`ulimit -f`, common in CI sandboxes) raises SIGXFSZ, whose default kills the
@@ -48,6 +73,7 @@ int main(int argc, char** argv) {
   cli::addPreviewCommand(app, run);
   cli::addBenchCommand(app, run);
   cli::addSweepCommand(app, run);
+  cli::decimalIntegers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,5 +1,6 @@
 #include "cli/options.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,25 @@
 #include "model/render_options.h"
 
 namespace dicsynth::cli {
+
+void decimalIntegers(CLI::App& app) {
+  // An empty description leaves the help's type names ("INT") as they are.
+  const CLI::Validator decimal(
+      [](std::string& text) -> std::string {
+        const std::size_t digits = text.find_first_not_of("+-") == 1 ? 1 : 0;
+        if (text.size() <= digits || text.find_first_not_of("0123456789", digits) != std::string::npos)
+          return "expected a decimal integer, not '" + text + "'";
+        const std::size_t first = std::min(text.find_first_not_of('0', digits), text.size() - 1);
+        text = text.substr(0, digits) + text.substr(first);
+        return "";
+      },
+      "", "decimal integer");
+  for (CLI::Option* option : app.get_options()) {
+    const std::string type = option->get_type_name();
+    if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0) option->transform(decimal);
+  }
+  for (CLI::App* sub : app.get_subcommands({})) decimalIntegers(*sub);
+}
 
 void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect) {
   app.add_option("--sweep", options.sweeps,

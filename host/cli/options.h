@@ -31,6 +31,14 @@ bool strictWarnings();
 void markNothingWritten();
 bool nothingWritten();
 
+// Every integer option of `app` and its subcommands reads decimal digits only, with an optional sign:
+// CLI11 reads integers with strtoll's base 0, so `--reference-frame 0010` was frame 8 (octal),
+// `0x10` 16 and " 3" 3, while `--frames 0010` and `-D v=010` are decimal 10 (the hostile-input
+// trial of 2026-11-29; file names have 4-digit frame numbers, which invite the leading zeros).
+// Leading zeros are dropped; anything else is refused with the option's name. Call once every
+// option is added.
+void decimalIntegers(CLI::App& app);
+
 // --sweep, --random, --random-seed (sweep/sweep_points.h). `effect` ends the --sweep help text: what
 // the subcommand does with the points.
 void addSweepOptions(CLI::App& app, SweepOptions& options, const std::string& effect);

@@ -58,7 +58,15 @@ std::optional<Json::Value> parse(std::string_view text) {
   const std::unique_ptr<Json::CharReader> reader(builder.newCharReader());
   Json::Value document;
   std::string errors;
-  if (!reader->parse(text.data(), text.data() + text.size(), &document, &errors)) return std::nullopt;
+  // jsoncpp throws, rather than failing, where a document nests deeper than its stackLimit (1000): a
+  // point.json or cache file of 100000 '[' ended every sweep or render that read it with a bare
+  // "Exceeded stackLimit in readValue()" (the hostile-input trial of 2026-11-29). Not JSON we wrote:
+  // no document, as for any other damage.
+  try {
+    if (!reader->parse(text.data(), text.data() + text.size(), &document, &errors)) return std::nullopt;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
   return document;
 }
 

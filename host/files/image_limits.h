@@ -9,25 +9,31 @@
 //    image pixel, and 16k² already covers a 1600 × 1200 image at ten texels per pixel;
 //  - the reading's peak memory, 8 bytes per pixel for the gray image (doubles) plus the reader's
 //    buffer (8 bytes per channel per pixel), within the memory the system says is available.
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
 
+#include "core/cgroup_limits.h"
+
 namespace dicsynth {
 
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(16384) * 16384;
 
-// Bytes the system can still give (MemAvailable of /proc/meminfo), or nullopt where unknown.
+// Bytes this process can still get: the system's (MemAvailable of /proc/meminfo), and no more than
+// a control group's memory limit or `ulimit -v` leaves (core/cgroup_limits.h: a Slurm job's --mem
+// on a large node passed every check and ended in std::bad_alloc); nullopt where none is known.
 inline std::optional<std::uint64_t> availableMemoryBytes() {
+  std::optional<std::uint64_t> available = processMemoryHeadroom();
   std::ifstream in("/proc/meminfo");
   std::string key;
   std::uint64_t kib = 0;
   std::string unit;
   while (in >> key >> kib >> unit)
-    if (key == "MemAvailable:") return kib * 1024;
-  return std::nullopt;
+    if (key == "MemAvailable:") return available ? std::min(*available, kib * 1024) : kib * 1024;
+  return available;
 }
 
 // "needs about X GiB, more than the Y GiB of memory available" when `bytes` exceed what the system

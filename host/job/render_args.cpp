@@ -17,6 +17,7 @@
 #include "core/warning.h"
 #include "gpu/device_cache.h"
 #include "render/precision_calibration.h"
+#include "scene/define_value.h"
 
 namespace dicsynth {
 
@@ -47,8 +48,11 @@ std::vector<std::pair<std::string, std::string>> parseDefines(const std::vector<
     const bool startsNumeric = value.size() > sign && (std::isdigit(static_cast<unsigned char>(value[sign])) ||
                                                        (value[sign] == '.' && value.size() > sign + 1 &&
                                                         std::isdigit(static_cast<unsigned char>(value[sign + 1]))));
+    // What Lua reads as a number arrives as one ("3 ", " 0.5": Lua's tonumber allows blanks around
+    // it), so no word on it: the warning said "a string" of a value the scene received as 3 (the
+    // hostile-input trial of 2026-11-29).
     char* end = nullptr;
-    if (startsNumeric && (std::strtod(value.c_str(), &end), *end != '\0'))
+    if (startsNumeric && !readDefineNumber(value) && (std::strtod(value.c_str(), &end), *end != '\0'))
       warn("-D " + d + ": '" + value + "' is a string, not a number (from '" + std::string(end) + "' on)");
   }
   return out;

@@ -77,8 +77,20 @@ std::map<std::string, std::string> unwritableEntries(const std::string& dir) {
 // Refuses a frame whose output file (image, ground truth, or calibration file, numbered or not)
 // would replace one of `unwritable`: before any work, where the run failed on writing it with
 // exit 3 after its earlier frames were rendered and written (the new-user trial of 2026-11-28).
+// `previewUnwritable`: likewise in DIR/preview/ with --preview, whose pictures are
+// <stem>.<layer>.png (io/preview.h): one of them a folder failed the run after its work, and --check
+// passed it (the hostile-input trial of 2026-11-29).
 void checkOutputNames(const RenderJob& job, const Scene& scene, int frame,
-                      const std::map<std::string, std::string>& unwritable) {
+                      const std::map<std::string, std::string>& unwritable,
+                      const std::map<std::string, std::string>& previewUnwritable) {
+  for (const Camera& camera : scene.cameras) {
+    const std::string stem = outputStem(camera.name, job.numbered, frame) + ".";
+    for (const auto& [name, why] : previewUnwritable)
+      if (name.size() > stem.size() + 4 && name.compare(0, stem.size(), stem) == 0 && name.ends_with(".png"))
+        throw InputError(job.outputDir + "/preview/" + name + " " + why + ", where --preview draws camera " + camera.name +
+                         "'s " + name.substr(stem.size(), name.size() - stem.size() - 4) +
+                         " layer (remove or rename it, or choose another -o)");
+  }
   if (unwritable.empty()) return;
   const auto refuse = [&](const std::string& name, const std::string& what) {
     if (const auto it = unwritable.find(name); it != unwritable.end())
@@ -94,7 +106,8 @@ void checkOutputNames(const RenderJob& job, const Scene& scene, int frame,
     for (const std::string& suffix : {std::string(), numbered}) refuse(camera.name + suffix + ".yml", "a calibration file");
   }
   for (const StereoRig& rig : scene.rigs)
-    for (const std::string& suffix : {std::string(), numbered}) refuse(rig.name + suffix + ".yml", "a calibration file");
+    for (const std::string& suffix : {std::string(), numbered})
+      for (const char* ext : {".yml", ".dice.xml"}) refuse(rig.name + suffix + ext, "a calibration file");
 }
 
 // Writes the calibration files (io/calibration_files.h) of a frame, with `suffix` ("" or "_0003");
@@ -244,6 +257,7 @@ namespace {
 FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   FramesChecked out;
   const std::map<std::string, std::string> unwritable = unwritableEntries(job.outputDir);
+  std::map<std::string, std::string> previewUnwritable;
   // --preview writes into DIR/preview/: a file there failed the run after its work (the review of
   // 2026-11-29).
   if (job.preview) {
@@ -252,6 +266,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     if (std::filesystem::exists(std::filesystem::symlink_status(previews, ec)) && !std::filesystem::is_directory(previews, ec))
       throw InputError(previews.string() + " is not a folder, where --preview writes its pictures (remove or rename it, or "
                                            "choose another -o)");
+    previewUnwritable = unwritableEntries(previews.string());
   }
   LayerSources sources;
   UnreadDefines unread;  // a define may be read in some frames only (`frame >= 1 and ...`)
@@ -272,7 +287,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     const Scene scene = loadFrameScene(job, job.frames[fi], false);
     if (fi == 0) out.sceneCrc32 = job.sceneCrc32.value_or(scene.sourceCrc32);
     checkSameContent(job, scene, job.frames[fi], out.sceneCrc32);
-    if (fi >= job.firstWrittenIndex()) checkOutputNames(job, scene, job.frames[fi], unwritable);
+    if (fi >= job.firstWrittenIndex()) checkOutputNames(job, scene, job.frames[fi], unwritable, previewUnwritable);
     if (fi < 1000) {
       const std::string numbered = outputStem("", true, job.frames[fi]);
       for (const std::string& suffix : {std::string(), numbered}) {
@@ -795,12 +810,16 @@ class OutputRollback {
   ~OutputRollback() {
     if (kept_) return;
     std::error_code ec;
-    std::size_t removed = 0;
+    std::size_t removed = 0, replaced = 0;
     std::set<std::filesystem::path> folders;  // below the output folder, holding removed files
     for (const CommitWatch::Committed& c : watch_.committed()) {
       struct stat s {};
       // Still the file this run committed (not one another run has put there since).
-      if (c.replaced || ::lstat(c.path.c_str(), &s) != 0 || s.st_dev != c.device || s.st_ino != c.inode) continue;
+      if (::lstat(c.path.c_str(), &s) != 0 || s.st_dev != c.device || s.st_ino != c.inode) continue;
+      if (c.replaced) {
+        ++replaced;
+        continue;
+      }
       if (!std::filesystem::remove(c.path, ec)) continue;
       ++removed;
       if (c.path.parent_path() != created_) folders.insert(c.path.parent_path());
@@ -812,9 +831,19 @@ class OutputRollback {
         std::filesystem::remove(*it, ec);  // only when empty: remove() does not recurse
     // The lines of the frames written before the failure named these files (stdout): say they are
     // gone. Printed as the error unwinds, before its own message.
-    if (removed > 0)
+    // Files it replaced stay with this run's content: said so, not "keeps none" (the hostile-input
+    // trial of 2026-11-29: 13 replaced files stayed after "removing the 12 files ... keeps none").
+    const auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
+    if (removed > 0 && replaced == 0)
       std::fprintf(stderr, "dicsynth: removing the %zu file%s this run wrote in %s (a failed run keeps none)\n",
-                   removed, removed == 1 ? "" : "s", dir_.c_str());
+                   removed, plural(removed), dir_.c_str());
+    else if (replaced > 0)
+      std::fprintf(stderr, "dicsynth: %s%zu file%s this run replaced in %s hold%s the failed run's content (the earlier "
+                   "files cannot be given back)\n",
+                   removed > 0 ? ("removing the " + std::to_string(removed) + " file" + plural(removed) +
+                                  " this run created; the ").c_str()
+                               : "the ",
+                   replaced, plural(replaced), dir_.c_str(), replaced == 1 ? "s" : "");
     if (!existed_) removeCreatedFolders(created_, existing_);
   }
   void keep() { kept_ = true; }

@@ -161,6 +161,16 @@ TEST_CASE("cli: scenes/stereo_plate.lua -D calibration=true calibrates the rig o
       for (std::size_t at = csv.find(",1,1,1,1\n"); at != std::string::npos; at = csv.find(",1,1,1,1\n", at + 1)) ++visible;
       CHECK(visible == 54);
     }
+  // Not a boolean: refused (any value but false and nil is true in Lua, so -D calibration=0 rendered
+  // the board: the hostile-input trial of 2026-11-29).
+  for (const char* value : {"0", "no", "false "}) {
+    CAPTURE(value);
+    const test::CliResult notBool = runCli("render " + scenes + "stereo_plate.lua -D 'calibration=" + value + "' -o " +
+                                           dir.file("nb") + common + " --check");
+    CHECK(notBool.exitCode == 2);
+    CHECK(notBool.err.find(": give true or false") != std::string::npos);
+  }
+  CHECK(runCli("render " + scenes + "stereo_plate.lua -D calibration=false -o " + dir.file("f") + common + " --check").exitCode == 0);
 }
 
 TEST_CASE("cli: a rerun with other cameras into a folder of an earlier run says the folder mixes two runs") {

@@ -318,6 +318,16 @@ TEST_CASE("hostile: a run that fails leaves the folder as it found it, and stale
   CHECK(r.out.find(dir.file("fresh")) != std::string::npos);
   CHECK(r.err.find("dicsynth: removing the 3 files this run wrote in " + dir.file("fresh") + " (a failed run keeps none)") !=
         std::string::npos);
+  // Into a folder of an earlier run, the files it replaced stay with the failed run's content: said
+  // so (it said "removing ... (a failed run keeps none)" of the files it created alone: the
+  // hostile-input trial of 2026-11-29).
+  const std::string good = dir.write("good.lua", plateWith("Texture.Constant { value = 0.5 }"));
+  REQUIRE(test::runCli("render " + good + " -o " + dir.file("again") + " --frames 0:1 --backend cpu").exitCode == 0);
+  const test::CliResult again = test::runCli("render " + scene + " -o " + dir.file("again") + " --frames 0:1 --backend cpu");
+  CHECK(again.exitCode == 2);
+  CHECK(again.err.find("dicsynth: the 3 files this run replaced in " + dir.file("again") +
+                       " hold the failed run's content (the earlier files cannot be given back)\n") != std::string::npos);
+  CHECK(again.err.find("keeps none") == std::string::npos);
   // So are the folders above it that the run created (the sweep audit of 2026-11-27: -o new/a/b
   // left new/a), while an existing folder above stays.
   const test::CliResult nested = test::runCli("render " + scene + " -o " + dir.file("new/a/b/") + " --frames 0:1 --backend cpu");
@@ -629,9 +639,9 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
                    "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }\n");
   const test::CliResult mm = test::runCli("render " + units + " -o " + dir.file("units") + " --backend cpu --frames 0:1");
   CHECK(mm.exitCode == 0);
-  CHECK(mm.err.find("dicsynth: warning: " + units + ":1: pixelSize = 5 m is outside 1e-07 .. 0.001 m, where cameras have "
+  CHECK(mm.err.find(units + ":1: warning: pixelSize = 5 m is outside 1e-07 .. 0.001 m, where cameras have "
                     "it: lengths are metres (5e-06 m for 5 um)\n") != std::string::npos);
-  CHECK(mm.err.find("dicsynth: warning: " + units + ":1: focalLength = 16 m is outside 1e-04 .. 2 m, where cameras have "
+  CHECK(mm.err.find(units + ":1: warning: focalLength = 16 m is outside 1e-04 .. 2 m, where cameras have "
                     "it: lengths are metres (0.016 m for 16 mm)\n") != std::string::npos);
   CHECK(mm.err.find("focalLength = 16 m") == mm.err.rfind("focalLength = 16 m"));  // once, though two frames evaluate it
   // Once per line and key, though the value changes with the frame (it was said for every frame:
@@ -641,7 +651,7 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
                   "p = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }\n");
   const test::CliResult zoomed = test::runCli("render " + zoom + " -o " + dir.file("zoom") + " --backend cpu --frames 0:9 --check");
   CHECK(zoomed.exitCode == 0);
-  CHECK(zoomed.err == "dicsynth: warning: " + zoom + ":1: focalLength = 12 m is outside 1e-04 .. 2 m, where cameras have it: "
+  CHECK(zoomed.err == zoom + ":1: warning: focalLength = 12 m is outside 1e-04 .. 2 m, where cameras have it: "
                       "lengths are metres (0.012 m for 12 mm)\n");
   CHECK(empty.err.find("where cameras have it") == std::string::npos);
   // Said at most 10 times a run: a long run whose object leaves the view printed it for every frame
@@ -666,7 +676,10 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
   // A value that starts as a number and is not one (the docs walk of 2026-11-28: a letter O for a 0).
   const test::CliResult typo = test::runCli("render " + reads + " -o " + dir.file("typo") + " --backend cpu --layers image -D gain=0.0O2");
   CHECK(typo.err.find("warning: -D gain=0.0O2: '0.0O2' is a string, not a number (from 'O2' on)") != std::string::npos);
-  for (const char* fine : {"gain=0.002", "gain=-1e-3", "gain=.5", "gain=0x10", "gain=steel", "gain=true"}) {
+  // "3 " and "0.5 " arrive as numbers (Lua reads blanks around one): no warning that they are strings
+  // (it said so of a value the scene received as 3: the hostile-input trial of 2026-11-29).
+  for (const char* fine : {"gain=0.002", "gain=-1e-3", "gain=.5", "gain=0x10", "gain=steel", "gain=true", "'gain=3 '",
+                           "'gain=0.5 '"}) {
     CAPTURE(fine);
     const test::CliResult quiet = test::runCli("render " + reads + " -o " + dir.file("fine") + " --backend cpu --layers image -D " + fine);
     CHECK(quiet.err.find("is a string, not a number") == std::string::npos);
@@ -678,7 +691,8 @@ TEST_CASE("hostile: the findings of the new-user audit (2026-11-27): options ref
                                                              "  shader = Shader.Phong {} }\n");
   const test::CliResult dark = test::runCli("render " + unlit + " -o " + dir.file("unlit") + " --backend cpu --layers image --frames 0:2");
   CHECK(dark.exitCode == 0);
-  CHECK(dark.err.find("warning: " + unlit + ":") != std::string::npos);
+  CHECK(dark.err.rfind(unlit + ":", 0) == 0);  // "PATH:LINE: warning: ...", as an error's place
+  CHECK(dark.err.find(": warning: object 'p'") != std::string::npos);
   CHECK(dark.err.find(": object 'p' has Shader.Lambert, which needs a light, and frame 0 has none: it renders black (add a "
                       "Light, or use Shader.Constant)") != std::string::npos);
   CHECK(dark.err.find("which needs a light") == dark.err.rfind("which needs a light"));  // once
@@ -819,4 +833,49 @@ TEST_CASE("hostile inputs: a thin lens in millimetres whose blur disk is wider t
                                                dir.file("t") + " --backend cpu --spp 1 --downscale 4");
   CHECK(example.exitCode == 0);
   CHECK(example.err.find("Camera.ThinLens blurs") == std::string::npos);
+}
+
+TEST_CASE("hostile: a closed stdout or stderr is no file's descriptor, and integer options are decimal") {
+  // The hostile-input trial of 2026-11-29: with stdout closed (`>&-`), a writer thread's temporary
+  // file took descriptor 1 and the run's listing lines landed inside an output TIFF (5 of 6 runs
+  // with 4 writers; kept, unreadable, exit 3), and on the GPU inside lavapipe's device memory, exit 0.
+  test::TempFolder dir;
+  const std::string scene = dir.write("tiny.lua", kCamera + "\np = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; "
+                                                            "location = {0, 0, 1} }; texture = Texture.Speckle { radius = 0.01 } }\n");
+  for (const char* backend : {"cpu", "gpu"}) {
+    CAPTURE(backend);
+    const std::string out = dir.file(std::string("closed_") + backend);
+    const int rc = std::system(("DICSYNTH_WRITERS=4 " + std::string(DS_BINARY) + " render " + scene + " -o " + out +
+                                " --spp 1 --frames 0:5 --backend " + backend + " >&- 2>" + dir.file("err")).c_str());
+    CHECK(WEXITSTATUS(rc) == 3);  // the listing is lost: said, as for a full device
+    CHECK(test::readBytes(dir.file("err")).find("could not write to stdout") != std::string::npos);
+    int unreadable = 0, listing = 0;
+    for (int frame = 0; frame <= 5; ++frame) {
+      char name[32];
+      std::snprintf(name, sizeof name, "/cam_%04d.tif", frame);
+      const std::string tif = test::readBytes(out + name);
+      if (tif.find("cam_0") != std::string::npos) ++listing;
+      auto in = OIIO::ImageInput::open(out + name);
+      std::vector<std::uint16_t> pixels(std::size_t(in ? in->spec().image_pixels() : 0));
+      if (!in || !in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, pixels.data())) ++unreadable;
+    }
+    CHECK(listing == 0);
+    CHECK(unreadable == 0);
+  }
+  // A closed stderr: the run goes on and its files are whole.
+  const int quiet = std::system((std::string(DS_BINARY) + " render " + scene + " -o " + dir.file("noerr") +
+                                 " --spp 1 --backend cpu > " + dir.file("out") + " 2>&-").c_str());
+  CHECK(WEXITSTATUS(quiet) == 0);
+  CHECK(test::readBytes(dir.file("out")).find("cam.tif") != std::string::npos);
+
+  // Integer options read decimal digits: 0010 was octal 8 (frame file names have 4 digits), 0x10 16.
+  const test::CliResult zeros = test::runCli("render " + scene + " -o " + dir.file("z") + " --frames 0:1 --reference-frame 0010 --spp 010 --check --json");
+  CHECK(zeros.exitCode == 0);
+  CHECK(zeros.out.find("\"reference_frame\": 10,") != std::string::npos);
+  for (const char* bad : {"--spp 0x10", "--spp ' 3'", "--seed 0b1", "--reference-frame 1e3"}) {
+    CAPTURE(bad);
+    const test::CliResult refused = test::runCli("render " + scene + " -o " + dir.file("z") + " " + bad + " --check");
+    CHECK(refused.exitCode == 2);
+    CHECK(refused.err.find(": expected a decimal integer, not '") != std::string::npos);
+  }
 }

@@ -127,3 +127,51 @@ TEST_CASE("render --check: what the run would render, every frame checked, nothi
                     "false,\"check\": \"" + scene + "\",\"frames\": {\"count\": 3,\"first\": 0,\"last\": 2},\"layers\": \"all\","
                     "\"max_pixels_per_frame\": 768,\"output\": \"" + out + "\",\"reference_frame\": 5,\"reference_written\": false}\n");
 }
+
+TEST_CASE("render --check: a folder where a rig's DICe file or a preview picture goes is refused, as the render refuses it") {
+  // --check passed both and the render then failed after its work, exit 3 (the hostile-input trial
+  // of 2026-11-29).
+  test::TempFolder dir;
+  const std::string rig = dir.write(
+      "rig.lua", "local lens = { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+                 "rig = Rig.Stereo { left = Camera.Pinhole(lens); right = Camera.Pinhole(lens); baseline = 0.2; target = {0, 0, 1} }\n"
+                 "plate = Object.Simple { shape = Shape.Rectangle { size = {0.5, 0.5}; location = {0, 0, 1} } }\n");
+  const std::string od = dir.file("od");
+  std::filesystem::create_directories(od + "/rig.dice.xml");
+  for (const char* check : {" --check", ""}) {
+    const test::CliResult r = test::runCli("render " + rig + " -o " + od + " --backend cpu --layers image" + check);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err == "dicsynth: error: " + od + "/rig.dice.xml is a folder, where this run writes a calibration file (remove "
+                   "or rename it, or choose another -o)\n");
+  }
+  const std::string scene = dir.write("plate.lua", plate());
+  const std::string op = dir.file("op");
+  std::filesystem::create_directories(op + "/preview/cam.depth.png");
+  for (const char* check : {" --check", ""}) {
+    const test::CliResult r = test::runCli("render " + scene + " -o " + op + " --backend cpu --preview --layers image,depth" + check);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err == "dicsynth: error: " + op + "/preview/cam.depth.png is a folder, where --preview draws camera cam's depth "
+                   "layer (remove or rename it, or choose another -o)\n");
+  }
+  // Other entries of preview/ are not the run's: left alone.
+  std::filesystem::remove(op + "/preview/cam.depth.png");
+  std::filesystem::create_directories(op + "/preview/notes");
+  CHECK(test::runCli("render " + scene + " -o " + op + " --backend cpu --preview --layers image,depth --check").exitCode == 0);
+}
+
+TEST_CASE("render --check: the memory check counts `ulimit -v`, not only the machine's free memory") {
+  // A 3000 x 3000 camera under `ulimit -v` 2 GB: --check passed and the render ended in
+  // std::bad_alloc, exit 3 (the hostile-input trial of 2026-11-29); a control group's limit (Slurm's
+  // --mem) is read likewise (tests/core/test_cgroup_limits.cpp).
+  test::TempFolder dir;
+  const std::string big = dir.write(
+      "big.lua", "cam = Camera.Pinhole { resolution = {3000, 3000}; focalLength = 0.012; pixelSize = {4e-6, 4e-6} }\n"
+                 "plate = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }\n");
+  const std::string log = dir.file("log");
+  const int rc = std::system(("(ulimit -v 2000000; " + std::string(DS_BINARY) + " render " + big + " -o " + dir.file("o") +
+                              " --backend cpu --check) > " + log + " 2>&1").c_str());
+  CHECK(WEXITSTATUS(rc) == 2);
+  const std::string err = test::readBytes(log);
+  CHECK(err.find("needs about 4394 MiB to render and write, more than the ") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("o")));
+}

@@ -409,10 +409,16 @@ std::vector<std::uint8_t> queryAll(Context& context, const ComputePipeline& pipe
     rays[i].origin = toReal4(o.x, o.y, o.z, 0, static_cast<H4*>(nullptr));
     rays[i].direction = toReal4(d.x, d.y, d.z, 0, static_cast<H4*>(nullptr));
   }
-  Buffer queries = inputBuffer(context, rays);
-  bindings[DS_BINDING_QUERIES] = storage(queries);
   const int edge = tileEdge(context, requestedTile, sizeof(Pixel), scene);
   const std::size_t block = std::size_t(edge) * std::size_t(edge);
+  // The queries go up a block at a time, as the answers come back: all of a camera's at once made
+  // one buffer of 64 bytes per pixel in fp64, over lavapipe's 128 MiB maxStorageBufferRange from
+  // 2^21 pixels on (a 5 MP sequence with flow failed at its second frame, the laptop trial of
+  // 2026-11-29). A block's queries take fewer bytes than its answers (a GpuRayQuery is two of a
+  // GpuPixel's four vectors), which tileEdge keeps within the range.
+  static_assert(sizeof(typename Layout::GpuRayQuery) <= sizeof(Pixel));
+  Buffer queries(context, std::max<std::size_t>(1, std::min(block, rays.size())) * sizeof(rays[0]), BufferUse::Input);
+  bindings[DS_BINDING_QUERIES] = storage(queries);
   Buffer& pixels = readbackBuffer(context, caches, block * sizeof(Pixel));
   bindings[DS_BINDING_PIXELS] = storage(pixels);
   Pixel* const tile = hostTile<Pixel>(caches, block);
@@ -422,9 +428,12 @@ std::vector<std::uint8_t> queryAll(Context& context, const ComputePipeline& pipe
   for (std::size_t first = 0; first < points.size(); first += block) {
     const std::size_t count = std::min(block, points.size() - first);
     const int rows = int((count + std::size_t(edge) - 1) / std::size_t(edge));
+    queries.upload(rays.data() + first, count * sizeof(rays[0]));
     typename Layout::GpuTileParams params{};
     params.tile = {0, 0, edge, rows};
-    params.counts = {int(ci), int(first), int(frame.objects.size()), int(frame.lights.size())};
+    // Query counts.y + slot of the buffer, which holds this block from its start (slots past
+    // `count` in the last row read an earlier block's queries, whose answers are not read).
+    params.counts = {int(ci), 0, int(frame.objects.size()), int(frame.lights.size())};
     params.random = {0, 0, 0, 1};
     dispatchAndWait(context, pipeline, bindings, &params, std::uint32_t((edge + DS_LOCAL_SIZE_X - 1) / DS_LOCAL_SIZE_X),
                     std::uint32_t((rows + DS_LOCAL_SIZE_Y - 1) / DS_LOCAL_SIZE_Y));

@@ -315,12 +315,17 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
                "frame " + std::to_string(job.frames.front()) + " is rendered alone and is its own reference frame: its " +
                    (job.layers.has(Layer::Flow) ? "flow" : "disp") + " is 0 everywhere (" +
                    optionName("--reference-frame") + " R measures the motion from frame R, traced, not written)");
-  // A frame is written while the next renders: two frames' worth.
-  const std::uint64_t need = 2 * out.maxPixelsPerFrame * kBytesPerPixelInFlight;
+  // A frame is written while the next renders: two frames' worth, one for a run of one frame; what
+  // a pixel holds depends on the layers (it counted every layer and two frames for any run: 3 to 13
+  // times the peak measured, the laptop trial of 2026-11-29).
+  const bool groundTruth = job.layers.anyGroundTruth();
+  const std::uint64_t perPixel = groundTruth ? kBytesPerPixelInFlight : kBytesPerPixelInFlightImageOnly;
+  const std::uint64_t need = (job.frames.size() > 1 ? 2 : 1) * out.maxPixelsPerFrame * perPixel;
   if (const auto available = availableMemoryBytes(); available && need > *available)
     throw InputError(job.sceneFile + ": a frame of " + std::to_string(out.maxPixelsPerFrame) +
                      " pixels (all cameras) needs about " + std::to_string(need >> 20) + " MiB to render and write, more than the " +
-                     std::to_string(*available >> 20) + " MiB of memory available (--downscale, or fewer pixels)");
+                     std::to_string(*available >> 20) + " MiB of memory available (--downscale, or fewer pixels" +
+                     (groundTruth ? ", or --layers image: 96 bytes per pixel instead of 256" : "") + ")");
   return out;
 }
 
@@ -942,7 +947,8 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   // machine, several on many cores, where writing sets the pace of a GPU render). The reference
   // frame (the first) is written, and its ReferenceFrame built, before any other frame's writing
   // starts; the others only read it. Each frame's lines are printed in frame order.
-  WorkerPool writers(outputWriters(checked.maxPixelsPerFrame * kBytesPerPixelInFlight));
+  WorkerPool writers(outputWriters(checked.maxPixelsPerFrame *
+                                   (job.layers.anyGroundTruth() ? kBytesPerPixelInFlight : kBytesPerPixelInFlightImageOnly)));
   auto finishWriting = [&] { writers.waitAll(); };  // rethrows a writer's error
   std::mutex linesMutex;
   std::map<std::size_t, std::string> pending;  // lines of frames written before an earlier frame's

@@ -131,6 +131,12 @@ struct RenderedJob {
 // bytes for a frame rendered on the GPU path with every layer (Figure 1, 1600 x 1200: 721 MB peak
 // RSS against 327 MB at a 16th of the pixels), rounded up.
 inline constexpr std::uint64_t kBytesPerPixelInFlight = 256;
+// The same with the image alone asked (`--layers image`, no EXR): measured 16 bytes per pixel on
+// the GPU path and 73 on the CPU reference, which computes the pixel centres' geometry whatever is
+// asked (3000 x 3000, 1 spp: 258 MB and 768 MB peak RSS against 114 MB at a hundredth of the
+// pixels; 2026-11-29), rounded up. The check refused a 48 MP image-only frame that fits in 1.5 GB
+// (the laptop trial of 2026-11-29).
+inline constexpr std::uint64_t kBytesPerPixelInFlightImageOnly = 96;
 // All cameras' pixels of a frame's scene after --downscale.
 std::uint64_t framePixels(const Scene& scene, int downscale);
 

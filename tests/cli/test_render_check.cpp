@@ -172,6 +172,20 @@ TEST_CASE("render --check: the memory check counts `ulimit -v`, not only the mac
                               " --backend cpu --check) > " + log + " 2>&1").c_str());
   CHECK(WEXITSTATUS(rc) == 2);
   const std::string err = test::readBytes(log);
-  CHECK(err.find("needs about 4394 MiB to render and write, more than the ") != std::string::npos);
+  // One frame (none written while another renders), every layer: 9e6 px x 256 bytes.
+  CHECK(err.find("needs about 2197 MiB to render and write, more than the ") != std::string::npos);
+  CHECK(err.find("or --layers image: 96 bytes per pixel instead of 256)") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.file("o")));
+  // The estimate follows the layers and the frames (it counted every layer and two frames: the
+  // laptop trial of 2026-11-29 was refused a 48 MP image-only frame that fits in 1.5 GB): with
+  // the image alone the 3000 x 3000 frame, 9e6 x 96 bytes = 824 MiB, passes under 1.5 GB (less the
+  // process's own ~0.3 GB of address space)...
+  const int image = std::system(("(ulimit -v 1500000; " + std::string(DS_BINARY) + " render " + big + " -o " + dir.file("o") +
+                                 " --backend cpu --check --layers image) > " + log + " 2>&1").c_str());
+  CHECK(WEXITSTATUS(image) == 0);
+  // ... and two frames of it, one written while the next renders, 1648 MiB, do not.
+  const int two = std::system(("(ulimit -v 1500000; " + std::string(DS_BINARY) + " render " + big + " -o " + dir.file("o") +
+                               " --backend cpu --check --layers image --frames 0:1) > " + log + " 2>&1").c_str());
+  CHECK(WEXITSTATUS(two) == 2);
+  CHECK(test::readBytes(log).find("needs about 1647 MiB") != std::string::npos);
 }

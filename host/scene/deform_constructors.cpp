@@ -226,9 +226,22 @@ int nurbsDeform(lua_State* L) {
     deformation->meshFile = mesh->content();
   }
 
+  // The fit is C++ work the scene's count hook cannot interrupt: each batch of field values it asks
+  // for first checks the scene's time limit, so that a tolerance the field cannot reach stops within
+  // a round, at this line (it ran 493 s and 4.4 GB against the 60 s limit, then was refused "at
+  // line 0": the FE trial of 2026-11-29).
+  const LuaSandbox* sandbox = &LuaSandbox::of(L);
+  const DisplacementField timed = [sandbox, field = deformation->field, tolerance](const std::vector<dvec3>& points) {
+    if (sandbox->pastTimeLimit())
+      throw InputError("the fit to tolerance " + shortestNumber(tolerance) + " m ran past the scene's time limit (" +
+                       shortestNumber(sandbox->timeLimitSeconds()) +
+                       " s of evaluation): a larger tolerance (a mesh field's kinks between its cells need many knots), "
+                       "or DICSYNTH_SCENE_SECONDS sets a longer limit");
+    return field(points);
+  };
   NurbsSurface fitted;
   try {
-    fitted = fitDeformedNurbsCached(*surface->nurbs, deformation->field, tolerance, deformation->report,
+    fitted = fitDeformedNurbsCached(*surface->nurbs, timed, tolerance, deformation->report,
                                     deformation->fromCache, std::size_t(budget), LuaSandbox::of(L).evaluation());
   } catch (const InputError& e) {
     p.fail(e.what());

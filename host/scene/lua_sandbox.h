@@ -123,6 +123,12 @@ class LuaSandbox : public std::enable_shared_from_this<LuaSandbox> {
   // (set by loadScene; a scene is deterministic). Evaluating the same again gives the same scene,
   // so a Nurbs.deform fit remembered from it is this evaluation's own, not one reused.
   const std::string& evaluation() const { return evaluation_; }
+  // Whether the run (or callAfterRun) has taken longer than its time limit, for C++ work the count
+  // hook cannot interrupt (a Nurbs.deform fit of a mesh field ran 493 s against a 60 s limit and was
+  // then refused "at line 0": the FE trial of 2026-11-29). Records nothing: the caller throws its own
+  // error, which the scene's end reports as it is.
+  bool pastTimeLimit() const { return limits_.maxSeconds > 0 && elapsedSeconds() > limits_.maxSeconds; }
+  double timeLimitSeconds() const { return limits_.maxSeconds; }
   void setEvaluation(std::string evaluation) { evaluation_ = std::move(evaluation); }
   const std::filesystem::path& sceneDir() const { return sceneDir_; }  // folder of the scene file
 

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -646,4 +647,31 @@ TEST_CASE("field-load: a sweep point records the mesh it rendered, and a changed
   REQUIRE(r.exitCode == 0);
   CHECK(r.out.find("rendered 2, already complete 0") != std::string::npos);
   CHECK(r.err.find("point_00000 is rendered again: the file " + mesh + " changed since") != std::string::npos);
+}
+
+TEST_CASE("field-load: a fit that cannot reach its tolerance stops at the scene's time limit, at the Nurbs.deform line") {
+  // A bilinear mesh field has kinks between its cells, which a tight tolerance chases with ever more
+  // knots: the limit was found only once the fit ended (493 s and 4.4 GB against 60 s), and the error
+  // blamed line 0 (the FE trial of 2026-11-29). `timeout` bounds the test where the fit runs on.
+  test::TempFolder dir;
+  dir.write("kinked.vtu", quadGrid(20, -0.06, 0.06, -0.04, 0.04, [](double x, double y) {
+    return dvec3(1e-4 * std::sin(60 * x), 1e-4 * std::cos(80 * y), 2e-4 * std::sin(50 * x + 40 * y));
+  }));
+  const std::string scene = dir.write(
+      "kinked.lua",
+      "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.012; pixelSize = {4e-5, 4e-5} }\n"
+      "ref = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n"
+      "plate = Object.Simple { shape = frame == 0 and ref or Nurbs.deform { surface = ref; tolerance = 1e-11;\n"
+      "  displacement = Field.load { fileName = 'kinked.vtu' } } }\n");
+  const std::string log = dir.file("log");
+  const auto started = std::chrono::steady_clock::now();
+  const int rc = std::system(("DICSYNTH_SCENE_SECONDS=2 timeout 120 " + std::string(DS_BINARY) + " render " + scene + " -o " +
+                              dir.file("out") + " --frames 0:1 --backend cpu --check > " + log + " 2>&1").c_str());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const std::string err = test::readBytes(log);
+  INFO(err);
+  CHECK(WEXITSTATUS(rc) == 2);
+  CHECK(err.find(scene + ":3: error: Nurbs.deform: the fit to tolerance 1e-11 m ran past the scene's time limit (2 s of "
+                 "evaluation): a larger tolerance") != std::string::npos);
+  CHECK(seconds < 60);  // a round past the limit, not the fit's end (informative: the system's load adds)
 }

@@ -113,7 +113,10 @@ std::vector<dvec3> MeshField::at(const std::vector<dvec3>& points_m) const {
 }
 
 std::string MeshField::describe() const {
-  return options_.path + " '" + options_.array + "' step " + std::to_string(options_.step) + ": " +
+  // The scale too: a mesh in mm read with scale 1 gives plausible motion, and the header did not say
+  // which was used (the FE trial of 2026-11-29).
+  return options_.path + " '" + options_.array + "' step " + std::to_string(options_.step) + ", scale " +
+         shortestNumber(options_.scale) + " m per mesh unit: " +
          std::to_string(info_.points) + " points, " + std::to_string(info_.cells) + " cells (" + info_.cellTypes + ")";
 }
 

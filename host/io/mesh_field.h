@@ -41,7 +41,7 @@ class MeshField {
   // records it as an asset, core/crc32.h).
   const FileContent& content() const { return content_; }
   const MeshFieldInfo& info() const { return info_; }
-  std::string describe() const;  // "PATH 'array' step S: N points, M cells (quad M), bounds ... m"
+  std::string describe() const;  // "PATH 'array' step S, scale K m per mesh unit: N points, M cells (quad M)"
 
  private:
   MeshFieldOptions options_;

@@ -3,8 +3,11 @@
 // nurbs/nurbs_fit.h). The Deformation a deformed shape carries keeps the field callable after
 // the scene ran, for the fieldError layer: a Field holds its mesh; a Lua function is kept in the
 // registry and called through the sandbox (LuaSandbox::callAfterRun), which the Scene keeps alive.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -221,6 +224,28 @@ int nurbsDeform(lua_State* L) {
         "displacement", "function(x, y, z) return dx, dy, dz end or a Field (Field.load)");
     if (!field) p.fail("missing required 'displacement' = function(x, y, z) return dx, dy, dz end, or a Field (Field.load)");
     mesh = field->mesh;
+    // A surface that covers a speck of the mesh: the mesh is nearly always in other units than
+    // `scale` says (mm read as m gave plausible, wrong motion without a word: the FE trial of
+    // 2026-11-29; the opposite, a surface off the mesh, is refused by the field itself). The control
+    // points' box holds the surface (convex hull); 1 % of the mesh's extent is far below any
+    // specimen an FE model is made for, far above a factor of 1000 between units.
+    if (!LuaSandbox::of(L).quiet()) {
+      dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+      for (const dvec3& c : surface->nurbs->controlPoints) {
+        lo = glm::min(lo, c);
+        hi = glm::max(hi, c);
+      }
+      const double* b = mesh->info().bounds;
+      const double scale = mesh->options().scale;
+      const double surfaceExtent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+      const double meshExtent = scale * std::max({b[1] - b[0], b[3] - b[2], b[5] - b[4]});
+      if (surfaceExtent > 0 && surfaceExtent < 0.01 * meshExtent)
+        warnAtMost("mesh extent " + where.str(), 1,
+                   where.str() + ": Nurbs.deform: the surface spans " + shortestNumber(surfaceExtent) + " m, " +
+                       shortestNumber(std::round(1e4 * surfaceExtent / meshExtent) / 100) + " % of the " +
+                       shortestNumber(meshExtent) + " m the mesh " + mesh->options().path + " spans with scale " +
+                       shortestNumber(scale) + ": is the mesh in other units (Field.load's scale = 1e-3 for mm)?");
+    }
     deformation->field = [mesh](const std::vector<dvec3>& points) { return mesh->at(points); };
     deformation->source = mesh->describe();
     deformation->meshFile = mesh->content();

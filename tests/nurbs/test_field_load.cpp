@@ -675,3 +675,48 @@ TEST_CASE("field-load: a fit that cannot reach its tolerance stops at the scene'
                  "evaluation): a larger tolerance") != std::string::npos);
   CHECK(seconds < 60);  // a round past the limit, not the fit's end (informative: the system's load adds)
 }
+
+TEST_CASE("field-load: a mesh in other units than scale says, a cell array is named as one, the header records the scale") {
+  // The FE trial of 2026-11-29: a mesh in mm read with the default scale = 1 rendered plausible,
+  // wrong motion without a word (the plate lay inside the mesh's central cells, the nodal mm read
+  // as metres), the header did not record the scale, and a cell array was reported as "no point
+  // array" only.
+  test::TempFolder dir;
+  const auto field = [](double x, double y) { return dvec3(1e-3 * x, 2e-3 * y, 0); };  // mesh units
+  dir.write("mm.vtu", quadGrid(4, -60, 60, -40, 40, field));
+  const auto scene = [](const std::string& scale) {
+    return "cam = Camera.Pinhole { resolution = {64, 48}; focalLength = 0.012; pixelSize = {4e-5, 4e-5} }\n"
+           "ref = Nurbs.plate { size = {0.1, 0.05}; location = {0, 0, 0.4} }\n"
+           "plate = Object.Simple { shape = frame == 0 and ref or Nurbs.deform { surface = ref; tolerance = 1e-9;\n"
+           "  displacement = Field.load { fileName = 'mm.vtu'" + scale + " } } }\n";
+  };
+  const std::string asMetres = dir.write("m.lua", scene(""));
+  const test::CliResult m = test::runCli("render " + asMetres + " -o " + dir.file("m") + " --frames 0:1 --spp 1 --backend cpu");
+  CHECK(m.exitCode == 0);
+  CHECK(m.err.find(asMetres + ":3: warning: Nurbs.deform: the surface spans 0.1 m, 0.08 % of the 120 m the mesh " +
+                   dir.file("mm.vtu") + " spans with scale 1: is the mesh in other units (Field.load's scale = 1e-3 for "
+                   "mm)?\n") != std::string::npos);
+  CHECK(test::readExr(dir.file("m/cam_0001.exr")).spec.get_string_attribute("dicsynth:deformation:plate").find(
+            "'displacement' step 0, scale 1 m per mesh unit") != std::string::npos);
+  const std::string asMm = dir.write("mm.lua", scene("; scale = 1e-3"));
+  const test::CliResult mm = test::runCli("render " + asMm + " -o " + dir.file("mm") + " --frames 0:1 --spp 1 --backend cpu");
+  CHECK(mm.exitCode == 0);
+  CHECK(mm.err.find("warning") == std::string::npos);
+  CHECK(test::readExr(dir.file("mm/cam_0001.exr")).spec.get_string_attribute("dicsynth:deformation:plate").find(
+            "scale 0.001 m per mesh unit") != std::string::npos);
+
+  // One quad with the displacement as a cell array.
+  std::string cells = vtu({dvec3(-1, -1, 0), dvec3(1, -1, 0), dvec3(1, 1, 0), dvec3(-1, 1, 0)}, {{0, 1, 2, 3}}, 9,
+                          "displacement", 3, {"0 0 0"});
+  for (std::size_t at = cells.find("PointData"); at != std::string::npos; at = cells.find("PointData", at))
+    cells.replace(at, 9, "CellData");
+  MeshFieldOptions options;
+  options.path = dir.write("cells.vtu", cells);
+  try {
+    const MeshField mesh(options);
+    FAIL("a cell array was read as a field");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("no point array 'displacement': the file has no point arrays ('displacement' is a "
+                                     "cell array, one value per cell: Field.load interpolates nodal values") != std::string::npos);
+  }
+}

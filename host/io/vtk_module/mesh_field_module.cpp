@@ -20,6 +20,7 @@
 #include <vtkGenericDataObjectReader.h>
 #include <vtkIdList.h>
 #include <vtkInformation.h>
+#include <vtkCellData.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
 #include <vtkStaticCellLocator.h>
@@ -278,6 +279,11 @@ MeshFieldHandle* open(const char* path, const char* arrayName, int step, MeshFie
       if (const char* n = pointData->GetArrayName(k)) names += std::string(names.empty() ? "" : ", ") + "'" + n + "'";
     *error = "no point array '" + std::string(arrayName) + "'" +
              (names.empty() ? ": the file has no point arrays" : "; its point arrays are " + names);
+    // A cell array of that name is a value per element, not per node (the FE trial of 2026-11-29
+    // was told only that no point array existed).
+    if (mesh.GetCellData() && mesh.GetCellData()->GetArray(arrayName))
+      *error += " ('" + std::string(arrayName) + "' is a cell array, one value per cell: Field.load interpolates "
+                "nodal values, a point array; export the displacement at the nodes)";
     return nullptr;
   }
   if (field->array->GetNumberOfTuples() != mesh.GetNumberOfPoints()) {

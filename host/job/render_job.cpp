@@ -39,6 +39,7 @@
 #include "gpu/df64.h"
 #include "gpu/submitter.h"
 #include "io/calibration_files.h"
+#include "io/exr_header.h"
 #include "io/feature_files.h"
 #include "io/outputs.h"
 #include "io/preview.h"
@@ -254,6 +255,40 @@ std::uint64_t framePixels(const Scene& scene, int downscale) {
 
 namespace {
 
+// A run that continues a sequence in its folder (`--frames 100:149` after `--frames 0:99`) without
+// the earlier run's reference frame measures its motion from another frame: the folder then holds
+// two references, frame 120's flow from frame 100 beside frame 99's from frame 0, without a word
+// (the laptop trial of 2026-11-29, even with --strict). Said before work, from the header of the
+// lowest-numbered EXR of the folder that this run does not write, of a camera it writes.
+void warnOtherReferenceFrame(const RenderJob& job, const std::set<std::string>& cameras) {
+  const bool motion = job.layers.has(Layer::Flow) || job.layers.has(Layer::Disp) || job.layers.has(Layer::FieldError);
+  if (!job.numbered || !motion || cameras.empty()) return;
+  std::vector<int> mine(job.frames);
+  std::sort(mine.begin(), mine.end());
+  std::optional<std::pair<int, std::string>> earliest;  // frame, file name
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(job.outputDir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    // "<camera>_<4 or more digits>.exr" (outputStem), of a camera this run writes.
+    const std::size_t underscore = name.rfind('_');
+    if (underscore == std::string::npos || !name.ends_with(".exr") || !cameras.count(name.substr(0, underscore))) continue;
+    const std::string digits = name.substr(underscore + 1, name.size() - underscore - 5);
+    if (digits.size() < 4 || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const int frame = std::stoi(digits);
+    if (std::binary_search(mine.begin(), mine.end(), frame) || (earliest && earliest->first <= frame)) continue;
+    earliest = {frame, name};
+  }
+  if (!earliest) return;
+  const std::string path = (std::filesystem::path(job.outputDir) / earliest->second).string();
+  const auto theirs = exrStringAttribute(path, "dicsynth:reference_frame");
+  const std::string ours = std::to_string(job.frames.front());
+  if (!theirs || *theirs == ours) return;
+  warn("-o " + job.outputDir + ": its frame " + std::to_string(earliest->first) + " (" + earliest->second +
+       ") measures motion from frame " + *theirs + ", this run's frames from frame " + ours +
+       ": the folder would hold two reference frames (" + optionName("--reference-frame") + " " + *theirs +
+       " continues that sequence; or write into a folder of its own)");
+}
+
 FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   FramesChecked out;
   const std::map<std::string, std::string> unwritable = unwritableEntries(job.outputDir);
@@ -271,6 +306,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   LayerSources sources;
   UnreadDefines unread;  // a define may be read in some frames only (`frame >= 1 and ...`)
   std::vector<std::string> firstCalibration;
+  std::set<std::string> writtenCameras;  // of the first frame written
   // Long frame ranges take a while here (a million frames: ~45 s before the first render, silent,
   // in the sweep audit of 2026-11-27): progress as the render's (a log's quiet lines once the check
   // has taken ProgressBar::kQuietSeconds); on a terminal only once it has taken 2 s, so that the
@@ -288,6 +324,8 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
     if (fi == 0) out.sceneCrc32 = job.sceneCrc32.value_or(scene.sourceCrc32);
     checkSameContent(job, scene, job.frames[fi], out.sceneCrc32);
     if (fi >= job.firstWrittenIndex()) checkOutputNames(job, scene, job.frames[fi], unwritable, previewUnwritable);
+    if (fi == job.firstWrittenIndex())
+      for (const Camera& camera : scene.cameras) writtenCameras.insert(camera.name);
     if (fi < 1000) {
       const std::string numbered = outputStem("", true, job.frames[fi]);
       for (const std::string& suffix : {std::string(), numbered}) {
@@ -315,6 +353,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
                "frame " + std::to_string(job.frames.front()) + " is rendered alone and is its own reference frame: its " +
                    (job.layers.has(Layer::Flow) ? "flow" : "disp") + " is 0 everywhere (" +
                    optionName("--reference-frame") + " R measures the motion from frame R, traced, not written)");
+  warnOtherReferenceFrame(job, writtenCameras);
   // A frame is written while the next renders: two frames' worth, one for a run of one frame; what
   // a pixel holds depends on the layers (it counted every layer and two frames for any run: 3 to 13
   // times the peak measured, the laptop trial of 2026-11-29).

@@ -183,3 +183,25 @@ TEST_CASE("cli: flow of a 2.25 MP camera on the GPU, whose visibility queries ex
   // where the fp64 points agree to ~1e-15 m (2^-24 of 0.75 px: 4.5e-8 px).
   CHECK(flowDiff < 1e-6);
 }
+
+TEST_CASE("cli: a run that continues a sequence in its folder from another reference frame says so before work") {
+  // The laptop trial of 2026-11-29: `--frames 100:149` into the folder of `--frames 0:99` measured
+  // its flow from frame 100 beside frames measured from frame 0, without a word (even with --strict).
+  TempFolder dir;
+  const std::string scene = dir.write("moving.lua", kMovingScene);
+  const std::string out = dir.file("out");
+  const std::string common = " --spp 1 --backend cpu -o " + out;
+  REQUIRE(runCli("render " + scene + " --frames 0:3" + common).exitCode == 0);
+  const test::CliResult other = runCli("render " + scene + " --frames 4:5 --check" + common);
+  CHECK(other.exitCode == 0);
+  CHECK(other.err == "dicsynth: warning: -o " + out + ": its frame 0 (cam_0000.exr) measures motion from frame 0, this run's "
+                     "frames from frame 4: the folder would hold two reference frames (--reference-frame 0 continues that "
+                     "sequence; or write into a folder of its own)\n");
+  // Continued from frame 0, rerun over its own frames, or without motion layers: nothing to say.
+  for (const char* quiet : {" --frames 4:5 --reference-frame 0", " --frames 0:3", " --frames 4:5 --layers image,depth"}) {
+    CAPTURE(quiet);
+    const test::CliResult r = runCli("render " + scene + quiet + " --check" + common);
+    CHECK(r.exitCode == 0);
+    CHECK(r.err.empty());
+  }
+}

@@ -26,7 +26,9 @@ std::optional<unsigned> cpus(long long quota, long long period) {
   if (quota <= 0 || period <= 0) return std::nullopt;
   // Rounded up: a quota of 1.5 CPUs keeps two threads busy half the time each rather than one
   // thread of the two the group may use (the rounding Go and .NET runtimes make).
-  return unsigned(std::max(1.0, std::ceil(double(quota) / double(period))));
+  // At most 2^20: a nonsense quota (2^44 µs per ms) is no limit worth counting, and the conversion
+  // of a double beyond unsigned's range gave 0 threads (the review of 2026-11-29).
+  return unsigned(std::clamp(std::ceil(double(quota) / double(period)), 1.0, double(1u << 20)));
 }
 
 std::optional<unsigned> v2Limit(const std::filesystem::path& group) {
@@ -121,22 +123,40 @@ std::optional<long long> integerIn(const std::filesystem::path& file) {
   }
 }
 
-std::optional<std::uint64_t> headroom(std::optional<long long> limit, std::optional<long long> usage) {
+// The value of `key` in a memory.stat file ("key value" lines), 0 where absent.
+long long statValue(const std::filesystem::path& file, const std::string& key) {
+  const auto text = readText(file);
+  if (!text) return 0;
+  std::istringstream lines(*text);
+  std::string name;
+  long long value = 0;
+  while (lines >> name >> value)
+    if (name == key) return value;
+  return 0;
+}
+
+// The limit less the usage, the inactive file cache taken out of the usage: the kernel drops that
+// cache when the group reaches its limit, and a job that had written its --mem in files (a sweep's
+// EXRs) had no headroom left and was refused every frame (the review of 2026-11-29). The working
+// set, as container runtimes count it.
+std::optional<std::uint64_t> headroom(std::optional<long long> limit, std::optional<long long> usage, long long inactiveFile) {
   if (!limit || *limit < 0) return std::nullopt;
-  const long long used = usage && *usage > 0 ? *usage : 0;
+  const long long used = std::max(0LL, (usage && *usage > 0 ? *usage : 0) - std::max(0LL, inactiveFile));
   return std::uint64_t(std::max(0LL, *limit - used));
 }
 
 std::optional<std::uint64_t> v2Memory(const std::filesystem::path& group) {
   const auto max = readText(group / "memory.max");
   if (!max || max->rfind("max", 0) == 0) return std::nullopt;
-  return headroom(integerIn(group / "memory.max"), integerIn(group / "memory.current"));
+  return headroom(integerIn(group / "memory.max"), integerIn(group / "memory.current"),
+                  statValue(group / "memory.stat", "inactive_file"));
 }
 
 std::optional<std::uint64_t> v1Memory(const std::filesystem::path& group) {
   const auto limit = integerIn(group / "memory.limit_in_bytes");
   if (!limit || *limit >= (1LL << 62)) return std::nullopt;  // v1's "no limit": 2^63 rounded to pages
-  return headroom(limit, integerIn(group / "memory.usage_in_bytes"));
+  return headroom(limit, integerIn(group / "memory.usage_in_bytes"),
+                  statValue(group / "memory.stat", "total_inactive_file"));
 }
 
 }  // namespace

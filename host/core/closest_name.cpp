@@ -1,6 +1,7 @@
 #include "core/closest_name.h"
 
 #include <algorithm>
+#include <cctype>
 
 namespace dicsynth {
 
@@ -19,7 +20,30 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
   return d[a.size()][b.size()];
 }
 
+namespace {
+
+bool sameIgnoringCase(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+}  // namespace
+
 std::optional<std::string> closestName(std::string_view word, const std::vector<std::string>& candidates) {
+  // The same name in other case first ("-D STRAIN" for `strain`), then a name the word begins, of
+  // 3 letters or more ("Camera.Pin" for Pinhole): edits counted neither (the hostile-input trial of
+  // 2026-11-29 got no hint for either).
+  for (const std::string& candidate : candidates)
+    if (sameIgnoringCase(word, candidate)) return candidate;
+  if (word.size() >= 3) {
+    std::optional<std::string> prefixed;
+    for (const std::string& candidate : candidates)
+      if (candidate.size() > word.size() && sameIgnoringCase(word, std::string_view(candidate).substr(0, word.size())) &&
+          (!prefixed || candidate.size() < prefixed->size()))
+        prefixed = candidate;
+    if (prefixed) return prefixed;
+  }
   std::optional<std::string> best;
   std::size_t bestDistance = 3;
   for (const std::string& candidate : candidates) {

@@ -1,5 +1,6 @@
 #include "io/exr_header.h"
 
+#include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
@@ -15,6 +16,16 @@ std::optional<std::string> exrStringAttribute(const std::string& path, const std
   } catch (const std::exception&) {  // not an EXR, damaged, unreadable: no attribute
   }
   return std::nullopt;
+}
+
+bool exrHasAnyChannel(const std::string& path, std::initializer_list<const char*> channels) {
+  try {
+    const Imf::InputFile file(path.c_str());
+    for (const char* c : channels)
+      if (file.header().channels().findChannel(c)) return true;
+  } catch (const std::exception&) {
+  }
+  return false;
 }
 
 }  // namespace dicsynth

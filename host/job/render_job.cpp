@@ -84,13 +84,14 @@ std::map<std::string, std::string> unwritableEntries(const std::string& dir) {
 void checkOutputNames(const RenderJob& job, const Scene& scene, int frame,
                       const std::map<std::string, std::string>& unwritable,
                       const std::map<std::string, std::string>& previewUnwritable) {
+  // Pictures are drawn of the EXR's layers: none with the image alone (the review of 2026-11-29).
   for (const Camera& camera : scene.cameras) {
     const std::string stem = outputStem(camera.name, job.numbered, frame) + ".";
     for (const auto& [name, why] : previewUnwritable)
-      if (name.size() > stem.size() + 4 && name.compare(0, stem.size(), stem) == 0 && name.ends_with(".png"))
+      if (job.layers.anyGroundTruth() && name.size() > stem.size() + 4 && name.compare(0, stem.size(), stem) == 0 &&
+          name.ends_with(".png"))
         throw InputError(job.outputDir + "/preview/" + name + " " + why + ", where --preview draws camera " + camera.name +
-                         "'s " + name.substr(stem.size(), name.size() - stem.size() - 4) +
-                         " layer (remove or rename it, or choose another -o)");
+                         "'s pictures, " + stem + "<layer>.png (remove or rename it, or choose another -o)");
   }
   if (unwritable.empty()) return;
   const auto refuse = [&](const std::string& name, const std::string& what) {
@@ -280,6 +281,8 @@ void warnOtherReferenceFrame(const RenderJob& job, const std::set<std::string>& 
   }
   if (!earliest) return;
   const std::string path = (std::filesystem::path(job.outputDir) / earliest->second).string();
+  // A file without motion layers records a reference frame too, but measures nothing from it.
+  if (!exrHasAnyChannel(path, {"disp.X", "flow.X", "fieldError.X"})) return;
   const auto theirs = exrStringAttribute(path, "dicsynth:reference_frame");
   const std::string ours = std::to_string(job.frames.front());
   if (!theirs || *theirs == ours) return;

@@ -27,6 +27,11 @@ struct ManifestSummary {
 };
 inline constexpr std::size_t kMissingNamed = 10;
 
+// manifest.csv's own columns, before and after the parameters': a sweep's parameter may not take one
+// of their names (sweep_runner.cpp), which would give the file two columns of one name.
+inline constexpr const char* kManifestLeadColumns[] = {"index", "folder"};
+inline constexpr const char* kManifestTrailColumns[] = {"seed", "spp", "backend", "precision", "device", "render_seconds", "files"};
+
 // The finished points (folders point_N holding a record) of `outputDir` whose index is `count` or
 // more: of another, larger sweep into the same folder, which a manifest of `count` points would
 // silently lose (the cluster trial of 2026-11-29: a 3-point --merge-only into a 6-point sweep's

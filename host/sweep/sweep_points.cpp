@@ -4,7 +4,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <span>
 #include <string>
 
 #include "core/error.h"
@@ -200,16 +199,6 @@ SweepPlan planSweep(const std::string& scenePath, const std::vector<std::pair<st
     const std::string what = plan.declaration.origin + ": sweep parameter '" + name + "': ";
     if (!isIdentifier(name)) throw InputError(what + "not a Lua identifier (letters, digits and _, not starting with a digit)");
     if (name == "frame") throw InputError(what + "'frame' is reserved (use --frames)");
-    std::string columns;
-    bool column = false;
-    for (const auto& list : {std::span<const char* const>(kManifestLeadColumns), std::span<const char* const>(kManifestTrailColumns)})
-      for (const char* c : list) {
-        columns += (columns.empty() ? "" : ", ") + std::string(c);
-        column = column || name == c;
-      }
-    if (column)
-      throw InputError(what + "the name of a column manifest.csv writes for every point (" + columns +
-                       "): choose another name (e.g. " + name + "_value)");
     if (isSceneLanguageName(name))
       throw InputError(what + "a built-in name of the scene language (like Shape, linspace, _G, string): choose another name");
     for (const auto& define : defines)

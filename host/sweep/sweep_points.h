@@ -65,12 +65,6 @@ SweepPlan planSweep(const std::string& scenePath, const std::vector<std::pair<st
 // point's key (sweep runner), so its text must not change between versions.
 std::string parametersJson(const SweepPoint& point);
 
-// manifest.csv's own columns, before and after the parameters' (sweep/manifest.cpp): a parameter may
-// not take one of their names, which would give the file two columns of one name (csv.DictReader
-// then read a parameter `index` as the point's index: the cluster trial of 2026-11-29).
-inline constexpr const char* kManifestLeadColumns[] = {"index", "folder"};
-inline constexpr const char* kManifestTrailColumns[] = {"seed", "spp", "backend", "precision", "device", "render_seconds", "files"};
-
 // "point_00042": the folder of a point under the sweep's output folder (at least 5 digits).
 std::string pointFolderName(std::int64_t index);
 

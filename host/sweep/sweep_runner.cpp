@@ -209,6 +209,22 @@ std::string missingText(const sweep::ManifestSummary& summary) {
   return t;
 }
 
+// A parameter may not take the name of one of manifest.csv's own columns: the file would have two
+// columns of one name (csv.DictReader then read a parameter `index` as the point's index: the
+// cluster trial of 2026-11-29). The sweep's alone: `compare --sweep seed=1,2` writes no manifest.
+void checkManifestColumns(const SweepPlan& plan) {
+  std::vector<std::string> columns(std::begin(sweep::kManifestLeadColumns), std::end(sweep::kManifestLeadColumns));
+  columns.insert(columns.end(), std::begin(sweep::kManifestTrailColumns), std::end(sweep::kManifestTrailColumns));
+  for (const std::string& name : plan.names)
+    if (std::find(columns.begin(), columns.end(), name) != columns.end()) {
+      std::string list;
+      for (const std::string& c : columns) list += (list.empty() ? "" : ", ") + c;
+      throw InputError(plan.declaration.origin + ": sweep parameter '" + name +
+                       "': the name of a column manifest.csv writes for every point (" + list +
+                       "): choose another name (e.g. " + name + "_value)");
+    }
+}
+
 }  // namespace
 
 SweepOutcome runSweep(const SweepRun& cmd) {
@@ -219,6 +235,7 @@ SweepOutcome runSweep(const SweepRun& cmd) {
   const FrameOrder order = referenceFirst(numbered ? parseFrames(cmd.frames) : std::vector<int>{0}, cmd.referenceFrame);
   const std::vector<int>& frames = order.frames;
   const SweepPlan plan = planSweep(cmd.args.scenePath, defines, cmd.sweep);
+  checkManifestColumns(plan);
   const Shard shard = resolveShard(cmd.shard);
 
   if (cmd.list) {
@@ -391,11 +408,28 @@ SweepOutcome runSweep(const SweepRun& cmd) {
     for (std::int64_t index = shard.index; index < plan.count; index += shard.count) {
       const SweepPoint p = plan.point(index);
       const auto recorded = sweep::readPointRecord((fs::path(cmd.outputDir) / pointFolderName(p.index)).string());
-      if (recorded && recorded->index == p.index && recorded->key != keyOf(p))
+      if (!recorded || recorded->index != p.index) continue;
+      if (recorded->key != keyOf(p))
         throw InputError("sweep --keep-finished: " + pointFolderName(p.index) + " was rendered with other inputs (" +
                          keyDifference(recorded->key, keyFieldsOf(p)) +
                          "): nothing is rendered. Give the options the sweep was run with, or run without "
                          "--keep-finished to render such points again");
+      // Its inputs also hold the textures and meshes it loaded, which a resubmitted job may have
+      // remade (the review of 2026-11-29: a rewritten speckle.tif replaced every finished point).
+      // Its own files damaged or missing is a point to finish, as ever.
+      for (const sweep::PointFile& asset : recorded->assets) {
+        std::string changed;
+        try {
+          const sweep::PointFile now = assets.of(asset.name);
+          if (now.bytes != asset.bytes || now.crc32 != asset.crc32) changed = "changed since";
+        } catch (const Error&) {
+          changed = "cannot be read now";
+        }
+        if (!changed.empty())
+          throw InputError("sweep --keep-finished: " + pointFolderName(p.index) + " was rendered from " + asset.name +
+                           ", which " + changed + ": nothing is rendered. Restore the file, or run without "
+                           "--keep-finished to render the points that used it again");
+      }
     }
 
   RenderSession session(cmd.args, cmd.backend);

@@ -197,6 +197,13 @@ TEST_CASE("cli: a run that continues a sequence in its folder from another refer
   CHECK(other.err == "dicsynth: warning: -o " + out + ": its frame 0 (cam_0000.exr) measures motion from frame 0, this run's "
                      "frames from frame 4: the folder would hold two reference frames (--reference-frame 0 continues that "
                      "sequence; or write into a folder of its own)\n");
+  // Earlier files without motion layers measure nothing from their reference frame: nothing to say
+  // (the review of 2026-11-29).
+  const std::string depth = dir.file("depth");
+  REQUIRE(runCli("render " + scene + " --frames 0:2 --layers depth --spp 1 --backend cpu -o " + depth).exitCode == 0);
+  const test::CliResult noMotion = runCli("render " + scene + " --frames 3:4 --layers flow --check --spp 1 --backend cpu -o " + depth);
+  CHECK(noMotion.exitCode == 0);
+  CHECK(noMotion.err.empty());
   // Continued from frame 0, rerun over its own frames, or without motion layers: nothing to say.
   for (const char* quiet : {" --frames 4:5 --reference-frame 0", " --frames 0:3", " --frames 4:5 --layers image,depth"}) {
     CAPTURE(quiet);

@@ -704,6 +704,28 @@ TEST_CASE("cli: sweep in a folder of a larger sweep, resubmitted with other opti
   CHECK(column.err.find("sweep parameter 'seed': the name of a column manifest.csv writes for every point (index, "
                         "folder, seed, spp, backend, precision, device, render_seconds, files)") != std::string::npos);
 
+  // compare writes no manifest: its --sweep may name any parameter (the review of 2026-11-29).
+  CHECK(runCli("compare " + scene + " --sweep seed=1,2 --downscale 8 --spp 1").err.find("manifest.csv") == std::string::npos);
+
+  // --keep-finished also refuses points whose texture changed since (a resubmitted job that remade
+  // speckle.tif replaced every finished point: the review of 2026-11-29).
+  REQUIRE(runCli("speckle -o " + dir.file("t.tif") + " --size 64 64 --seed 1 --bits 8").exitCode == 0);
+  const std::string textured = dir.write(
+      "tex.lua", "cam = Camera.Pinhole { resolution = {32, 24}; focalLength = 0.01; pixelSize = {1e-4, 1e-4} }\n"
+                 "shift = shift or 0\n"
+                 "plate = Object.Simple { shape = Shape.Rectangle { size = {0.2, 0.15}; location = {shift, 0, 0.5} };\n"
+                 "  shader = Shader.Constant { color = 1 }; texture = Texture.File { fileName = 't.tif' } }\n");
+  const std::string tex = " --backend cpu --spp 1 --sweep shift=0,0.01 -o " + dir.file("tex");
+  REQUIRE(runCli("sweep " + textured + tex).exitCode == 0);
+  REQUIRE(runCli("speckle -o " + dir.file("t.tif") + " --size 64 64 --seed 2 --bits 8").exitCode == 0);
+  const std::string kept0 = readText(dir.file("tex/point_00000/point.json"));
+  const test::CliResult remade = runCli("sweep " + textured + tex + " --keep-finished");
+  CHECK(remade.exitCode == 2);
+  CHECK(remade.err == "dicsynth: error: sweep --keep-finished: point_00000 was rendered from " + dir.file("t.tif") +
+                      ", which changed since: nothing is rendered. Restore the file, or run without --keep-finished to "
+                      "render the points that used it again\n");
+  CHECK(readText(dir.file("tex/point_00000/point.json")) == kept0);
+
   // A Slurm array with a step (--array=0-6:2) or with gaps: refused, not half rendered.
   for (const std::string env : {"SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=4 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=6 SLURM_ARRAY_TASK_STEP=2",
                                 "SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=3 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=5 SLURM_ARRAY_TASK_STEP=1"}) {

@@ -150,9 +150,14 @@ TEST_CASE("render --check: a folder where a rig's DICe file or a preview picture
   for (const char* check : {" --check", ""}) {
     const test::CliResult r = test::runCli("render " + scene + " -o " + op + " --backend cpu --preview --layers image,depth" + check);
     CHECK(r.exitCode == 2);
-    CHECK(r.err == "dicsynth: error: " + op + "/preview/cam.depth.png is a folder, where --preview draws camera cam's depth "
-                   "layer (remove or rename it, or choose another -o)\n");
+    CHECK(r.err == "dicsynth: error: " + op + "/preview/cam.depth.png is a folder, where --preview draws camera cam's "
+                   "pictures, cam.<layer>.png (remove or rename it, or choose another -o)\n");
   }
+  // With the image alone no picture is drawn (a warning says so): nothing to refuse (the review of
+  // 2026-11-29).
+  const test::CliResult imageOnly = test::runCli("render " + scene + " -o " + op + " --backend cpu --preview --layers image --check");
+  CHECK(imageOnly.exitCode == 0);
+  CHECK(imageOnly.err.find("no picture will be drawn") != std::string::npos);
   // Other entries of preview/ are not the run's: left alone.
   std::filesystem::remove(op + "/preview/cam.depth.png");
   std::filesystem::create_directories(op + "/preview/notes");

@@ -31,6 +31,9 @@ TEST_CASE("cgroup limits: cgroup v2's cpu.max, the tightest of the group and its
   CHECK(cgroupCpuLimit("0::/\n", ns.path()) == 4u);
   // A path the mount does not show: read down to the deepest existing folder.
   CHECK(cgroupCpuLimit("0::/system.slice/docker-1.scope\n", ns.path()) == 4u);
+  // A quota beyond any machine counts as 2^20 CPUs, not as 0 threads (the review of 2026-11-29).
+  ns.write("cpu.max", "4294967296000 1000\n");
+  CHECK(cgroupCpuLimit("0::/\n", ns.path()) == 1u << 20);
   // Nonsense and unreadable files count as no quota.
   ns.write("cpu.max", "lots 100000\n");
   CHECK_FALSE(cgroupCpuLimit("0::/\n", ns.path()).has_value());
@@ -40,7 +43,7 @@ TEST_CASE("cgroup limits: cgroup v2's cpu.max, the tightest of the group and its
   CHECK_FALSE(cgroupCpuLimit("0::/\n", dir.file("no-such-mount")).has_value());
 }
 
-TEST_CASE("cgroup limits: cgroup v1's cfs quota and period, under cpu or cpu,cpuacct; -1 is none") {
+TEST_CASE("cgroup limits: cgroup v1's cfs quota and period, under cpu or cpu,cpuacct, -1 for none") {
   test::TempFolder dir;
   const std::string self = "12:memory:/job\n4:cpu,cpuacct:/slurm/job_7\n0::/\n";
   dir.write("cpu,cpuacct/cpu.cfs_quota_us", "-1\n");
@@ -71,6 +74,10 @@ TEST_CASE("cgroup limits: the memory a group's limit leaves, v2 and v1, the tigh
   CHECK(cgroupMemoryHeadroom("0::/job/step\n", v2.path()) == 3096u);  // the parent's limit holds
   v2.write("job/memory.current", "5000\n");  // over its limit: nothing left, not a wrapped number
   CHECK(cgroupMemoryHeadroom("0::/job\n", v2.path()) == 0u);
+  // The inactive file cache is not in use: the kernel drops it at the limit (a job that had
+  // written its limit in files was refused every frame: the review of 2026-11-29).
+  v2.write("job/memory.stat", "anon 1000\nfile 3900\nactive_file 100\ninactive_file 3800\n");
+  CHECK(cgroupMemoryHeadroom("0::/job\n", v2.path()) == 4096u - 1200u);
   test::TempFolder v1;
   const std::string self = "9:memory:/slurm/uid_0/job_3\n4:cpu,cpuacct:/slurm\n";
   v1.write("memory/slurm/uid_0/job_3/memory.limit_in_bytes", "9223372036854771712\n");  // v1's "none"
@@ -78,6 +85,9 @@ TEST_CASE("cgroup limits: the memory a group's limit leaves, v2 and v1, the tigh
   CHECK_FALSE(cgroupMemoryHeadroom(self, v1.path()).has_value());
   v1.write("memory/slurm/uid_0/job_3/memory.limit_in_bytes", "2147483648\n");
   CHECK(cgroupMemoryHeadroom(self, v1.path()) == 2147483548u);
+  v1.write("memory/slurm/uid_0/job_3/memory.usage_in_bytes", "2000000000\n");
+  v1.write("memory/slurm/uid_0/job_3/memory.stat", "cache 1900000000\ntotal_inactive_file 1500000000\n");
+  CHECK(cgroupMemoryHeadroom(self, v1.path()) == 2147483648u - 500000000u);
   // The cpu line is not the memory controller's.
   CHECK_FALSE(cgroupMemoryHeadroom("4:cpu,cpuacct:/slurm/uid_0/job_3\n", v1.path()).has_value());
 }

@@ -22,4 +22,11 @@ TEST_CASE("closest name: edit distance and the suggestion's bounds") {
   CHECK_FALSE(closestName("xyz", names));       // 3 edits or more from every name
   CHECK_FALSE(closestName("b", {"a"}));          // 1 edit, but not shorter than the word
   CHECK(closestName("bx", {"by", "bz"}) == std::optional<std::string>("by"));  // the first of equals
+  // Another case, and a beginning (the hostile-input trial of 2026-11-29 got no hint for -D STRAIN
+  // nor Camera.Pin).
+  CHECK(closestName("STRAIN", {"stress", "strain"}) == std::optional<std::string>("strain"));
+  CHECK(closestName("V", {"v", "w"}) == std::optional<std::string>("v"));
+  CHECK(closestName("Pin", {"Telecentric", "Pinhole", "ThinLens"}) == std::optional<std::string>("Pinhole"));
+  CHECK(closestName("pin", {"Pinholes", "Pinhole"}) == std::optional<std::string>("Pinhole"));  // the shortest
+  CHECK_FALSE(closestName("Pi", {"Pinhole"}));  // too short to stand for a name
 }

@@ -712,6 +712,9 @@ CameraFrame deriveCamera(const RenderJob& job, const RenderedFrame& rendered, co
 
 void checkOutputWritable(const std::string& dir, const std::string& option) {
   const std::string label = option.empty() ? "-o " + dir : option;  // as the messages name it
+  // `-o ''` read "cannot create the output folder:  is not a folder" (the hostile-input trial of
+  // 2026-11-29).
+  if (dir.empty()) throw InputError((option.empty() ? std::string("-o") : option) + ": an empty folder name (give a folder, e.g. -o out)");
   // The folder, or the nearest existing folder above it (where it would be created), must take a
   // new file: tried with a temporary one (permission bits alone do not tell root, nor a read-only
   // mount). Nothing else is created.

@@ -868,6 +868,14 @@ TEST_CASE("hostile: a closed stdout or stderr is no file's descriptor, and integ
   CHECK(WEXITSTATUS(quiet) == 0);
   CHECK(test::readBytes(dir.file("out")).find("cam.tif") != std::string::npos);
 
+  // An empty -o is named as such (it read "cannot create the output folder:  is not a folder").
+  for (const char* options : {" -o ''", " -o '' --sweep x=1"}) {
+    const test::CliResult empty = test::runCli(std::string(options).find("sweep") != std::string::npos
+                                                   ? "sweep " + scene + options + " --backend cpu"
+                                                   : "render " + scene + options + " --backend cpu");
+    CHECK(empty.exitCode == 2);
+    CHECK(empty.err.find("-o: an empty folder name (give a folder, e.g. -o out)") != std::string::npos);
+  }
   // Integer options read decimal digits: 0010 was octal 8 (frame file names have 4 digits), 0x10 16.
   const test::CliResult zeros = test::runCli("render " + scene + " -o " + dir.file("z") + " --frames 0:1 --reference-frame 0010 --spp 010 --check --json");
   CHECK(zeros.exitCode == 0);

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <new>
+#include <system_error>
 
 #include "cli/commands.h"
 #include "cli/error_line.h"
@@ -112,6 +114,18 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s\n", cli::errorLine(e.what()).c_str());
     return cli::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // "std::bad_alloc" alone said nothing of the cause (the hostile-input trial of 2026-11-29).
+    std::fprintf(stderr, "dicsynth: error: out of memory (std::bad_alloc): the run needed more than the system or its "
+                         "limits (ulimit -v, a control group's memory limit) allow: --downscale, fewer pixels or --layers "
+                         "image take less\n");
+    return cli::kExitFailure;
+  } catch (const std::system_error& e) {
+    // A thread that could not start: "Resource temporarily unavailable" alone (the same trial).
+    const bool thread = e.code() == std::errc::resource_unavailable_try_again;
+    std::fprintf(stderr, "%s%s\n", cli::errorLine(e.what()).c_str(),
+                 thread ? " (a thread could not be started: a limit on processes or address space, ulimit -u or -v?)" : "");
+    return cli::kExitFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", cli::errorLine(e.what()).c_str());
     return cli::kExitFailure;

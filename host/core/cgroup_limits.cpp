@@ -1,5 +1,6 @@
 #include "core/cgroup_limits.h"
 
+#include <sched.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace dicsynth {
@@ -135,28 +137,31 @@ long long statValue(const std::filesystem::path& file, const std::string& key) {
   return 0;
 }
 
-// The limit less the usage, the inactive file cache taken out of the usage: the kernel drops that
-// cache when the group reaches its limit, and a job that had written its --mem in files (a sweep's
-// EXRs) had no headroom left and was refused every frame (the review of 2026-11-29). The working
-// set, as container runtimes count it.
-std::optional<std::uint64_t> headroom(std::optional<long long> limit, std::optional<long long> usage, long long inactiveFile) {
+// The limit less the usage, the file cache taken out of the usage: the kernel drops that cache
+// when the group reaches its limit, and a job that had written its --mem in files (a sweep's EXRs)
+// had no headroom left and was refused every frame (the review of 2026-11-29); the active part too,
+// which files written and read back become (a 400 MiB group refused a 234 MiB render that then ran
+// there: the hostile-input trial). Shared memory (tmpfs) is in the cache but not dropped: it stays.
+std::optional<std::uint64_t> headroom(std::optional<long long> limit, std::optional<long long> usage, long long cache) {
   if (!limit || *limit < 0) return std::nullopt;
-  const long long used = std::max(0LL, (usage && *usage > 0 ? *usage : 0) - std::max(0LL, inactiveFile));
+  const long long used = std::max(0LL, (usage && *usage > 0 ? *usage : 0) - std::max(0LL, cache));
   return std::uint64_t(std::max(0LL, *limit - used));
 }
 
 std::optional<std::uint64_t> v2Memory(const std::filesystem::path& group) {
   const auto max = readText(group / "memory.max");
   if (!max || max->rfind("max", 0) == 0) return std::nullopt;
+  const std::filesystem::path stat = group / "memory.stat";
   return headroom(integerIn(group / "memory.max"), integerIn(group / "memory.current"),
-                  statValue(group / "memory.stat", "inactive_file"));
+                  statValue(stat, "file") - statValue(stat, "shmem"));
 }
 
 std::optional<std::uint64_t> v1Memory(const std::filesystem::path& group) {
   const auto limit = integerIn(group / "memory.limit_in_bytes");
   if (!limit || *limit >= (1LL << 62)) return std::nullopt;  // v1's "no limit": 2^63 rounded to pages
+  const std::filesystem::path stat = group / "memory.stat";
   return headroom(limit, integerIn(group / "memory.usage_in_bytes"),
-                  statValue(group / "memory.stat", "total_inactive_file"));
+                  statValue(stat, "total_cache") - statValue(stat, "total_shmem"));
 }
 
 }  // namespace
@@ -179,7 +184,18 @@ std::optional<std::uint64_t> processMemoryHeadroom() {
     std::uint64_t mapped = 0;
     for (std::string line; std::getline(status, line);)
       if (line.rfind("VmSize:", 0) == 0) mapped = std::strtoull(line.c_str() + 7, nullptr, 10) * 1024;
-    const std::uint64_t left = std::uint64_t(limit.rlim_cur) > mapped ? std::uint64_t(limit.rlim_cur) - mapped : 0;
+    // Less what the threads a run starts will reserve: glibc's malloc arena (64 MiB of address space
+    // each) and an 8 MiB stack, for the worker threads, the writers and lavapipe's own, about two
+    // per CPU (the check passed under `ulimit -v 300000`, and the run ended in std::bad_alloc or
+    // "Resource temporarily unavailable": the hostile-input trial of 2026-11-29).
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    std::uint64_t cpus = std::max(1u, std::thread::hardware_concurrency());
+    if (::sched_getaffinity(0, sizeof set, &set) == 0) cpus = std::uint64_t(std::max(1, CPU_COUNT(&set)));
+    if (const auto quota = processCpuLimit()) cpus = std::min<std::uint64_t>(cpus, *quota);
+    const std::uint64_t threads = 2 * cpus + 2;
+    const std::uint64_t reserved = mapped + threads * (std::uint64_t(72) << 20);
+    const std::uint64_t left = std::uint64_t(limit.rlim_cur) > reserved ? std::uint64_t(limit.rlim_cur) - reserved : 0;
     least = least ? std::min(*least, left) : left;
   }
   return least;

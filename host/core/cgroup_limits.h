@@ -30,14 +30,15 @@ std::optional<unsigned> cgroupCpuLimit(const std::string& selfCgroup, const std:
 std::optional<unsigned> processCpuLimit();
 
 // The bytes the tightest memory limit on the process's group and its ancestors leaves (limit minus
-// usage, the inactive file cache not counted as used; 0 when usage exceeds it), or none without a
-// limit. v2: memory.max ("max": none), memory.current, memory.stat's inactive_file; v1:
-// memory.limit_in_bytes (2^62 and more: none), memory.usage_in_bytes, memory.stat's
-// total_inactive_file. Read as cgroupCpuLimit reads its files.
+// usage, the file cache other than shared memory not counted as used; 0 when usage exceeds it), or
+// none without a limit. v2: memory.max ("max": none), memory.current, memory.stat's file - shmem;
+// v1: memory.limit_in_bytes (2^62 and more: none), memory.usage_in_bytes, memory.stat's
+// total_cache - total_shmem. Read as cgroupCpuLimit reads its files.
 std::optional<std::uint64_t> cgroupMemoryHeadroom(const std::string& selfCgroup, const std::filesystem::path& mount);
 
 // The least of this process's cgroup headroom (read now: usage changes) and what `ulimit -v` leaves
-// (RLIMIT_AS minus /proc/self/status's VmSize), or none where neither limits it.
+// (RLIMIT_AS minus /proc/self/status's VmSize and the address space the run's threads will reserve),
+// or none where neither limits it.
 std::optional<std::uint64_t> processMemoryHeadroom();
 
 }  // namespace dicsynth

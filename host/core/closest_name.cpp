@@ -36,13 +36,19 @@ std::optional<std::string> closestName(std::string_view word, const std::vector<
   // 2026-11-29 got no hint for either).
   for (const std::string& candidate : candidates)
     if (sameIgnoringCase(word, candidate)) return candidate;
-  if (word.size() >= 3) {
+  // Letters and digits counted ("--f" is one letter, too little to stand for a name), and only a
+  // beginning that one candidate has: "--pre" is --precision's and --preview's, "ste" step_px's and
+  // step_deg's (a guess between them misled: the hostile-input trial of 2026-11-29).
+  const auto letters = std::count_if(word.begin(), word.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)); });
+  if (letters >= 3) {
     std::optional<std::string> prefixed;
+    int matches = 0;
     for (const std::string& candidate : candidates)
-      if (candidate.size() > word.size() && sameIgnoringCase(word, std::string_view(candidate).substr(0, word.size())) &&
-          (!prefixed || candidate.size() < prefixed->size()))
+      if (candidate.size() > word.size() && sameIgnoringCase(word, std::string_view(candidate).substr(0, word.size()))) {
+        ++matches;
         prefixed = candidate;
-    if (prefixed) return prefixed;
+      }
+    if (matches == 1) return prefixed;
   }
   std::optional<std::string> best;
   std::size_t bestDistance = 3;

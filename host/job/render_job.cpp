@@ -269,6 +269,10 @@ void warnOtherReferenceFrame(const RenderJob& job, const std::set<std::string>& 
   std::optional<std::pair<int, std::string>> earliest;  // frame, file name
   std::error_code ec;
   for (std::filesystem::directory_iterator it(job.outputDir, ec), end; !ec && it != end; it.increment(ec)) {
+    // Regular files alone (a link followed): a FIFO or a link to /dev/stdin under such a name blocked
+    // the run in open() for ever (the hostile-input trial of 2026-11-29).
+    std::error_code typeError;
+    if (!it->is_regular_file(typeError)) continue;
     const std::string name = it->path().filename().string();
     // "<camera>_<4 or more digits>.exr" (outputStem), of a camera this run writes.
     const std::size_t underscore = name.rfind('_');
@@ -283,9 +287,13 @@ void warnOtherReferenceFrame(const RenderJob& job, const std::set<std::string>& 
   const std::string path = (std::filesystem::path(job.outputDir) / earliest->second).string();
   // A file without motion layers records a reference frame too, but measures nothing from it.
   if (!exrHasAnyChannel(path, {"disp.X", "flow.X", "fieldError.X"})) return;
+  // A frame number, or nothing to compare: the attribute is the file's text, which a damaged or
+  // forged file could fill with a line break, escapes or shell text (the hostile-input trial).
   const auto theirs = exrStringAttribute(path, "dicsynth:reference_frame");
   const std::string ours = std::to_string(job.frames.front());
-  if (!theirs || *theirs == ours) return;
+  if (!theirs || theirs->empty() || theirs->size() > 9 || theirs->find_first_not_of("0123456789") != std::string::npos ||
+      *theirs == ours)
+    return;
   warn("-o " + job.outputDir + ": its frame " + std::to_string(earliest->first) + " (" + earliest->second +
        ") measures motion from frame " + *theirs + ", this run's frames from frame " + ours +
        ": the folder would hold two reference frames (" + optionName("--reference-frame") + " " + *theirs +

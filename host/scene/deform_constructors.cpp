@@ -31,6 +31,13 @@ std::string describeDeformation(const Deformation& d) {
 namespace scene {
 namespace {
 
+// A percentage to 2 significant digits: "0.08", "8e-05" (rounded to 2 decimals, 1e-4 % read "0").
+std::string percentText(double percent) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", percent);
+  return text;
+}
+
 /* ------------------------------------------------------------------------------------------------
 Field.load: a displacement field given at the nodes of a finite-element mesh, read with VTK, for
 Nurbs.deform { displacement = Field.load { ... } }. The field at a point is interpolated with the
@@ -242,7 +249,7 @@ int nurbsDeform(lua_State* L) {
       if (surfaceExtent > 0 && surfaceExtent < 0.01 * meshExtent)
         warnAtMost("mesh extent " + where.str(), 1,
                    where.str() + ": Nurbs.deform: the surface spans " + shortestNumber(surfaceExtent) + " m, " +
-                       shortestNumber(std::round(1e4 * surfaceExtent / meshExtent) / 100) + " % of the " +
+                       percentText(100 * surfaceExtent / meshExtent) + " % of the " +
                        shortestNumber(meshExtent) + " m the mesh " + mesh->options().path + " spans with scale " +
                        shortestNumber(scale) + ": is the mesh in other units (Field.load's scale = 1e-3 for mm)?");
     }

@@ -173,7 +173,9 @@ TEST_CASE("render --check: the memory check counts `ulimit -v`, not only the mac
       "big.lua", "cam = Camera.Pinhole { resolution = {3000, 3000}; focalLength = 0.012; pixelSize = {4e-6, 4e-6} }\n"
                  "plate = Object.Simple { shape = Shape.Rectangle { size = {1, 1}; location = {0, 0, 1} } }\n");
   const std::string log = dir.file("log");
-  const int rc = std::system(("(ulimit -v 2000000; " + std::string(DS_BINARY) + " render " + big + " -o " + dir.file("o") +
+  // On one CPU (taskset): the threads a run starts reserve address space per CPU, which the check
+  // counts (72 MiB each, two per CPU and two more).
+  const int rc = std::system(("(ulimit -v 2000000; taskset -c 0 " + std::string(DS_BINARY) + " render " + big + " -o " + dir.file("o") +
                               " --backend cpu --check) > " + log + " 2>&1").c_str());
   CHECK(WEXITSTATUS(rc) == 2);
   const std::string err = test::readBytes(log);
@@ -183,13 +185,13 @@ TEST_CASE("render --check: the memory check counts `ulimit -v`, not only the mac
   CHECK_FALSE(std::filesystem::exists(dir.file("o")));
   // The estimate follows the layers and the frames (it counted every layer and two frames: the
   // laptop trial of 2026-11-29 was refused a 48 MP image-only frame that fits in 1.5 GB): with
-  // the image alone the 3000 x 3000 frame, 9e6 x 96 bytes = 824 MiB, passes under 1.5 GB (less the
-  // process's own ~0.3 GB of address space)...
-  const int image = std::system(("(ulimit -v 1500000; " + std::string(DS_BINARY) + " render " + big + " -o " + dir.file("o") +
+  // the image alone the 3000 x 3000 frame, 9e6 x 96 bytes = 824 MiB, passes under 1.6 GB (less the
+  // process's own ~0.3 GB of address space and its 4 threads' 0.3 GB)...
+  const int image = std::system(("(ulimit -v 1600000; taskset -c 0 " + std::string(DS_BINARY) + " render " + big + " -o " + dir.file("o") +
                                  " --backend cpu --check --layers image) > " + log + " 2>&1").c_str());
   CHECK(WEXITSTATUS(image) == 0);
   // ... and two frames of it, one written while the next renders, 1648 MiB, do not.
-  const int two = std::system(("(ulimit -v 1500000; " + std::string(DS_BINARY) + " render " + big + " -o " + dir.file("o") +
+  const int two = std::system(("(ulimit -v 1600000; taskset -c 0 " + std::string(DS_BINARY) + " render " + big + " -o " + dir.file("o") +
                                " --backend cpu --check --layers image --frames 0:1) > " + log + " 2>&1").c_str());
   CHECK(WEXITSTATUS(two) == 2);
   CHECK(test::readBytes(log).find("needs about 1647 MiB") != std::string::npos);

@@ -74,10 +74,11 @@ TEST_CASE("cgroup limits: the memory a group's limit leaves, v2 and v1, the tigh
   CHECK(cgroupMemoryHeadroom("0::/job/step\n", v2.path()) == 3096u);  // the parent's limit holds
   v2.write("job/memory.current", "5000\n");  // over its limit: nothing left, not a wrapped number
   CHECK(cgroupMemoryHeadroom("0::/job\n", v2.path()) == 0u);
-  // The inactive file cache is not in use: the kernel drops it at the limit (a job that had
-  // written its limit in files was refused every frame: the review of 2026-11-29).
-  v2.write("job/memory.stat", "anon 1000\nfile 3900\nactive_file 100\ninactive_file 3800\n");
-  CHECK(cgroupMemoryHeadroom("0::/job\n", v2.path()) == 4096u - 1200u);
+  // The file cache is not in use, but for shared memory: the kernel drops it at the limit (a job
+  // that had written its limit in files was refused every frame: the review and the hostile-input
+  // trial of 2026-11-29).
+  v2.write("job/memory.stat", "anon 1000\nfile 3900\nshmem 300\nactive_file 100\ninactive_file 3500\n");
+  CHECK(cgroupMemoryHeadroom("0::/job\n", v2.path()) == 4096u - (5000u - 3600u));  // shared memory stays used
   test::TempFolder v1;
   const std::string self = "9:memory:/slurm/uid_0/job_3\n4:cpu,cpuacct:/slurm\n";
   v1.write("memory/slurm/uid_0/job_3/memory.limit_in_bytes", "9223372036854771712\n");  // v1's "none"
@@ -86,8 +87,9 @@ TEST_CASE("cgroup limits: the memory a group's limit leaves, v2 and v1, the tigh
   v1.write("memory/slurm/uid_0/job_3/memory.limit_in_bytes", "2147483648\n");
   CHECK(cgroupMemoryHeadroom(self, v1.path()) == 2147483548u);
   v1.write("memory/slurm/uid_0/job_3/memory.usage_in_bytes", "2000000000\n");
-  v1.write("memory/slurm/uid_0/job_3/memory.stat", "cache 1900000000\ntotal_inactive_file 1500000000\n");
-  CHECK(cgroupMemoryHeadroom(self, v1.path()) == 2147483648u - 500000000u);
+  v1.write("memory/slurm/uid_0/job_3/memory.stat", "cache 1900000000\ntotal_cache 1800000000\ntotal_shmem 100000000\n"
+                                                     "total_inactive_file 1500000000\n");
+  CHECK(cgroupMemoryHeadroom(self, v1.path()) == 2147483648u - 300000000u);
   // The cpu line is not the memory controller's.
   CHECK_FALSE(cgroupMemoryHeadroom("4:cpu,cpuacct:/slurm/uid_0/job_3\n", v1.path()).has_value());
 }

@@ -27,6 +27,9 @@ TEST_CASE("closest name: edit distance and the suggestion's bounds") {
   CHECK(closestName("STRAIN", {"stress", "strain"}) == std::optional<std::string>("strain"));
   CHECK(closestName("V", {"v", "w"}) == std::optional<std::string>("v"));
   CHECK(closestName("Pin", {"Telecentric", "Pinhole", "ThinLens"}) == std::optional<std::string>("Pinhole"));
-  CHECK(closestName("pin", {"Pinholes", "Pinhole"}) == std::optional<std::string>("Pinhole"));  // the shortest
   CHECK_FALSE(closestName("Pi", {"Pinhole"}));  // too short to stand for a name
+  // A beginning several names have is no hint (a guess misled), and dashes are no letters.
+  CHECK_FALSE(closestName("--pre", {"--precision", "--preview"}));
+  CHECK_FALSE(closestName("ste", {"step_px", "step_deg"}));
+  CHECK_FALSE(closestName("--f", {"--frames", "--seed"}));
 }

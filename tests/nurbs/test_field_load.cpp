@@ -693,7 +693,7 @@ TEST_CASE("field-load: a mesh in other units than scale says, a cell array is na
   const std::string asMetres = dir.write("m.lua", scene(""));
   const test::CliResult m = test::runCli("render " + asMetres + " -o " + dir.file("m") + " --frames 0:1 --spp 1 --backend cpu");
   CHECK(m.exitCode == 0);
-  CHECK(m.err.find(asMetres + ":3: warning: Nurbs.deform: the surface spans 0.1 m, 0.08 % of the 120 m the mesh " +
+  CHECK(m.err.find(asMetres + ":3: warning: Nurbs.deform: the surface spans 0.1 m, 0.083 % of the 120 m the mesh " +
                    dir.file("mm.vtu") + " spans with scale 1: is the mesh in other units (Field.load's scale = 1e-3 for "
                    "mm)?\n") != std::string::npos);
   CHECK(test::readExr(dir.file("m/cam_0001.exr")).spec.get_string_attribute("dicsynth:deformation:plate").find(

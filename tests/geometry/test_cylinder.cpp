@@ -240,7 +240,7 @@ TEST_CASE("cylinder: the scene language's checks name the line") {
       {"c = Shape.Cylinder { radius = 0.1; height = 0.1; capped = 1 }\n",
        "Shape.Cylinder: 'capped' must be true or false"},
       {"c = Shape.Cylinder { radius = 0.1; height = 0.1; cap = true }\n",
-       "Shape.Cylinder: unknown key 'cap'; valid keys: radius, height, capped, location"},
+       "Shape.Cylinder: unknown key 'cap' (did you mean 'capped'?); valid keys: radius, height, capped, location"},
   };
   for (const auto& c : kCases) {
     CAPTURE(c.body);

@@ -188,17 +188,21 @@ std::optional<std::uint64_t> processMemoryHeadroom() {
     // each) and an 8 MiB stack, for the worker threads, the writers and lavapipe's own, about two
     // per CPU (the check passed under `ulimit -v 300000`, and the run ended in std::bad_alloc or
     // "Resource temporarily unavailable": the hostile-input trial of 2026-11-29).
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    std::uint64_t cpus = std::max(1u, std::thread::hardware_concurrency());
-    if (::sched_getaffinity(0, sizeof set, &set) == 0) cpus = std::uint64_t(std::max(1, CPU_COUNT(&set)));
-    if (const auto quota = processCpuLimit()) cpus = std::min<std::uint64_t>(cpus, *quota);
-    const std::uint64_t threads = 2 * cpus + 2;
+    const std::uint64_t threads = 2 * std::uint64_t(processCpuCount()) + 2;
     const std::uint64_t reserved = mapped + threads * (std::uint64_t(72) << 20);
     const std::uint64_t left = std::uint64_t(limit.rlim_cur) > reserved ? std::uint64_t(limit.rlim_cur) - reserved : 0;
     least = least ? std::min(*least, left) : left;
   }
   return least;
+}
+
+unsigned processCpuCount() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  unsigned cpus = std::max(1u, std::thread::hardware_concurrency());
+  if (::sched_getaffinity(0, sizeof set, &set) == 0) cpus = unsigned(std::max(1, CPU_COUNT(&set)));
+  if (const auto quota = processCpuLimit()) cpus = std::min(cpus, *quota);
+  return cpus;
 }
 
 std::optional<unsigned> processCpuLimit() {

@@ -29,6 +29,11 @@ std::optional<unsigned> cgroupCpuLimit(const std::string& selfCgroup, const std:
 // cgroupCpuLimit of this process, read once (/proc/self/cgroup, /sys/fs/cgroup).
 std::optional<unsigned> processCpuLimit();
 
+// The CPUs this process may use: its affinity mask (taskset, a Slurm or container CPU set; the
+// machine's count where it cannot be read), at most processCpuLimit(). What core/parallel.h's
+// hardwareThreads() is, and what processMemoryHeadroom() counts threads by.
+unsigned processCpuCount();
+
 // The bytes the tightest memory limit on the process's group and its ancestors leaves (limit minus
 // usage, the file cache other than shared memory not counted as used; 0 when usage exceeds it), or
 // none without a limit. v2: memory.max ("max": none), memory.current, memory.stat's file - shmem;

@@ -1,9 +1,5 @@
 #include "core/parallel.h"
 
-#include "core/cgroup_limits.h"
-
-#include <sched.h>
-
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -11,20 +7,14 @@
 #include <thread>
 #include <vector>
 
+#include "core/cgroup_limits.h"
+
 namespace dicsynth {
 
-// The CPUs this process may run on: its affinity mask (taskset, a Slurm or container CPU set), not
-// the machine's count, which std::thread::hardware_concurrency gives (the CI trial of 2026-11-29:
-// "2 threads" under taskset -c 0, one CPU), and no more than a control group's CPU quota grants
-// (`docker run --cpus 2` leaves every CPU in the mask: core/cgroup_limits.h).
-unsigned hardwareThreads() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  if (sched_getaffinity(0, sizeof set, &set) == 0) threads = unsigned(std::max(1, CPU_COUNT(&set)));
-  if (const auto quota = processCpuLimit()) threads = std::min(threads, *quota);
-  return threads;
-}
+// The CPUs this process may use (core/cgroup_limits.h processCpuCount: its affinity mask, within a
+// control group's CPU quota), not the machine's count (the CI trial of 2026-11-29: "2 threads"
+// under taskset -c 0, one CPU).
+unsigned hardwareThreads() { return processCpuCount(); }
 
 void parallelFor(std::size_t n, const std::function<void(std::size_t)>& body) {
   const std::size_t workers = std::min<std::size_t>(hardwareThreads(), n);

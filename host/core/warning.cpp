@@ -1,7 +1,5 @@
 #include "core/warning.h"
 
-#include "core/source_place.h"
-
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -9,6 +7,8 @@
 #include <mutex>
 #include <optional>
 #include <utility>
+
+#include "core/source_place.h"
 
 namespace dicsynth {
 namespace {

@@ -87,9 +87,9 @@ void checkOutputNames(const RenderJob& job, const Scene& scene, int frame,
   // Pictures are drawn of the EXR's layers: none with the image alone (the review of 2026-11-29).
   for (const Camera& camera : scene.cameras) {
     const std::string stem = outputStem(camera.name, job.numbered, frame) + ".";
+    if (!job.layers.anyGroundTruth()) break;
     for (const auto& [name, why] : previewUnwritable)
-      if (job.layers.anyGroundTruth() && name.size() > stem.size() + 4 && name.compare(0, stem.size(), stem) == 0 &&
-          name.ends_with(".png"))
+      if (name.size() > stem.size() + 4 && name.compare(0, stem.size(), stem) == 0 && name.ends_with(".png"))
         throw InputError(job.outputDir + "/preview/" + name + " " + why + ", where --preview draws camera " + camera.name +
                          "'s pictures, " + stem + "<layer>.png (remove or rename it, or choose another -o)");
   }
@@ -262,8 +262,7 @@ namespace {
 // (the laptop trial of 2026-11-29, even with --strict). Said before work, from the header of the
 // lowest-numbered EXR of the folder that this run does not write, of a camera it writes.
 void warnOtherReferenceFrame(const RenderJob& job, const std::set<std::string>& cameras) {
-  const bool motion = job.layers.has(Layer::Flow) || job.layers.has(Layer::Disp) || job.layers.has(Layer::FieldError);
-  if (!job.numbered || !motion || cameras.empty()) return;
+  if (!job.numbered || !job.layers.anyMotion() || cameras.empty()) return;
   std::vector<int> mine(job.frames);
   std::sort(mine.begin(), mine.end());
   std::optional<std::pair<int, std::string>> earliest;  // frame, file name
@@ -284,12 +283,12 @@ void warnOtherReferenceFrame(const RenderJob& job, const std::set<std::string>& 
     earliest = {frame, name};
   }
   if (!earliest) return;
-  const std::string path = (std::filesystem::path(job.outputDir) / earliest->second).string();
-  // A file without motion layers records a reference frame too, but measures nothing from it.
-  if (!exrHasAnyChannel(path, {"disp.X", "flow.X", "fieldError.X"})) return;
+  // One reading of the header: its reference frame, where it holds a motion layer (a file without
+  // one records a reference frame too, but measures nothing from it).
+  const auto theirs = exrStringAttributeWithChannel((std::filesystem::path(job.outputDir) / earliest->second).string(),
+                                                    "dicsynth:reference_frame", {"disp.X", "flow.X", "fieldError.X"});
   // A frame number, or nothing to compare: the attribute is the file's text, which a damaged or
   // forged file could fill with a line break, escapes or shell text (the hostile-input trial).
-  const auto theirs = exrStringAttribute(path, "dicsynth:reference_frame");
   const std::string ours = std::to_string(job.frames.front());
   if (!theirs || theirs->empty() || theirs->size() > 9 || theirs->find_first_not_of("0123456789") != std::string::npos ||
       *theirs == ours)
@@ -369,8 +368,7 @@ FramesChecked checkFrames(RenderSession& session, const RenderJob& job) {
   // a pixel holds depends on the layers (it counted every layer and two frames for any run: 3 to 13
   // times the peak measured, the laptop trial of 2026-11-29).
   const bool groundTruth = job.layers.anyGroundTruth();
-  const std::uint64_t perPixel = groundTruth ? kBytesPerPixelInFlight : kBytesPerPixelInFlightImageOnly;
-  const std::uint64_t need = (job.frames.size() > 1 ? 2 : 1) * out.maxPixelsPerFrame * perPixel;
+  const std::uint64_t need = (job.frames.size() > 1 ? 2 : 1) * out.maxPixelsPerFrame * bytesPerPixelInFlight(job.layers);
   if (const auto available = availableMemoryBytes(); available && need > *available)
     throw InputError(job.sceneFile + ": a frame of " + std::to_string(out.maxPixelsPerFrame) +
                      " pixels (all cameras) needs about " + std::to_string(need >> 20) + " MiB to render and write, more than the " +
@@ -1000,8 +998,7 @@ RenderJobResult runRenderJob(RenderSession& session, const RenderJob& job) {
   // machine, several on many cores, where writing sets the pace of a GPU render). The reference
   // frame (the first) is written, and its ReferenceFrame built, before any other frame's writing
   // starts; the others only read it. Each frame's lines are printed in frame order.
-  WorkerPool writers(outputWriters(checked.maxPixelsPerFrame *
-                                   (job.layers.anyGroundTruth() ? kBytesPerPixelInFlight : kBytesPerPixelInFlightImageOnly)));
+  WorkerPool writers(outputWriters(checked.maxPixelsPerFrame * bytesPerPixelInFlight(job.layers)));
   auto finishWriting = [&] { writers.waitAll(); };  // rethrows a writer's error
   std::mutex linesMutex;
   std::map<std::size_t, std::string> pending;  // lines of frames written before an earlier frame's

@@ -137,6 +137,10 @@ inline constexpr std::uint64_t kBytesPerPixelInFlight = 256;
 // pixels; 2026-11-29), rounded up. The check refused a 48 MP image-only frame that fits in 1.5 GB
 // (the laptop trial of 2026-11-29).
 inline constexpr std::uint64_t kBytesPerPixelInFlightImageOnly = 96;
+// The one of the two that `layers` asks for.
+inline std::uint64_t bytesPerPixelInFlight(const LayerSet& layers) {
+  return layers.anyGroundTruth() ? kBytesPerPixelInFlight : kBytesPerPixelInFlightImageOnly;
+}
 // All cameras' pixels of a frame's scene after --downscale.
 std::uint64_t framePixels(const Scene& scene, int downscale);
 

@@ -41,6 +41,10 @@ class LayerSet {
   bool empty() const { return bits_ == 0; }
   // Any EXR channel: the ground-truth file is written.
   bool anyGroundTruth() const { return (bits_ & ~(1u << std::uint32_t(Layer::Image))) != 0; }
+  // A layer measured from the reference frame (disp, flow, fieldError): what needs the reference
+  // frame's material points (render/ground_truth.cpp), and what a folder's earlier reference frame
+  // matters to (job/render_job.cpp).
+  bool anyMotion() const { return has(Layer::Disp) || has(Layer::Flow) || has(Layer::FieldError); }
   // The backend must hand back P, N, uv and depth (directly asked, or needed to derive motion and
   // disparity from material points).
   bool needsGeometry() const;

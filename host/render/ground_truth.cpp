@@ -237,7 +237,7 @@ DerivedTruth deriveTruth(const ReferenceFrame& reference, int frame, const Prepa
   // Motion: follow each reference pixel's material point into this frame.
   const ReferenceFrame::View* view = reference.view(camera.camera.name);
   const bool flow = layers.has(Layer::Flow);
-  const bool motion = flow || layers.has(Layer::Disp) || layers.has(Layer::FieldError);
+  const bool motion = layers.anyMotion();
   const bool sameSize = view && view->width_px == image.width_px && view->height_px == image.height_px;
   if (motion && !sameSize) {
     // The motion layers are stored at the reference frame's pixels, in this frame's image: without

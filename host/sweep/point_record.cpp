@@ -155,6 +155,18 @@ std::optional<PointRecord> readPointRecord(const std::string& folder) {
   return r;
 }
 
+std::optional<AssetChange> changedAsset(const PointRecord& record, AssetChecksums& assets) {
+  for (const PointFile& a : record.assets) {
+    try {
+      const PointFile now = assets.of(a.name);
+      if (now.bytes != a.bytes || now.crc32 != a.crc32) return AssetChange{a.name, "changed since"};
+    } catch (const Error&) {
+      return AssetChange{a.name, "cannot be read now"};  // the point cannot be as it was
+    }
+  }
+  return std::nullopt;
+}
+
 bool pointFilesIntact(const std::string& folder, const PointRecord& record, const std::string& key,
                       bool verifyChecksums, AssetChecksums& assets, std::string* why) {
   auto fail = [why](std::string reason) {
@@ -162,15 +174,8 @@ bool pointFilesIntact(const std::string& folder, const PointRecord& record, cons
     return false;
   };
   if (record.key != key) return fail("it was rendered with other inputs");
-  for (const PointFile& a : record.assets) {
-    try {
-      const PointFile now = assets.of(a.name);
-      // An asset is a texture or a Field.load mesh: named as the file it is.
-      if (now.bytes != a.bytes || now.crc32 != a.crc32) return fail("the file " + a.name + " changed since");
-    } catch (const Error&) {
-      return fail("the file " + a.name + " cannot be read now");  // the point cannot be as it was
-    }
-  }
+  // An asset is a texture or a Field.load mesh: named as the file it is.
+  if (const auto change = changedAsset(record, assets)) return fail("the file " + change->path + " " + change->what);
   for (const PointFile& f : record.files) {
     const fs::path path = fs::path(folder) / f.name;
     std::error_code ec;

@@ -79,6 +79,14 @@ void writePointRecord(const std::string& folder, const PointRecord& record);
 // (in any layout and member order: core/json.h).
 std::optional<PointRecord> readPointRecord(const std::string& folder);
 
+// The first of `record`'s assets (textures, meshes) whose size or CRC-32 is no longer the recorded
+// one, or that cannot be read now: its path, and "changed since" or "cannot be read now".
+struct AssetChange {
+  std::string path;
+  std::string what;
+};
+std::optional<AssetChange> changedAsset(const PointRecord& record, AssetChecksums& assets);
+
 // True when `record` has `key`, each of its files exists with the recorded size (and, when
 // verifyChecksums, the recorded CRC-32), and each of its assets still has the recorded size and
 // CRC-32 (always compared: `assets` computes each file's once). `why`, when given, receives what

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,8 +20,8 @@
 #include "core/crc32.h"
 #include "core/error.h"
 #include "core/exact_number.h"
-#include "core/progress.h"
 #include "core/module_folder.h"
+#include "core/progress.h"
 #include "core/warning.h"
 #include "core/worker_pool.h"
 #include "job/output_writers.h"
@@ -175,11 +177,18 @@ class Progress {
 // A manifest whose points were rendered with several precisions or devices says so: shards on other
 // machines (or drivers) each resolve --precision auto on their own device, and fp32 differs between
 // devices in the last bits.
+// "fp32 on A: 2 points; fp64 on B: 1 point": a manifest's points counted by what tells them apart.
+std::string pointCounts(const std::map<std::string, std::int64_t>& counts,
+                        const std::function<std::string(const std::string&)>& name) {
+  std::string list;
+  for (const auto& [what, count] : counts)
+    list += (list.empty() ? "" : "; ") + name(what) + ": " + std::to_string(count) + " point" + (count == 1 ? "" : "s");
+  return list;
+}
+
 void warnMixedDevices(const sweep::ManifestSummary& summary) {
   if (summary.renderedWith.size() < 2) return;
-  std::string list;
-  for (const auto& [what, count] : summary.renderedWith)
-    list += (list.empty() ? "" : "; ") + what + ": " + std::to_string(count) + " point" + (count == 1 ? "" : "s");
+  const std::string list = pointCounts(summary.renderedWith, [](const std::string& what) { return what; });
   warn("the manifest's points were rendered with " + std::to_string(summary.renderedWith.size()) +
        " precisions or devices (" + list + "): --precision auto chooses per device; give --precision (and the same "
        "device or driver to every shard) to render them alike");
@@ -190,10 +199,9 @@ void warnMixedDevices(const sweep::ManifestSummary& summary) {
 // "build" its own).
 void warnMixedBuilds(const sweep::ManifestSummary& summary) {
   if (summary.builds.size() < 2) return;
-  std::string list;
-  for (const auto& [build, count] : summary.builds)
-    list += (list.empty() ? "" : "; ") + (build.empty() ? std::string("not recorded") : build.substr(0, 12)) + ": " +
-            std::to_string(count) + " point" + (count == 1 ? "" : "s");
+  const std::string list = pointCounts(summary.builds, [](const std::string& build) {
+    return build.empty() ? std::string("not recorded") : build.substr(0, 12);
+  });
   warn("the manifest's points were rendered by " + std::to_string(summary.builds.size()) +
        " builds of dicsynth (" + list + "; each point's \"build\" in manifest.json): values may differ between "
        "builds; render the sweep with one binary to have them alike");
@@ -417,19 +425,10 @@ SweepOutcome runSweep(const SweepRun& cmd) {
       // Its inputs also hold the textures and meshes it loaded, which a resubmitted job may have
       // remade (the review of 2026-11-29: a rewritten speckle.tif replaced every finished point).
       // Its own files damaged or missing is a point to finish, as ever.
-      for (const sweep::PointFile& asset : recorded->assets) {
-        std::string changed;
-        try {
-          const sweep::PointFile now = assets.of(asset.name);
-          if (now.bytes != asset.bytes || now.crc32 != asset.crc32) changed = "changed since";
-        } catch (const Error&) {
-          changed = "cannot be read now";
-        }
-        if (!changed.empty())
-          throw InputError("sweep --keep-finished: " + pointFolderName(p.index) + " was rendered from " + asset.name +
-                           ", which " + changed + ": nothing is rendered. Restore the file, or run without "
-                           "--keep-finished to render the points that used it again");
-      }
+      if (const auto change = sweep::changedAsset(*recorded, assets))
+        throw InputError("sweep --keep-finished: " + pointFolderName(p.index) + " was rendered from " + change->path +
+                         ", which " + change->what + ": nothing is rendered. Restore the file, or run without "
+                         "--keep-finished to render the points that used it again");
     }
 
   RenderSession session(cmd.args, cmd.backend);
